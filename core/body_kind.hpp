@@ -1,0 +1,56 @@
+#pragma once
+// The contract every body kind fulfils. A body kind is a compile-time parameter of both engines
+// (DESIGN.md "Rigid bodies and free motion"): the pair loop never makes a virtual call, and a rod
+// scene never touches the asymmetric-top machinery.
+//
+// Conventions (van Zon & Schofield, J. Comput. Phys. 225, 145 (2007)): the attitude matrix A maps
+// lab-frame vectors to the body frame; body-frame quantities carry no suffix in the formulas of the
+// top headers. All vectors in a State are in the lab frame unless named otherwise.
+#include "core/vec.hpp"
+#include <concepts>
+#include <string_view>
+
+namespace terrace {
+
+/// Mass (g/mol) and principal moments of inertia (g/mol Å²) shared by every body of a scene.
+struct BodyParams {
+    double mass = 0.0;
+    Vec3 inertia = Vec3::Zero(); // I1, I2, I3 in the body frame; unused entries are ignored
+};
+
+template <class K>
+concept BodyKind = requires(typename K::State s, const typename K::State cs, const BodyParams p,
+                            double t, Vec3 a) {
+    { K::name } -> std::convertible_to<std::string_view>;
+    { K::rotationalDof } -> std::convertible_to<int>;
+    { cs.r } -> std::convertible_to<Vec3>; // centre of mass, Å (unwrapped)
+    { cs.v } -> std::convertible_to<Vec3>; // centre-of-mass velocity, Å per time unit
+    K::freeRotate(s, p, t);                // exact torque-free rotation over time t
+    { K::axis(cs) } -> std::convertible_to<Vec3>;                // unit long (symmetry) axis
+    { K::angularVelocity(cs, p) } -> std::convertible_to<Vec3>;  // lab ω, rad per time unit
+    { K::angularMomentum(cs, p) } -> std::convertible_to<Vec3>;  // lab L about the centre
+    { K::rotationalKinetic(cs, p) } -> std::convertible_to<double>;
+    { K::inverseInertia(cs, p, a, a) } -> std::convertible_to<double>; // a·I⁻¹·b, lab frame
+    K::addAngularMomentum(s, p, a);        // L += a (an impulsive or a kick torque)
+    K::scaleAngularVelocity(s, p, t);      // ω *= factor (thermostat)
+};
+
+/// Exact free motion over time t: straight-line translation and the kind's exact rotation.
+template <BodyKind K> void freeMove(typename K::State& s, const BodyParams& p, double t) {
+    s.r += s.v * t;
+    K::freeRotate(s, p, t);
+}
+
+template <BodyKind K> double kineticEnergy(const typename K::State& s, const BodyParams& p) {
+    return 0.5 * p.mass * s.v.squaredNorm() + K::rotationalKinetic(s, p);
+}
+
+/// Rodrigues' rotation matrix: rotates vectors by angle theta (rad) about the unit axis u.
+inline Mat3 rotationMatrix(const Vec3& u, double theta) {
+    const double c = std::cos(theta), s = std::sin(theta);
+    Mat3 cross;
+    cross << 0, -u.z(), u.y(), u.z(), 0, -u.x(), -u.y(), u.x(), 0;
+    return c * Mat3::Identity() + s * cross + (1.0 - c) * u * u.transpose();
+}
+
+} // namespace terrace

@@ -1,0 +1,29 @@
+#pragma once
+// Plain Lennard-Jones between spheres: U = 4ε[(σ/r)^12 - (σ/r)^6], no torques.
+#include "core/pair_potential.hpp"
+
+namespace terrace {
+
+struct LJPotential {
+    static constexpr std::string_view name = "lj";
+    static constexpr bool orientational = false;
+
+    double epsilon = 1.0; // kJ/mol
+    double sigma = 1.0;   // Å
+
+    PairForce evaluate(const Vec3& rij, const Vec3&, const Vec3&) const {
+        const double r = rij.norm();
+        const auto lj = detail::lennardJones(r, epsilon, sigma);
+        PairForce f;
+        f.U = lj.U;
+        f.F = (-lj.dUdx / r) * rij;
+        return f;
+    }
+    double energy(const Vec3& rij, const Vec3&, const Vec3&) const {
+        return detail::lennardJones(rij.norm(), epsilon, sigma).U;
+    }
+    double minimumEnergy() const { return -epsilon; }
+    double reachDistance(double u) const { return detail::lennardJonesRoot(u, epsilon, sigma); }
+};
+
+} // namespace terrace

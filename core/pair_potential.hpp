@@ -1,0 +1,63 @@
+#pragma once
+// What a pair potential gives the engines (paper eqs. 4-5 and 13): the energy U, the force on i,
+// the torques on i and j, and -- from those and the velocities -- the rate dU/dt along free motion.
+// Potentials are compile-time types; both engines are templates over them.
+#include "core/vec.hpp"
+#include <cmath>
+#include <concepts>
+#include <string_view>
+
+namespace terrace {
+
+/// Everything a pair evaluation returns (kJ/mol, kJ/mol/Å, kJ/mol per radian).
+struct PairForce {
+    double U = 0.0;
+    Vec3 F = Vec3::Zero();    // force on i due to j; the force on j is -F
+    Vec3 tauI = Vec3::Zero(); // torque on i due to j
+    Vec3 tauJ = Vec3::Zero(); // torque on j due to i
+};
+
+template <class P>
+concept PairPotential = requires(const P p, Vec3 r, double u) {
+    { P::name } -> std::convertible_to<std::string_view>;
+    { P::orientational } -> std::convertible_to<bool>;
+    // rij = ri - rj (minimum image), si, sj unit long axes (ignored when not orientational)
+    { p.evaluate(r, r, r) } -> std::same_as<PairForce>;
+    { p.energy(r, r, r) } -> std::convertible_to<double>;
+    // lowest value U can take over all configurations (a level there makes a zero-width terrace)
+    { p.minimumEnergy() } -> std::convertible_to<double>;
+    // largest centre distance at which U can equal u (0 if U never reaches u)
+    { p.reachDistance(u) } -> std::convertible_to<double>;
+};
+
+/// dU/dt along free motion, paper eq. (13): -F_ij·v_ij - τ_ij·ω_i - τ_ji·ω_j, with v_ij = v_i - v_j.
+inline double dUdt(const PairForce& f, const Vec3& vij, const Vec3& wi, const Vec3& wj) {
+    return -f.F.dot(vij) - f.tauI.dot(wi) - f.tauJ.dot(wj);
+}
+
+namespace detail {
+
+struct Radial {
+    double U;    // 4ε[(σ/x)^12 - (σ/x)^6]
+    double dUdx; // -(24ε/x)[2(σ/x)^12 - (σ/x)^6]
+};
+
+inline Radial lennardJones(double x, double epsilon, double sigma) {
+    const double s2 = sigma * sigma / (x * x);
+    const double s6 = s2 * s2 * s2;
+    const double s12 = s6 * s6;
+    return {4.0 * epsilon * (s12 - s6), -24.0 * epsilon / x * (2.0 * s12 - s6)};
+}
+
+/// Distance x at which the Lennard-Jones curve equals u: for -ε < u < 0 the outer (attractive)
+/// root, for u >= 0 the root on the repulsive wall; 0 for u <= -ε, where it is never reached.
+/// Solves 4ε(y² - y) = u for y = (σ/x)^6.
+inline double lennardJonesRoot(double u, double epsilon, double sigma) {
+    if (u <= -epsilon) return 0.0;
+    const double disc = std::sqrt(1.0 + u / epsilon);
+    const double y = u < 0.0 ? 0.5 * (1.0 - disc) : 0.5 * (1.0 + disc);
+    return sigma / std::pow(y, 1.0 / 6.0);
+}
+
+} // namespace detail
+} // namespace terrace

@@ -1,0 +1,43 @@
+#pragma once
+// The paper's rod potential ("Model System", eq. 24 ff.), r = |r_ij|, c = s_i·s_j:
+//     r_e = r + ζ(1/2 - c²),   U = 4ε[(σ/r_e)^12 - (σ/r_e)^6]
+//     F_ij = -U'(r_e) r̂_ij,    τ_ij = 2ζ c U'(r_e) (s_i × s_j),   τ_ji = -τ_ij
+// Units: ε kJ/mol, σ and ζ Å. Alignment perpendicular to a neighbour lowers r_e, hence the energy.
+#include "core/pair_potential.hpp"
+
+namespace terrace {
+
+struct RodPotential {
+    static constexpr std::string_view name = "rod-lj";
+    static constexpr bool orientational = true;
+
+    double epsilon = 3.0; // kJ/mol
+    double sigma = 3.035; // Å
+    double zeta = 1.0;    // Å
+
+    double effectiveDistance(double r, double c) const { return r + zeta * (0.5 - c * c); }
+
+    PairForce evaluate(const Vec3& rij, const Vec3& si, const Vec3& sj) const {
+        const double r = rij.norm();
+        const double c = si.dot(sj);
+        const auto lj = detail::lennardJones(effectiveDistance(r, c), epsilon, sigma);
+        PairForce f;
+        f.U = lj.U;
+        f.F = (-lj.dUdx / r) * rij;
+        f.tauI = (2.0 * zeta * c * lj.dUdx) * si.cross(sj);
+        f.tauJ = -f.tauI;
+        return f;
+    }
+    double energy(const Vec3& rij, const Vec3& si, const Vec3& sj) const {
+        const double c = si.dot(sj);
+        return detail::lennardJones(effectiveDistance(rij.norm(), c), epsilon, sigma).U;
+    }
+    double minimumEnergy() const { return -epsilon; }
+    /// r_e ≥ r - ζ/2, so U can equal u only while r ≤ x(u) + ζ/2 (paper's r_m formula).
+    double reachDistance(double u) const {
+        const double x = detail::lennardJonesRoot(u, epsilon, sigma);
+        return x > 0.0 ? x + 0.5 * zeta : 0.0;
+    }
+};
+
+} // namespace terrace

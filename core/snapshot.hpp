@@ -1,0 +1,41 @@
+#pragma once
+// An immutable picture of all bodies at one instant, the only thing analysis and trajectory
+// output see. Both engines produce the same Snapshot, so g(r) and the correlation functions
+// cannot treat DMD and SMD differently.
+#include "core/system.hpp"
+#include <vector>
+
+namespace terrace {
+
+struct Snapshot {
+    double time = 0.0;      // internal time units (100 fs)
+    double boxLength = 0.0; // Å
+    std::vector<Vec3> position; // unwrapped centres of mass, Å
+    std::vector<Vec3> velocity; // Å per time unit
+    std::vector<Vec3> axis;     // unit long axes (body axis 3)
+    std::vector<Vec3> omega;    // lab angular velocities, rad per time unit
+    std::vector<Quat> orientation; // body -> lab rotation; filled for tops only
+
+    int size() const { return static_cast<int>(position.size()); }
+};
+
+template <BodyKind K, PairPotential P> Snapshot makeSnapshot(const System<K, P>& sys, double t) {
+    Snapshot s;
+    s.time = t;
+    s.boxLength = sys.box.length;
+    const auto n = sys.bodies.size();
+    s.position.reserve(n);
+    s.velocity.reserve(n);
+    s.axis.reserve(n);
+    s.omega.reserve(n);
+    for (const auto& b : sys.bodies) {
+        s.position.push_back(b.r);
+        s.velocity.push_back(b.v);
+        s.axis.push_back(K::axis(b));
+        s.omega.push_back(K::angularVelocity(b, sys.body));
+        if constexpr (requires { b.A; }) s.orientation.emplace_back(Mat3(b.A.transpose()));
+    }
+    return s;
+}
+
+} // namespace terrace

@@ -1,0 +1,58 @@
+#pragma once
+// The shape both engines share: bodies of one kind in a periodic box, interacting through one pair
+// potential. Engines take a System by value, advance it, and hand out Snapshots.
+#include "core/body_kind.hpp"
+#include "core/box.hpp"
+#include "core/pair_potential.hpp"
+#include <vector>
+
+namespace terrace {
+
+template <BodyKind K, PairPotential P> struct System {
+    using Kind = K;
+    using Potential = P;
+    PeriodicBox box;
+    BodyParams body;
+    P potential;
+    std::vector<typename K::State> bodies;
+    double kT = 0.0; // thermal energy of the state point, kJ/mol
+
+    int size() const { return static_cast<int>(bodies.size()); }
+};
+
+/// Degrees of freedom used for the instantaneous temperature: total momentum is fixed (-3).
+template <BodyKind K> int degreesOfFreedom(int n) { return (3 + K::rotationalDof) * n - 3; }
+
+template <BodyKind K, PairPotential P> double totalKinetic(const System<K, P>& sys) {
+    double e = 0.0;
+    for (const auto& b : sys.bodies) e += kineticEnergy<K>(b, sys.body);
+    return e;
+}
+
+template <BodyKind K, PairPotential P> Vec3 totalMomentum(const System<K, P>& sys) {
+    Vec3 p = Vec3::Zero();
+    for (const auto& b : sys.bodies) p += sys.body.mass * b.v;
+    return p;
+}
+
+/// Total angular momentum about the origin, Σ (r_i × p_i + L_i). Meaningful for isolated
+/// clusters only: periodic images break rotational invariance.
+template <BodyKind K, PairPotential P> Vec3 totalAngularMomentum(const System<K, P>& sys) {
+    Vec3 l = Vec3::Zero();
+    for (const auto& b : sys.bodies)
+        l += b.r.cross(sys.body.mass * b.v) + K::angularMomentum(b, sys.body);
+    return l;
+}
+
+/// Continuous potential energy by the O(N²) minimum-image sum: the slow, obviously right path.
+template <BodyKind K, PairPotential P> double potentialEnergyAllPairs(const System<K, P>& sys) {
+    double u = 0.0;
+    for (int i = 0; i < sys.size(); ++i)
+        for (int j = i + 1; j < sys.size(); ++j) {
+            const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
+            u += sys.potential.energy(rij, K::axis(sys.bodies[i]), K::axis(sys.bodies[j]));
+        }
+    return u;
+}
+
+} // namespace terrace
