@@ -23,16 +23,16 @@ concept BodyKind = requires(typename K::State s, const typename K::State cs, con
                             double t, Vec3 a) {
     { K::name } -> std::convertible_to<std::string_view>;
     { K::rotationalDof } -> std::convertible_to<int>;
-    { cs.r } -> std::convertible_to<Vec3>; // centre of mass, Å (unwrapped)
-    { cs.v } -> std::convertible_to<Vec3>; // centre-of-mass velocity, Å per time unit
-    K::freeRotate(s, p, t);                // exact torque-free rotation over time t
-    { K::axis(cs) } -> std::convertible_to<Vec3>;                // unit long (symmetry) axis
-    { K::angularVelocity(cs, p) } -> std::convertible_to<Vec3>;  // lab ω, rad per time unit
-    { K::angularMomentum(cs, p) } -> std::convertible_to<Vec3>;  // lab L about the centre
+    { cs.r } -> std::convertible_to<Vec3>;        // centre of mass, Å (unwrapped)
+    { cs.v } -> std::convertible_to<Vec3>;        // centre-of-mass velocity, Å per time unit
+    K::freeRotate(s, p, t);                       // exact torque-free rotation over time t
+    { K::axis(cs) } -> std::convertible_to<Vec3>; // unit long (symmetry) axis
+    { K::angularVelocity(cs, p) } -> std::convertible_to<Vec3>; // lab ω, rad per time unit
+    { K::angularMomentum(cs, p) } -> std::convertible_to<Vec3>; // lab L about the centre
     { K::rotationalKinetic(cs, p) } -> std::convertible_to<double>;
     { K::inverseInertia(cs, p, a, a) } -> std::convertible_to<double>; // a·I⁻¹·b, lab frame
-    K::addAngularMomentum(s, p, a);        // L += a (an impulsive or a kick torque)
-    K::scaleAngularVelocity(s, p, t);      // ω *= factor (thermostat)
+    K::addAngularMomentum(s, p, a);   // L += a (an impulsive or a kick torque)
+    K::scaleAngularVelocity(s, p, t); // ω *= factor (thermostat)
 };
 
 /// Exact free motion over time t: straight-line translation and the kind's exact rotation.

@@ -14,7 +14,8 @@ struct PeriodicBox {
 
     /// The periodic image of d closest to the origin, component by component.
     Vec3 minimumImage(Vec3 d) const {
-        for (int a = 0; a < 3; ++a) d[a] -= length * std::nearbyint(d[a] / length);
+        for (int a = 0; a < 3; ++a)
+            d[a] -= length * std::nearbyint(d[a] / length);
         return d;
     }
 

@@ -9,13 +9,13 @@ namespace terrace {
 
 template <class E>
 concept Engine = requires(E e, const E ce, double t) {
-    e.advanceTo(t);                                              // t in time units, t ≥ time()
-    { ce.time() } -> std::convertible_to<double>;               // current (synchronised) time
-    { ce.snapshot() } -> std::same_as<Snapshot>;                // all bodies at time()
-    { ce.kineticEnergy() } -> std::convertible_to<double>;      // kJ/mol at time()
-    { ce.potentialEnergy() } -> std::convertible_to<double>;    // kJ/mol: terraced for DMD
-    { ce.totalMomentum() } -> std::convertible_to<Vec3>;        // g/mol Å per time unit
-    e.rescaleTemperature(t);      // scale v and ω so that the kinetic temperature is kT = t
+    e.advanceTo(t);                                          // t in time units, t ≥ time()
+    { ce.time() } -> std::convertible_to<double>;            // current (synchronised) time
+    { ce.snapshot() } -> std::same_as<Snapshot>;             // all bodies at time()
+    { ce.kineticEnergy() } -> std::convertible_to<double>;   // kJ/mol at time()
+    { ce.potentialEnergy() } -> std::convertible_to<double>; // kJ/mol: terraced for DMD
+    { ce.totalMomentum() } -> std::convertible_to<Vec3>;     // g/mol Å per time unit
+    e.rescaleTemperature(t); // scale v and ω so that the kinetic temperature is kT = t
     { ce.statistics() } -> std::convertible_to<nlohmann::json>; // engine-specific summary keys
 };
 

@@ -30,7 +30,8 @@ concept PairPotential = requires(const P p, Vec3 r, double u) {
     { p.reachDistance(u) } -> std::convertible_to<double>;
 };
 
-/// dU/dt along free motion, paper eq. (13): -F_ij·v_ij - τ_ij·ω_i - τ_ji·ω_j, with v_ij = v_i - v_j.
+/// dU/dt along free motion, paper eq. (13): -F_ij·v_ij - τ_ij·ω_i - τ_ji·ω_j, with v_ij = v_i -
+/// v_j.
 inline double dUdt(const PairForce& f, const Vec3& vij, const Vec3& wi, const Vec3& wj) {
     return -f.F.dot(vij) - f.tauI.dot(wi) - f.tauJ.dot(wj);
 }

@@ -20,11 +20,11 @@ public:
 
 /// One body of an explicit initial configuration (state.particles).
 struct ParticleSpec {
-    Vec3 r = Vec3::Zero();     // Å
-    Vec3 v = Vec3::Zero();     // Å/ps
-    Vec3 axis = Vec3::UnitZ(); // unit long axis (linear rotors)
+    Vec3 r = Vec3::Zero();           // Å
+    Vec3 v = Vec3::Zero();           // Å/ps
+    Vec3 axis = Vec3::UnitZ();       // unit long axis (linear rotors)
     std::optional<Quat> orientation; // body -> lab, tops ([w, x, y, z])
-    Vec3 omega = Vec3::Zero(); // lab angular velocity, rad/ps
+    Vec3 omega = Vec3::Zero();       // lab angular velocity, rad/ps
 };
 
 struct Scene {
@@ -32,8 +32,8 @@ struct Scene {
     std::uint64_t seed = 1;
 
     struct Body {
-        std::string kind = "linear"; // sphere | linear | symmetric | asymmetric
-        double mass = 18.0;          // g/mol
+        std::string kind = "linear";     // sphere | linear | symmetric | asymmetric
+        double mass = 18.0;              // g/mol
         Vec3 inertia{1.154, 1.154, 0.0}; // g/mol Å², principal moments
     } body;
 
@@ -46,8 +46,8 @@ struct Scene {
 
     struct State {
         int n = 512;
-        double density = 0.5;      // ρσ³
-        double temperature = 1.4;  // T* = kT/ε
+        double density = 0.5;                // ρσ³
+        double temperature = 1.4;            // T* = kT/ε
         std::string orientations = "random"; // random | aligned (lattice starts only)
         std::vector<ParticleSpec> particles; // explicit start; overrides the lattice when given
     } state;
@@ -55,11 +55,11 @@ struct Scene {
     std::string engine = "dmd"; // dmd | smd
 
     struct Dmd {
-        double dV = 0.5;             // terrace height in units of kT
-        std::vector<double> levels;  // explicit levels U_k in kJ/mol (overrides dV when given)
-        std::string queue = "bpq";   // heap | bpq
+        double dV = 0.5;            // terrace height in units of kT
+        std::vector<double> levels; // explicit levels U_k in kJ/mol (overrides dV when given)
+        std::string queue = "bpq";  // heap | bpq
         std::string invalidation = "lazy"; // lazy | eager
-        double horizon_fs = 4.0;     // virtual-event horizon and largest search step
+        double horizon_fs = 4.0;           // virtual-event horizon and largest search step
     } dmd;
 
     struct Smd {
@@ -80,7 +80,7 @@ struct Scene {
     } output;
 
     double kT() const { return state.temperature * potential.epsilon; } // kJ/mol
-    double boxLength() const; // Å, from n and density
+    double boxLength() const;                                           // Å, from n and density
 };
 
 /// The built-in default scene: the paper's dense rods (N 512, ρ* 0.5, T* 1.4).

@@ -21,17 +21,21 @@ template <BodyKind K, PairPotential P> struct System {
 };
 
 /// Degrees of freedom used for the instantaneous temperature: total momentum is fixed (-3).
-template <BodyKind K> int degreesOfFreedom(int n) { return (3 + K::rotationalDof) * n - 3; }
+template <BodyKind K> int degreesOfFreedom(int n) {
+    return (3 + K::rotationalDof) * n - 3;
+}
 
 template <BodyKind K, PairPotential P> double totalKinetic(const System<K, P>& sys) {
     double e = 0.0;
-    for (const auto& b : sys.bodies) e += kineticEnergy<K>(b, sys.body);
+    for (const auto& b : sys.bodies)
+        e += kineticEnergy<K>(b, sys.body);
     return e;
 }
 
 template <BodyKind K, PairPotential P> Vec3 totalMomentum(const System<K, P>& sys) {
     Vec3 p = Vec3::Zero();
-    for (const auto& b : sys.bodies) p += sys.body.mass * b.v;
+    for (const auto& b : sys.bodies)
+        p += sys.body.mass * b.v;
     return p;
 }
 

@@ -12,12 +12,22 @@ inline constexpr double kB = 0.0083144626;
 inline constexpr double fsPerTimeUnit = 100.0;
 inline constexpr double psPerTimeUnit = 0.1;
 
-inline constexpr double fromFs(double fs) { return fs / fsPerTimeUnit; }
-inline constexpr double fromPs(double ps) { return ps / psPerTimeUnit; }
-inline constexpr double toFs(double t) { return t * fsPerTimeUnit; }
-inline constexpr double toPs(double t) { return t * psPerTimeUnit; }
+inline constexpr double fromFs(double fs) {
+    return fs / fsPerTimeUnit;
+}
+inline constexpr double fromPs(double ps) {
+    return ps / psPerTimeUnit;
+}
+inline constexpr double toFs(double t) {
+    return t * fsPerTimeUnit;
+}
+inline constexpr double toPs(double t) {
+    return t * psPerTimeUnit;
+}
 
 /// Temperature in K of a thermal energy kT in kJ/mol.
-inline constexpr double kelvin(double kT) { return kT / kB; }
+inline constexpr double kelvin(double kT) {
+    return kT / kB;
+}
 
 } // namespace terrace::units
