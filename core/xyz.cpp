@@ -1,0 +1,140 @@
+#include "core/xyz.hpp"
+#include "core/units.hpp"
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace terrace {
+
+namespace {
+
+const char* columns(TrajectoryLayout layout) {
+    switch (layout) {
+    case TrajectoryLayout::Sphere:
+        return "species:S:1:pos:R:3:velo:R:3";
+    case TrajectoryLayout::Rod:
+        return "species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3";
+    case TrajectoryLayout::Top:
+        return "species:S:1:pos:R:3:velo:R:3:orientation:R:4:omega:R:3";
+    }
+    return "";
+}
+
+void put(std::ostream& out, const Vec3& v) {
+    out << ' ' << v.x() << ' ' << v.y() << ' ' << v.z();
+}
+
+/// The value of key=value or key="value" in an extended XYZ comment line ("" if absent).
+std::string field(const std::string& line, const std::string& key) {
+    std::size_t pos = 0;
+    while ((pos = line.find(key + "=", pos)) != std::string::npos) {
+        if (pos == 0 || line[pos - 1] == ' ') break;
+        pos += key.size();
+    }
+    if (pos == std::string::npos) return "";
+    pos += key.size() + 1;
+    if (pos < line.size() && line[pos] == '"') {
+        const auto end = line.find('"', pos + 1);
+        return line.substr(pos + 1, end - pos - 1);
+    }
+    const auto end = line.find(' ', pos);
+    return line.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+}
+
+} // namespace
+
+void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout) {
+    const double L = f.boxLength;
+    const auto precision = out.precision(17);
+    out << f.size() << '\n';
+    out << "Lattice=\"" << L << " 0 0 0 " << L << " 0 0 0 " << L
+        << "\" Properties=" << columns(layout) << " Time=" << units::toFs(f.time)
+        << " pbc=\"T T T\" units=\"pos:A velo:A/ps omega:rad/ps Time:fs\"\n";
+    const double perPs = 1.0 / units::psPerTimeUnit; // time units -> ps
+    for (int i = 0; i < f.size(); ++i) {
+        out << (layout == TrajectoryLayout::Sphere ? "S"
+                : layout == TrajectoryLayout::Rod  ? "R"
+                                                   : "T");
+        put(out, f.position[i]);
+        put(out, f.velocity[i] * perPs);
+        if (layout == TrajectoryLayout::Rod) put(out, f.axis[i]);
+        if (layout == TrajectoryLayout::Top) {
+            const Quat& q = f.orientation[i];
+            out << ' ' << q.w() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z();
+        }
+        if (layout != TrajectoryLayout::Sphere) put(out, f.omega[i] * perPs);
+        out << '\n';
+    }
+    out.precision(precision);
+}
+
+std::vector<Snapshot> readTrajectory(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw TrajectoryError(path + ": cannot open the trajectory");
+    std::vector<Snapshot> frames;
+    std::string line;
+    long lineNo = 0;
+    auto fail = [&](const std::string& what) {
+        throw TrajectoryError(path + ":" + std::to_string(lineNo) + ": " + what);
+    };
+    const double perPs = 1.0 / units::psPerTimeUnit; // divide: ps^-1 -> per time unit
+    while (std::getline(in, line)) {
+        ++lineNo;
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        long n = 0;
+        try {
+            n = std::stol(line);
+        } catch (...) {
+            fail("expected the number of bodies");
+        }
+        if (n < 0) fail("negative number of bodies");
+        if (!std::getline(in, line)) fail("missing comment line");
+        ++lineNo;
+        Snapshot f;
+        std::istringstream lattice(field(line, "Lattice"));
+        double a[9];
+        for (double& x : a)
+            if (!(lattice >> x)) fail("missing or malformed Lattice=");
+        f.boxLength = a[0];
+        const std::string time = field(line, "Time");
+        if (time.empty()) fail("missing Time=");
+        f.time = units::fromFs(std::stod(time));
+        const std::string props = field(line, "Properties");
+        TrajectoryLayout layout;
+        if (props == columns(TrajectoryLayout::Rod))
+            layout = TrajectoryLayout::Rod;
+        else if (props == columns(TrajectoryLayout::Top))
+            layout = TrajectoryLayout::Top;
+        else if (props == columns(TrajectoryLayout::Sphere))
+            layout = TrajectoryLayout::Sphere;
+        else
+            fail("unsupported Properties=" + props);
+        for (long i = 0; i < n; ++i) {
+            if (!std::getline(in, line)) fail("frame ends early");
+            ++lineNo;
+            std::istringstream row(line);
+            std::string species;
+            Vec3 r, v, s = Vec3::UnitZ(), w = Vec3::Zero();
+            row >> species >> r.x() >> r.y() >> r.z() >> v.x() >> v.y() >> v.z();
+            if (layout == TrajectoryLayout::Rod) row >> s.x() >> s.y() >> s.z();
+            if (layout == TrajectoryLayout::Top) {
+                double qw, qx, qy, qz;
+                row >> qw >> qx >> qy >> qz;
+                const Quat q(qw, qx, qy, qz);
+                f.orientation.push_back(q);
+                s = q * Vec3::UnitZ();
+            }
+            if (layout != TrajectoryLayout::Sphere) row >> w.x() >> w.y() >> w.z();
+            if (!row) fail("malformed body line");
+            f.position.push_back(r);
+            f.velocity.push_back(v / perPs);
+            f.axis.push_back(s);
+            f.omega.push_back(w / perPs);
+        }
+        frames.push_back(std::move(f));
+    }
+    return frames;
+}
+
+} // namespace terrace

@@ -1,0 +1,41 @@
+#pragma once
+// Trajectories as extended XYZ, readable by OVITO: one frame per block of N+2 lines,
+//     N
+//     Lattice="L 0 0 0 L 0 0 0 L" Properties=<columns> Time=<fs> pbc="T T T" units="..."
+//     <species> <columns...>
+// Columns: rods        species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3
+//          tops        species:S:1:pos:R:3:velo:R:3:orientation:R:4:omega:R:3 (quaternion w x y z,
+//                      body -> lab)
+//          spheres     species:S:1:pos:R:3:velo:R:3
+// pos in Å (unwrapped centres of mass, so that displacements survive the round trip), velo in
+// Å/ps, omega in rad/ps, Time in fs. Numbers are written with 17 significant digits: positions and
+// axes read back bit for bit, velocities and times to within the round-off of the unit conversion.
+#include "core/snapshot.hpp"
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace terrace {
+
+class TrajectoryError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+enum class TrajectoryLayout { Sphere, Rod, Top };
+
+/// The layout a body kind is written with (by its rotational degrees of freedom).
+constexpr TrajectoryLayout layoutFor(int rotationalDof) {
+    return rotationalDof == 0
+               ? TrajectoryLayout::Sphere
+               : (rotationalDof == 2 ? TrajectoryLayout::Rod : TrajectoryLayout::Top);
+}
+
+void writeXyzFrame(std::ostream& out, const Snapshot& frame, TrajectoryLayout layout);
+
+/// Every frame of an extended XYZ file written by writeXyzFrame. Throws TrajectoryError naming the
+/// file and line on anything malformed.
+std::vector<Snapshot> readTrajectory(const std::string& path);
+
+} // namespace terrace
