@@ -23,7 +23,10 @@ struct PeriodicBox {
     Vec3 wrap(Vec3 r) const {
         for (int a = 0; a < 3; ++a) {
             r[a] -= length * std::floor(r[a] / length);
-            if (r[a] >= length) r[a] = 0.0; // -tiny wraps to L in floating point
+            // r/L is rounded (and underflows to -0 for denormal r), so floor() can be one off
+            // next to a multiple of L: step back into the cell; -tiny + L can round to L itself.
+            if (r[a] < 0.0) r[a] += length;
+            if (r[a] >= length) r[a] -= length;
         }
         return r;
     }
