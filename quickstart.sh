@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# terrace quick start, for a fresh Debian 12 machine as root (or with sudo):
+#   ./quickstart.sh run    install what is missing, build, run the built-in default scene
+#   ./quickstart.sh test   install what is missing, build, run the whole test suite
+# Extra arguments after `run` go to `terrace run` (e.g. ./quickstart.sh run --set engine=smd).
+set -euo pipefail
+cd "$(dirname "$0")"
+
+packages=(build-essential cmake pkg-config git libeigen3-dev libfftw3-dev
+          libboost-program-options-dev libboost-math-dev nlohmann-json3-dev
+          libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox)
+
+install_missing() {
+    local missing=()
+    for p in "${packages[@]}"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+            missing+=("$p")
+    done
+    if [ ${#missing[@]} -gt 0 ]; then
+        echo "quickstart: installing ${missing[*]}" >&2
+        local sudo=""
+        [ "$(id -u)" -eq 0 ] || sudo="sudo"
+        $sudo apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+    fi
+}
+
+build() {
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake --build build -j"$(nproc)"
+}
+
+case "${1:-}" in
+run)
+    shift
+    install_missing
+    build
+    exec ./build/terrace run "$@"
+    ;;
+test)
+    install_missing
+    build
+    exec ctest --test-dir build --output-on-failure -j"$(nproc)"
+    ;;
+*)
+    echo "usage: ./quickstart.sh run [terrace run options] | ./quickstart.sh test" >&2
+    exit 2
+    ;;
+esac
