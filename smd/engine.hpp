@@ -1,0 +1,182 @@
+#pragma once
+// SMD engine: rigid-body molecular dynamics on the continuous (smoothed) pair potential with the
+// symplectic, time-reversible splitting of van Zon & Schofield, Phys. Rev. E 75, 056701 (2007),
+// the integrator of the paper's SMD runs ("Comparison between standard molecular dynamics and
+// event-driven simulations"; DESIGN.md "SMD engine"). One step of length dt:
+//     kick   p += F dt/2,  L += τ dt/2
+//     drift  exact free motion over dt (straight line, the body kind's exact rotation)
+//     force  F, τ at the new positions (Verlet list, rebuilt when a body moved > skin/2)
+//     kick   p += F dt/2,  L += τ dt/2
+// Time only advances in whole steps: advanceTo(t) stops at the first grid point t0 + k dt >= t,
+// so every step is the same symplectic map (the run driver samples on multiples of dt).
+// Units: Å, g/mol, kJ/mol, time unit 100 fs.
+#include "core/engine.hpp"
+#include "core/snapshot.hpp"
+#include "core/system.hpp"
+#include "smd/neighbour_list.hpp"
+#include "smd/pair_forces.hpp"
+#include "smd/parameters.hpp"
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+namespace terrace::smd {
+
+template <BodyKind K, PairPotential P> class Engine {
+public:
+    Engine(System<K, P> initial, const Scene& scene)
+        : sys_(std::move(initial)), par_(smd::parameters(scene, sys_.box.length)),
+          sigmaUnit_(scene.potential.sigma) {
+        for (const auto& b : sys_.bodies)
+            if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
+                !K::angularVelocity(b, sys_.body).allFinite())
+                throw SceneError("state: a body has a non-finite position, velocity, orientation "
+                                 "or angular velocity");
+        if (!(sys_.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
+        list_.reach = par_.cutoff.outer + par_.skin;
+        list_.skin = par_.skin;
+        const std::size_t n = sys_.bodies.size();
+        position_.resize(n);
+        local_.resize(n);
+        if (P::orientational) axis_.resize(n);
+        gatherPositions();
+        build(list_, sys_.box, position_);
+        computeForces();
+    }
+
+    /// Whole dt steps up to the first grid point at or after t (time units).
+    void advanceTo(double t) {
+        const double remaining = (t - time()) / par_.dt;
+        if (remaining <= 0.0) return;
+        // A target within round-off of a grid point means that grid point, not one step more.
+        const long steps = static_cast<long>(std::ceil(remaining - gridTolerance));
+        for (long k = 0; k < steps; ++k)
+            step();
+    }
+
+    /// One splitting step (kick, drift, force, kick).
+    void step() {
+        using Clock = std::chrono::steady_clock;
+        const auto t0 = Clock::now();
+        halfKick();
+        const auto t1 = Clock::now();
+        for (auto& b : sys_.bodies)
+            freeMove<K>(b, sys_.body, par_.dt);
+        gatherPositions();
+        const auto t2 = Clock::now();
+        if (needsRebuild(list_, position_)) {
+            build(list_, sys_.box, position_);
+            ++list_.rebuilds;
+        }
+        const auto t3 = Clock::now();
+        computeForces();
+        const auto t4 = Clock::now();
+        halfKick();
+        const auto t5 = Clock::now();
+        ++steps_;
+        seconds_.kick += seconds(t0, t1) + seconds(t4, t5);
+        seconds_.drift += seconds(t1, t2);
+        seconds_.neighbour += seconds(t2, t3);
+        seconds_.force += seconds(t3, t4);
+    }
+
+    double time() const { return steps_ * par_.dt; }
+    Snapshot snapshot() const { return makeSnapshot(sys_, time()); }
+    double kineticEnergy() const { return totalKinetic(sys_); }
+    /// The smoothed continuous potential energy at time().
+    double potentialEnergy() const { return forces_.potential; }
+    Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }
+
+    /// Scale v and ω so that the kinetic energy is ½ degreesOfFreedom<K>(N) kT.
+    void rescaleTemperature(double kT) {
+        const double now = kineticEnergy();
+        if (now <= 0.0) return;
+        const double f = std::sqrt(0.5 * degreesOfFreedom<K>(sys_.size()) * kT / now);
+        for (auto& b : sys_.bodies) {
+            b.v *= f;
+            K::scaleAngularVelocity(b, sys_.body, f);
+        }
+    }
+
+    /// Flip every velocity and angular velocity: the step map is then run backwards in time.
+    void reverseMotion() {
+        for (auto& b : sys_.bodies) {
+            b.v = -b.v;
+            K::scaleAngularVelocity(b, sys_.body, -1.0);
+        }
+    }
+
+    nlohmann::json statistics() const {
+        const double sigma = sigmaUnit_;
+        return {{"steps", steps_},
+                {"neighbour_rebuilds", list_.rebuilds},
+                {"pair_evaluations", evaluations_},
+                {"dt_fs", units::toFs(par_.dt)},
+                {"skin_sigma", par_.skin / sigma},
+                {"r_l_sigma", par_.cutoff.inner / sigma},
+                {"r_u_sigma", par_.cutoff.outer / sigma},
+                {"listed_pairs", list_.pairCount()},
+                {"phase_seconds",
+                 {{"kick", seconds_.kick},
+                  {"drift", seconds_.drift},
+                  {"neighbour", seconds_.neighbour},
+                  {"force", seconds_.force}}}};
+    }
+
+    const System<K, P>& system() const { return sys_; }
+    const Forces& forces() const { return forces_; }
+    const Parameters& parameters() const { return par_; }
+    long steps() const { return steps_; }
+    long neighbourRebuilds() const { return list_.rebuilds; }
+    long pairEvaluations() const { return evaluations_; }
+
+private:
+    static constexpr double gridTolerance = 1e-9; // in steps: far above round-off of t/dt
+
+    template <class T> static double seconds(T a, T b) {
+        return std::chrono::duration<double>(b - a).count();
+    }
+
+    void halfKick() {
+        const double h = 0.5 * par_.dt, hm = h / sys_.body.mass;
+        for (std::size_t i = 0; i < sys_.bodies.size(); ++i) {
+            auto& b = sys_.bodies[i];
+            b.v += hm * forces_.force[i];
+            if constexpr (K::rotationalDof > 0)
+                K::addAngularMomentum(b, sys_.body, h * forces_.torque[i]);
+        }
+    }
+
+    void gatherPositions() {
+        for (std::size_t i = 0; i < sys_.bodies.size(); ++i)
+            position_[i] = sys_.bodies[i].r;
+    }
+
+    void computeForces() {
+        const std::size_t n = sys_.bodies.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            local_[i] = position_[i] - list_.offset[i];
+            if constexpr (P::orientational) axis_[i] = K::axis(sys_.bodies[i]);
+        }
+        forces_.reset(n);
+        accumulateListedPairs(forces_, sys_.potential, par_.cutoff, list_, local_, axis_);
+        evaluations_ += forces_.evaluations;
+    }
+
+    struct PhaseSeconds {
+        double kick = 0, drift = 0, neighbour = 0, force = 0;
+    };
+
+    System<K, P> sys_;
+    Parameters par_;
+    double sigmaUnit_; // Å: σ of the scene, the unit of skin and cutoffs in statistics()
+    NeighbourList list_;
+    Forces forces_;
+    std::vector<Vec3> position_, local_, axis_;
+    long steps_ = 0;
+    long evaluations_ = 0;
+    PhaseSeconds seconds_;
+};
+
+} // namespace terrace::smd

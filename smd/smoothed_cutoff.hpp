@@ -1,0 +1,49 @@
+#pragma once
+// Smoothed cutoff of a pair potential (paper eqs. 22-23, "Comparison between standard molecular
+// dynamics and event-driven simulations"): U_smooth = g(r) U(r_ij, s_i, s_j) with r = |r_ij| and
+//     g(r) = 1                                          r < r_l
+//          = (r_u - r)² (r_u - 3 r_l + 2r) / (r_u - r_l)³   r_l <= r <= r_u
+//          = 0                                          r > r_u
+//     g'(r) = -6 (r_u - r)(r - r_l) / (r_u - r_l)³      on [r_l, r_u], 0 elsewhere.
+// g and g' are continuous at both ends, so force and torque are continuous everywhere. Because g
+// depends on the centre distance only, the torques are g τ and the force gains one term:
+//     F_smooth = g F - U g'(r) r̂_ij,   τ_smooth = g τ   (force on i, r̂_ij = r_ij / r).
+// Units: distances Å, energies kJ/mol (those of the wrapped potential).
+#include "core/pair_potential.hpp"
+
+namespace terrace::smd {
+
+struct SmoothedCutoff {
+    double inner = 0.0; // r_l, Å: the potential is untouched inside
+    double outer = 0.0; // r_u, Å: zero beyond
+
+    /// g(r): 1 inside r_l, the cubic switch on [r_l, r_u], 0 beyond r_u.
+    double switching(double r) const {
+        if (r <= inner) return 1.0;
+        if (r >= outer) return 0.0;
+        const double w = outer - inner, a = outer - r;
+        return a * a * (outer - 3.0 * inner + 2.0 * r) / (w * w * w);
+    }
+    /// g'(r) = dg/dr.
+    double switchingSlope(double r) const {
+        if (r <= inner || r >= outer) return 0.0;
+        const double w = outer - inner;
+        return -6.0 * (outer - r) * (r - inner) / (w * w * w);
+    }
+};
+
+/// The smoothed pair interaction from the raw one at separation rij (r = |rij| > 0, Å).
+/// Valid for r < r_u; callers skip pairs beyond r_u, where every term is zero.
+inline PairForce smoothed(const PairForce& raw, const Vec3& rij, double r,
+                          const SmoothedCutoff& cut) {
+    if (r <= cut.inner) return raw; // the common case in a dense liquid: nothing to do
+    const double g = cut.switching(r);
+    PairForce f;
+    f.U = g * raw.U;
+    f.F = g * raw.F - (raw.U * cut.switchingSlope(r) / r) * rij;
+    f.tauI = g * raw.tauI;
+    f.tauJ = g * raw.tauJ;
+    return f;
+}
+
+} // namespace terrace::smd
