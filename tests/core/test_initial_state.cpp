@@ -1,0 +1,115 @@
+// Initial states: lattice at the asked density, exact temperature, zero momentum, deterministic
+// from the seed, clear errors for what cannot be built.
+#include "core/asymmetric_top.hpp"
+#include "core/initial_state.hpp"
+#include "core/linear_rotor.hpp"
+#include "core/sphere.hpp"
+#include "core/symmetric_top.hpp"
+#include <gtest/gtest.h>
+
+using namespace terrace;
+
+namespace {
+constexpr double roundOff = 1e-10; // relative: sums over 512 bodies of O(1) numbers
+
+template <class K, class P> void checkThermal(const System<K, P>& sys) {
+    const double kin = totalKinetic(sys);
+    EXPECT_NEAR(kin / (0.5 * degreesOfFreedom<K>(sys.size()) * sys.kT), 1.0, roundOff);
+    EXPECT_LT(totalMomentum(sys).norm(), roundOff * sys.body.mass);
+}
+} // namespace
+
+TEST(InitialState, DenseRodsAtTheStatePoint) {
+    const Scene scene = defaultScene();
+    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    ASSERT_EQ(sys.size(), 512);
+    EXPECT_NEAR(sys.size() * std::pow(scene.potential.sigma, 3) / sys.box.volume(), 0.5, 1e-12);
+    checkThermal(sys);
+    double minDistance = 1e300;
+    for (int i = 0; i < sys.size(); ++i) {
+        EXPECT_NEAR(sys.bodies[i].s.norm(), 1.0, 1e-14);
+        EXPECT_NEAR(sys.bodies[i].w.dot(sys.bodies[i].s), 0.0, 1e-12);
+        for (int j = i + 1; j < sys.size(); ++j)
+            minDistance = std::min(minDistance,
+                                   sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r).norm());
+    }
+    EXPECT_NEAR(minDistance, sys.box.length / 8, 1e-9); // 8³ simple cubic lattice
+}
+
+TEST(InitialState, EquipartitionOverManyBodies) {
+    Scene scene = defaultScene();
+    scene.state.n = 4096;
+    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    double trans = 0, rot = 0;
+    for (const auto& b : sys.bodies) {
+        trans += 0.5 * sys.body.mass * b.v.squaredNorm();
+        rot += LinearRotor::rotationalKinetic(b, sys.body);
+    }
+    // per degree of freedom, 3 translational and 2 rotational; statistical error ~ sqrt(2/(2N))
+    EXPECT_NEAR(trans / (3.0 * sys.size()) / (0.5 * sys.kT), 1.0, 0.05);
+    EXPECT_NEAR(rot / (2.0 * sys.size()) / (0.5 * sys.kT), 1.0, 0.05);
+}
+
+TEST(InitialState, EveryBodyKind) {
+    Scene scene = defaultScene();
+    scene.state.n = 100; // not a cube: the lattice is filled partly
+    scene.body.inertia = Vec3(1.0, 1.0, 0.5);
+    checkThermal(buildInitialState<SymmetricTop>(scene, rodPotential(scene)));
+    scene.body.inertia = Vec3(1.0, 2.0, 3.0);
+    const auto asym = buildInitialState<AsymmetricTop>(scene, rodPotential(scene));
+    checkThermal(asym);
+    for (const auto& b : asym.bodies)
+        EXPECT_LT((b.A * b.A.transpose() - Mat3::Identity()).norm(), 1e-13);
+    scene.potential.kind = "lj";
+    scene.body.kind = "sphere";
+    checkThermal(buildInitialState<Sphere>(scene, ljPotential(scene)));
+}
+
+TEST(InitialState, DeterministicFromTheSeed) {
+    Scene scene = defaultScene();
+    const auto a = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    const auto b = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    scene.seed = 2;
+    const auto c = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    for (int i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a.bodies[i].v, b.bodies[i].v);
+        EXPECT_EQ(a.bodies[i].s, b.bodies[i].s);
+    }
+    EXPECT_NE(a.bodies[0].v, c.bodies[0].v);
+}
+
+TEST(InitialState, AlignedOrientations) {
+    Scene scene = defaultScene();
+    scene.state.orientations = "aligned";
+    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    for (const auto& b : sys.bodies)
+        EXPECT_EQ(b.s, Vec3::UnitZ());
+}
+
+TEST(InitialState, OverlapAtImpossibleDensityIsAnError) {
+    Scene scene = defaultScene();
+    scene.state.density = 3.0;
+    try {
+        buildInitialState<LinearRotor>(scene, rodPotential(scene));
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("state.density"), std::string::npos);
+    }
+    scene.state.density = 0.8; // the densest state point of the extremes table still builds
+    EXPECT_NO_THROW(buildInitialState<LinearRotor>(scene, rodPotential(scene)));
+}
+
+TEST(InitialState, ExplicitParticlesInPsUnits) {
+    Scene scene = defaultScene();
+    ParticleSpec a, b;
+    a.r = Vec3(1, 2, 3);
+    a.v = Vec3(10, 0, 0); // Å/ps
+    a.axis = Vec3(0, 0, 1);
+    a.omega = Vec3(5, 0, 1); // rad/ps; the part along the axis is dropped for rods
+    b.r = Vec3(5, 2, 3);
+    scene.state.particles = {a, b};
+    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    EXPECT_DOUBLE_EQ(sys.bodies[0].v.x(), 1.0); // 10 Å/ps = 1 Å per 100 fs
+    EXPECT_DOUBLE_EQ(sys.bodies[0].w.x(), 0.5);
+    EXPECT_DOUBLE_EQ(sys.bodies[0].w.z(), 0.0);
+}

@@ -1,0 +1,89 @@
+// Extended XYZ round trip for every layout, and clear errors for malformed files.
+#include "core/initial_state.hpp"
+#include "core/linear_rotor.hpp"
+#include "core/snapshot.hpp"
+#include "core/sphere.hpp"
+#include "core/symmetric_top.hpp"
+#include "core/xyz.hpp"
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+
+using namespace terrace;
+
+namespace {
+
+constexpr double conversionRoundOff = 1e-15; // relative: one multiply and one divide by 10
+
+std::filesystem::path tempFile(const std::string& name) {
+    return std::filesystem::temp_directory_path() / ("terrace-" + name);
+}
+
+template <class K, class P> void roundTrip(const System<K, P>& sys, const std::string& name) {
+    const auto path = tempFile(name);
+    const Snapshot a = makeSnapshot(sys, 0.25), b = makeSnapshot(sys, 0.5);
+    {
+        std::ofstream out(path);
+        writeXyzFrame(out, a, layoutFor(K::rotationalDof));
+        writeXyzFrame(out, b, layoutFor(K::rotationalDof));
+    }
+    const auto frames = readTrajectory(path.string());
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_NEAR(frames[1].time, 0.5, 1e-15);
+    EXPECT_EQ(frames[0].boxLength, sys.box.length);
+    for (int i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(frames[0].position[i], a.position[i]);
+        EXPECT_LE((frames[0].velocity[i] - a.velocity[i]).norm(),
+                  conversionRoundOff * a.velocity[i].norm());
+        EXPECT_LE((frames[0].omega[i] - a.omega[i]).norm(),
+                  conversionRoundOff * (1 + a.omega[i].norm()));
+        EXPECT_LE((frames[0].axis[i] - a.axis[i]).norm(), 1e-15);
+    }
+}
+
+} // namespace
+
+TEST(Xyz, RoundTripRods) {
+    const Scene scene = defaultScene();
+    roundTrip(buildInitialState<LinearRotor>(scene, rodPotential(scene)), "rods.xyz");
+}
+
+TEST(Xyz, RoundTripTopsAndSpheres) {
+    Scene scene = defaultScene();
+    scene.state.n = 27;
+    scene.body.inertia = Vec3(1.0, 1.0, 0.4);
+    roundTrip(buildInitialState<SymmetricTop>(scene, rodPotential(scene)), "tops.xyz");
+    scene.potential.kind = "lj";
+    scene.body.kind = "sphere";
+    roundTrip(buildInitialState<Sphere>(scene, ljPotential(scene)), "spheres.xyz");
+}
+
+TEST(Xyz, HeaderIsOvitoExtendedXyz) {
+    const Scene scene = defaultScene();
+    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    std::ostringstream out;
+    writeXyzFrame(out, makeSnapshot(sys, 0.1), TrajectoryLayout::Rod);
+    std::istringstream in(out.str());
+    std::string count, header;
+    std::getline(in, count);
+    std::getline(in, header);
+    EXPECT_EQ(count, "512");
+    EXPECT_NE(header.find("Lattice=\""), std::string::npos);
+    EXPECT_NE(header.find("Properties=species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3"),
+              std::string::npos);
+    EXPECT_NE(header.find("Time=10 "), std::string::npos); // 0.1 time units = 10 fs
+}
+
+TEST(Xyz, MalformedFilesAreNamedErrors) {
+    const auto path = tempFile("bad.xyz");
+    std::ofstream(path)
+        << "2\nLattice=\"1 0 0 0 1 0 0 0 1\" Properties=species:S:1:pos:R:3:velo:R:3"
+           " Time=0\nS 0 0 0 0 0 0\n";
+    try {
+        readTrajectory(path.string());
+        FAIL() << "expected a TrajectoryError";
+    } catch (const TrajectoryError& e) {
+        EXPECT_NE(std::string(e.what()).find("frame ends early"), std::string::npos);
+    }
+    EXPECT_THROW(readTrajectory("/nonexistent.xyz"), TrajectoryError);
+}
