@@ -11,7 +11,7 @@
 #include <cmath>
 #include <random>
 
-namespace terrace::smd::testing {
+namespace terrace::smd::fixtures {
 
 inline Vec3 randomUnit(std::mt19937_64& rng) {
     std::normal_distribution<double> gauss;
@@ -84,4 +84,4 @@ inline Scene smdScene(double sigma, double dtFs) {
     return s;
 }
 
-} // namespace terrace::smd::testing
+} // namespace terrace::smd::fixtures

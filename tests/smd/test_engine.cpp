@@ -1,0 +1,155 @@
+// The SMD engine: scene validation, the engine contract, conservation of linear momentum (to
+// round-off, Newton's third law) and of total angular momentum of an isolated cluster, time
+// reversibility of the splitting, and advanceTo's whole-step time grid.
+#include "core/engine.hpp"
+#include "smd/engine.hpp"
+#include "systems.hpp"
+#include <gtest/gtest.h>
+
+using namespace terrace;
+using RodEngine = smd::Engine<LinearRotor, RodPotential>;
+using LJEngine = smd::Engine<Sphere, LJPotential>;
+
+static_assert(terrace::Engine<RodEngine>);
+static_assert(terrace::Engine<LJEngine>);
+
+namespace {
+
+constexpr double sigmaRod = 3.035; // Å, the paper's σ
+
+/// Expects a SceneError whose message starts with `key`.
+template <class F> void expectSceneError(F&& make, const std::string& key) {
+    try {
+        make();
+        ADD_FAILURE() << "no error for " << key;
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(key, 0), 0u) << e.what();
+    }
+}
+
+} // namespace
+
+TEST(Engine, RejectsBadParameters) {
+    const auto sys = smd::fixtures::rods(6, 0.5, 1.4, 1);
+    auto with = [&](auto edit) {
+        Scene s = smd::fixtures::smdScene(sigmaRod, 1.8);
+        edit(s);
+        return [s, &sys] { RodEngine e(sys, s); };
+    };
+    expectSceneError(with([](Scene& s) { s.smd.dt_fs = 0.0; }), "smd.dt_fs");
+    expectSceneError(with([](Scene& s) { s.smd.dt_fs = -1.0; }), "smd.dt_fs");
+    expectSceneError(with([](Scene& s) { s.smd.dt_fs = std::nan(""); }), "smd.dt_fs");
+    expectSceneError(with([](Scene& s) { s.smd.skin = -0.1; }), "smd.skin");
+    expectSceneError(with([](Scene& s) { s.smd.r_l = 0.0; }), "smd.r_l");
+    expectSceneError(with([](Scene& s) { s.smd.r_u = 2.5; }), "smd.r_u");
+    expectSceneError(with([](Scene& s) { s.smd.r_u = 2.0; }), "smd.r_u");
+    // 6³ rods at ρ* = 0.5: L ≈ 7.56σ < 2(4 + 0.3)σ.
+    expectSceneError(with([](Scene& s) { s.smd.r_u = 4.0; }), "smd.r_u");
+    auto broken = sys;
+    broken.bodies[3].v.x() = std::nan("");
+    const Scene ok = smd::fixtures::smdScene(sigmaRod, 1.8);
+    expectSceneError([&] { RodEngine e(broken, ok); }, "state");
+}
+
+TEST(Engine, AdvancesInWholeStepsOnTheGrid) {
+    RodEngine e(smd::fixtures::rods(6, 0.5, 1.4, 2), smd::fixtures::smdScene(sigmaRod, 2.0));
+    const double dt = units::fromFs(2.0);
+    e.advanceTo(10 * dt);
+    EXPECT_EQ(e.steps(), 10);
+    e.advanceTo(10.2 * dt); // off the grid: the next grid point at or after it
+    EXPECT_EQ(e.steps(), 11);
+    EXPECT_DOUBLE_EQ(e.time(), 11 * dt);
+    e.advanceTo(5 * dt); // the past: nothing
+    EXPECT_EQ(e.steps(), 11);
+    e.advanceTo(units::fromFs(30.0)); // 15 steps, although 30/2 in floating point may not be exact
+    EXPECT_EQ(e.steps(), 15);
+    const auto stats = e.statistics();
+    EXPECT_EQ(stats.at("steps").get<long>(), 15);
+    EXPECT_GT(stats.at("pair_evaluations").get<long>(), 0);
+    EXPECT_DOUBLE_EQ(stats.at("dt_fs").get<double>(), 2.0);
+    EXPECT_TRUE(stats.contains("neighbour_rebuilds"));
+    EXPECT_EQ(e.snapshot().size(), 216);
+    EXPECT_DOUBLE_EQ(e.snapshot().time, e.time());
+}
+
+TEST(Engine, RescalesToTemperature) {
+    RodEngine e(smd::fixtures::rods(6, 0.5, 1.4, 3), smd::fixtures::smdScene(sigmaRod, 1.8));
+    e.advanceTo(units::fromFs(90.0));
+    const double kT = 2.5;
+    e.rescaleTemperature(kT);
+    EXPECT_NEAR(e.kineticEnergy(), 0.5 * degreesOfFreedom<LinearRotor>(216) * kT,
+                1e-12 * e.kineticEnergy()); // one multiplication's round-off per body
+}
+
+TEST(Engine, PotentialEnergyIsTheSmoothedAllPairsSum) {
+    RodEngine e(smd::fixtures::rods(6, 0.5, 1.4, 4), smd::fixtures::smdScene(sigmaRod, 1.8));
+    e.advanceTo(units::fromFs(180.0));
+    const auto& p = e.parameters();
+    // Same terms summed in a different order.
+    EXPECT_NEAR(e.potentialEnergy(), smd::allPairsForces(e.system(), p.cutoff).potential, 1e-9);
+}
+
+TEST(Engine, ConservesLinearMomentumToRoundOff) {
+    RodEngine e(smd::fixtures::rods(6, 0.5, 1.4, 5), smd::fixtures::smdScene(sigmaRod, 1.8));
+    const Vec3 p0 = e.totalMomentum();
+    e.advanceTo(units::fromFs(500 * 1.8));
+    // Each step adds Σ(F - F) round-off: ~1e-16 of |F dt| ~ 10 g/mol Å/100fs per body and step.
+    constexpr double roundOffMomentum = 1e-9;
+    EXPECT_LT((e.totalMomentum() - p0).norm(), roundOffMomentum);
+    LJEngine lj(smd::fixtures::ljSpheres(8, 0.8442, 1.44, 6), smd::fixtures::smdScene(1.0, 0.5));
+    const Vec3 q0 = lj.totalMomentum();
+    lj.advanceTo(units::fromFs(500 * 0.5));
+    EXPECT_LT((lj.totalMomentum() - q0).norm(), roundOffMomentum);
+}
+
+TEST(Engine, IsolatedClusterConservesAngularMomentum) {
+    // Three rods close together in a box so large that no periodic image is ever in reach.
+    System<LinearRotor, RodPotential> sys = smd::fixtures::rods(1, 0.5, 1.4, 7);
+    sys.box.length = 1000.0;
+    std::mt19937_64 rng(8);
+    sys.bodies.clear();
+    const Vec3 sites[3] = {{0, 0, 0}, {1.15 * sigmaRod, 0, 0}, {0.5 * sigmaRod, sigmaRod, 0.3}};
+    for (const Vec3& r : sites) {
+        LinearRotor::State b;
+        b.r = r + Vec3(500, 500, 500);
+        b.s = smd::fixtures::randomUnit(rng);
+        b.v = 0.3 * smd::fixtures::randomUnit(rng);
+        const Vec3 w = 2.0 * smd::fixtures::randomUnit(rng);
+        b.w = w - w.dot(b.s) * b.s;
+        sys.bodies.push_back(b);
+    }
+    RodEngine e(sys, smd::fixtures::smdScene(sigmaRod, 1.8));
+    const Vec3 l0 = totalAngularMomentum(e.system());
+    ASSERT_GT(e.pairEvaluations(), 0);
+    const double u0 = e.potentialEnergy();
+    e.advanceTo(units::fromFs(2000 * 1.8));
+    EXPECT_NE(e.potentialEnergy(), u0); // the rods did interact
+    // Central forces and τ_ij = -τ_ji: each kick changes L by round-off of r × F ~ 1e-16·500 Å·F.
+    constexpr double roundOffAngularMomentum = 1e-8;
+    EXPECT_LT((totalAngularMomentum(e.system()) - l0).norm(), roundOffAngularMomentum)
+        << "L0 = " << l0.transpose();
+}
+
+TEST(Engine, TimeReversible) {
+    const auto start = smd::fixtures::rods(6, 0.5, 1.4, 9);
+    // Equilibrate away from the lattice first so that the test runs in a liquid.
+    RodEngine warm(start, smd::fixtures::smdScene(sigmaRod, 1.8));
+    warm.advanceTo(units::fromFs(200 * 1.8));
+    RodEngine e(warm.system(), smd::fixtures::smdScene(sigmaRod, 1.8));
+    const auto before = e.system().bodies;
+    e.advanceTo(200 * e.parameters().dt);
+    e.reverseMotion();
+    e.advanceTo(400 * e.parameters().dt);
+    ASSERT_GT(e.neighbourRebuilds(), 0); // rebuilds on the way there and back do not matter
+    // Round-off amplified by the liquid's chaos over 2 × 200 steps stays orders below this.
+    constexpr double reversibilityTolerance = 1e-8; // Å
+    double worstPosition = 0.0, worstAxis = 0.0;
+    for (std::size_t i = 0; i < before.size(); ++i) {
+        worstPosition = std::max(worstPosition, (e.system().bodies[i].r - before[i].r).norm());
+        worstAxis = std::max(worstAxis, (e.system().bodies[i].s - before[i].s).norm());
+    }
+    EXPECT_LT(worstPosition, reversibilityTolerance);
+    EXPECT_LT(worstAxis, reversibilityTolerance / sigmaRod);
+    std::cout << "largest position error after 200 steps there and back: " << worstPosition
+              << " Å\n";
+}
