@@ -2,7 +2,9 @@
 // The paper's rod potential ("Model System", eq. 24 ff.), r = |r_ij|, c = s_i·s_j:
 //     r_e = r + ζ(1/2 - c²),   U = 4ε[(σ/r_e)^12 - (σ/r_e)^6]
 //     F_ij = -U'(r_e) r̂_ij,    τ_ij = 2ζ c U'(r_e) (s_i × s_j),   τ_ji = -τ_ij
-// Units: ε kJ/mol, σ and ζ Å. Alignment perpendicular to a neighbour lowers r_e, hence the energy.
+// Units: ε kJ/mol, σ and ζ Å. r_e runs from r + ζ/2 (perpendicular rods) to r - ζ/2 (parallel):
+// at close contact, on the repulsive wall, perpendicular neighbours have the lower energy (the
+// paper's remark); in the attractive tail parallel ones do.
 #include "core/pair_potential.hpp"
 
 namespace terrace {
