@@ -1,0 +1,241 @@
+// Question: what does one event cost in the DMD event queue — binary heap vs G. Paul's bounded
+// priority queue, lazy vs eager invalidation — and does the bounded queue keep it flat in N?
+// (paper, "Implementation of the event-driven simulation": ≈ 15 % of the total run time each.)
+//
+// Hold model of an event-driven calendar (J. G. Vaucher & P. Duval, Commun. ACM 18, 223 (1975)):
+// N bodies with kPredictionsPerBody pending predictions each. One hold = pop the earliest valid
+// event, schedule 1–3 new ones at now + delay (exponential or uniform, mean τ), and invalidate one
+// random pending prediction, so that the number of valid predictions stays constant.
+//   lazy  — invalidation bumps the prediction's counter; the stale entry stays queued and is
+//           skipped when popped (DESIGN.md: per-particle counters), with removeIf cleanup if stale
+//           entries ever outnumber valid ones kCleanupFactor − 1 to one;
+//   eager — invalidation erases the entry through its handle.
+// Reported per benchmark: ns per hold (CPU time), bytes per queued entry and per body; after the
+// run, a table of ratios heap/bpq and eager/lazy for each N. The queue alone is timed here: in the
+// engine, event processing between holds also competes for cache, so whole-run ratios are smaller.
+#include "dmd/binary_heap_queue.hpp"
+#include "dmd/bounded_priority_queue.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace terrace::dmd {
+namespace {
+
+struct HoldEvent {
+    double time = 0.0;         // time units
+    std::uint32_t id = 0;      // which prediction
+    std::uint32_t stamp = 0;   // the prediction's counter when scheduled (lazy invalidation)
+    std::uint32_t partner = 0; // payload a DMD event carries: second body,
+    std::uint32_t kind = 0;    // and event kind
+};
+
+constexpr std::size_t kPredictionsPerBody = 12; // the 10–20 pending events per body
+constexpr double kMeanDelay = 1.0;              // τ, time units; only ratios to it matter
+constexpr double kEventsPerBin = 8.0;  // Paul: speed barely changes between ~5 and ~500 per bin
+constexpr double kCleanupFactor = 3.0; // lazy cleanup once entries exceed 3× valid predictions
+constexpr std::int64_t kTimedHolds = 2'000'000;
+constexpr std::uint64_t kHoldSeed = 0x5eed'e7e4'7c0e'0001;
+
+enum class Delays { Exponential, Uniform };
+
+// xorshift64* (S. Vigna, ACM TOMS 42, 8 (2016)): cheap enough not to dominate the queue's cost.
+struct Xorshift {
+    std::uint64_t s;
+    std::uint64_t next() {
+        s ^= s >> 12;
+        s ^= s << 25;
+        s ^= s >> 27;
+        return s * 0x2545F4914F6CDD1DULL;
+    }
+    double uniform() { return static_cast<double>(next() >> 11) * 0x1p-53; } // [0, 1)
+};
+
+template <class Q> class HoldModel {
+public:
+    HoldModel(Q queue, bool eager, Delays delays)
+        : queue_(std::move(queue)), eager_(eager), delays_(delays) {}
+
+    void schedule() {
+        std::uint32_t id;
+        if (!freeIds_.empty()) {
+            id = freeIds_.back();
+            freeIds_.pop_back();
+        } else {
+            id = static_cast<std::uint32_t>(stamp_.size());
+            stamp_.push_back(0);
+            handle_.emplace_back();
+            validIndex_.push_back(0);
+        }
+        const QueueHandle h = queue_.push({now_ + delay(), id, stamp_[id], id ^ 1u, 0});
+        if (eager_) handle_[id] = h;
+        validIndex_[id] = static_cast<std::uint32_t>(valid_.size());
+        valid_.push_back(id);
+    }
+
+    void hold() {
+        for (;;) {
+            const HoldEvent e = queue_.top();
+            queue_.pop();
+            if (e.stamp == stamp_[e.id]) {
+                now_ = e.time;
+                retire(e.id);
+                break;
+            }
+            ++stalePops_;
+        }
+        const int pushes = 1 + static_cast<int>(rng_.next() % 3);
+        for (int k = 0; k < pushes; ++k)
+            schedule();
+        const std::uint32_t victim = valid_[rng_.next() % valid_.size()];
+        if (eager_) queue_.erase(handle_[victim]);
+        retire(victim);
+        if (!eager_ && queue_.size() > kCleanupFactor * valid_.size()) {
+            queue_.removeIf([this](const HoldEvent& e) { return e.stamp != stamp_[e.id]; });
+            ++cleanups_;
+        }
+    }
+
+    // Rebins the bounded queue for the entries now queued (the engine's retune after measuring
+    // the event rate): pending times near "now" have density size/τ for both delay laws.
+    void tune() {
+        if constexpr (requires { queue_.retune(1.0, std::size_t{1}); }) {
+            const double width = kEventsPerBin * kMeanDelay / static_cast<double>(queue_.size());
+            const double window = (delays_ == Delays::Exponential ? 4.0 : 2.0) * kMeanDelay;
+            queue_.retune(width, static_cast<std::size_t>(std::ceil(window / width)));
+        }
+    }
+
+    const Q& queue() const { return queue_; }
+    std::size_t stalePops() const { return stalePops_; }
+    std::size_t cleanups() const { return cleanups_; }
+
+private:
+    double delay() {
+        const double u = rng_.uniform();
+        return delays_ == Delays::Exponential ? -kMeanDelay * std::log1p(-u) : 2.0 * kMeanDelay * u;
+    }
+
+    void retire(std::uint32_t id) {
+        ++stamp_[id];
+        const std::uint32_t last = valid_.back();
+        valid_[validIndex_[id]] = last;
+        validIndex_[last] = validIndex_[id];
+        valid_.pop_back();
+        freeIds_.push_back(id);
+    }
+
+    Q queue_;
+    bool eager_;
+    Delays delays_;
+    Xorshift rng_{kHoldSeed};
+    double now_ = 0.0;
+    std::vector<std::uint32_t> stamp_;      // per prediction id
+    std::vector<QueueHandle> handle_;       // per prediction id (eager only)
+    std::vector<std::uint32_t> validIndex_; // per prediction id: its index in valid_
+    std::vector<std::uint32_t> valid_;      // ids of valid pending predictions
+    std::vector<std::uint32_t> freeIds_;
+    std::size_t stalePops_ = 0;
+    std::size_t cleanups_ = 0;
+};
+
+template <class Q> void runHolds(benchmark::State& state, Q queue, bool eager, Delays delays) {
+    const auto bodies = static_cast<std::size_t>(state.range(0));
+    HoldModel<Q> model(std::move(queue), eager, delays);
+    for (std::size_t k = 0; k < bodies * kPredictionsPerBody; ++k)
+        model.schedule();
+    // Reach the steady state (stale population, time spread) before timing.
+    for (std::size_t k = 0; k < 2 * bodies * kPredictionsPerBody; ++k)
+        model.hold();
+    model.tune();
+    const std::size_t stale0 = model.stalePops();
+    for (auto _ : state)
+        model.hold();
+    const double entries = static_cast<double>(model.queue().size());
+    const double bytes = static_cast<double>(model.queue().bytesReserved());
+    state.counters["B/entry"] = bytes / entries;
+    state.counters["B/body"] = bytes / static_cast<double>(bodies);
+    state.counters["entries/body"] = entries / static_cast<double>(bodies);
+    state.counters["stale/hold"] =
+        static_cast<double>(model.stalePops() - stale0) / static_cast<double>(state.iterations());
+    state.counters["cleanups"] = static_cast<double>(model.cleanups());
+}
+
+// Keeps ns per hold by benchmark name so that the ratios can be printed after the run.
+class RatioReporter : public benchmark::ConsoleReporter {
+public:
+    void ReportRuns(const std::vector<Run>& runs) override {
+        for (const Run& run : runs)
+            if (run.run_type == Run::RT_Iteration)
+                nsPerHold[run.benchmark_name()] = run.GetAdjustedCPUTime();
+        ConsoleReporter::ReportRuns(runs);
+    }
+    std::map<std::string, double> nsPerHold;
+};
+
+// Google Benchmark appends "/<N>/iterations:<holds>" to this.
+std::string benchmarkName(const char* queue, const char* invalidation, const char* delays) {
+    return std::string("hold/") + queue + "/" + invalidation + "/" + delays;
+}
+
+void printRatios(const std::map<std::string, double>& ns) {
+    std::printf("\nns per hold and ratios (> 1: the second named is faster)\n");
+    std::printf("%-11s %7s %9s %9s %9s %9s %9s %9s %9s %9s %11s\n", "delays", "N", "heap-lazy",
+                "bpq-lazy", "heap-eagr", "bpq-eagr", "heap/bpq", "heap/bpq", "eagr/lazy",
+                "eagr/lazy", "heap-eagr/");
+    std::printf("%-11s %7s %9s %9s %9s %9s %9s %9s %9s %9s %11s\n", "", "", "", "", "", "",
+                "(lazy)", "(eager)", "(heap)", "(bpq)", "bpq-lazy");
+    for (const char* delays : {"exponential", "uniform"})
+        for (const std::size_t n : {512u, 4096u, 32768u, 262144u}) {
+            const auto at = [&](const char* q, const char* inv) {
+                const auto it = ns.find(benchmarkName(q, inv, delays) + "/" + std::to_string(n) +
+                                        "/iterations:" + std::to_string(kTimedHolds));
+                return it == ns.end() ? std::nan("") : it->second;
+            };
+            const double hl = at("heap", "lazy"), bl = at("bpq", "lazy");
+            const double he = at("heap", "eager"), be = at("bpq", "eager");
+            if (std::isnan(hl + bl + he + be)) continue; // filtered out of this run
+            std::printf("%-11s %7zu %9.1f %9.1f %9.1f %9.1f %9.3f %9.3f %9.3f %9.3f %11.3f\n",
+                        delays, n, hl, bl, he, be, hl / bl, he / be, he / hl, be / bl, he / bl);
+        }
+}
+
+void registerAll() {
+    for (const std::size_t bodies : {512u, 4096u, 32768u, 262144u})
+        for (const Delays delays : {Delays::Exponential, Delays::Uniform})
+            for (const bool eager : {false, true}) {
+                const char* d = delays == Delays::Exponential ? "exponential" : "uniform";
+                const char* inv = eager ? "eager" : "lazy";
+                const auto reg = [&](const char* q, auto queueMaker) {
+                    benchmark::RegisterBenchmark(
+                        benchmarkName(q, inv, d).c_str(),
+                        [=](benchmark::State& s) { runHolds(s, queueMaker(), eager, delays); })
+                        ->Arg(static_cast<std::int64_t>(bodies))
+                        ->Iterations(kTimedHolds)
+                        ->Unit(benchmark::kNanosecond);
+                };
+                reg("heap", [] { return BinaryHeapQueue<HoldEvent>{}; });
+                // Placeholder bins; tune() sets them from the steady-state queue.
+                reg("bpq", [] { return BoundedPriorityQueue<HoldEvent>(1.0, 1, 0.0); });
+            }
+}
+
+} // namespace
+} // namespace terrace::dmd
+
+int main(int argc, char** argv) {
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    terrace::dmd::registerAll();
+    terrace::dmd::RatioReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    terrace::dmd::printRatios(reporter.nsPerHold);
+    benchmark::Shutdown();
+    return 0;
+}
