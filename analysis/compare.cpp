@@ -1,0 +1,119 @@
+#include "analysis/compare.hpp"
+#include "analysis/csv.hpp"
+#include <algorithm>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/special_functions/erf.hpp>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+namespace terrace::analysis {
+
+namespace {
+
+/// Points with zero combined error must agree to this relative round-off (e.g. VACF(0) = 1).
+constexpr double exactRelativeTolerance = 1e-9;
+/// A's x lies "inside" B's range up to this fraction of B's span (grids written from the same
+/// sample interval differ in the last digits only).
+constexpr double gridTolerance = 1e-9;
+
+struct Column {
+    std::vector<double> x, y, err; // err empty: exact
+};
+
+Column pick(const CsvTable& t, const std::string& name, const std::filesystem::path& path) {
+    if (t.header.size() < 2 || t.rows() < 1)
+        throw CsvError(path.string() + ": needs an x column, a value column and data rows");
+    const int c = t.find(name);
+    if (c < 1) throw CsvError(path.string() + ": no value column '" + name + "'");
+    int e = t.find(name + "_err");
+    if (e < 0 && c == 1 && t.header.size() > 2 && t.header[2] == "err") e = 2;
+    Column col{t.columns[0], t.columns[c], {}};
+    if (e >= 0) col.err = t.columns[e];
+    return col;
+}
+
+/// Linear interpolation of ys at x on the increasing grid xs (x inside [xs.front(), xs.back()]).
+double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
+    if (x <= xs.front()) return ys.front();
+    if (x >= xs.back()) return ys.back();
+    const auto hi = std::upper_bound(xs.begin(), xs.end(), x) - xs.begin();
+    const double f = (x - xs[hi - 1]) / (xs[hi] - xs[hi - 1]);
+    return ys[hi - 1] + f * (ys[hi] - ys[hi - 1]);
+}
+
+template <class... Args> std::string format(const char* fmt, Args... args) {
+    char buffer[96];
+    std::snprintf(buffer, sizeof buffer, fmt, args...);
+    return buffer;
+}
+
+} // namespace
+
+double pointLimitSigma(double tolSigma, int n) {
+    const double p = std::erfc(tolSigma / std::sqrt(2.0));
+    return std::max(tolSigma, std::sqrt(2.0) * boost::math::erfc_inv(p / std::max(n, 1)));
+}
+
+double chi2PerDofLimit(double tolSigma, int n) {
+    const double p = std::erfc(tolSigma / std::sqrt(2.0));
+    const int nu = std::clamp(n, 1, effectiveIndependentPoints);
+    return boost::math::quantile(boost::math::chi_squared(nu), 1.0 - p) / nu;
+}
+
+Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::path& b,
+                      double tolSigma, const std::string& column) {
+    if (!(tolSigma > 0.0)) throw std::invalid_argument("compare: --tol-sigma must be > 0");
+    const CsvTable ta = readCsv(a), tb = readCsv(b);
+    if (ta.header.empty() || tb.header.empty() || ta.header[0] != tb.header[0])
+        throw CsvError("compare: x columns differ: '" + ta.header.at(0) + "' in " + a.string() +
+                       ", '" + tb.header.at(0) + "' in " + b.string());
+    const std::string name = column.empty() ? (ta.header.size() > 1 ? ta.header[1] : "") : column;
+    const Column ca = pick(ta, name, a), cb = pick(tb, name, b);
+    if (ca.err.empty() && cb.err.empty())
+        throw CsvError("compare: neither file has an error column for '" + name +
+                       "': no scale to judge agreement on");
+    for (std::size_t k = 1; k < cb.x.size(); ++k)
+        if (!(cb.x[k] > cb.x[k - 1])) throw CsvError(b.string() + ": x must increase");
+
+    const double slack = gridTolerance * std::max(1.0, std::abs(cb.x.back() - cb.x.front()));
+    Comparison r{true, 0.0, 0.0, std::numeric_limits<double>::quiet_NaN(), 0, ""};
+    double chi2 = 0.0;
+    int dof = 0;
+    bool exactMismatch = false;
+    for (std::size_t i = 0; i < ca.x.size(); ++i) {
+        const double x = ca.x[i];
+        if (x < cb.x.front() - slack || x > cb.x.back() + slack) continue;
+        const double ya = ca.y[i], yb = interpolate(cb.x, cb.y, x);
+        const double ea = ca.err.empty() ? 0.0 : ca.err[i];
+        const double eb = cb.err.empty() ? 0.0 : interpolate(cb.x, cb.err, x);
+        if (!std::isfinite(ya) || !std::isfinite(yb) || !std::isfinite(ea) || !std::isfinite(eb))
+            continue;
+        ++r.points;
+        const double sigma = std::hypot(ea, eb), diff = std::abs(ya - yb);
+        double z = 0.0;
+        if (sigma > 0.0) {
+            z = diff / sigma;
+            chi2 += z * z, ++dof;
+        } else if (diff > exactRelativeTolerance * std::max({1.0, std::abs(ya), std::abs(yb)})) {
+            z = std::numeric_limits<double>::infinity(), exactMismatch = true;
+        }
+        if (z > r.maxDeviationSigma || std::isnan(r.atX)) r.maxDeviationSigma = z, r.atX = x;
+    }
+    if (r.points == 0)
+        throw CsvError("compare: no common points of " + a.string() + " and " + b.string());
+
+    r.chi2PerDof = dof > 0 ? chi2 / dof : 0.0;
+    const double zLimit = pointLimitSigma(tolSigma, dof), chiLimit = chi2PerDofLimit(tolSigma, dof);
+    r.agree = !exactMismatch && r.maxDeviationSigma <= zLimit && r.chi2PerDof <= chiLimit;
+    r.verdict = std::string(r.agree ? "agree" : "DISAGREE") + ": " + name + " over " +
+                std::to_string(r.points) + " points, chi2/dof " +
+                format("%.3g (limit %.3g)", r.chi2PerDof, chiLimit) + ", largest deviation " +
+                format("%.3g sigma (limit %.3g)", r.maxDeviationSigma, zLimit) + " at " +
+                ta.header[0] + " = " + format("%.6g", r.atX) +
+                (exactMismatch ? "; an exact point (zero error) differs" : "");
+    return r;
+}
+
+} // namespace terrace::analysis

@@ -1,0 +1,98 @@
+#include "analysis/correlations.hpp"
+#include "analysis/csv.hpp"
+#include "analysis/dynamic_correlations.hpp"
+#include "analysis/rdf.hpp"
+#include "core/units.hpp"
+#include <cmath>
+#include <stdexcept>
+
+namespace terrace::analysis {
+
+namespace {
+
+/// g(r) far from a body should be 1: average over the outer fifth of the range, r ∈ [0.4, 0.5] L.
+constexpr double largeRFraction = 0.4;
+
+nlohmann::json writeRdf(const std::vector<Snapshot>& samples, const std::filesystem::path& dir,
+                        const Options& options) {
+    const RadialDistribution rdf =
+        radialDistribution(samples, options.rdfBinAngstrom, options.blocks);
+    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+    const double from = largeRFraction * samples.front().boxLength;
+    double sum = 0.0, var = 0.0;
+    int count = 0;
+    for (std::size_t k = 0; k < rdf.r.size(); ++k)
+        if (rdf.r[k] >= from) sum += rdf.g[k], var += rdf.err[k] * rdf.err[k], ++count;
+    nlohmann::json j{{"bin_angstrom", rdf.binWidth}, {"bins", rdf.r.size()}};
+    if (count > 0) {
+        // Bins treated as independent for the error of their mean (neighbouring bins of g(r)
+        // share frames, so this is a rough guide, not a rigorous error).
+        j["g_large_r"] = sum / count;
+        j["g_large_r_err"] = std::sqrt(var) / count;
+        j["large_r_from_angstrom"] = from;
+    }
+    return j;
+}
+
+/// D = (1/3) ∫₀^tmax ⟨v(0)·v(t)⟩ dt by the trapezoid rule, Å²/ps; truncated at the last lag.
+double greenKuboDiffusion(const SampledCurve& vacf, double meanSquareVelocity) {
+    double integral = 0.0; // ∫ c dt in ps
+    for (std::size_t k = 1; k < vacf.tPs.size(); ++k)
+        integral += 0.5 * (vacf.value[k] + vacf.value[k - 1]) * (vacf.tPs[k] - vacf.tPs[k - 1]);
+    const double v2 = meanSquareVelocity / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
+    return v2 * integral / 3.0;
+}
+
+} // namespace
+
+nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
+                                 const std::filesystem::path& dir, const Options& options) {
+    const double dtPs = sampleIntervalPs(samples);
+    const int t = static_cast<int>(samples.size());
+    if (options.blocks < 2 || options.blocks > t / 2)
+        throw std::invalid_argument("writeCorrelations: need 2 ≤ blocks ≤ samples/2 (" +
+                                    std::to_string(t) + " samples, " +
+                                    std::to_string(options.blocks) + " blocks)");
+    if (!(options.rdfBinAngstrom > 0.0))
+        throw std::invalid_argument("writeCorrelations: rdf bin must be > 0 Å");
+    if (options.maxLagPs < 0.0 || !std::isfinite(options.maxLagPs))
+        throw std::invalid_argument("writeCorrelations: maxLagPs must be ≥ 0 (0: half the span)");
+    const int maxLag = lagFor(options.maxLagPs, dtPs, t, options.blocks);
+    std::filesystem::create_directories(dir);
+
+    nlohmann::json summary{{"samples", t},
+                           {"bodies", samples.front().size()},
+                           {"sample_interval_ps", dtPs},
+                           {"blocks", options.blocks},
+                           {"max_lag_ps", maxLag * dtPs}};
+    summary["rdf"] = writeRdf(samples, dir, options);
+
+    double v2 = 0.0;
+    const SampledCurve vacf = velocityAutocorrelation(samples, maxLag, options.blocks, &v2);
+    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
+    summary["vacf"] = {{"c0", vacf.value.front()},
+                       {"mean_square_velocity_angstrom2_per_ps2",
+                        v2 / (units::psPerTimeUnit * units::psPerTimeUnit)}};
+
+    if (axesRotate(samples)) {
+        const auto o = orientationalAutocorrelation(samples, maxLag, options.blocks);
+        writeCsv(dir / "oacf.csv", {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
+                                    {o.c1.tPs, o.c1.value, o.c1.err, o.c2.value, o.c2.err}});
+        summary["oacf"] = {{"c1_0", o.c1.value.front()}, {"c2_0", o.c2.value.front()}};
+    } else {
+        std::filesystem::remove(dir / "oacf.csv");
+        summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
+    }
+
+    const SampledCurve msd = meanSquaredDisplacement(samples, maxLag, options.blocks);
+    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+    const Diffusion d = diffusionFromMsd(msd);
+    summary["diffusion"] = {{"einstein_angstrom2_per_ps", d.coefficient},
+                            {"einstein_err", d.err},
+                            {"fit_from_ps", d.fromPs},
+                            {"fit_to_ps", d.toPs},
+                            {"green_kubo_angstrom2_per_ps", greenKuboDiffusion(vacf, v2)}};
+    return summary;
+}
+
+} // namespace terrace::analysis

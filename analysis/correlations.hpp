@@ -1,0 +1,38 @@
+#pragma once
+// The correlation files of a run, written from its samples (either engine; DESIGN.md "Analysis"):
+//
+//   rdf.csv   r_angstrom,g,err                 centre-of-mass g(r), bins up to L/2 (rdf.hpp)
+//   vacf.csv  t_ps,c,err                       ⟨v(0)·v(t)⟩/⟨v²⟩ (dynamic_correlations.hpp)
+//   oacf.csv  t_ps,c1,c1_err,c2,c2_err         ⟨s(0)·s(t)⟩ and ⟨P₂(s(0)·s(t))⟩
+//   msd.csv   t_ps,msd_angstrom2,err           ⟨|r(t) − r(0)|²⟩
+//
+// err is one standard error. Time curves: the T sample times are cut into `blocks` contiguous
+// blocks of time origins; every origin of the run enters the curve, and the spread of the block
+// curves gives the error (time_correlation.hpp, block_average.hpp). g(r): `blocks` contiguous
+// blocks of frames. Lags run to maxLagPs (0: half the sampled span), clipped so that at least two
+// origin blocks reach the longest lag.
+//
+// oacf.csv is written only when the bodies rotate (some axis changes between samples). For
+// spheres, whose axis is a constant placeholder, it is not written, any stale oacf.csv in the
+// directory is removed, and the summary's "oacf" entry says so.
+#include "core/snapshot.hpp"
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+namespace terrace::analysis {
+
+struct Options {
+    int blocks = 8;
+    double maxLagPs = 0.0; // 0 = half the sampled span
+    double rdfBinAngstrom = 0.05;
+};
+
+/// Writes the four files into dir (created if needed) and returns a summary: numbers of samples
+/// and bodies, sample interval, lag range, diffusion coefficient (Einstein, with error; and
+/// Green–Kubo from the VACF over the same lags as a check), g(r) averaged over r ∈ [0.4, 0.5] L.
+/// samples: equally spaced in time, same N. Throws std::invalid_argument on unusable samples.
+nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
+                                 const std::filesystem::path& dir, const Options& options = {});
+
+} // namespace terrace::analysis

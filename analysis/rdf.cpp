@@ -1,0 +1,88 @@
+#include "analysis/rdf.hpp"
+#include "analysis/block_average.hpp"
+#include "core/box.hpp"
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace terrace::analysis {
+
+namespace {
+
+double shellVolume(double lo, double hi) {
+    return 4.0 / 3.0 * std::numbers::pi * (hi * hi * hi - lo * lo * lo);
+}
+
+/// Adds the pair counts of one frame to the histogram (bins of width w up to w·bins).
+void countPairs(const Snapshot& frame, double w, std::vector<double>& histogram) {
+    const PeriodicBox box{frame.boxLength};
+    const int n = frame.size(), bins = static_cast<int>(histogram.size());
+    const double rMax2 = (w * bins) * (w * bins);
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j) {
+            const double r2 = box.minimumImage(frame.position[i] - frame.position[j]).squaredNorm();
+            if (r2 >= rMax2) continue;
+            const int bin = static_cast<int>(std::sqrt(r2) / w);
+            if (bin < bins) ++histogram[bin]; // sqrt may round r just onto the last edge
+        }
+}
+
+} // namespace
+
+RadialDistribution radialDistribution(const std::vector<Snapshot>& frames, double binWidth,
+                                      int blocks) {
+    if (frames.empty()) throw std::invalid_argument("radialDistribution: no frames");
+    if (!(binWidth > 0.0)) throw std::invalid_argument("radialDistribution: bin width must be > 0");
+    const int frameCount = static_cast<int>(frames.size());
+    if (blocks < 1 || blocks > frameCount)
+        throw std::invalid_argument("radialDistribution: need 1 ≤ blocks ≤ frames");
+    const int n = frames.front().size();
+    const double length = frames.front().boxLength;
+    if (n < 2 || !(length > 0.0))
+        throw std::invalid_argument("radialDistribution: need two bodies and a box");
+    for (const auto& f : frames)
+        if (f.size() != n || f.boxLength != length)
+            throw std::invalid_argument("radialDistribution: N and box length must not change");
+
+    const int bins = static_cast<int>(std::floor(0.5 * length / binWidth));
+    if (bins < 1) throw std::invalid_argument("radialDistribution: bin wider than L/2");
+    const double volume = length * length * length;
+    const double pairs = 0.5 * n * (n - 1.0);
+
+    // Per-block histograms, then g per block and pooled.
+    std::vector<std::vector<double>> histogram(blocks, std::vector<double>(bins, 0.0));
+    std::vector<double> framesInBlock(blocks, 0.0);
+    for (int b = 0; b < blocks; ++b) {
+        const int begin = (b * frameCount) / blocks, end = ((b + 1) * frameCount) / blocks;
+        for (int f = begin; f < end; ++f)
+            countPairs(frames[f], binWidth, histogram[b]);
+        framesInBlock[b] = end - begin;
+    }
+
+    RadialDistribution rdf;
+    rdf.binWidth = binWidth;
+    rdf.partnerDensity = (n - 1.0) / volume;
+    std::vector<double> sums(blocks);
+    for (int k = 0; k < bins; ++k) {
+        const double ideal = pairs * shellVolume(k * binWidth, (k + 1) * binWidth) / volume;
+        for (int b = 0; b < blocks; ++b)
+            sums[b] = histogram[b][k] / ideal;
+        const Estimate e = blockRatio(sums, framesInBlock);
+        rdf.r.push_back((k + 0.5) * binWidth);
+        rdf.g.push_back(e.mean);
+        rdf.err.push_back(e.err);
+    }
+    return rdf;
+}
+
+double coordinationNumber(const RadialDistribution& rdf, double rMax) {
+    double n = 0.0;
+    for (std::size_t k = 0; k < rdf.r.size(); ++k) {
+        const double lo = k * rdf.binWidth, hi = (k + 1) * rdf.binWidth;
+        if (hi > rMax) break;
+        n += rdf.partnerDensity * rdf.g[k] * shellVolume(lo, hi);
+    }
+    return n;
+}
+
+} // namespace terrace::analysis

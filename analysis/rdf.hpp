@@ -1,0 +1,34 @@
+#pragma once
+// Centre-of-mass radial distribution function, normalised by the ideal-gas shell count:
+//
+//     g(r) = h(r) / [ F · N(N−1)/2 · V_shell(r) / V ],   V_shell = 4π/3 (r_hi³ − r_lo³),
+//
+// h(r) = number of distinct pairs (minimum image) with separation in the bin [r_lo, r_hi), summed
+// over F frames. N(N−1)/2 rather than N²/2 makes uniformly random points give g = 1 exactly in
+// expectation at any N (no 1 − 1/N bias). Bins run up to L/2, where a sphere round a body still
+// lies inside the minimum-image cell, so every shell is counted completely. Lengths in Å.
+// (Allen and Tildesley, Computer Simulation of Liquids, 2nd ed., sec. 8.2.)
+//
+// Error bars: the frames are cut into B contiguous blocks of time; each block gives its own g(r),
+// and the error is the standard error of the block values (block_average.hpp).
+#include "core/snapshot.hpp"
+#include <vector>
+
+namespace terrace::analysis {
+
+struct RadialDistribution {
+    double binWidth = 0.0;       // Å
+    std::vector<double> r;       // bin centres, Å
+    std::vector<double> g, err;  // g(r) and one standard error
+    double partnerDensity = 0.0; // (N−1)/V, Å⁻³: the density seen by one body
+};
+
+/// g(r) of the centres of mass over all frames (equal N and box length in all), B time blocks.
+RadialDistribution radialDistribution(const std::vector<Snapshot>& frames, double binWidth,
+                                      int blocks);
+
+/// Mean number of neighbours within rMax of a body: 4π ρ' ∫₀^rMax g r² dr over whole bins
+/// (bins whose upper edge ≤ rMax), ρ' = (N−1)/V.
+double coordinationNumber(const RadialDistribution& rdf, double rMax);
+
+} // namespace terrace::analysis

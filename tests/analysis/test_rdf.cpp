@@ -1,0 +1,108 @@
+// Centre-of-mass g(r): ideal gas gives 1, a simple cubic lattice gives its shells.
+#include "analysis/rdf.hpp"
+#include "synthetic_samples.hpp"
+#include <cmath>
+#include <gtest/gtest.h>
+#include <numbers>
+#include <random>
+
+using namespace terrace;
+using namespace terrace::analysis;
+
+namespace {
+
+/// Pair counts of uniformly random points are Poisson-like; 5 standard deviations per bin keeps
+/// a false alarm over 40 bins below 1e-4 while a 1 − 1/N normalisation slip (1 %) is caught
+/// by the pooled check below.
+constexpr double poissonSigmas = 5.0;
+/// Pooled g over all pairs within L/2 of an ideal gas: 1 to within its Poisson error (~0.2 %
+/// here); a relative tolerance of 0.5 % catches an N² instead of N(N−1) normalisation (1 %).
+constexpr double pooledIdealTolerance = 0.005;
+/// Block error bars must match the Poisson error to within their own scatter (8 blocks: ±25 %
+/// per bin, far less averaged over 40 bins).
+constexpr double errorRatioLow = 0.8, errorRatioHigh = 1.25;
+/// Coordination numbers of a perfect lattice are integers, up to the round-off of the shells.
+constexpr double coordinationTolerance = 1e-9;
+
+} // namespace
+
+TEST(RadialDistribution, IdealGasIsOneWithinNoise) {
+    const int n = 100, frames = 200, blocks = 8;
+    const double length = 20.0, bin = 0.25;
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> uniform(-length, 2.0 * length); // unwrapped
+    auto samples = synthetic::emptySamples(frames, n, 0.1, length);
+    for (auto& f : samples)
+        for (auto& r : f.position)
+            r = {uniform(rng), uniform(rng), uniform(rng)};
+    const auto rdf = radialDistribution(samples, bin, blocks);
+    ASSERT_EQ(rdf.r.size(), 40u);
+
+    double counted = 0.0, expected = 0.0, ratio = 0.0;
+    const double volume = length * length * length, pairs = frames * 0.5 * n * (n - 1.0);
+    for (std::size_t k = 0; k < rdf.r.size(); ++k) {
+        const double lo = k * bin, hi = lo + bin;
+        const double ideal =
+            pairs * 4.0 / 3.0 * std::numbers::pi * (hi * hi * hi - lo * lo * lo) / volume;
+        const double poisson = 1.0 / std::sqrt(ideal);
+        if (ideal > 100.0) { // bins with enough pairs for a Gaussian error
+            EXPECT_NEAR(rdf.g[k], 1.0, poissonSigmas * poisson) << "r = " << rdf.r[k];
+        }
+        counted += rdf.g[k] * ideal, expected += ideal;
+        ratio += rdf.err[k] / poisson / rdf.r.size();
+    }
+    EXPECT_NEAR(counted / expected, 1.0, pooledIdealTolerance);
+    EXPECT_GT(ratio, errorRatioLow);
+    EXPECT_LT(ratio, errorRatioHigh);
+}
+
+TEST(RadialDistribution, SimpleCubicLatticeHasItsShellsAndCoordinationNumbers) {
+    const int m = 6, n = m * m * m;
+    const double a = 3.01, length = m * a, bin = 0.05; // a off the bin edges
+    std::mt19937_64 rng(7);
+    std::uniform_int_distribution<int> image(-2, 2);
+    auto samples = synthetic::emptySamples(2, n, 0.1, length);
+    for (int f = 0; f < 2; ++f) {
+        const Vec3 shift = Vec3(0.3, 1.1, 2.9) * f; // a rigid translation changes nothing
+        int i = 0;
+        for (int x = 0; x < m; ++x)
+            for (int y = 0; y < m; ++y)
+                for (int z = 0; z < m; ++z, ++i) // unwrapped: random periodic images
+                    samples[f].position[i] = a * Vec3(x, y, z) + shift +
+                                             length * Vec3(image(rng), image(rng), image(rng));
+    }
+    const auto rdf = radialDistribution(samples, bin, 2);
+
+    // Shells of the simple cubic lattice inside L/2 = 3a: distance a√q and its multiplicity.
+    const std::vector<std::pair<int, int>> shells{{1, 6},  {2, 12}, {3, 8}, {4, 6},
+                                                  {5, 24}, {6, 24}, {8, 12}};
+    for (std::size_t k = 0; k < rdf.r.size(); ++k) {
+        const double lo = k * bin, hi = lo + bin;
+        bool holdsShell = false;
+        for (auto [q, count] : shells)
+            holdsShell |= (a * std::sqrt(q) >= lo && a * std::sqrt(q) < hi);
+        if (holdsShell) {
+            EXPECT_GT(rdf.g[k], 0.0) << "shell missing at r = " << rdf.r[k];
+        } else {
+            EXPECT_EQ(rdf.g[k], 0.0) << "spurious pair at r = " << rdf.r[k];
+        }
+        EXPECT_EQ(rdf.err[k], 0.0); // two identical frames
+    }
+    int cumulative = 0;
+    for (std::size_t s = 0; s < shells.size(); ++s) {
+        cumulative += shells[s].second;
+        const double next = s + 1 < shells.size() ? a * std::sqrt(shells[s + 1].first) : 3.0 * a;
+        const double between = 0.5 * (a * std::sqrt(shells[s].first) + next);
+        EXPECT_NEAR(coordinationNumber(rdf, between), cumulative, coordinationTolerance)
+            << "within " << between << " Å";
+    }
+}
+
+TEST(RadialDistribution, RejectsChangingBoxesAndBadBins) {
+    auto samples = synthetic::emptySamples(4, 3, 0.1, 10.0);
+    EXPECT_THROW(radialDistribution(samples, 0.0, 2), std::invalid_argument);
+    EXPECT_THROW(radialDistribution(samples, 6.0, 2), std::invalid_argument);
+    EXPECT_THROW(radialDistribution(samples, 0.1, 5), std::invalid_argument);
+    samples[2].boxLength = 11.0;
+    EXPECT_THROW(radialDistribution(samples, 0.1, 2), std::invalid_argument);
+}
