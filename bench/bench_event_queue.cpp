@@ -5,7 +5,7 @@
 // Hold model of an event-driven calendar (J. G. Vaucher & P. Duval, Commun. ACM 18, 223 (1975)):
 // N bodies with kPredictionsPerBody pending predictions each. One hold = pop the earliest valid
 // event, schedule 1–3 new ones at now + delay (exponential or uniform, mean τ), and invalidate one
-// random pending prediction, so that the number of valid predictions stays constant.
+// random pending prediction per extra one, so that the number of valid predictions stays constant.
 //   lazy  — invalidation bumps the prediction's counter; the stale entry stays queued and is
 //           skipped when popped (DESIGN.md: per-particle counters), with removeIf cleanup if stale
 //           entries ever outnumber valid ones kCleanupFactor − 1 to one;
@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@ constexpr double kMeanDelay = 1.0;              // τ, time units; only ratios t
 constexpr double kEventsPerBin = 8.0;  // Paul: speed barely changes between ~5 and ~500 per bin
 constexpr double kCleanupFactor = 3.0; // lazy cleanup once entries exceed 3× valid predictions
 constexpr std::int64_t kTimedHolds = 2'000'000;
+constexpr int kDelayTableBits = 12;
 constexpr std::uint64_t kHoldSeed = 0x5eed'e7e4'7c0e'0001;
 
 enum class Delays { Exponential, Uniform };
@@ -60,7 +62,8 @@ struct Xorshift {
 template <class Q> class HoldModel {
 public:
     HoldModel(Q queue, bool eager, Delays delays)
-        : queue_(std::move(queue)), eager_(eager), delays_(delays) {}
+        : queue_(std::move(queue)), eager_(eager), delays_(delays), delayTable_(quantiles(delays)) {
+    }
 
     void schedule() {
         std::uint32_t id;
@@ -90,12 +93,15 @@ public:
             }
             ++stalePops_;
         }
+        // 1–3 new predictions and one fewer invalidations keep the valid count fixed.
         const int pushes = 1 + static_cast<int>(rng_.next() % 3);
         for (int k = 0; k < pushes; ++k)
             schedule();
-        const std::uint32_t victim = valid_[rng_.next() % valid_.size()];
-        if (eager_) queue_.erase(handle_[victim]);
-        retire(victim);
+        for (int k = 1; k < pushes; ++k) {
+            const std::uint32_t victim = valid_[rng_.next() % valid_.size()];
+            if (eager_) queue_.erase(handle_[victim]);
+            retire(victim);
+        }
         if (!eager_ && queue_.size() > kCleanupFactor * valid_.size()) {
             queue_.removeIf([this](const HoldEvent& e) { return e.stamp != stamp_[e.id]; });
             ++cleanups_;
@@ -117,9 +123,18 @@ public:
     std::size_t cleanups() const { return cleanups_; }
 
 private:
-    double delay() {
-        const double u = rng_.uniform();
-        return delays_ == Delays::Exponential ? -kMeanDelay * std::log1p(-u) : 2.0 * kMeanDelay * u;
+    double delay() { return delayTable_[rng_.next() >> (64 - kDelayTableBits)]; }
+
+    // Delays drawn from 2^12 equally likely quantiles of the delay law: a table lookup instead of a
+    // logarithm per event keeps the random numbers from diluting the queue's cost.
+    static std::vector<double> quantiles(Delays delays) {
+        std::vector<double> table(std::size_t{1} << kDelayTableBits);
+        for (std::size_t k = 0; k < table.size(); ++k) {
+            const double u = (static_cast<double>(k) + 0.5) / static_cast<double>(table.size());
+            table[k] =
+                delays == Delays::Exponential ? -kMeanDelay * std::log1p(-u) : 2.0 * kMeanDelay * u;
+        }
+        return table;
     }
 
     void retire(std::uint32_t id) {
@@ -134,6 +149,7 @@ private:
     Q queue_;
     bool eager_;
     Delays delays_;
+    std::vector<double> delayTable_;
     Xorshift rng_{kHoldSeed};
     double now_ = 0.0;
     std::vector<std::uint32_t> stamp_;      // per prediction id
@@ -167,19 +183,29 @@ template <class Q> void runHolds(benchmark::State& state, Q queue, bool eager, D
     state.counters["cleanups"] = static_cast<double>(model.cleanups());
 }
 
-// Keeps ns per hold by benchmark name so that the ratios can be printed after the run.
+// Keeps ns per hold by benchmark name so that the ratios can be printed after the run; with
+// --benchmark_repetitions the median is kept (robust to other jobs on a shared machine).
 class RatioReporter : public benchmark::ConsoleReporter {
 public:
     void ReportRuns(const std::vector<Run>& runs) override {
-        for (const Run& run : runs)
-            if (run.run_type == Run::RT_Iteration)
-                nsPerHold[run.benchmark_name()] = run.GetAdjustedCPUTime();
+        for (const Run& run : runs) {
+            const std::string name = run.run_name.function_name + "/" + run.run_name.args;
+            if (run.run_type == Run::RT_Iteration && !medianSeen_.count(name))
+                nsPerHold[name] = run.GetAdjustedCPUTime();
+            if (run.run_type == Run::RT_Aggregate && run.aggregate_name == "median") {
+                nsPerHold[name] = run.GetAdjustedCPUTime();
+                medianSeen_.insert(name);
+            }
+        }
         ConsoleReporter::ReportRuns(runs);
     }
     std::map<std::string, double> nsPerHold;
+
+private:
+    std::set<std::string> medianSeen_;
 };
 
-// Google Benchmark appends "/<N>/iterations:<holds>" to this.
+// Google Benchmark appends "/<N>" (and run options) to this.
 std::string benchmarkName(const char* queue, const char* invalidation, const char* delays) {
     return std::string("hold/") + queue + "/" + invalidation + "/" + delays;
 }
@@ -194,8 +220,7 @@ void printRatios(const std::map<std::string, double>& ns) {
     for (const char* delays : {"exponential", "uniform"})
         for (const std::size_t n : {512u, 4096u, 32768u, 262144u}) {
             const auto at = [&](const char* q, const char* inv) {
-                const auto it = ns.find(benchmarkName(q, inv, delays) + "/" + std::to_string(n) +
-                                        "/iterations:" + std::to_string(kTimedHolds));
+                const auto it = ns.find(benchmarkName(q, inv, delays) + "/" + std::to_string(n));
                 return it == ns.end() ? std::nan("") : it->second;
             };
             const double hl = at("heap", "lazy"), bl = at("bpq", "lazy");

@@ -5,9 +5,8 @@
 // The heap array holds (time, node) pairs ordered by (time, push sequence); the events themselves
 // stay in a slot pool so that handles remain valid while heap entries move. Every node records its
 // heap index, which makes erase by handle O(log n). push, pop and erase are O(log n), top O(1),
-// removeIf O(n) (filter, then re-heapify). Memory per queued event: sizeof(E) plus the node's index
-// and generation (8 B), its sequence number (8 B), one heap entry (16 B) and, once released, a
-// free-list slot (4 B).
+// removeIf O(n) (filter, then re-heapify). Memory per queued event: sizeof(E) plus the node's heap
+// index and generation (8 B), its sequence number (8 B) and one heap entry (16 B).
 #include "dmd/event_queue.hpp"
 #include <cassert>
 #include <cstddef>
@@ -160,7 +159,7 @@ private:
         };
     }
 
-    detail::SlotPool<Node> pool_;
+    detail::SlotPool<Node, &Node::heapIndex> pool_; // heapIndex links free slots
     std::vector<detail::HeapEntry> heap_;
     std::uint64_t nextSequence_ = 0;
 };

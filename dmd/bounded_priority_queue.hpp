@@ -17,8 +17,7 @@
 //
 // Order and ties are exactly those of BinaryHeapQueue: (time, push sequence), so both queues pop
 // the same events in the same order. Memory per queued event: sizeof(E) + 24 B node (sequence,
-// list links, location, generation) + 4 B free-list slot, plus 16 B per event of the current bin
-// and 4 B per bin.
+// list links, location, generation), plus 16 B per event of the current bin and 4 B per bin.
 #include "dmd/binary_heap_queue.hpp"
 #include "dmd/event_queue.hpp"
 #include <algorithm>
@@ -277,10 +276,10 @@ private:
         };
     }
 
-    detail::SlotPool<Node> pool_;
-    std::vector<detail::HeapEntry> heap_; // the current bin, fine-sorted
-    std::vector<std::uint32_t> heads_;    // n bin lists, then the overflow list
-    double binWidth_ = 1.0;               // time units
+    detail::SlotPool<Node, &Node::next> pool_; // `next` links free slots
+    std::vector<detail::HeapEntry> heap_;      // the current bin, fine-sorted
+    std::vector<std::uint32_t> heads_;         // n bin lists, then the overflow list
+    double binWidth_ = 1.0;                    // time units
     std::size_t nBins_ = 1;
     std::int64_t currentBin_ = 0;
     std::int64_t nextRescanBin_ = 0; // the overflow is rescanned when c reaches this bin

@@ -14,6 +14,7 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace terrace::dmd {
@@ -38,48 +39,63 @@ concept EventQueue = requires(Q q, const Q cq, E e, QueueHandle h, bool (*pred)(
 
 namespace detail {
 
-// Storage for queued events with stable indices: a released slot goes onto a free list and is
-// reused by a later push, so the pool stops allocating once the queue's size stops growing.
+// Storage for queued events with stable indices. Nodes live in fixed-size blocks, so growing the
+// pool never moves or copies queued events (no transient doubling of a multi-megabyte array) and
+// wastes at most one block. A released slot is threaded onto a free list through the node's own
+// `FreeLink` member (a field the queue does not use while the slot is free), so the pool stops
+// allocating once the queue's size stops growing and the free list costs no memory.
 // Node must have a `std::uint32_t generation` member; generations skip 0 when they wrap, and a
 // handle could be mistaken for a new one only after 2^32 - 1 reuses of the same slot.
-template <class Node> class SlotPool {
+template <class Node, std::uint32_t Node::*FreeLink> class SlotPool {
 public:
     std::uint32_t acquire() {
-        if (!free_.empty()) {
-            const std::uint32_t slot = free_.back();
-            free_.pop_back();
+        if (freeHead_ != kNone) {
+            const std::uint32_t slot = freeHead_;
+            freeHead_ = (*this)[slot].*FreeLink;
             return slot;
         }
-        nodes_.emplace_back();
-        nodes_.back().generation = 1;
-        return static_cast<std::uint32_t>(nodes_.size() - 1);
+        if (slots_ == blocks_.size() * kBlockSize)
+            blocks_.push_back(std::make_unique<Node[]>(kBlockSize));
+        const auto slot = static_cast<std::uint32_t>(slots_++);
+        (*this)[slot].generation = 1;
+        return slot;
     }
 
     void release(std::uint32_t slot) {
-        std::uint32_t& g = nodes_[slot].generation;
-        g = (g == UINT32_MAX) ? 1 : g + 1;
-        free_.push_back(slot);
+        Node& n = (*this)[slot];
+        n.generation = (n.generation == UINT32_MAX) ? 1 : n.generation + 1;
+        n.*FreeLink = freeHead_;
+        freeHead_ = slot;
     }
 
     // Whether h names an event that is still queued.
     bool holds(QueueHandle h) const {
-        return h.slot < nodes_.size() && h.generation != 0 &&
-               nodes_[h.slot].generation == h.generation;
+        return h.slot < slots_ && h.generation != 0 && (*this)[h.slot].generation == h.generation;
     }
 
-    QueueHandle handle(std::uint32_t slot) const { return {slot, nodes_[slot].generation}; }
-    Node& operator[](std::uint32_t slot) { return nodes_[slot]; }
-    const Node& operator[](std::uint32_t slot) const { return nodes_[slot]; }
-    std::size_t slots() const { return nodes_.size(); }
+    QueueHandle handle(std::uint32_t slot) const { return {slot, (*this)[slot].generation}; }
+    Node& operator[](std::uint32_t slot) { return blocks_[slot >> kBlockBits][slot & kBlockMask]; }
+    const Node& operator[](std::uint32_t slot) const {
+        return blocks_[slot >> kBlockBits][slot & kBlockMask];
+    }
+    // Slots ever handed out (queued or free): the range to scan for queued events.
+    std::size_t slots() const { return slots_; }
 
     // Bytes held (capacity, not size): what the queue costs in memory.
     std::size_t bytesReserved() const {
-        return nodes_.capacity() * sizeof(Node) + free_.capacity() * sizeof(std::uint32_t);
+        return blocks_.size() * kBlockSize * sizeof(Node) +
+               blocks_.capacity() * sizeof(std::unique_ptr<Node[]>);
     }
 
 private:
-    std::vector<Node> nodes_;
-    std::vector<std::uint32_t> free_;
+    static constexpr std::uint32_t kBlockBits = 12; // 4096 nodes: ~100–200 kB blocks
+    static constexpr std::size_t kBlockSize = std::size_t{1} << kBlockBits;
+    static constexpr std::uint32_t kBlockMask = kBlockSize - 1;
+    static constexpr std::uint32_t kNone = UINT32_MAX;
+
+    std::vector<std::unique_ptr<Node[]>> blocks_;
+    std::size_t slots_ = 0;
+    std::uint32_t freeHead_ = kNone;
 };
 
 } // namespace detail
