@@ -1,0 +1,547 @@
+#pragma once
+// Event-driven dynamics of rigid bodies on a terraced pair potential (paper secs. 2–5 and
+// "Implementation of the event-driven simulation"; DESIGN.md "DMD engine").
+//
+// Between events every body moves freely (core freeMove: straight line + exact rotation) and the
+// terraced energy is constant. An event is the first time a pair's continuous U reaches a level
+// bounding its terrace (dmd/root_search.hpp); the collision rule (dmd/collision_rule.hpp) then
+// transmits the pair up or down or reflects it, conserving energy and both momenta.
+//
+// The loop, per popped event:  pop → discard if stale → resolve → invalidate → predict.
+//   bookkeeping: local clocks (a body is brought to the current time only when it takes part in
+//   an event), per-body event counters captured in each event (lazy invalidation; `eager` erases
+//   queued events through stored handles instead), a cell list with crossing events, virtual
+//   events at a jittered horizon that resume a truncated search from its stored end point,
+//   sample events that synchronise all clocks, and a cleanup of stale entries when the queue grows
+//   beyond a multiple of its size after the previous cleanup.
+// A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error.
+// Units: Å, g/mol, kJ/mol, time unit 100 fs.
+#include "core/engine.hpp"
+#include "core/scene.hpp"
+#include "core/snapshot.hpp"
+#include "core/system.hpp"
+#include "dmd/binary_heap_queue.hpp"
+#include "dmd/bounded_priority_queue.hpp"
+#include "dmd/cell_list.hpp"
+#include "dmd/collision_rule.hpp"
+#include "dmd/event.hpp"
+#include "dmd/pair_terraces.hpp"
+#include "dmd/root_search.hpp"
+#include "dmd/settings.hpp"
+#include "dmd/shell_screening.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+namespace terrace::dmd {
+
+/// Consecutive events without the clock advancing beyond round-off before the run is declared
+/// stuck. Genuinely simultaneous events involve distinct bodies, a handful at a time.
+inline constexpr std::uint64_t stalledEventLimit = 1'000'000;
+/// Relative jitter of the virtual-event horizon, so that virtual events do not coincide (paper).
+inline constexpr double horizonJitter = 0.1;
+/// The search's nudge δt as a fraction of its largest step.
+inline constexpr double nudgeFraction = 1.0 / 32.0;
+/// Extrema of the interpolant within this fraction of a terrace height of a level are examined.
+inline constexpr double grazeFraction = 0.25;
+/// The queue is cleaned of stale events when it exceeds this multiple of its size after the last
+/// cleanup (and at least cleanupMinimumPerBody entries per body).
+inline constexpr double cleanupGrowth = 3.0;
+inline constexpr double cleanupMinimumPerBody = 16.0;
+/// Bounded priority queue: events per bin aimed at, and the period (in events) of its retuning.
+inline constexpr double eventsPerBin = 8.0;
+inline constexpr std::uint64_t retunePeriod = 1u << 16;
+
+struct EventCounts {
+    std::uint64_t up = 0, down = 0, reflect = 0, virtualEvents = 0, cell = 0, sample = 0;
+    std::uint64_t total() const { return up + down + reflect + virtualEvents + cell + sample; }
+};
+
+template <BodyKind K, PairPotential P> class Engine {
+public:
+    using State = typename K::State;
+
+    Engine(System<K, P> initial, const Scene& scene)
+        : sys_(std::move(initial)),
+          settings_(readDmdSettings(scene.dmd, sys_.potential, sys_.kT, sys_.box.length)),
+          cells_(sys_.box.length, settings_.rm, sys_.size()), terraces_(sys_.size()),
+          clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
+          handles_(settings_.eager ? sys_.size() : 0), jitterStream_(jitterSeed(scene.seed)) {
+        search_.maxStep = settings_.horizon;
+        search_.nudge = nudgeFraction * settings_.horizon;
+        search_.grazeWindow = grazeFraction * terraceHeight();
+        checkBodies();
+        if (settings_.queue == QueueKind::Heap)
+            queue_.template emplace<BinaryHeapQueue<Event>>();
+        else
+            queue_.template emplace<BoundedPriorityQueue<Event>>(settings_.horizon / 16.0, 1024,
+                                                                 0.0);
+        for (int i = 0; i < sys_.size(); ++i)
+            cells_.insert(i, sys_.bodies[i].r);
+        assignInitialTerraces();
+        visitQueue([&](auto& q) { predictAll(q); });
+    }
+
+    // ---- the Engine contract (core/engine.hpp) ----
+
+    /// Process every event before t, then bring all clocks to t.
+    void advanceTo(double t) {
+        if (!(t >= time_)) throw std::invalid_argument("dmd: advanceTo into the past");
+        visitQueue([&](auto& q) {
+            Event sample;
+            sample.time = t;
+            sample.kind = EventKind::Sample;
+            q.push(sample);
+            while (step(q)) {
+            }
+        });
+        synchronise(t);
+        ++counts_.sample;
+    }
+    double time() const { return time_; }
+    Snapshot snapshot() const { return makeSnapshot(synchronisedCopy(), time_); }
+    double kineticEnergy() const { return totalKinetic(sys_); } // constant in free flight
+    double potentialEnergy() const {
+        if (settings_.levels.isUniform()) {
+            std::int64_t sum = 0; // an integer sum: exact however many events
+            terraces_.forEachPair([&](int, int, int n) { sum += n; });
+            return static_cast<double>(sum) * settings_.levels.step();
+        }
+        double e = 0.0;
+        terraces_.forEachPair([&](int, int, int n) { e += settings_.levels.energy(n); });
+        return e;
+    }
+    Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }
+    void rescaleTemperature(double kT) {
+        synchronise(time_);
+        const double target = 0.5 * degreesOfFreedom<K>(sys_.size()) * kT;
+        const double now = totalKinetic(sys_);
+        if (now > 0.0) {
+            const double f = std::sqrt(target / now);
+            for (auto& b : sys_.bodies) {
+                b.v *= f;
+                K::scaleAngularVelocity(b, sys_.body, f);
+            }
+        }
+        visitQueue([&](auto& q) {
+            q.clear();
+            for (int i = 0; i < sys_.size(); ++i)
+                ++counter_[i];
+            for (auto& h : handles_)
+                h.clear();
+            predictAll(q);
+        });
+    }
+    nlohmann::json statistics() const {
+        nlohmann::json j;
+        j["events"] = {{"total", counts_.total()},
+                       {"up", counts_.up},
+                       {"down", counts_.down},
+                       {"reflect", counts_.reflect},
+                       {"virtual", counts_.virtualEvents},
+                       {"cell", counts_.cell},
+                       {"sample", counts_.sample}};
+        j["dV_kJ_per_mol"] = settings_.levels.isUniform() ? nlohmann::json(terraceHeight())
+                                                          : nlohmann::json(nullptr);
+        j["r_m_angstrom"] = settings_.rm;
+        j["queue"] = settings_.queue == QueueKind::Heap ? "heap" : "bpq";
+        j["invalidation"] = settings_.eager ? "eager" : "lazy";
+        j["max_queue_size"] = maxQueueSize_;
+        j["cleanups"] = cleanups_;
+        j["stale_events"] = staleEvents_;
+        j["cells_per_side"] = cells_.cellsPerSide();
+        j["search_evaluations"] = evaluations_;
+        return j;
+    }
+
+    // ---- for tests and benchmarks ----
+
+    /// Process n events (samples excluded); clocks stay local, time() is the last event's time.
+    void runEvents(std::uint64_t n) {
+        visitQueue([&](auto& q) {
+            for (std::uint64_t k = 0; k < n; ++k)
+                if (!step(q)) throw std::logic_error("dmd: sample event outside advanceTo");
+        });
+    }
+    /// The terrace index the engine holds for the pair (i, j).
+    int terrace(int i, int j) const { return terraces_.get(i, j); }
+    const PairTerraces& pairTerraces() const { return terraces_; }
+    const TerraceLevels& levels() const { return settings_.levels; }
+    double interactionRange() const { return settings_.rm; }
+    const EventCounts& counts() const { return counts_; }
+    /// All bodies brought to time(): the system as it is now.
+    System<K, P> synchronisedCopy() const {
+        System<K, P> s = sys_;
+        for (int i = 0; i < s.size(); ++i)
+            freeMove<K>(s.bodies[i], s.body, time_ - clock_[i]);
+        return s;
+    }
+    /// Terraced energy recomputed from scratch from U of every pair (all pairs, O(N²)). On a
+    /// level this rounds by U alone, so compare with potentialEnergy() only away from levels.
+    double terracedEnergyFromScratch() const {
+        const System<K, P> s = synchronisedCopy();
+        double e = 0.0;
+        for (int i = 0; i < s.size(); ++i)
+            for (int j = i + 1; j < s.size(); ++j) {
+                const Vec3 rij = s.box.minimumImage(s.bodies[i].r - s.bodies[j].r);
+                if (rij.norm() > settings_.rm) continue;
+                const double U =
+                    s.potential.energy(rij, K::axis(s.bodies[i]), K::axis(s.bodies[j]));
+                e += settings_.levels.energy(settings_.levels.terraceOf(U));
+            }
+        return e;
+    }
+    std::size_t queueSize() const {
+        return std::visit([](const auto& q) { return q.size(); }, queue_);
+    }
+    std::size_t bytesReserved() const {
+        std::size_t b = std::visit([](const auto& q) { return q.bytesReserved(); }, queue_);
+        b += sys_.bodies.capacity() * sizeof(State) + cells_.bytesReserved() +
+             terraces_.bytesReserved() + clock_.capacity() * sizeof(double) +
+             counter_.capacity() * sizeof(std::uint32_t);
+        for (const auto& h : handles_)
+            b += h.capacity() * sizeof(QueueHandle);
+        return b;
+    }
+
+private:
+    using Queue = std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>>;
+
+    template <class F> void visitQueue(F&& f) { std::visit(std::forward<F>(f), queue_); }
+
+    double terraceHeight() const { return settings_.levels.smallestStep(); }
+
+    // ---- setup ----
+
+    void checkBodies() const {
+        for (int i = 0; i < sys_.size(); ++i) {
+            const State& b = sys_.bodies[i];
+            if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
+                !K::angularVelocity(b, sys_.body).allFinite())
+                throw SceneError("state: body " + std::to_string(i) + " has a non-finite value");
+        }
+        if (!(sys_.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
+    }
+
+    /// Terrace of every pair from U at the start; a pair exactly on a level goes to the terrace
+    /// it is heading into, so that the start holds no zero-time event.
+    void assignInitialTerraces() {
+        const double overlap = overlapFactor * std::abs(sys_.potential.minimumEnergy());
+        for (int i = 0; i < sys_.size(); ++i)
+            cells_.forEachNeighbour(i, [&](int j) {
+                if (j < i) return;
+                const State &bi = sys_.bodies[i], &bj = sys_.bodies[j];
+                const Vec3 rij = sys_.box.minimumImage(bi.r - bj.r);
+                if (rij.norm() > settings_.rm) return;
+                const PairForce f = sys_.potential.evaluate(rij, K::axis(bi), K::axis(bj));
+                if (!std::isfinite(f.U) || f.U > overlap)
+                    throw SceneError("state: bodies " + std::to_string(i) + " and " +
+                                     std::to_string(j) + " overlap (U = " + std::to_string(f.U) +
+                                     " kJ/mol)");
+                const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys_.body),
+                                         K::angularVelocity(bj, sys_.body));
+                terraces_.set(i, j, settings_.levels.terraceOf(f.U, rate));
+            });
+    }
+
+    template <class Q> void predictAll(Q& q) {
+        for (int i = 0; i < sys_.size(); ++i) {
+            cells_.forEachNeighbour(i, [&](int j) {
+                if (j > i) predictPair(q, i, j, nullptr);
+            });
+            scheduleCellCrossing(q, i);
+        }
+        cleanupThreshold_ = std::max(cleanupMinimumPerBody * sys_.size(),
+                                     cleanupGrowth * static_cast<double>(q.size()));
+    }
+
+    // ---- the event loop: pop → discard if stale → resolve → invalidate → predict ----
+
+    /// Processes the next valid event; false when it was the sample event of advanceTo.
+    template <class Q> bool step(Q& q) {
+        for (;;) {
+            const Event e = q.top();
+            q.pop();
+            if (e.kind == EventKind::Sample) return false;
+            if (isStale(e)) {
+                ++staleEvents_;
+                continue;
+            }
+            watchClock(e);
+            time_ = e.time;
+            switch (e.kind) {
+            case EventKind::Collision:
+                collide(q, e);
+                break;
+            case EventKind::Virtual:
+                ++counts_.virtualEvents;
+                resume(q, e);
+                break;
+            case EventKind::CellCrossing:
+                ++counts_.cell;
+                crossCell(q, e);
+                break;
+            case EventKind::Sample:
+                break;
+            }
+            afterEvent(q);
+            return true;
+        }
+    }
+
+    bool isStale(const Event& e) const {
+        if (counter_[e.i] != e.countI) return true;
+        return e.kind != EventKind::CellCrossing && counter_[e.j] != e.countJ;
+    }
+
+    void watchClock(const Event& e) {
+        const double roundOff =
+            64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(e.time));
+        if (e.time - time_ > roundOff) {
+            stalledEvents_ = 0;
+            return;
+        }
+        if (++stalledEvents_ <= stalledEventLimit) return;
+        std::ostringstream msg;
+        msg << "dmd: the clock stopped at t = " << units::toFs(e.time) << " fs: " << stalledEvents_
+            << " consecutive events without time advancing (last: bodies " << e.i << " and " << e.j
+            << "); the terraced dynamics is stuck";
+        throw std::runtime_error(msg.str());
+    }
+
+    template <class Q> void collide(Q& q, const Event& e) {
+        const int i = e.i, j = e.j;
+        bringToNow(i);
+        bringToNow(j);
+        State &bi = sys_.bodies[i], &bj = sys_.bodies[j];
+        const Vec3 rij = sys_.box.minimumImage(bi.r - bj.r);
+        const PairForce f = sys_.potential.evaluate(rij, K::axis(bi), K::axis(bj));
+        const int n = terraces_.get(i, j);
+        const int target = n + (e.side > 0 ? 1 : -1);
+        const double dE = settings_.levels.energy(target) - settings_.levels.energy(n);
+        const Impulse impulse = solveImpulse(impulseCoefficients<K>(f, bi, bj, sys_.body), dE);
+        applyImpulse<K>(bi, bj, f, impulse.S, sys_.body);
+        switch (impulse.outcome) {
+        case Outcome::Up:
+            ++counts_.up;
+            break;
+        case Outcome::Down:
+            ++counts_.down;
+            break;
+        case Outcome::Reflect:
+            ++counts_.reflect;
+            break;
+        }
+        if (impulse.outcome != Outcome::Reflect) terraces_.set(i, j, target);
+        invalidate(q, i);
+        invalidate(q, j);
+        predictBody(q, i, -1);
+        predictBody(q, j, i);
+    }
+
+    template <class Q> void resume(Q& q, const Event& e) {
+        const PairSample start{0.0, e.U, e.dUdt};
+        predictPair(q, e.i, e.j, std::isnan(e.U) ? nullptr : &start);
+    }
+
+    template <class Q> void crossCell(Q& q, const Event& e) {
+        bringToNow(e.i);
+        cells_.cross(e.i, e.side / 2, e.side % 2 ? 1 : -1);
+        invalidate(q, e.i);
+        predictBody(q, e.i, -1);
+    }
+
+    template <class Q> void afterEvent(Q& q) {
+        if (!settings_.eager && static_cast<double>(q.size()) > cleanupThreshold_) {
+            q.removeIf(
+                [this](const Event& e) { return e.kind != EventKind::Sample && isStale(e); });
+            ++cleanups_;
+            cleanupThreshold_ = std::max(cleanupMinimumPerBody * sys_.size(),
+                                         cleanupGrowth * static_cast<double>(q.size()));
+        }
+        if constexpr (std::is_same_v<Q, BoundedPriorityQueue<Event>>)
+            if (++eventsSinceRetune_ >= retunePeriod) retune(q);
+    }
+
+    /// Bins of the bounded priority queue sized from the measured push rate and lead time: a few
+    /// events per bin, a window spanning the usual scheduling lead (G. Paul 2007, sec. 3).
+    void retune(BoundedPriorityQueue<Event>& q) {
+        const double elapsed = time_ - retuneStart_;
+        if (elapsed > 0.0 && pushesSinceRetune_ > 0) {
+            const double rate = pushesSinceRetune_ / elapsed;
+            const double width = eventsPerBin / rate;
+            const double window = 4.0 * leadSum_ / pushesSinceRetune_;
+            const double bins = std::clamp(window / width, 64.0, double(1 << 22));
+            q.retune(width, static_cast<std::size_t>(bins));
+        }
+        eventsSinceRetune_ = 0;
+        pushesSinceRetune_ = 0;
+        leadSum_ = 0.0;
+        retuneStart_ = time_;
+    }
+
+    // ---- prediction ----
+
+    template <class Q> void predictBody(Q& q, int i, int exclude) {
+        cells_.forEachNeighbour(i, [&](int j) {
+            if (j != exclude) predictPair(q, i, j, nullptr);
+        });
+        scheduleCellCrossing(q, i);
+    }
+
+    template <class Q> void scheduleCellCrossing(Q& q, int i) {
+        const State& b = sys_.bodies[i];
+        int axis = 0, dir = 0;
+        const double dt = cells_.crossingTime(i, b.r + b.v * (time_ - clock_[i]), b.v, axis, dir);
+        if (!std::isfinite(dt)) return;
+        Event e;
+        e.time = time_ + dt;
+        e.kind = EventKind::CellCrossing;
+        e.i = i;
+        e.countI = counter_[i];
+        e.side = static_cast<std::int8_t>(2 * axis + (dir > 0 ? 1 : 0));
+        schedule(q, e);
+    }
+
+    /// Next event of the pair (i, j) from now: screening with r_m, then the adaptive search up to
+    /// the jittered horizon; a truncated search leaves a virtual event holding its end point.
+    template <class Q> void predictPair(Q& q, int i, int j, const PairSample* resumeFrom) {
+        const State &bi0 = sys_.bodies[i], &bj0 = sys_.bodies[j];
+        const double dti = time_ - clock_[i], dtj = time_ - clock_[j];
+        const Vec3 r0 = sys_.box.minimumImage((bi0.r + bi0.v * dti) - (bj0.r + bj0.v * dtj));
+        const Vec3 w = bi0.v - bj0.v;
+        const int n = terraces_.get(i, j);
+        ShellWindow win = shellWindow(r0, w, settings_.rm);
+        if (n != 0) {
+            // A bound pair must reach a level before |r_ij| = r_m; in the worst orientation it
+            // does so exactly there, so the shell must not cut its search short.
+            win.enter = 0.0;
+            win.exit = std::numeric_limits<double>::infinity();
+        }
+        if (win.empty()) return;
+        const double horizon = jitteredHorizon();
+        if (win.enter > horizon) {
+            schedule(q, pairEvent(EventKind::Virtual, i, j, time_ + win.enter));
+            return;
+        }
+        State bi = bi0, bj = bj0;
+        freeMove<K>(bi, sys_.body, dti);
+        freeMove<K>(bj, sys_.body, dtj);
+        auto eval = [&](double tau) {
+            State ci = bi, cj = bj;
+            freeMove<K>(ci, sys_.body, tau);
+            freeMove<K>(cj, sys_.body, tau);
+            const PairForce f = sys_.potential.evaluate(r0 + w * tau, K::axis(ci), K::axis(cj));
+            return PairSample{
+                tau, f.U,
+                dUdt(f, w, K::angularVelocity(ci, sys_.body), K::angularVelocity(cj, sys_.body))};
+        };
+        PairSample start;
+        if (resumeFrom && win.enter == 0.0) {
+            start = *resumeFrom;
+        } else {
+            start = eval(win.enter);
+            ++evaluations_;
+        }
+        const double tEnd = std::min(win.exit, horizon);
+        const SearchResult r = findTerraceExit(eval, start, settings_.levels.lower(n),
+                                               settings_.levels.upper(n), tEnd, search_);
+        evaluations_ += r.evaluations;
+        if (r.side != ExitSide::None) {
+            Event e = pairEvent(EventKind::Collision, i, j, time_ + r.t);
+            e.side = static_cast<std::int8_t>(r.side);
+            schedule(q, e);
+        } else if (win.exit > horizon) {
+            Event e = pairEvent(EventKind::Virtual, i, j, time_ + r.end.t);
+            e.U = r.end.U;
+            e.dUdt = r.end.dUdt;
+            schedule(q, e);
+        }
+    }
+
+    Event pairEvent(EventKind kind, int i, int j, double t) const {
+        Event e;
+        e.time = t;
+        e.kind = kind;
+        e.i = i;
+        e.j = j;
+        e.countI = counter_[i];
+        e.countJ = counter_[j];
+        return e;
+    }
+
+    /// The horizon-jitter stream, named and derived from the one scene seed.
+    static std::mt19937_64 jitterSeed(std::uint64_t seed) {
+        std::seed_seq seq{seed, std::uint64_t{0x646d642e686f72ull}}; // "dmd.hor"
+        return std::mt19937_64(seq);
+    }
+
+    double jitteredHorizon() {
+        return settings_.horizon * (1.0 - horizonJitter * jitter_(jitterStream_));
+    }
+
+    // ---- bookkeeping ----
+
+    template <class Q> void schedule(Q& q, const Event& e) {
+        const QueueHandle h = q.push(e);
+        if (settings_.eager) {
+            handles_[e.i].push_back(h);
+            if (e.j >= 0) handles_[e.j].push_back(h);
+        }
+        maxQueueSize_ = std::max<std::uint64_t>(maxQueueSize_, q.size());
+        ++pushesSinceRetune_;
+        leadSum_ += e.time - time_;
+    }
+
+    /// Body i's velocities changed (or its cell did): its queued events no longer hold.
+    template <class Q> void invalidate(Q& q, int i) {
+        ++counter_[i];
+        if (!settings_.eager) return;
+        for (const QueueHandle h : handles_[i])
+            q.erase(h);
+        handles_[i].clear();
+    }
+
+    void bringToNow(int i) {
+        freeMove<K>(sys_.bodies[i], sys_.body, time_ - clock_[i]);
+        clock_[i] = time_;
+    }
+
+    void synchronise(double t) {
+        time_ = t;
+        for (int i = 0; i < sys_.size(); ++i)
+            bringToNow(i);
+    }
+
+    /// A start with a pair above this multiple of |U_min| is an overlap, not a state point.
+    static constexpr double overlapFactor = 1e4;
+
+    System<K, P> sys_;
+    DmdSettings settings_;
+    CellList cells_;
+    PairTerraces terraces_;
+    std::vector<double> clock_;
+    std::vector<std::uint32_t> counter_;
+    std::vector<std::vector<QueueHandle>> handles_; // eager invalidation only
+    Queue queue_;
+    SearchSettings search_;
+    std::mt19937_64 jitterStream_;
+    std::uniform_real_distribution<double> jitter_{0.0, 1.0};
+    double time_ = 0.0;
+    EventCounts counts_;
+    std::uint64_t stalledEvents_ = 0;
+    std::uint64_t maxQueueSize_ = 0, cleanups_ = 0, staleEvents_ = 0, evaluations_ = 0;
+    double cleanupThreshold_ = 0.0;
+    std::uint64_t eventsSinceRetune_ = 0, pushesSinceRetune_ = 0;
+    double leadSum_ = 0.0, retuneStart_ = 0.0;
+};
+
+} // namespace terrace::dmd

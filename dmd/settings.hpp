@@ -1,0 +1,68 @@
+#pragma once
+// The DMD engine's parameters, read from `scene.dmd` and validated before any work (DESIGN.md
+// "Interfaces", "Bad input"): every bad value is a SceneError naming its key.
+//   dV            terrace height in units of kT (levels (n − ½) dV kT), > 0
+//   levels        explicit levels in kJ/mol (override dV when non-empty)
+//   queue         heap | bpq
+//   invalidation  lazy | eager
+//   horizon_fs    virtual-event horizon and largest search step, fs, > 0
+#include "core/scene.hpp"
+#include "core/units.hpp"
+#include "dmd/terrace_levels.hpp"
+#include <cmath>
+#include <string>
+
+namespace terrace::dmd {
+
+enum class QueueKind { Heap, BoundedPriority };
+
+struct DmdSettings {
+    TerraceLevels levels;
+    double rm = 0.0; // interaction range, Å
+    QueueKind queue = QueueKind::BoundedPriority;
+    bool eager = false;    // eager invalidation: erase a body's queued events at its event
+    double horizon = 0.04; // time units
+};
+
+template <PairPotential P>
+DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, double boxLength) {
+    DmdSettings s;
+    if (!d.levels.empty()) {
+        s.levels = TerraceLevels::explicitLevels(d.levels);
+        s.levels.checkMinimum(potential.minimumEnergy(), "dmd.levels");
+    } else {
+        if (!(kT > 0.0) || !std::isfinite(kT))
+            throw SceneError("state.temperature: kT must be > 0 to set dmd.dV in units of kT");
+        if (!(d.dV > 0.0) || !std::isfinite(d.dV))
+            throw SceneError("dmd.dV: must be > 0, got " + std::to_string(d.dV));
+        s.levels = TerraceLevels::uniform(d.dV * kT);
+        s.levels.checkMinimum(potential.minimumEnergy(), "dmd.dV");
+    }
+    if (d.queue == "heap")
+        s.queue = QueueKind::Heap;
+    else if (d.queue == "bpq")
+        s.queue = QueueKind::BoundedPriority;
+    else
+        throw SceneError("dmd.queue: must be \"heap\" or \"bpq\", got \"" + d.queue + "\"");
+    if (d.invalidation == "lazy")
+        s.eager = false;
+    else if (d.invalidation == "eager")
+        s.eager = true;
+    else
+        throw SceneError("dmd.invalidation: must be \"lazy\" or \"eager\", got \"" +
+                         d.invalidation + "\"");
+    if (!(d.horizon_fs > 0.0) || !std::isfinite(d.horizon_fs))
+        throw SceneError("dmd.horizon_fs: must be > 0, got " + std::to_string(d.horizon_fs));
+    s.horizon = units::fromFs(d.horizon_fs);
+    s.rm = interactionRange(s.levels, potential);
+    if (!(s.rm > 0.0))
+        throw SceneError("dmd.dV: no level bounding terrace 0 is ever reached (r_m = 0)");
+    // With L < 2 r_m a pair could interact through two periodic images at once.
+    if (boxLength < 2.0 * s.rm)
+        throw SceneError("dmd.dV: the box edge " + std::to_string(boxLength) +
+                         " Å is shorter than twice the interaction range r_m = " +
+                         std::to_string(s.rm) + " Å; use more bodies or a larger dV");
+    return s;
+}
+
+} // namespace terrace::dmd
