@@ -1,9 +1,304 @@
+// Exact free rotation of the asymmetric top; formulas and sources in asymmetric_top.hpp.
 #include "core/asymmetric_top.hpp"
-#include <stdexcept>
+#include "core/symmetric_top.hpp"
+#include <boost/math/special_functions/ellint_rf.hpp>
+#include <boost/math/special_functions/ellint_rj.hpp>
+#include <cmath>
+#include <limits>
+#include <numbers>
 
 namespace terrace {
-// Being written (issue 2): the Jacobi-elliptic solution replaces this.
-void AsymmetricTop::freeRotate(State&, const BodyParams&, double) {
-    throw std::logic_error("AsymmetricTop::freeRotate not yet implemented");
+
+namespace detail {
+
+JacobiElliptic::JacobiElliptic(double m, double m1) : m_(m), m1_(m1) {
+    // AGM of 1 and sqrt(m1); c_n = c_{n-1}² / (4 a_n) avoids the cancellation in (a − b) / 2.
+    double a = 1.0, b = std::sqrt(m1), c = std::sqrt(m);
+    a_[0] = a;
+    c_[0] = c;
+    while (levels_ + 1 < maxLevels && c > std::numeric_limits<double>::epsilon() * a) {
+        const double aNext = 0.5 * (a + b);
+        c = c * c / (4.0 * aNext);
+        b = std::sqrt(a * b);
+        a = aNext;
+        ++levels_;
+        a_[levels_] = a;
+        c_[levels_] = c;
+    }
+    K_ = std::numbers::pi / (2.0 * a);
 }
+
+JacobiElliptic::Values JacobiElliptic::landen(double u) const {
+    double phi = std::ldexp(a_[levels_] * u, levels_);
+    for (int n = levels_; n >= 1; --n)
+        phi = 0.5 * (phi + std::asin(c_[n] / a_[n] * std::sin(phi)));
+    const double sn = std::sin(phi), cn = std::cos(phi);
+    // dn² = 1 − m sn² = cn² + m1 sn²: no cancellation as m → 1.
+    return {sn, cn, std::sqrt(cn * cn + m1_ * sn * sn)};
+}
+
+JacobiElliptic::Values JacobiElliptic::reduced(double u) const {
+    if (std::abs(u) <= 0.5 * K_) return landen(u);
+    // Near ±K, cn = cos φ would carry only an absolute error ~1 ulp while dn → sqrt(m1) can be
+    // smaller still; the quarter-period shift (A&S 16.8.1) keeps both to full relative precision:
+    // sn(K − v) = cn v / dn v, cn(K − v) = sqrt(m1) sn v / dn v, dn(K − v) = sqrt(m1) / dn v.
+    const double v = K_ - std::abs(u); // exact (Sterbenz) since |u| ∈ [K/2, K]
+    const Values w = landen(v);
+    const double k1 = std::sqrt(m1_);
+    return {std::copysign(w.cn / w.dn, u), k1 * w.sn / w.dn, k1 / w.dn};
+}
+
+JacobiElliptic::Reduction JacobiElliptic::reduce(double u) const {
+    const double j = std::nearbyint(u / (2.0 * K_));
+    return {std::fma(-2.0 * K_, j, u), j};
+}
+
+JacobiElliptic::Values JacobiElliptic::operator()(double u) const {
+    const Reduction red = reduce(u);
+    Values v = reduced(red.r);
+    if (std::fmod(red.j, 2.0) != 0.0) {
+        v.sn = -v.sn;
+        v.cn = -v.cn;
+    }
+    return v;
+}
+
+} // namespace detail
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+// Series are summed until a term falls below this fraction of the leading one (below 1 ulp).
+constexpr double seriesTolerance = 1e-17;
+
+double sign(double x) {
+    return x < 0.0 ? -1.0 : 1.0;
+}
+
+/// Axes reordered by a proper signed permutation P (rows ±unit vectors, det +1) so that I2 is the
+/// middle moment and m ∈ [0, 1): the third axis is the one L circulates about (REFERENCES.md step
+/// 1; for D = E2 I2 − L² < 0 the largest moment, for D > 0 the smallest).
+struct Ordering {
+    Mat3 P = Mat3::Zero();
+    Vec3 I, L;
+    double D = 0.0;
+};
+
+using LongVec3 = Eigen::Matrix<long double, 3, 1>;
+
+Ordering orderAxes(const LongVec3& Lbody, const Vec3& I) {
+    int lo = 0, hi = 0;
+    for (int k = 1; k < 3; ++k) {
+        if (I[k] < I[lo]) lo = k;
+        if (I[k] > I[hi]) hi = k;
+    }
+    const int mid = 3 - lo - hi;
+    // D = E2 I2 − L² (the middle axis contributes nothing). Its two terms cancel near the
+    // separatrix, where 1 − m ∝ D sets the period: one ulp of a double L_body would move 1 − m by
+    // ~1e-16 / (1 − m) relative, so L_body = A L and D are formed in long double.
+    auto excess = [&](int k) {
+        return Lbody[k] * Lbody[k] * static_cast<long double>(I[mid] - I[k]) / I[k];
+    };
+    Ordering o;
+    o.D = static_cast<double>(excess(lo) + excess(hi));
+    const int first = o.D > 0.0 ? hi : lo, third = o.D > 0.0 ? lo : hi;
+    o.P(0, first) = 1.0;
+    o.P(1, mid) = 1.0;
+    o.P(2, third) = 1.0;
+    o.P.row(1) *= o.P.determinant(); // flip the middle axis if the permutation is odd
+    o.I = Vec3(I[first], I[mid], I[third]);
+    o.L = o.P * Lbody.cast<double>();
+    return o;
+}
+
+/// Constants of the orbit in the ordered frame (REFERENCES.md step 2, signs as derived there:
+/// ω1m has the sign of ω1(0), ω2m the opposite sign, ω3m the sign of ω3, which never changes).
+struct Orbit {
+    double I1, I2, I3, L;
+    double w1m, w2m, w3m, wp;
+    double m, m1;   // elliptic parameter and 1 − m, each to full relative precision
+    double n;       // characteristic of the Legendre form of ψ, depends on the moments only
+    bool principal; // L along a principal axis to within underflow
+};
+
+Orbit orbitOf(const Ordering& o) {
+    const double I1 = o.I[0], I2 = o.I[1], I3 = o.I[2];
+    const double L1 = o.L[0], L2 = o.L[1], L3 = o.L[2];
+    const double I13 = I1 - I3, I23 = I2 - I3, I21 = I2 - I1;
+    const double L12 = L1 * L1 * I13 / I1 + L2 * L2 * I23 / I2; // L² − E2 I3, like-signed terms
+    const double L23 = L2 * L2 * I21 / I2 - L3 * L3 * I13 / I3; // L² − E2 I1, like-signed terms
+    Orbit b{};
+    b.I1 = I1, b.I2 = I2, b.I3 = I3, b.L = o.L.norm();
+    // Along an axis (also to within underflow, where the formulas below would divide by zero);
+    // the middle axis is D = 0 with L1 = L3 = 0, an equilibrium on the separatrix.
+    b.principal = L12 == 0.0 || L23 == 0.0 || (L1 * L1 == 0.0 && L3 * L3 == 0.0);
+    if (b.principal) return b;
+    const double s1 = sign(L1), s3 = sign(L3);
+    b.w1m = s1 * std::sqrt(L12 / (I1 * I13));
+    b.w2m = -s1 * std::sqrt(L12 / (I2 * I23));
+    b.w3m = s3 * std::sqrt(-L23 / (I3 * I13));
+    b.wp = s3 * sign(I23) * std::sqrt(-I23 * L23 / (I1 * I2 * I3));
+    b.m = I21 * L12 / (I23 * L23);
+    b.m1 = (I3 - I1) * o.D / (I23 * L23); // 1 − m without cancellation
+    b.n = I3 * I21 / (I1 * I23);
+    return b;
+}
+
+/// The rotation M(ℓ) whose third column is ℓ = Lb/|Lb| (REFERENCES.md step 5).
+Mat3 frameOf(const Vec3& Lb) {
+    const double Lperp = std::hypot(Lb[0], Lb[1]), Lnorm = Lb.norm();
+    const double o1 = Lb[0] / Lperp, o2 = Lb[1] / Lperp, f = Lperp / Lnorm, o3 = Lb[2] / Lnorm;
+    Mat3 M;
+    M << o1 * o3, -o2, o1 * f, o2 * o3, o1, o2 * f, -f, 0.0, o3;
+    return M;
+}
+
+/// ∫₀^u du' / (1 − n sn²(u'|m)) in Carlson form for u = r + 2K j, r ∈ [−K, K]: the integrand
+/// has period 2K, and over one period the integral is 2 Π(n|m) = 2 [RF(0, m1, 1) + n/3 RJ(0, m1,
+/// 1, 1 − n)] (Carlson, Numer. Algorithms 10, 13 (1995), eqs. 4.3 and 4.4 with φ = am u).
+double legendreW(const detail::JacobiElliptic::Values& v, double j, double n, double m1) {
+    using boost::math::ellint_rf;
+    using boost::math::ellint_rj;
+    const double c2 = v.cn * v.cn, d2 = v.dn * v.dn, s = v.sn;
+    double w =
+        s * ellint_rf(c2, d2, 1.0) + n / 3.0 * s * s * s * ellint_rj(c2, d2, 1.0, 1.0 - n * s * s);
+    if (j != 0.0)
+        w += 2.0 * j * (ellint_rf(0.0, m1, 1.0) + n / 3.0 * ellint_rj(0.0, m1, 1.0, 1.0 - n));
+    return w;
+}
+
+/// The van Zon–Schofield theta-function quantities of one orbit (REFERENCES.md step 4), with
+/// q = e^{−a}, ξ = e^{b}; the terms are formed as exponentials of sums to avoid inf · 0.
+struct ThetaSeries {
+    double K = 0.0, a = 0.0, b = 0.0, A2 = 0.0;
+    int termsA2 = 0;
+
+    ThetaSeries() = default;
+    ThetaSeries(const Orbit& o, const detail::JacobiElliptic& jac) : K(jac.K()) {
+        const double Kc = detail::JacobiElliptic(o.m1, o.m).K(); // K' = K(1 − m)
+        a = pi * Kc / K;
+        // η = sgn(ω3) K' − F(arcsin(I3 |ω3m| / L) | 1 − m) = sgn(ω3) F(χ | 1 − m) by Legendre's
+        // complement relation, with tan²χ = I1 (I3 − I2) / (I3 (I2 − I1)) independent of the state.
+        const double wA = o.I1 * (o.I3 - o.I2), wB = o.I3 * (o.I2 - o.I1);
+        const double sin2 = wA / (wA + wB), cos2 = wB / (wA + wB);
+        const double F = std::sqrt(sin2) * boost::math::ellint_rf(cos2, cos2 + o.m * sin2, 1.0);
+        b = sign(o.w3m) * pi * F / K;
+        const double decay = 2.0 * a - std::abs(b); // A2 terms fall like e^{−n(2a − |b|)}
+        termsA2 = static_cast<int>(std::ceil(-std::log(seriesTolerance) / decay));
+        double sum = 0.0;
+        for (int k = 1; k <= termsA2; ++k)
+            sum += (std::exp(k * (b - 2.0 * a)) - std::exp(-k * (b + 2.0 * a))) /
+                   -std::expm1(-2.0 * k * a);
+        A2 = o.L / o.I1 + pi * o.wp / (2.0 * K) / std::tanh(0.5 * b) - pi * o.wp / K * sum;
+    }
+
+    /// Continuous arg of the theta function at u = r + 2K j. For b > 0 the series (scaled by
+    /// ξ^{−1/2}) stays in the lower half plane on r ∈ [−K, K] and turns by +π per period 2K;
+    /// b < 0 is its complex conjugate.
+    double arg(double r, double j) const {
+        const double x = pi * r / (2.0 * K), B = std::abs(b);
+        double re = 0.0, im = 0.0;
+        for (int k = 0;; ++k) {
+            const double base = -a * k * (k + 1.0), alt = (k % 2 == 0) ? 1.0 : -1.0;
+            const double ep = std::exp(base + k * B), em = std::exp(base - (k + 1.0) * B);
+            re += alt * (ep + em) * std::sin((2 * k + 1) * x);
+            im -= alt * (ep - em) * std::cos((2 * k + 1) * x);
+            if (ep < seriesTolerance) break;
+        }
+        return sign(b) * (std::atan2(re, -im) - 0.5 * pi + j * pi);
+    }
+};
+
+void rotateAboutPrincipalAxis(Mat3& A, const Vec3& Lbody, const Vec3& I, double t) {
+    int k = 0;
+    for (int i = 1; i < 3; ++i)
+        if (std::abs(Lbody[i]) > std::abs(Lbody[k])) k = i;
+    // dA/dt = −[ω]× A with ω = ω_k e_k constant: A(t) = exp(−t [ω]×) A(0).
+    A = rotationMatrix(Vec3::Unit(k), -Lbody[k] / I[k] * t) * A;
+}
+
+/// The separatrix m = 1 itself: sn = tanh, cn = dn = sech, and ∫ du / (1 − n tanh² u) =
+/// (u + √ν atan(√ν tanh u)) / (1 + ν), ν = −n > 0.
+void rotateOnSeparatrix(Mat3& A, const Orbit& o, const Vec3& L0, double t) {
+    const double eps = std::asinh((L0[1] / (o.I2 * o.w2m)) / (L0[0] / (o.I1 * o.w1m)));
+    const double u = o.wp * t + eps, nu = -o.n, rnu = std::sqrt(nu);
+    auto W = [&](double x) { return (x + rnu * std::atan(rnu * std::tanh(x))) / (1.0 + nu); };
+    const double psi = o.L * t / o.I3 + (o.L / o.I1 - o.L / o.I3) * (W(u) - W(eps)) / o.wp;
+    const double sech = 1.0 / std::cosh(u);
+    const Vec3 Lt(o.I1 * o.w1m * sech, o.I2 * o.w2m * std::tanh(u), o.I3 * o.w3m * sech);
+    Mat3 Rz;
+    Rz << std::cos(psi), std::sin(psi), 0.0, -std::sin(psi), std::cos(psi), 0.0, 0.0, 0.0, 1.0;
+    A = frameOf(Lt) * Rz * frameOf(L0).transpose() * A;
+}
+
+void rotateElliptic(Mat3& A, const Orbit& o, const Vec3& L0, double t,
+                    AsymmetricTop::AngleMethod method) {
+    const detail::JacobiElliptic jac(o.m, o.m1);
+    // ε from sn ε = ω2/ω2m, cn ε = ω1/ω1m ≥ 0, dn ε = ω3/ω3m: ε = F(am ε | m) in Carlson form.
+    const double snE = L0[1] / (o.I2 * o.w2m), cnE = L0[0] / (o.I1 * o.w1m);
+    const double dnE = L0[2] / (o.I3 * o.w3m);
+    const double eps = snE * boost::math::ellint_rf(cnE * cnE, dnE * dnE, 1.0);
+    const auto red = jac.reduce(o.wp * t + eps);
+    detail::JacobiElliptic::Values v = jac.reduced(red.r);
+
+    double psi;
+    const bool useTheta = method != AsymmetricTop::AngleMethod::LegendrePi;
+    const ThetaSeries ts = useTheta ? ThetaSeries(o, jac) : ThetaSeries{};
+    if (useTheta && (method == AsymmetricTop::AngleMethod::ThetaSeries ||
+                     ts.termsA2 <= AsymmetricTop::maxThetaTerms)) {
+        psi = ts.A2 * t - (ts.arg(red.r, red.j) - ts.arg(eps, 0.0));
+    } else {
+        const double dW =
+            legendreW(v, red.j, o.n, o.m1) - legendreW({snE, cnE, dnE}, 0.0, o.n, o.m1);
+        psi = o.L * t / o.I3 + (o.L / o.I1 - o.L / o.I3) * dW / o.wp;
+    }
+    if (std::fmod(red.j, 2.0) != 0.0) {
+        v.sn = -v.sn;
+        v.cn = -v.cn;
+    }
+    const Vec3 Lt(o.I1 * o.w1m * v.cn, o.I2 * o.w2m * v.sn, o.I3 * o.w3m * v.dn);
+    Mat3 Rz;
+    Rz << std::cos(psi), std::sin(psi), 0.0, -std::sin(psi), std::cos(psi), 0.0, 0.0, 0.0, 1.0;
+    A = frameOf(Lt) * Rz * frameOf(L0).transpose() * A;
+}
+
+} // namespace
+
+namespace detail {
+
+double complementaryEllipticParameter(const Vec3& Lbody, const Vec3& I) {
+    return orbitOf(orderAxes(Lbody.cast<long double>(), I)).m1;
+}
+
+} // namespace detail
+
+void AsymmetricTop::freeRotate(State& b, const BodyParams& p, double t) {
+    freeRotate(b, p, t, AngleMethod::Automatic);
+}
+
+void AsymmetricTop::freeRotate(State& b, const BodyParams& p, double t, AngleMethod method) {
+    const Vec3& I = p.inertia;
+    if (t == 0.0 || b.L.squaredNorm() == 0.0) return;
+    // Two equal moments: the symmetric (or spherical) top, unique axis the odd one out.
+    if (I[0] == I[1]) return detail::rotateSymmetricTop(b.A, b.L, I[0], I[2], 2, t);
+    if (I[1] == I[2]) return detail::rotateSymmetricTop(b.A, b.L, I[1], I[0], 0, t);
+    if (I[0] == I[2]) return detail::rotateSymmetricTop(b.A, b.L, I[0], I[1], 1, t);
+
+    const LongVec3 LbodyPrecise = b.A.cast<long double>() * b.L.cast<long double>();
+    const Vec3 Lbody = LbodyPrecise.cast<double>();
+    const Ordering ord = orderAxes(LbodyPrecise, I);
+    const Orbit orbit = orbitOf(ord);
+    if (orbit.principal) {
+        rotateAboutPrincipalAxis(b.A, Lbody, I, t);
+    } else {
+        Mat3 A = ord.P * b.A; // lab -> ordered body frame
+        if (orbit.m1 == 0.0)
+            rotateOnSeparatrix(A, orbit, ord.L, t);
+        else
+            rotateElliptic(A, orbit, ord.L, t, method);
+        b.A = ord.P.transpose() * A;
+    }
+    detail::reorthonormalise(b.A);
+}
+
 } // namespace terrace

@@ -1,8 +1,20 @@
 #pragma once
-// Asymmetric top (I1, I2, I3 distinct): exact free motion in Jacobi elliptic functions and a
-// theta-function series for the angle about L (van Zon & Schofield, J. Comput. Phys. 225, 145
-// (2007); REFERENCES.md "Exact free rigid-body motion", steps 1-5).
+// Asymmetric top (I1, I2, I3 distinct): exact free motion (van Zon & Schofield, J. Comput. Phys.
+// 225, 145 (2007); REFERENCES.md "Exact free rigid-body motion", steps 1-5). With the axes
+// reordered (a proper signed permutation) so that I2 is the middle moment and m ∈ [0, 1),
+//     ω1 = ω1m cn(u|m),  ω2 = ω2m sn(u|m),  ω3 = ω3m dn(u|m),  u = ωp t + ε,
+//     A(t) = M(ℓ(t)) R_z(ψ(t)) M(ℓ(0))ᵀ A(0),   ℓ = L_body / |L|,
+// where ψ is the angle about the fixed L, ψ̇ = |L| (L1 ω1 + L2 ω2) / (L1² + L2²). ψ comes from the
+// two real theta series of van Zon & Schofield, or, where their nome q → 1 makes them slow (near
+// the separatrix m → 1), from the equivalent Legendre form
+//     ψ̇ = |L|/I3 + (|L|/I1 − |L|/I3) / (1 − n sn²u),   n = I3 (I2 − I1) / (I1 (I2 − I3)) < 0,
+//     ψ(t) = |L| t / I3 + (|L|/I1 − |L|/I3) [Π(n; am u | m) − Π(n; am ε | m)] / ωp
+// (Byrd & Friedman 410.00 and 336.02 for ∫ du / (1 − n sn²u), in Carlson form; on the separatrix
+// m = 1 itself, sn = tanh, cn = dn = sech and the integral is elementary).
+// Two equal moments dispatch to the symmetric-top formula; ω along a principal axis is a rotation
+// about that fixed axis.
 #include "core/top_state.hpp"
+#include <array>
 
 namespace terrace {
 
@@ -10,8 +22,54 @@ struct AsymmetricTop : TopCommon {
     static constexpr std::string_view name = "asymmetric";
     static constexpr int rotationalDof = 3;
 
+    /// How the angle ψ about L is evaluated; both are exact. Automatic takes the theta series
+    /// unless it would need more than maxThetaTerms terms, then the Legendre form.
+    enum class AngleMethod { Automatic, ThetaSeries, LegendrePi };
+    static constexpr int maxThetaTerms = 64;
+
     /// Exact torque-free rotation over time t (any sign). Implemented in asymmetric_top.cpp.
     static void freeRotate(State& b, const BodyParams& p, double t);
+    static void freeRotate(State& b, const BodyParams& p, double t, AngleMethod method);
 };
+
+namespace detail {
+
+/// Jacobi elliptic functions sn, cn, dn of parameter m by the descending Landen transformation
+/// (arithmetic-geometric mean; Abramowitz & Stegun 16.4, 17.6). Built from m and its complement
+/// m1 = 1 − m, each given to full relative precision, so that K and dn stay accurate as m → 1.
+/// The table depends on m only: build it once per orbit.
+class JacobiElliptic {
+public:
+    JacobiElliptic(double m, double m1);
+    double K() const { return K_; } // complete elliptic integral of the first kind K(m)
+    double m() const { return m_; }
+    double m1() const { return m1_; }
+    struct Values {
+        double sn, cn, dn;
+    };
+    /// sn, cn, dn at u ∈ [−K, K] (no reduction; use reduce() first for larger u).
+    Values reduced(double u) const;
+    /// Splits u = r + 2K j with r ∈ [−K, K]; sn(u) = (−1)^j sn(r), cn likewise, dn(u) = dn(r).
+    struct Reduction {
+        double r;
+        double j;
+    };
+    Reduction reduce(double u) const;
+    Values operator()(double u) const;
+
+private:
+    Values landen(double u) const; // descending Landen recursion, accurate for |u| <= K/2
+    static constexpr int maxLevels = 32;
+    double m_, m1_, K_;
+    int levels_ = 0;
+    std::array<double, maxLevels> a_{}, c_{};
+};
+
+/// The complementary elliptic parameter 1 − m of the free orbit of body angular momentum Lbody
+/// for principal moments I (distinct), after the reordering of the axes that makes m < 1.
+/// Zero on the separatrix (rotation about the middle axis and its homoclinic orbits).
+double complementaryEllipticParameter(const Vec3& Lbody, const Vec3& I);
+
+} // namespace detail
 
 } // namespace terrace

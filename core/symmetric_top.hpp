@@ -1,28 +1,44 @@
 #pragma once
-// Symmetric top (I1 = I2 ≠ I3, unique axis 3). In the lab frame ω = L/I1 + (1/I3 − 1/I1) L3 n,
-// with n the symmetry axis and L3 = L·n constant, so the free motion is a uniform precession about
-// the fixed L at rate |L|/I1 composed with a spin about n at rate ωp = (1 − I3/I1) ω3:
-//     Q(t) = R_L(|L| t / I1) R_{n(0)}(ωp t) Q(0),   Q = Aᵀ (body -> lab)
-// (REFERENCES.md "Exact free rigid-body motion"; van Zon & Schofield, J. Comput. Phys. 225,
-// 145 (2007)).
+// Symmetric top: two equal moments I⊥ about the body axes other than the unique axis n (moment
+// In; SymmetricTop takes I1 = I2 = I⊥, n = third axis). In the lab frame
+//     ω = L/I⊥ + (1/In − 1/I⊥) Ln n,    Ln = L·n constant,
+// so with Q = Aᵀ (body -> lab) the free motion is a precession of the whole body about the fixed
+// L at rate |L|/I⊥ composed with a spin about the unique axis at ωp = (1 − In/I⊥) ωn, ωn = Ln/In:
+//     Q(t) = R_L(|L| t / I⊥) R_{n(0)}(ωp t) Q(0),   i.e.   A(t) = A(0) R_{n(0)}ᵀ R_Lᵀ.
+// Why: writing Q = R_L(|L|t/I⊥) Q1 leaves dQ1/dt = [(1/In − 1/I⊥) Ln n1]× Q1 with n1 = Q1 e_n,
+// whose axis n1 is therefore constant. The spherical top is In = I⊥ (no spin).
+// (REFERENCES.md "Exact free rigid-body motion"; van Zon & Schofield, J. Comput. Phys. 225, 145
+// (2007).)
 #include "core/top_state.hpp"
 #include <cmath>
 
 namespace terrace {
 
+namespace detail {
+
+/// Exact free rotation over time t (any sign) of a top with moment Iaxis about body axis
+/// `uniqueAxis` (0, 1 or 2) and Iperp about the other two.
+inline void rotateSymmetricTop(Mat3& A, const Vec3& L, double Iperp, double Iaxis, int uniqueAxis,
+                               double t) {
+    const double Lnorm = L.norm();
+    if (Lnorm == 0.0 || t == 0.0) return;
+    const Vec3 n = A.row(uniqueAxis).transpose();
+    const double omegaAxis = L.dot(n) / Iaxis;
+    const Mat3 spin = rotationMatrix(n, (1.0 - Iaxis / Iperp) * omegaAxis * t);
+    const Mat3 precession = rotationMatrix(L / Lnorm, Lnorm * t / Iperp);
+    A = A * spin.transpose() * precession.transpose();
+    reorthonormalise(A);
+}
+
+} // namespace detail
+
 struct SymmetricTop : TopCommon {
     static constexpr std::string_view name = "symmetric";
     static constexpr int rotationalDof = 3;
 
+    /// Exact torque-free rotation over time t (any sign); requires inertia[0] == inertia[1].
     static void freeRotate(State& b, const BodyParams& p, double t) {
-        const double Lnorm = b.L.norm();
-        if (Lnorm == 0.0) return;
-        const double I1 = p.inertia[0], I3 = p.inertia[2];
-        const Vec3 n = b.A.row(2).transpose();
-        const double omega3 = b.L.dot(n) / I3;
-        const Mat3 spin = rotationMatrix(n, (1.0 - I3 / I1) * omega3 * t);
-        const Mat3 precession = rotationMatrix(b.L / Lnorm, Lnorm * t / I1);
-        b.A = b.A * spin.transpose() * precession.transpose();
+        detail::rotateSymmetricTop(b.A, b.L, p.inertia[0], p.inertia[2], 2, t);
     }
 };
 

@@ -1,6 +1,9 @@
 #pragma once
 // State and the frame-independent helpers shared by the symmetric and the asymmetric top.
 // A maps lab vectors to the body (principal-axis) frame; L is the lab-frame angular momentum.
+// Free motion leaves L unchanged and moves A along dA/dt = −[ω]× A (ω in the body frame), which
+// follows from Q = Aᵀ (body -> lab) obeying dQ/dt = Q [ω]× (van Zon & Schofield, J. Comput. Phys.
+// 225, 145 (2007), eq. 2.1 in our notation).
 #include "core/body_kind.hpp"
 
 namespace terrace {
@@ -16,6 +19,14 @@ namespace detail {
 
 inline Vec3 bodyOmega(const TopState& b, const BodyParams& p) {
     return (b.A * b.L).cwiseQuotient(p.inertia);
+}
+
+/// One Newton step towards the nearest rotation, A <- A (3 − AᵀA) / 2. The free-motion formulas
+/// produce products of rotations that are orthonormal to a few ulp; without this the error would
+/// random-walk over millions of calls. One step squares the deviation, so it stays at round-off.
+inline void reorthonormalise(Mat3& A) {
+    const Mat3 gram = A.transpose() * A;
+    A = A * (1.5 * Mat3::Identity() - 0.5 * gram);
 }
 
 } // namespace detail
