@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# One set of replica runs, named by what it is (Makefile.paper has one target per set, so that
+# `make -j` spreads the sets over the cores):
+#   runset.sh STATE/ENGINE-PARAM[-OPTION...]    e.g. dense/dmd-0.5, dense/dmd-0.5-heap, rho0.1-T10/smd-1.8
+#   STATE   dense | gas | rho<ρ*>-T<T*> (e.g. rho0.05-T1.4; rods as in dense-rods.json)
+#   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs)
+#   OPTION  heap | eager (DMD queue and invalidation, default bpq + lazy)
+#           mayfail (a failed run marks the set FAILED instead of stopping make: unstable
+#                    settings are a result of the trade-off, not an error of the pipeline)
+#           ref (the trade-off's converged reference: REF_PS_FACTOR times longer)
+# Runs land in $RUNS/STATE/ENGINE-PARAM[-OPTION...]/seed-K; the set's replica means of rdf.csv,
+# vacf.csv and oacf.csv go beside them (mean-rdf.csv, ...).
+source "$(dirname "$0")/common.sh"
+id=$1
+state=${id%%/*}
+IFS=- read -r engine param options_text <<<"${id#*/}"
+read -r -a options <<<"${options_text//-/ }"
+
+case $state in
+dense) scene=$SCENES/dense-rods.json n=$DENSE_N ps=$DENSE_PS sets=() ;;
+gas) scene=$SCENES/gas-rods.json n=$GAS_N ps=$GAS_PS sets=() ;;
+rho*-T*)
+    rho=${state#rho}; rho=${rho%%-T*}; temp=${state##*-T}
+    scene=$SCENES/dense-rods.json n=$DENSE_N ps=$SCAN_PS
+    sets=(--set state.density="$rho" --set state.temperature="$temp")
+    REPLICAS=$SCAN_REPLICAS
+    ;;
+*) echo "runset.sh: unknown state '$state'" >&2; exit 2 ;;
+esac
+case $engine in
+dmd) sets+=(--set engine=dmd --set dmd.dV="$param") ;;
+smd) sets+=(--set engine=smd --set smd.dt_fs="$param") ;;
+*) echo "runset.sh: unknown engine '$engine'" >&2; exit 2 ;;
+esac
+mayfail=0
+for o in "${options[@]}"; do
+    case $o in
+    mayfail) mayfail=1 ;;
+    heap) sets+=(--set dmd.queue=heap) ;;
+    eager) sets+=(--set dmd.invalidation=eager) ;;
+    ref) ps=$(awk -v p="$ps" -v f="$REF_PS_FACTOR" 'BEGIN{print p*f}') ;;
+    *) echo "runset.sh: unknown option '$o'" >&2; exit 2 ;;
+    esac
+done
+
+dir=$RUNS/$id
+rm -f "$dir/FAILED"
+if ! run_replicas "$dir" "$scene" --set state.n="$n" --set run.equilibrate_ps="$EQUIL_PS" \
+    --set run.time_ps="$ps" "${sets[@]}"; then
+    [ "$mayfail" = 1 ] || exit 1
+    # The reason is the failed run's own message, kept for the tables.
+    tail -n 3 "$dir"/seed-*.partial.log 2>/dev/null | tr '\n' ' ' >"$dir/FAILED"
+    log "runset $id FAILED (recorded)"
+    exit 0
+fi
+for f in rdf vacf oacf; do mean_curve "$dir" $f.csv "$dir/mean-$f.csv"; done
+log "runset $id done"

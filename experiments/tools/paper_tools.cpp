@@ -1,0 +1,69 @@
+// paper_tools: the numeric steps of the paper's figures and tables that a shell script cannot do
+// (Makefile.paper calls it; experiments/README.md lists the subcommands).
+//   potential-map OUT.csv                 fig1 data (potential_map.hpp)
+//   search-trace DIR [dV_kT]              fig2 data (search_trace.hpp)
+//   mean OUT.csv IN.csv IN.csv...         replica mean and standard error (replicas.hpp)
+//   error REF.csv CURVE.csv COLUMN [XMAX] root-mean-square difference (replicas.hpp)
+//   summary-header                        header of summary rows
+//   summary LABEL DIR...                  one table row over replica runs (summaries.hpp)
+#include "analysis/csv.hpp"
+#include "experiments/tools/potential_map.hpp"
+#include "experiments/tools/replicas.hpp"
+#include "experiments/tools/search_trace.hpp"
+#include "experiments/tools/summaries.hpp"
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+int usage() {
+    std::cerr << "usage: paper_tools potential-map OUT.csv\n"
+                 "       paper_tools search-trace DIR [dV_kT]\n"
+                 "       paper_tools mean OUT.csv IN.csv IN.csv...\n"
+                 "       paper_tools error REF.csv CURVE.csv COLUMN [XMAX]\n"
+                 "       paper_tools summary-header\n"
+                 "       paper_tools summary LABEL DIR...\n";
+    return 2;
+}
+
+int run(const std::vector<std::string>& a) {
+    using namespace terrace;
+    const std::string& cmd = a[0];
+    if (cmd == "potential-map" && a.size() == 2) {
+        experiments::writePotentialMap(a[1]);
+    } else if (cmd == "search-trace" && (a.size() == 2 || a.size() == 3)) {
+        experiments::writeSearchTrace(a[1], a.size() == 3 ? std::stod(a[2]) : 0.5);
+    } else if (cmd == "mean" && a.size() >= 4) {
+        std::vector<analysis::CsvTable> replicas;
+        for (std::size_t k = 2; k < a.size(); ++k)
+            replicas.push_back(analysis::readCsv(a[k]));
+        analysis::writeCsv(a[1], experiments::replicaMean(replicas));
+    } else if (cmd == "error" && (a.size() == 4 || a.size() == 5)) {
+        const double e =
+            experiments::rmsDifference(analysis::readCsv(a[1]), analysis::readCsv(a[2]), a[3],
+                                       a.size() == 5 ? std::stod(a[4]) : 0.0);
+        std::printf("%.6g\n", e);
+    } else if (cmd == "summary-header" && a.size() == 1) {
+        std::cout << experiments::summaryHeader() << '\n';
+    } else if (cmd == "summary" && a.size() >= 3) {
+        std::cout << experiments::summaryRow(a[1], {a.begin() + 2, a.end()}) << '\n';
+    } else {
+        return usage();
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) return usage();
+    try {
+        return run(std::vector<std::string>(argv + 1, argv + argc));
+    } catch (const std::exception& e) {
+        std::cerr << "paper_tools " << argv[1] << ": " << e.what() << '\n';
+        return 1;
+    }
+}

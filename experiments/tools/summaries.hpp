@@ -1,0 +1,25 @@
+#pragma once
+// One table row from the summary.json files of R replica runs of one setting (cli/run_driver.hpp
+// writes them): for each quantity the replica mean and its standard error sqrt(var/R).
+//
+//   cpu_s_per_ps       CPU seconds per simulated ps (production only; the paper's cost measure)
+//   collisions_per_ps  DMD transmissions up + down + reflections per ps (0 for SMD)
+//   events_per_ps      all DMD events per ps, virtual, cell and sample events included (0 for SMD)
+//   energy_rel_fluct   std(E_total)/|mean U| (the paper's energy measure)
+//   energy_drift_per_ps  slope of E_total, kJ/mol per ps
+//   temperature_K      mean instantaneous temperature over production
+// Efficiency ratios between rows are ratios of cpu_s_per_ps; they are formed by the scripts.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace terrace::experiments {
+
+/// The CSV header of rows written by summaryRow (label first).
+std::string summaryHeader();
+
+/// A CSV row "label,engine,runs,simulated_ps,<mean>,<err>,…" over the runs in `dirs` (each holding
+/// summary.json). Throws std::runtime_error naming a directory without a usable summary.
+std::string summaryRow(const std::string& label, const std::vector<std::filesystem::path>& dirs);
+
+} // namespace terrace::experiments
