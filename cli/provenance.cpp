@@ -1,0 +1,49 @@
+#include "cli/provenance.hpp"
+#include "cli/cpu_clock.hpp"
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+
+#ifndef TERRACE_GIT_REVISION
+#define TERRACE_GIT_REVISION "unknown"
+#endif
+#ifndef TERRACE_CXX_FLAGS
+#define TERRACE_CXX_FLAGS "unknown"
+#endif
+
+namespace terrace::cli {
+
+namespace {
+double wallNow() {
+    using namespace std::chrono;
+    return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+} // namespace
+
+nlohmann::json provenance(const Scene& scene) {
+    char stamp[32] = "";
+    const std::time_t now = std::time(nullptr);
+    std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return {{"scene", toJson(scene)},
+            {"seed", scene.seed},
+            {"git_revision", TERRACE_GIT_REVISION},
+            {"compiler", std::string("g++ ") + __VERSION__},
+            {"flags", TERRACE_CXX_FLAGS},
+            {"date_utc", stamp}};
+}
+
+ProgressReporter::ProgressReporter(bool quiet)
+    : quiet_(quiet), started_(wallNow()), last_(started_) {}
+
+void ProgressReporter::report(const char* phase, long done, long total, double time) {
+    constexpr double everySeconds = 5.0; // quiet for short runs, a heartbeat for long ones
+    const double now = wallNow();
+    if (quiet_ || (now - last_ < everySeconds && done != total) || now - started_ < everySeconds)
+        return;
+    last_ = now;
+    std::fprintf(stderr, "terrace: %s %ld/%ld samples (%.0f%%), t = %.3f ps, %.0f s elapsed\n",
+                 phase, done, total, total > 0 ? 100.0 * double(done) / double(total) : 100.0,
+                 time * 0.1, now - started_);
+}
+
+} // namespace terrace::cli
