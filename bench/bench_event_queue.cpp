@@ -71,14 +71,13 @@ public:
             id = freeIds_.back();
             freeIds_.pop_back();
         } else {
-            id = static_cast<std::uint32_t>(stamp_.size());
-            stamp_.push_back(0);
-            handle_.emplace_back();
-            validIndex_.push_back(0);
+            id = static_cast<std::uint32_t>(predictions_.size());
+            predictions_.emplace_back();
         }
-        const QueueHandle h = queue_.push({now_ + delay(), id, stamp_[id], id ^ 1u, 0});
-        if (eager_) handle_[id] = h;
-        validIndex_[id] = static_cast<std::uint32_t>(valid_.size());
+        Prediction& p = predictions_[id];
+        const QueueHandle h = queue_.push({now_ + delay(), id, p.stamp, id ^ 1u, 0});
+        if (eager_) p.handle = h;
+        p.validIndex = static_cast<std::uint32_t>(valid_.size());
         valid_.push_back(id);
     }
 
@@ -86,7 +85,7 @@ public:
         for (;;) {
             const HoldEvent e = queue_.top();
             queue_.pop();
-            if (e.stamp == stamp_[e.id]) {
+            if (e.stamp == predictions_[e.id].stamp) {
                 now_ = e.time;
                 retire(e.id);
                 break;
@@ -99,11 +98,12 @@ public:
             schedule();
         for (int k = 1; k < pushes; ++k) {
             const std::uint32_t victim = valid_[rng_.next() % valid_.size()];
-            if (eager_) queue_.erase(handle_[victim]);
+            if (eager_) queue_.erase(predictions_[victim].handle);
             retire(victim);
         }
         if (!eager_ && queue_.size() > kCleanupFactor * valid_.size()) {
-            queue_.removeIf([this](const HoldEvent& e) { return e.stamp != stamp_[e.id]; });
+            queue_.removeIf(
+                [this](const HoldEvent& e) { return e.stamp != predictions_[e.id].stamp; });
             ++cleanups_;
         }
     }
@@ -138,13 +138,21 @@ private:
     }
 
     void retire(std::uint32_t id) {
-        ++stamp_[id];
+        Prediction& p = predictions_[id];
+        ++p.stamp;
         const std::uint32_t last = valid_.back();
-        valid_[validIndex_[id]] = last;
-        validIndex_[last] = validIndex_[id];
+        valid_[p.validIndex] = last;
+        predictions_[last].validIndex = p.validIndex;
         valid_.pop_back();
         freeIds_.push_back(id);
     }
+
+    // One record per prediction id, so that the model's own bookkeeping costs one cache miss.
+    struct Prediction {
+        std::uint32_t stamp = 0;      // bumped when the prediction fires or is invalidated
+        std::uint32_t validIndex = 0; // index in valid_ while valid
+        QueueHandle handle;           // eager invalidation only
+    };
 
     Q queue_;
     bool eager_;
@@ -152,10 +160,8 @@ private:
     std::vector<double> delayTable_;
     Xorshift rng_{kHoldSeed};
     double now_ = 0.0;
-    std::vector<std::uint32_t> stamp_;      // per prediction id
-    std::vector<QueueHandle> handle_;       // per prediction id (eager only)
-    std::vector<std::uint32_t> validIndex_; // per prediction id: its index in valid_
-    std::vector<std::uint32_t> valid_;      // ids of valid pending predictions
+    std::vector<Prediction> predictions_;
+    std::vector<std::uint32_t> valid_; // ids of valid pending predictions
     std::vector<std::uint32_t> freeIds_;
     std::size_t stalePops_ = 0;
     std::size_t cleanups_ = 0;

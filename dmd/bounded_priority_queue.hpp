@@ -109,19 +109,19 @@ public:
 
     // Re-bins every queued event under a new bin width and count; handles stay valid.
     void retune(double binWidth, std::size_t nBins) {
-        std::vector<std::uint32_t> live;
-        live.reserve(size_);
-        double earliest = std::numeric_limits<double>::infinity();
-        for (std::uint32_t slot = 0; slot < pool_.slots(); ++slot) {
-            if (pool_[slot].where == kFree) continue;
-            live.push_back(slot);
-            earliest = std::min(earliest, pool_[slot].event.time);
-        }
+        // O(size): every queued node is visited once. The heap top is the earliest event, so the
+        // new current bin is known before the nodes are re-placed (in slot order, which is
+        // irrelevant to the pop order: that is fixed by (time, sequence) alone).
+        const bool any = size_ > 0;
+        const double earliest = any ? heap_.front().time : 0.0;
         heap_.clear();
         setBins(binWidth, nBins);
-        if (!live.empty()) jumpTo(binOf(earliest));
-        for (const std::uint32_t slot : live)
-            place(slot);
+        if (any) jumpTo(binOf(earliest));
+        for (std::uint32_t slot = 0; slot < pool_.slots(); ++slot)
+            if (pool_[slot].where != kFree) place(slot);
+        // A badly binned past may have grown the current-bin heap to the whole calendar.
+        if (heap_.capacity() > 4 * heap_.size() + kHeapSlack) heap_.shrink_to_fit();
+        refill(); // a no-op: the earliest event is in the current bin by construction
     }
 
     double binWidth() const { return binWidth_; }
@@ -141,6 +141,8 @@ private:
     static constexpr std::uint32_t kFree = UINT32_MAX;    // `where` of a slot not in the queue
     // Bins far beyond any simulated time (or ±∞) saturate here, leaving room for c + n.
     static constexpr double kBinLimit = 0x1p60;
+    // Current-bin heap capacity kept through a retune regardless of its size (entries).
+    static constexpr std::size_t kHeapSlack = 1024;
 
     struct Node {
         E event{};
