@@ -2,6 +2,7 @@
 #include "analysis/csv.hpp"
 #include <algorithm>
 #include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <boost/math/special_functions/erf.hpp>
 #include <cmath>
 #include <cstdio>
@@ -51,15 +52,45 @@ template <class... Args> std::string format(const char* fmt, Args... args) {
 
 } // namespace
 
+double normalEquivalent(double z, double nu) {
+    z = std::abs(z);
+    if (!std::isfinite(nu) || z == 0.0 || !std::isfinite(z)) return z;
+    const double p = 2.0 * boost::math::cdf(complement(boost::math::students_t(nu), z));
+    if (p <= 0.0) return std::numeric_limits<double>::infinity();
+    return std::sqrt(2.0) * boost::math::erfc_inv(std::min(p, 1.0));
+}
+
 double pointLimitSigma(double tolSigma, int n) {
     const double p = std::erfc(tolSigma / std::sqrt(2.0));
     return std::max(tolSigma, std::sqrt(2.0) * boost::math::erfc_inv(p / std::max(n, 1)));
 }
 
-double chi2PerDofLimit(double tolSigma, int n) {
+double chi2PerDofLimit(double tolSigma, double effectivePoints) {
     const double p = std::erfc(tolSigma / std::sqrt(2.0));
-    const int nu = std::clamp(n, 1, effectiveIndependentPoints);
+    const double nu = std::max(1.0, effectivePoints);
     return boost::math::quantile(boost::math::chi_squared(nu), 1.0 - p) / nu;
+}
+
+double effectivePoints(const std::vector<double>& z) {
+    const int n = static_cast<int>(z.size());
+    if (n < 2) return n;
+    double mean = 0.0;
+    for (double v : z)
+        mean += v;
+    mean /= n; // exact for identical deviations, so that they have no spread at all
+    double c0 = 0.0;
+    for (double v : z)
+        c0 += (v - mean) * (v - mean);
+    if (!(c0 > 0.0)) return 1.0; // identical deviations: one piece of information
+    double rhoSum = 0.0;
+    for (int j = 1; j < n; ++j) {
+        double cj = 0.0;
+        for (int i = 0; i + j < n; ++i)
+            cj += (z[i] - mean) * (z[i + j] - mean);
+        if (cj <= 0.0) break; // initial positive sequence
+        rhoSum += cj / c0;
+    }
+    return std::clamp(n / (1.0 + 2.0 * rhoSum), 1.0, static_cast<double>(n));
 }
 
 Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::path& b,
@@ -82,6 +113,8 @@ Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::pat
     double chi2 = 0.0;
     int dof = 0;
     bool exactMismatch = false;
+    std::vector<double> signedZ; // ẑ_i with sign, in x order, for n_eff
+    double rawMax = 0.0;         // largest |z_i| before the Student-t conversion, for the verdict
     for (std::size_t i = 0; i < ca.x.size(); ++i) {
         const double x = ca.x[i];
         if (x < cb.x.front() - slack || x > cb.x.back() + slack) continue;
@@ -94,8 +127,12 @@ Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::pat
         const double sigma = std::hypot(ea, eb), diff = std::abs(ya - yb);
         double z = 0.0;
         if (sigma > 0.0) {
-            z = diff / sigma;
+            const double nu = sigma * sigma * sigma * sigma /
+                              ((ea * ea * ea * ea + eb * eb * eb * eb) / errorDegreesOfFreedom);
+            rawMax = std::max(rawMax, diff / sigma);
+            z = normalEquivalent(diff / sigma, nu);
             chi2 += z * z, ++dof;
+            if (std::isfinite(z)) signedZ.push_back(ya >= yb ? z : -z);
         } else if (diff > exactRelativeTolerance * std::max({1.0, std::abs(ya), std::abs(yb)})) {
             z = std::numeric_limits<double>::infinity(), exactMismatch = true;
         }
@@ -105,13 +142,16 @@ Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::pat
         throw CsvError("compare: no common points of " + a.string() + " and " + b.string());
 
     r.chi2PerDof = dof > 0 ? chi2 / dof : 0.0;
-    const double zLimit = pointLimitSigma(tolSigma, dof), chiLimit = chi2PerDofLimit(tolSigma, dof);
+    const double nEff = effectivePoints(signedZ);
+    const double zLimit = pointLimitSigma(tolSigma, dof),
+                 chiLimit = chi2PerDofLimit(tolSigma, nEff);
     r.agree = !exactMismatch && r.maxDeviationSigma <= zLimit && r.chi2PerDof <= chiLimit;
     r.verdict = std::string(r.agree ? "agree" : "DISAGREE") + ": " + name + " over " +
                 std::to_string(r.points) + " points, chi2/dof " +
-                format("%.3g (limit %.3g)", r.chi2PerDof, chiLimit) + ", largest deviation " +
-                format("%.3g sigma (limit %.3g)", r.maxDeviationSigma, zLimit) + " at " +
-                ta.header[0] + " = " + format("%.6g", r.atX) +
+                format("%.3g (limit %.3g", r.chi2PerDof, chiLimit) +
+                format(" for %.3g independent)", nEff) + ", largest deviation " +
+                format("%.3g sigma (limit %.3g; raw %.3g)", r.maxDeviationSigma, zLimit, rawMax) +
+                " at " + ta.header[0] + " = " + format("%.6g", r.atX) +
                 (exactMismatch ? "; an exact point (zero error) differs" : "");
     return r;
 }

@@ -13,12 +13,8 @@ namespace {
 /// g(r) far from a body should be 1: average over the outer fifth of the range, r ∈ [0.4, 0.5] L.
 constexpr double largeRFraction = 0.4;
 
-nlohmann::json writeRdf(const std::vector<Snapshot>& samples, const std::filesystem::path& dir,
-                        const Options& options) {
-    const RadialDistribution rdf =
-        radialDistribution(samples, options.rdfBinAngstrom, options.blocks);
-    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
-    const double from = largeRFraction * samples.front().boxLength;
+nlohmann::json rdfSummary(const RadialDistribution& rdf, double boxLength) {
+    const double from = largeRFraction * boxLength;
     double sum = 0.0, var = 0.0;
     int count = 0;
     for (std::size_t k = 0; k < rdf.r.size(); ++k)
@@ -58,35 +54,42 @@ nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
     if (options.maxLagPs < 0.0 || !std::isfinite(options.maxLagPs))
         throw std::invalid_argument("writeCorrelations: maxLagPs must be ≥ 0 (0: half the span)");
     const int maxLag = lagFor(options.maxLagPs, dtPs, t, options.blocks);
-    std::filesystem::create_directories(dir);
 
-    nlohmann::json summary{{"samples", t},
-                           {"bodies", samples.front().size()},
-                           {"sample_interval_ps", dtPs},
-                           {"blocks", options.blocks},
-                           {"max_lag_ps", maxLag * dtPs}};
-    summary["rdf"] = writeRdf(samples, dir, options);
-
+    // Everything is computed before anything is written: bad samples leave no files half-way.
+    const RadialDistribution rdf =
+        radialDistribution(samples, options.rdfBinAngstrom, options.blocks);
     double v2 = 0.0;
     const SampledCurve vacf = velocityAutocorrelation(samples, maxLag, options.blocks, &v2);
-    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
-    summary["vacf"] = {{"c0", vacf.value.front()},
-                       {"mean_square_velocity_angstrom2_per_ps2",
-                        v2 / (units::psPerTimeUnit * units::psPerTimeUnit)}};
-
-    if (axesRotate(samples)) {
-        const auto o = orientationalAutocorrelation(samples, maxLag, options.blocks);
-        writeCsv(dir / "oacf.csv", {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
-                                    {o.c1.tPs, o.c1.value, o.c1.err, o.c2.value, o.c2.err}});
-        summary["oacf"] = {{"c1_0", o.c1.value.front()}, {"c2_0", o.c2.value.front()}};
-    } else {
-        std::filesystem::remove(dir / "oacf.csv");
-        summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
-    }
-
+    const bool rotating = axesRotate(samples);
+    OrientationalCorrelation oacf;
+    if (rotating) oacf = orientationalAutocorrelation(samples, maxLag, options.blocks);
     const SampledCurve msd = meanSquaredDisplacement(samples, maxLag, options.blocks);
-    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
     const Diffusion d = diffusionFromMsd(msd);
+
+    std::filesystem::create_directories(dir);
+    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
+    if (rotating)
+        writeCsv(dir / "oacf.csv",
+                 {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
+                  {oacf.c1.tPs, oacf.c1.value, oacf.c1.err, oacf.c2.value, oacf.c2.err}});
+    else
+        std::filesystem::remove(dir / "oacf.csv");
+    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+
+    const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
+    nlohmann::json summary{
+        {"samples", t},
+        {"bodies", samples.front().size()},
+        {"sample_interval_ps", dtPs},
+        {"blocks", options.blocks},
+        {"max_lag_ps", maxLag * dtPs},
+        {"rdf", rdfSummary(rdf, samples.front().boxLength)},
+        {"vacf", {{"c0", vacf.value.front()}, {"mean_square_velocity_angstrom2_per_ps2", v2ps}}}};
+    if (rotating)
+        summary["oacf"] = {{"c1_0", oacf.c1.value.front()}, {"c2_0", oacf.c2.value.front()}};
+    else
+        summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
     summary["diffusion"] = {{"einstein_angstrom2_per_ps", d.coefficient},
                             {"einstein_err", d.err},
                             {"fit_from_ps", d.fromPs},

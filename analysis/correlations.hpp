@@ -6,11 +6,12 @@
 //   oacf.csv  t_ps,c1,c1_err,c2,c2_err         ⟨s(0)·s(t)⟩ and ⟨P₂(s(0)·s(t))⟩
 //   msd.csv   t_ps,msd_angstrom2,err           ⟨|r(t) − r(0)|²⟩
 //
-// err is one standard error. Time curves: the T sample times are cut into `blocks` contiguous
-// blocks of time origins; every origin of the run enters the curve, and the spread of the block
-// curves gives the error (time_correlation.hpp, block_average.hpp). g(r): `blocks` contiguous
-// blocks of frames. Lags run to maxLagPs (0: half the sampled span), clipped so that at least two
-// origin blocks reach the longest lag.
+// err is one standard error from `blocks` block estimates (block_average.hpp). Time curves:
+// every time origin of the run enters the curve; at each lag the origins that have a partner are
+// cut into `blocks` contiguous blocks of about equal size, and the spread of the block curves
+// gives the error (dynamic_correlations.hpp). g(r): `blocks` contiguous blocks of frames. Lags run
+// to maxLagPs (0: half the sampled span), clipped so that at least two origin blocks reach the
+// longest lag.
 //
 // oacf.csv is written only when the bodies rotate (some axis changes between samples). For
 // spheres, whose axis is a constant placeholder, it is not written, any stale oacf.csv in the

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -17,31 +18,47 @@ namespace {
 /// trajectories through a fs → time-unit conversion, which costs a few ulps, never 1e-9.
 constexpr double spacingTolerance = 1e-9;
 
-/// Lag grid in ps and empty block tables for B blocks.
-SampledCurve emptyCurve(const OriginBlocks& o, double dtPs) {
+/// Lag grid in ps and empty fine-block tables (o: the fine blocks) for B coarse blocks.
+SampledCurve emptyCurve(const OriginBlocks& o, double dtPs, int blocks) {
     SampledCurve c;
+    c.blocks = blocks;
     for (int k = 0; k <= o.maxLag; ++k)
         c.tPs.push_back(k * dtPs);
-    c.blockValue.assign(o.blocks, std::vector<double>(o.maxLag + 1, 0.0));
-    c.blockWeight.assign(o.blocks, std::vector<double>(o.maxLag + 1, 0.0));
-    for (int b = 0; b < o.blocks; ++b)
+    c.fineValue.assign(o.blocks, std::vector<double>(o.maxLag + 1, 0.0));
+    c.fineWeight.assign(o.blocks, std::vector<double>(o.maxLag + 1, 0.0));
+    for (int f = 0; f < o.blocks; ++f)
         for (int k = 0; k <= o.maxLag; ++k)
-            c.blockWeight[b][k] = o.origins(b, k);
+            c.fineWeight[f][k] = o.origins(f, k);
     return c;
 }
 
-/// Pools per-block values into value and err, lag by lag.
+/// Weighted means of the fine values of each coarse block at lag k (membership given), with
+/// the coarse blocks' weights.
+void coarseValues(const SampledCurve& c, int k, const std::vector<int>& group,
+                  std::vector<double>& value, std::vector<double>& weight) {
+    value.assign(c.blocks, 0.0);
+    weight.assign(c.blocks, 0.0);
+    for (std::size_t f = 0; f < group.size(); ++f) {
+        if (group[f] < 0) continue;
+        const double w = c.fineWeight[f][k];
+        value[group[f]] += w * c.fineValue[f][k], weight[group[f]] += w;
+    }
+    for (int b = 0; b < c.blocks; ++b)
+        if (weight[b] > 0.0) value[b] /= weight[b];
+}
+
+/// Pools the fine values into value (all origins) and err (B coarse blocks), lag by lag.
 void poolBlocks(SampledCurve& c) {
-    const int blocks = static_cast<int>(c.blockValue.size());
-    std::vector<double> v(blocks), w(blocks);
+    std::vector<double> v, w, lagWeights(c.fineWeight.size());
     c.value.assign(c.tPs.size(), 0.0);
     c.err.assign(c.tPs.size(), 0.0);
     for (std::size_t k = 0; k < c.tPs.size(); ++k) {
+        for (std::size_t f = 0; f < lagWeights.size(); ++f)
+            lagWeights[f] = c.fineWeight[f][k];
+        coarseValues(c, static_cast<int>(k), coarseBlocks(lagWeights, c.blocks), v, w);
         double sw = 0.0, swv = 0.0;
-        for (int b = 0; b < blocks; ++b) {
-            v[b] = c.blockValue[b][k], w[b] = c.blockWeight[b][k];
+        for (int b = 0; b < c.blocks; ++b)
             sw += w[b], swv += w[b] * v[b];
-        }
         c.value[k] = swv / sw;
         c.err[k] = blockError(v, w, c.value[k]);
     }
@@ -61,13 +78,14 @@ void addSeries(BlockedAutocorrelation& acf, const std::vector<Snapshot>& samples
 
 /// Per-block means over bodies and origins: sums[b][k] / (origins · N).
 void setBlockMeans(SampledCurve& c, const std::vector<std::vector<double>>& sums, int n) {
-    for (std::size_t b = 0; b < sums.size(); ++b)
-        for (std::size_t k = 0; k < sums[b].size(); ++k) {
-            const double w = c.blockWeight[b][k];
-            c.blockValue[b][k] = w > 0.0 ? sums[b][k] / (w * n) : 0.0;
+    for (std::size_t f = 0; f < sums.size(); ++f)
+        for (std::size_t k = 0; k < sums[f].size(); ++k) {
+            const double w = c.fineWeight[f][k];
+            c.fineValue[f][k] = w > 0.0 ? sums[f][k] / (w * n) : 0.0;
         }
 }
 
+/// The fine origin blocks for B coarse blocks, after checking B and the lag.
 OriginBlocks checkedBlocks(const std::vector<Snapshot>& samples, int maxLag, int blocks) {
     const int t = static_cast<int>(samples.size());
     if (blocks < 2 || blocks > t / 2)
@@ -78,10 +96,29 @@ OriginBlocks checkedBlocks(const std::vector<Snapshot>& samples, int maxLag, int
         throw std::invalid_argument("time correlations: lag " + std::to_string(maxLag) +
                                     " beyond the largest allowed, " +
                                     std::to_string(largestLag(t, blocks)));
-    return {t, maxLag, blocks};
+    return {t, maxLag, fineBlockCount(t, blocks)};
 }
 
 } // namespace
+
+int fineBlockCount(int samples, int blocks) {
+    return std::min(samples, fineBlocksPerBlock * blocks);
+}
+
+std::vector<int> coarseBlocks(const std::vector<double>& fineWeights, int blocks) {
+    double total = 0.0;
+    for (double w : fineWeights)
+        total += w;
+    std::vector<int> group(fineWeights.size(), -1);
+    double before = 0.0;
+    for (std::size_t f = 0; f < fineWeights.size(); ++f) {
+        if (fineWeights[f] <= 0.0) continue;
+        const double middle = (before + 0.5 * fineWeights[f]) / total;
+        group[f] = std::min(blocks - 1, static_cast<int>(middle * blocks));
+        before += fineWeights[f];
+    }
+    return group;
+}
 
 double sampleIntervalPs(const std::vector<Snapshot>& samples) {
     if (samples.size() < 2) throw std::invalid_argument("time correlations need ≥ 2 samples");
@@ -130,18 +167,20 @@ SampledCurve velocityAutocorrelation(const std::vector<Snapshot>& samples, int m
     for (int a = 0; a < 3; ++a)
         addSeries(
             acf, samples, [a](const Snapshot& f, int i) { return f.velocity[i][a]; }, 1.0);
-    SampledCurve c = emptyCurve(o, dtPs);
+    SampledCurve c = emptyCurve(o, dtPs, blocks);
     const int n = samples.front().size();
     setBlockMeans(c, acf.sums(), n);
-    // ⟨v²⟩ pooled over all origins, then each block normalised by its own ⟨v²⟩.
+    // ⟨v²⟩ pooled over all origins, then each fine block normalised by its own ⟨v²⟩.
     double sw = 0.0, swv = 0.0;
-    for (int b = 0; b < o.blocks; ++b)
-        sw += c.blockWeight[b][0], swv += c.blockWeight[b][0] * c.blockValue[b][0];
+    for (int f = 0; f < o.blocks; ++f)
+        sw += c.fineWeight[f][0], swv += c.fineWeight[f][0] * c.fineValue[f][0];
     if (!(swv > 0.0)) throw std::invalid_argument("VACF: all velocities are zero");
     if (meanSquareVelocity) *meanSquareVelocity = swv / sw;
-    for (auto& block : c.blockValue) {
-        const double v2 = block[0];
-        for (double& v : block)
+    for (auto& fine : c.fineValue) {
+        const double v2 = fine[0];
+        if (!(v2 > 0.0))
+            throw std::invalid_argument("VACF: all velocities zero over a block of samples");
+        for (double& v : fine)
             v /= v2;
     }
     poolBlocks(c);
@@ -167,10 +206,10 @@ OrientationalCorrelation orientationalAutocorrelation(const std::vector<Snapshot
                 [a, b](const Snapshot& f, int i) { return f.axis[i][a] * f.axis[i][b]; },
                 a == b ? 1.0 : 2.0);
     }
-    OrientationalCorrelation out{emptyCurve(o, dtPs), emptyCurve(o, dtPs)};
+    OrientationalCorrelation out{emptyCurve(o, dtPs, blocks), emptyCurve(o, dtPs, blocks)};
     setBlockMeans(out.c1, first.sums(), n);
     setBlockMeans(out.c2, second.sums(), n);
-    for (auto& block : out.c2.blockValue)
+    for (auto& block : out.c2.fineValue)
         for (double& v : block)
             v = 1.5 * v - 0.5; // P₂ of ⟨(s(0)·s(t))²⟩, linear per block
     poolBlocks(out.c1);
@@ -182,36 +221,47 @@ SampledCurve meanSquaredDisplacement(const std::vector<Snapshot>& samples, int m
     const double dtPs = sampleIntervalPs(samples);
     const OriginBlocks o = checkedBlocks(samples, maxLag, blocks);
     const int n = samples.front().size(), t = o.samples;
+    if (n < blocks)
+        throw std::invalid_argument("MSD error bars need at least as many bodies as blocks (" +
+                                    std::to_string(n) + " bodies, " + std::to_string(blocks) +
+                                    " blocks)");
     std::vector<Vec3> centre(n, Vec3::Zero());
     for (const auto& f : samples)
         for (int i = 0; i < n; ++i)
             centre[i] += f.position[i] / t;
 
-    BlockedAutocorrelation acf(t, o.maxLag, o.blocks);
-    for (int a = 0; a < 3; ++a)
-        addSeries(
-            acf, samples,
-            [a, &centre](const Snapshot& f, int i) { return f.position[i][a] - centre[i][a]; },
-            1.0);
-    // prefix[t] = Σ_{t' < t} Σ_i |r_i(t') − r̄_i|²
-    std::vector<double> prefix(t + 1, 0.0);
-    for (int s = 0; s < t; ++s) {
-        double sq = 0.0;
-        for (int i = 0; i < n; ++i)
-            sq += (samples[s].position[i] - centre[i]).squaredNorm();
-        prefix[s + 1] = prefix[s] + sq;
-    }
-    SampledCurve c = emptyCurve(o, dtPs);
-    const auto cross = acf.sums();
-    for (int b = 0; b < o.blocks; ++b)
-        for (int k = 0; k <= o.maxLag; ++k) {
-            const int first = o.begin(b), count = o.origins(b, k);
-            if (count == 0) continue;
-            const double squares = (prefix[first + count] - prefix[first]) +
-                                   (prefix[first + count + k] - prefix[first + k]);
-            // Round-off can leave −1e-16 at lag 0; a squared displacement is never negative.
-            c.blockValue[b][k] = std::max(0.0, (squares - 2.0 * cross[b][k]) / (count * n));
+    // Blocks of bodies (contiguous groups), each with every time origin; see the header.
+    SampledCurve c;
+    c.blocks = blocks;
+    for (int k = 0; k <= maxLag; ++k)
+        c.tPs.push_back(k * dtPs);
+    std::vector<double> series(t), prefix(t + 1);
+    for (int g = 0; g < blocks; ++g) {
+        const int first = (g * n) / blocks, last = ((g + 1) * n) / blocks, members = last - first;
+        BlockedAutocorrelation acf(t, maxLag, 1);
+        std::fill(prefix.begin(), prefix.end(), 0.0); // Σ_{t' < t} Σ_i |r_i(t') − r̄_i|²
+        for (int i = first; i < last; ++i)
+            for (int a = 0; a < 3; ++a) {
+                for (int s = 0; s < t; ++s) {
+                    series[s] = samples[s].position[i][a] - centre[i][a];
+                    prefix[s + 1] += series[s] * series[s];
+                }
+                acf.add(series);
+            }
+        std::partial_sum(prefix.begin(), prefix.end(), prefix.begin());
+        const auto cross = acf.sums().front();
+        std::vector<double> value(maxLag + 1, 0.0), weight(maxLag + 1);
+        for (int k = 0; k <= maxLag; ++k) {
+            const double origins = t - k;
+            const double squares = prefix[t - k] + (prefix[t] - prefix[k]);
+            weight[k] = origins * members;
+            // Round-off of the FFT sums leaves ±1e-15 where the displacement is exactly zero
+            // (lag 0); a squared displacement is never negative.
+            if (k > 0) value[k] = std::max(0.0, (squares - 2.0 * cross[k]) / weight[k]);
         }
+        c.fineValue.push_back(std::move(value));
+        c.fineWeight.push_back(std::move(weight));
+    }
     poolBlocks(c);
     return c;
 }
@@ -243,15 +293,21 @@ Diffusion diffusionFromMsd(const SampledCurve& msd) {
     d.fromPs = msd.tPs[lo];
     d.toPs = msd.tPs[hi];
     d.coefficient = slope(msd.tPs, msd.value, lo, hi) / 6.0;
-    std::vector<double> blockD, weight;
-    for (std::size_t b = 0; b < msd.blockValue.size(); ++b) {
-        const bool whole = msd.blockWeight[b][hi] > 0.0; // every lag of the window reached
-        blockD.push_back(whole ? slope(msd.tPs, msd.blockValue[b], lo, hi) / 6.0 : 0.0);
-        double w = 0.0;
-        for (int k = lo; k <= hi && whole; ++k)
-            w += msd.blockWeight[b][k];
-        weight.push_back(w);
+    // Coarse blocks by the fine blocks' origins at the window's last lag, fixed over the window.
+    std::vector<double> lastWeights;
+    for (const auto& w : msd.fineWeight)
+        lastWeights.push_back(w[hi]);
+    const std::vector<int> group = coarseBlocks(lastWeights, msd.blocks);
+    std::vector<std::vector<double>> curve(msd.blocks, std::vector<double>(hi + 1, 0.0));
+    std::vector<double> weight(msd.blocks, 0.0), v, w;
+    for (int k = lo; k <= hi; ++k) {
+        coarseValues(msd, k, group, v, w);
+        for (int b = 0; b < msd.blocks; ++b)
+            curve[b][k] = v[b], weight[b] += w[b];
     }
+    std::vector<double> blockD(msd.blocks, 0.0);
+    for (int b = 0; b < msd.blocks; ++b)
+        if (weight[b] > 0.0) blockD[b] = slope(msd.tPs, curve[b], lo, hi) / 6.0;
     d.err = blockError(blockD, weight, d.coefficient);
     return d;
 }

@@ -12,8 +12,21 @@
 // Δ²(t0, k) = |r(t0+k)|² + |r(t0)|² − 2 r(t0)·r(t0+k): FFT for the cross term, prefix sums for the
 // squares (G. R. Kneller et al., Comput. Phys. Commun. 91, 191 (1995), nMoldyn), with each body's
 // mean position subtracted first so that the squares stay small and cancellation harmless.
-// Normalised curves are normalised block by block (each block by its own ⟨v²⟩), so that c(0) = 1
-// with zero error. Times: samples in 100 fs units (core/units.hpp), curves in ps.
+//
+// Error bars. The time origins are cut into F = 4B fine blocks (FFT sums per fine block). At each
+// lag k, the fine blocks that still have origins (t0 + k < T) are regrouped, in time order, into
+// B coarse blocks of about equal numbers of origins, and the error is the block error of those B
+// estimates (block_average.hpp). Regrouping per lag keeps B blocks, hence B − 1 degrees of
+// freedom of the error, out to the longest lags; fixed blocks of origins would leave only the
+// first few blocks at long lags, and error bars that scatter far more than their own size
+// suggests (compare.hpp relies on the degrees of freedom being B − 1).
+// The MSD is the exception: the displacements r(t0 + k) − r(t0) of neighbouring origins share
+// most of their path once k exceeds a block, so blocks of origins scatter far less than the
+// estimate does (a re-run then "disagrees"). Its B blocks are groups of bodies instead, each with
+// every time origin; bodies move nearly independently (correlations O(1/N) from the fixed centre
+// of mass), so their spread is an honest error at every lag, including the diffusion fit.
+// Normalised curves are normalised fine block by fine block (each by its own ⟨v²⟩), so that
+// c(0) = 1 with zero error. Times: samples in 100 fs units (core/units.hpp), curves in ps.
 #include "core/snapshot.hpp"
 #include <vector>
 
@@ -21,9 +34,18 @@ namespace terrace::analysis {
 
 struct SampledCurve {
     std::vector<double> tPs, value, err;
-    std::vector<std::vector<double>> blockValue;  // [block][lag], for derived error bars
-    std::vector<std::vector<double>> blockWeight; // [block][lag]: origins of the block at the lag
+    int blocks = 0;                              // B: coarse blocks behind err
+    std::vector<std::vector<double>> fineValue;  // [fine block][lag], for derived error bars
+    std::vector<std::vector<double>> fineWeight; // [fine block][lag]: its origins at the lag
 };
+
+/// Fine origin blocks used for B coarse blocks and T samples.
+inline constexpr int fineBlocksPerBlock = 4;
+int fineBlockCount(int samples, int blocks);
+
+/// Coarse block (0 … B−1) of each fine block, from the fine blocks' origin counts at one lag:
+/// in time order, by the midpoint of its origins within all origins; −1 for empty fine blocks.
+std::vector<int> coarseBlocks(const std::vector<double>& fineWeights, int blocks);
 
 /// The sample interval in ps; throws std::invalid_argument unless there are ≥ 2 samples, equally
 /// spaced in time, with the same number of bodies and one velocity per body in each.
@@ -54,8 +76,8 @@ struct Diffusion {
     double fromPs = 0.0, toPs = 0.0; // fit window
 };
 /// Least-squares slope of the MSD over lags [maxLag/4, 3·maxLag/4] (past the ballistic and caging
-/// regime, short of the longest lags that only few origin blocks reach), divided by 6; the error
-/// from the slopes of the origin blocks. NaN when the window holds fewer than two lags.
+/// regime, short of the longest lags with the fewest origins), divided by 6; the error from the
+/// slopes of the B blocks (of bodies, see above). NaN when the window holds fewer than two lags.
 Diffusion diffusionFromMsd(const SampledCurve& msd);
 
 } // namespace terrace::analysis

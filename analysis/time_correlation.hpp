@@ -9,11 +9,9 @@
 // series instead of O(T·maxLag) (M. P. Allen and D. J. Tildesley, Computer Simulation of Liquids,
 // 2nd ed., OUP 2017, sec. 8.3).
 //
-// Error bars come from blocks of time origins: the T origins are cut into B contiguous blocks, and
-// block b's estimate at lag k uses only its own origins, while t0 + k may run past the block. The
-// full estimate pools all origins; the spread of the block estimates gives its standard error
-// (block_average.hpp). Blocks share samples at lags longer than a block, which makes the error
-// bars there somewhat optimistic; choose blocks longer than the correlation time.
+// The blocks of time origins here are the raw material of the error bars: block b's sums use
+// only its own origins, while t0 + k may run past the block. dynamic_correlations.hpp regroups
+// them, lag by lag, into the blocks whose spread gives the error (block_average.hpp).
 //
 // crossCorrelationDirect is the slow, obviously right O(T²) sum the FFT path is tested against.
 #include <complex>

@@ -1,0 +1,76 @@
+// The files a run writes: names, headers, c(0) = 1, g(r) → 1, oacf.csv only for rotating bodies.
+#include "analysis/correlations.hpp"
+#include "analysis/csv.hpp"
+#include "synthetic_samples.hpp"
+#include <cmath>
+#include <fstream>
+#include <gtest/gtest.h>
+
+using namespace terrace;
+using namespace terrace::analysis;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// c(0) and OACF(0) are 1 by construction, to round-off.
+constexpr double roundOff = 1e-12;
+/// g over r ∈ [0.4, 0.5] L of randomly placed free rods: 1 within 5 of its quoted errors.
+constexpr double largeRSigmas = 5.0;
+
+fs::path freshDirectory(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("terrace_analysis_" + name);
+    fs::remove_all(dir);
+    return dir;
+}
+
+} // namespace
+
+TEST(WriteCorrelations, FreeRodsWriteFourFilesWithUnitCurvesAtZero) {
+    const auto samples = synthetic::freeRotors(64, 200, 0.1, 25.0, 4.2, 18.0, 1.154, 11);
+    const fs::path dir = freshDirectory("rods");
+    const auto summary = writeCorrelations(samples, dir, {8, 0.0, 0.1});
+
+    const auto rdf = readCsv(dir / "rdf.csv"), vacf = readCsv(dir / "vacf.csv"),
+               oacf = readCsv(dir / "oacf.csv"), msd = readCsv(dir / "msd.csv");
+    EXPECT_EQ(rdf.header, (std::vector<std::string>{"r_angstrom", "g", "err"}));
+    EXPECT_EQ(vacf.header, (std::vector<std::string>{"t_ps", "c", "err"}));
+    EXPECT_EQ(oacf.header, (std::vector<std::string>{"t_ps", "c1", "c1_err", "c2", "c2_err"}));
+    EXPECT_EQ(msd.header, (std::vector<std::string>{"t_ps", "msd_angstrom2", "err"}));
+
+    EXPECT_EQ(rdf.rows(), 125); // L/2 = 12.5 Å in 0.1 Å bins
+    EXPECT_EQ(vacf.rows(), 32); // lags 0 … 31: half of the 63-interval span
+    EXPECT_NEAR(vacf.columns[1][0], 1.0, roundOff);
+    EXPECT_NEAR(oacf.columns[1][0], 1.0, roundOff);
+    EXPECT_NEAR(oacf.columns[3][0], 1.0, roundOff);
+    EXPECT_NEAR(vacf.columns[0][31], 31 * 0.01, 1e-15);
+    EXPECT_EQ(msd.columns[1][0], 0.0);
+
+    EXPECT_EQ(summary["samples"], 64);
+    EXPECT_EQ(summary["bodies"], 200);
+    const double gFar = summary["rdf"]["g_large_r"], gFarErr = summary["rdf"]["g_large_r_err"];
+    EXPECT_GT(gFarErr, 0.0);
+    EXPECT_NEAR(gFar, 1.0, largeRSigmas * gFarErr);
+    EXPECT_TRUE(summary["diffusion"].contains("einstein_angstrom2_per_ps"));
+}
+
+TEST(WriteCorrelations, SpheresGetNoOacfAndAStaleOneIsRemoved) {
+    auto samples = synthetic::ornsteinUhlenbeck(40, 20, 0.1, 20.0, 4.2, 18.0, 2.0, 12);
+    const fs::path dir = freshDirectory("spheres");
+    fs::create_directories(dir);
+    std::ofstream(dir / "oacf.csv") << "t_ps,c1,c1_err,c2,c2_err\n0,1,0,1,0\n";
+    const auto summary = writeCorrelations(samples, dir);
+    EXPECT_FALSE(fs::exists(dir / "oacf.csv"));
+    EXPECT_TRUE(summary["oacf"].is_string());
+    for (const char* name : {"rdf.csv", "vacf.csv", "msd.csv"})
+        EXPECT_TRUE(fs::exists(dir / name));
+}
+
+TEST(WriteCorrelations, RejectsUnusableSamplesBeforeWritingAnything) {
+    const fs::path dir = freshDirectory("bad");
+    auto samples = synthetic::ornsteinUhlenbeck(10, 5, 0.1, 20.0, 4.2, 18.0, 2.0, 13);
+    EXPECT_THROW(writeCorrelations(samples, dir, {6, 0.0, 0.05}), std::invalid_argument);
+    EXPECT_THROW(writeCorrelations(samples, dir, {2, -1.0, 0.05}), std::invalid_argument);
+    samples[3].time *= 1.5;
+    EXPECT_THROW(writeCorrelations(samples, dir), std::invalid_argument);
+    EXPECT_FALSE(fs::exists(dir));
+}
