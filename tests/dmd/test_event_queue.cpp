@@ -13,11 +13,32 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <map>
+#include <new>
 #include <random>
 #include <utility>
 #include <vector>
+
+// Counts every allocation in this test program, so that a test can check that a queue in its
+// steady state pushes without touching the allocator. Not inlined: GCC would otherwise see free()
+// applied to the result of operator new at call sites and warn (-Wmismatched-new-delete), although
+// the pair is malloc/free by construction.
+namespace {
+std::size_t allocationCount = 0;
+}
+[[gnu::noinline]] void* operator new(std::size_t bytes) {
+    ++allocationCount;
+    if (void* p = std::malloc(bytes)) return p;
+    throw std::bad_alloc();
+}
+[[gnu::noinline]] void operator delete(void* p) noexcept {
+    std::free(p);
+}
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept {
+    std::free(p);
+}
 
 namespace terrace::dmd {
 namespace {
@@ -305,6 +326,30 @@ TYPED_TEST(EventQueueTest, ClearEmptiesTheQueueAndInvalidatesHandles) {
     EXPECT_EQ(q.top().id, 1u); // tie at t = 5: first pushed leaves first
     q.pop();
     EXPECT_EQ(q.top().id, 3u);
+}
+
+TYPED_TEST(EventQueueTest, SteadyStateHoldsDoNotAllocate) {
+    // Hold model: pop the earliest, push one at now + delay. Once the queue has reached its size
+    // and its bins have seen their busiest moments, slots come from the free list.
+    constexpr int kQueued = 5000;
+    constexpr int kHolds = 200000;
+    TypeParam q;
+    std::mt19937_64 rng(kRandomOpsSeed);
+    std::exponential_distribution<double> delay(1.0);
+    for (int i = 0; i < kQueued; ++i)
+        q.push({delay(rng), 0});
+    const auto holds = [&] {
+        for (int i = 0; i < kHolds; ++i) {
+            const double now = q.top().time;
+            q.pop();
+            q.push({now + delay(rng), 0});
+        }
+    };
+    holds(); // warm-up
+    const std::size_t before = allocationCount;
+    holds();
+    EXPECT_EQ(allocationCount - before, 0u);
+    EXPECT_EQ(q.size(), static_cast<std::size_t>(kQueued));
 }
 
 // The bounded queue only: retune re-bins everything and keeps order and handles.
