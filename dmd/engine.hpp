@@ -171,6 +171,8 @@ public:
                 if (!step(q)) throw std::logic_error("dmd: sample event outside advanceTo");
         });
     }
+    /// Consecutive events at one instant tolerated before the clock counts as stopped.
+    void setStallLimit(std::uint64_t n) { stallLimit_ = n; }
     /// The terrace index the engine holds for the pair (i, j).
     int terrace(int i, int j) const { return terraces_.get(i, j); }
     const PairTerraces& pairTerraces() const { return terraces_; }
@@ -309,7 +311,7 @@ private:
             stalledEvents_ = 0;
             return;
         }
-        if (++stalledEvents_ <= stalledEventLimit) return;
+        if (++stalledEvents_ <= stallLimit_) return;
         std::ostringstream msg;
         msg << "dmd: the clock stopped at t = " << units::toFs(e.time) << " fs: " << stalledEvents_
             << " consecutive events without time advancing (last: bodies " << e.i << " and " << e.j
@@ -418,8 +420,11 @@ private:
         const double dti = time_ - clock_[i], dtj = time_ - clock_[j];
         const Vec3 r0 = sys_.box.minimumImage((bi0.r + bi0.v * dti) - (bj0.r + bj0.v * dtj));
         const Vec3 w = bi0.v - bj0.v;
-        const int n = terraces_.get(i, j);
         ShellWindow win = shellWindow(r0, w, settings_.rm);
+        // Only a pair inside r_m (up to round-off) can be bound; skip the lookup for the rest.
+        constexpr double boundSlack = 1.0 + 1e-6;
+        const bool maybeBound = r0.squaredNorm() <= settings_.rm * settings_.rm * boundSlack;
+        const int n = maybeBound ? terraces_.get(i, j) : 0;
         if (n != 0) {
             // A bound pair must reach a level before |r_ij| = r_m; in the worst orientation it
             // does so exactly there, so the shell must not cut its search short.
@@ -537,7 +542,7 @@ private:
     std::uniform_real_distribution<double> jitter_{0.0, 1.0};
     double time_ = 0.0;
     EventCounts counts_;
-    std::uint64_t stalledEvents_ = 0;
+    std::uint64_t stalledEvents_ = 0, stallLimit_ = stalledEventLimit;
     std::uint64_t maxQueueSize_ = 0, cleanups_ = 0, staleEvents_ = 0, evaluations_ = 0;
     double cleanupThreshold_ = 0.0;
     std::uint64_t eventsSinceRetune_ = 0, pushesSinceRetune_ = 0;

@@ -1,0 +1,208 @@
+// Many-body behaviour of the DMD engine on small systems: conservation, bookkeeping, queue and
+// invalidation variants, reversibility, bad input, stall detection.
+#include "test_systems.hpp"
+#include <gtest/gtest.h>
+#include <string>
+
+using namespace terrace;
+using namespace terrace::dmdtest;
+
+namespace {
+
+// Each collision conserves energy to a few ulps; 10^5 events random-walk to well below this.
+constexpr double energyTolerance = 1e-12;
+// Momentum starts at round-off (~1e-15 per body) and each impulse adds ±S F/m exactly.
+constexpr double momentumTolerance = 1e-11;
+
+// A small dense liquid: 64 rods at the paper's ρ* = 0.5, T* = 1.4.
+Scene denseScene(double dV = 0.5) {
+    return rodScene(64, 0.5, 1.4, dV);
+}
+
+bool sameBodies(const RodSystem& a, const RodSystem& b) {
+    for (int i = 0; i < a.size(); ++i)
+        if (a.bodies[i].r != b.bodies[i].r || a.bodies[i].v != b.bodies[i].v ||
+            a.bodies[i].s != b.bodies[i].s || a.bodies[i].w != b.bodies[i].w)
+            return false;
+    return true;
+}
+
+} // namespace
+
+TEST(Engine, ShortRunConservesEnergyAndMomentum) {
+    const Scene s = denseScene();
+    RodEngine e(rodSystem(s), s);
+    const double e0 = totalEnergy(e);
+    e.runEvents(100000);
+    EXPECT_GT(e.counts().up + e.counts().down, 1000u);
+    EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
+    EXPECT_LT(e.totalMomentum().norm(), momentumTolerance);
+}
+
+TEST(Engine, BookkeptTerracedEnergyEqualsRecomputedAtEverySample) {
+    const Scene s = denseScene();
+    RodEngine e(rodSystem(s), s);
+    const double dV = e.levels().step();
+    for (int k = 1; k <= 100; ++k) {
+        e.advanceTo(units::fromFs(10.0 * k));
+        // Sample times fall between events, never on a level: any disagreement is a whole ΔV.
+        ASSERT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6 * dV)
+            << "sample " << k;
+    }
+    EXPECT_GT(e.counts().up, 100u);
+}
+
+TEST(Engine, HeapAndBoundedQueueGiveTheSameTrajectory) {
+    Scene heap = denseScene(), bpq = denseScene();
+    heap.dmd.queue = "heap";
+    bpq.dmd.queue = "bpq";
+    RodEngine a(rodSystem(heap), heap), b(rodSystem(bpq), bpq);
+    for (int k = 1; k <= 20; ++k) {
+        a.advanceTo(units::fromFs(25.0 * k));
+        b.advanceTo(units::fromFs(25.0 * k));
+    }
+    EXPECT_GT(a.counts().total(), 10000u);
+    EXPECT_EQ(a.counts().total(), b.counts().total());
+    EXPECT_TRUE(sameBodies(a.synchronisedCopy(), b.synchronisedCopy())); // bit for bit
+}
+
+TEST(Engine, LazyAndEagerInvalidationGiveTheSameTrajectory) {
+    Scene lazy = denseScene(), eager = denseScene();
+    lazy.dmd.invalidation = "lazy";
+    eager.dmd.invalidation = "eager";
+    RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
+    a.advanceTo(units::fromPs(0.3));
+    b.advanceTo(units::fromPs(0.3));
+    EXPECT_EQ(a.counts().up, b.counts().up);
+    EXPECT_EQ(a.counts().reflect, b.counts().reflect);
+    EXPECT_TRUE(sameBodies(a.synchronisedCopy(), b.synchronisedCopy()));
+    EXPECT_EQ(b.statistics()["stale_events"], 0); // eager leaves nothing stale in the queue
+    EXPECT_GT(a.statistics()["stale_events"].get<long>(), 0);
+}
+
+TEST(Engine, RescalingSetsTheTemperatureAndKeepsTheEnergyAfterwards) {
+    const Scene s = denseScene();
+    RodEngine e(rodSystem(s), s);
+    e.advanceTo(units::fromFs(100.0));
+    e.rescaleTemperature(2.0);
+    const int dof = degreesOfFreedom<LinearRotor>(64);
+    EXPECT_NEAR(e.kineticEnergy(), 0.5 * dof * 2.0, 1e-12 * dof);
+    const double e0 = totalEnergy(e);
+    e.advanceTo(units::fromFs(200.0));
+    EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
+}
+
+// Reverse every velocity and angular velocity at time t and run for t again: the bodies return
+// to their start. Round-off grows with the (short) run's chaos; 1e-7 Å is far below any physics.
+TEST(Engine, TimeReversalReturnsToTheStart) {
+    constexpr double returnTolerance = 1e-7; // Å and Å per time unit
+    const Scene s = denseScene();
+    const RodSystem start = rodSystem(s);
+    RodEngine forward(start, s);
+    const double t = units::fromFs(200.0);
+    forward.advanceTo(t);
+    EXPECT_GT(forward.counts().up + forward.counts().down + forward.counts().reflect, 200u);
+    RodSystem reversed = forward.synchronisedCopy();
+    for (auto& b : reversed.bodies) {
+        b.v = -b.v;
+        b.w = -b.w;
+    }
+    RodEngine backward(reversed, s);
+    backward.advanceTo(t);
+    const RodSystem end = backward.synchronisedCopy();
+    double worst = 0.0;
+    for (int i = 0; i < start.size(); ++i) {
+        worst = std::max(worst, (end.bodies[i].r - start.bodies[i].r).norm());
+        worst = std::max(worst, (end.bodies[i].s - start.bodies[i].s).norm());
+        worst = std::max(worst, (end.bodies[i].v + start.bodies[i].v).norm());
+    }
+    EXPECT_LT(worst, returnTolerance);
+}
+
+// A cluster far from its periodic images: total angular momentum Σ r × p + L is conserved too.
+TEST(Engine, IsolatedClusterConservesAngularMomentum) {
+    constexpr double angularTolerance = 1e-11;      // relative, after ~10^4 events
+    RodSystem sys = alignedLattice(3, 4.2, 1.0, 7); // 27 rods, 12.6 Å across
+    sys.box.length = 60.0;                          // images ≥ 47 Å away, r_m ≈ 5 Å
+    for (auto& b : sys.bodies) {
+        b.r += Vec3(20, 20, 20);
+        b.s = Vec3(b.w.x(), 1.0, 0.3).normalized(); // varied axes: torques are nonzero
+        b.w -= b.w.dot(b.s) * b.s;
+    }
+    const Scene s = rodScene(27, 0.5, 1.4, 0.5);
+    RodEngine e(sys, s);
+    const Vec3 l0 = totalAngularMomentum(e.synchronisedCopy());
+    e.runEvents(20000);
+    EXPECT_GT(e.counts().up + e.counts().down, 500u);
+    const Vec3 l1 = totalAngularMomentum(e.synchronisedCopy());
+    EXPECT_LT((l1 - l0).norm(), angularTolerance * std::max(1.0, l0.norm()));
+}
+
+namespace {
+std::string errorOf(const Scene& s, const RodSystem& sys) {
+    try {
+        RodEngine e(sys, s);
+    } catch (const SceneError& err) {
+        return err.what();
+    }
+    return "";
+}
+} // namespace
+
+TEST(Engine, BadSettingsAreErrorsNamingTheKey) {
+    const RodSystem sys = rodSystem(denseScene());
+    Scene s = denseScene();
+    s.dmd.dV = 0.0;
+    EXPECT_NE(errorOf(s, sys).find("dmd.dV"), std::string::npos);
+    s = denseScene();
+    s.dmd.queue = "fifo";
+    EXPECT_NE(errorOf(s, sys).find("dmd.queue"), std::string::npos);
+    s = denseScene();
+    s.dmd.invalidation = "never";
+    EXPECT_NE(errorOf(s, sys).find("dmd.invalidation"), std::string::npos);
+    s = denseScene();
+    s.dmd.horizon_fs = -1.0;
+    EXPECT_NE(errorOf(s, sys).find("dmd.horizon_fs"), std::string::npos);
+    s = denseScene();
+    s.dmd.levels = {-3.0, -1.0, 1.0}; // −3 = −ε, the potential's minimum
+    EXPECT_NE(errorOf(s, sys).find("dmd.levels"), std::string::npos);
+    s = denseScene();
+    s.dmd.dV = 2.0 / 1.4; // ΔV/2 = ε: the level −ΔV/2 sits on the minimum
+    EXPECT_NE(errorOf(s, sys).find("minimum"), std::string::npos);
+    RodSystem tiny = sys;
+    tiny.box.length = 9.0; // < 2 r_m ≈ 9.96 Å at ΔV = kT/2
+    EXPECT_NE(errorOf(denseScene(), tiny).find("r_m"), std::string::npos);
+}
+
+TEST(Engine, FewerThanThreeCellsPerSideStillWork) {
+    const Scene s = rodScene(27, 0.5, 1.4, 0.5); // L ≈ 11.5 Å < 3 r_m: one cell
+    RodEngine e(rodSystem(s), s);
+    EXPECT_EQ(e.statistics()["cells_per_side"], 1);
+    const double e0 = totalEnergy(e);
+    e.runEvents(20000);
+    EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
+    EXPECT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6);
+}
+
+// Head-on pairs on a lattice all meet at the same instant. The stall detector, set low, reports
+// the stuck clock instead of spinning; at its default the same start simply proceeds.
+TEST(Engine, AStoppedClockIsReportedNotSpunOn) {
+    RodSystem sys = alignedLattice(4, 6.0, 1.0, 3);
+    for (int i = 0; i < sys.size(); ++i) {
+        sys.bodies[i].w = Vec3::Zero();
+        sys.bodies[i].v = Vec3((i / 16) % 2 == 0 ? 0.5 : -0.5, 0, 0); // x-layers approach
+    }
+    const Scene s = rodScene(64, 0.5, 1.4, 0.5);
+    RodEngine strict(sys, s);
+    strict.setStallLimit(3);
+    try {
+        strict.advanceTo(units::fromFs(200.0));
+        ADD_FAILURE() << "expected the stall detector to fire";
+    } catch (const std::runtime_error& err) {
+        EXPECT_NE(std::string(err.what()).find("clock stopped"), std::string::npos) << err.what();
+    }
+    RodEngine normal(sys, s);
+    normal.advanceTo(units::fromFs(200.0));
+    EXPECT_DOUBLE_EQ(normal.time(), units::fromFs(200.0));
+    EXPECT_GT(normal.counts().down, 16u);
+}
