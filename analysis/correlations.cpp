@@ -3,6 +3,7 @@
 #include "analysis/dynamic_correlations.hpp"
 #include "analysis/rdf.hpp"
 #include "core/units.hpp"
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -45,25 +46,29 @@ nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
                                  const std::filesystem::path& dir, const Options& options) {
     const double dtPs = sampleIntervalPs(samples);
     const int t = static_cast<int>(samples.size());
-    if (options.blocks < 2 || options.blocks > t / 2)
-        throw std::invalid_argument("writeCorrelations: need 2 ≤ blocks ≤ samples/2 (" +
-                                    std::to_string(t) + " samples, " +
-                                    std::to_string(options.blocks) + " blocks)");
+    if (options.blocks < 2)
+        throw std::invalid_argument("writeCorrelations: need at least 2 blocks for error bars");
+    if (t < 4) throw std::invalid_argument("writeCorrelations: need at least 4 samples");
+    // A short run still gets its files: fewer blocks (at least two samples each), recorded in
+    // the summary, rather than no analysis at the end of a finished run.
+    const int blocks = std::min(options.blocks, t / 2);
+    const int n = samples.front().size();
+    if (n < 2) throw std::invalid_argument("writeCorrelations: need at least 2 bodies");
+    const int msdBlocks = std::min(blocks, n); // MSD blocks are groups of bodies
     if (!(options.rdfBinAngstrom > 0.0))
         throw std::invalid_argument("writeCorrelations: rdf bin must be > 0 Å");
     if (options.maxLagPs < 0.0 || !std::isfinite(options.maxLagPs))
         throw std::invalid_argument("writeCorrelations: maxLagPs must be ≥ 0 (0: half the span)");
-    const int maxLag = lagFor(options.maxLagPs, dtPs, t, options.blocks);
+    const int maxLag = lagFor(options.maxLagPs, dtPs, t, blocks);
 
     // Everything is computed before anything is written: bad samples leave no files half-way.
-    const RadialDistribution rdf =
-        radialDistribution(samples, options.rdfBinAngstrom, options.blocks);
+    const RadialDistribution rdf = radialDistribution(samples, options.rdfBinAngstrom, blocks);
     double v2 = 0.0;
-    const SampledCurve vacf = velocityAutocorrelation(samples, maxLag, options.blocks, &v2);
+    const SampledCurve vacf = velocityAutocorrelation(samples, maxLag, blocks, &v2);
     const bool rotating = axesRotate(samples);
     OrientationalCorrelation oacf;
-    if (rotating) oacf = orientationalAutocorrelation(samples, maxLag, options.blocks);
-    const SampledCurve msd = meanSquaredDisplacement(samples, maxLag, options.blocks);
+    if (rotating) oacf = orientationalAutocorrelation(samples, maxLag, blocks);
+    const SampledCurve msd = meanSquaredDisplacement(samples, maxLag, msdBlocks);
     const Diffusion d = diffusionFromMsd(msd);
 
     std::filesystem::create_directories(dir);
@@ -82,7 +87,9 @@ nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
         {"samples", t},
         {"bodies", samples.front().size()},
         {"sample_interval_ps", dtPs},
-        {"blocks", options.blocks},
+        {"blocks", blocks},
+        {"blocks_requested", options.blocks},
+        {"msd_blocks_of_bodies", msdBlocks},
         {"max_lag_ps", maxLag * dtPs},
         {"rdf", rdfSummary(rdf, samples.front().boxLength)},
         {"vacf", {{"c0", vacf.value.front()}, {"mean_square_velocity_angstrom2_per_ps2", v2ps}}}};

@@ -219,12 +219,12 @@ OrientationalCorrelation orientationalAutocorrelation(const std::vector<Snapshot
 
 SampledCurve meanSquaredDisplacement(const std::vector<Snapshot>& samples, int maxLag, int blocks) {
     const double dtPs = sampleIntervalPs(samples);
-    const OriginBlocks o = checkedBlocks(samples, maxLag, blocks);
-    const int n = samples.front().size(), t = o.samples;
-    if (n < blocks)
-        throw std::invalid_argument("MSD error bars need at least as many bodies as blocks (" +
-                                    std::to_string(n) + " bodies, " + std::to_string(blocks) +
-                                    " blocks)");
+    const int n = samples.front().size(), t = static_cast<int>(samples.size());
+    if (blocks < 1 || blocks > n)
+        throw std::invalid_argument("MSD: need 1 ≤ blocks ≤ bodies (" + std::to_string(n) +
+                                    " bodies, " + std::to_string(blocks) + " blocks)");
+    if (maxLag < 0 || maxLag >= t)
+        throw std::invalid_argument("MSD: lag " + std::to_string(maxLag) + " beyond the samples");
     std::vector<Vec3> centre(n, Vec3::Zero());
     for (const auto& f : samples)
         for (int i = 0; i < n; ++i)

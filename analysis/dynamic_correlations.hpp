@@ -63,6 +63,7 @@ struct OrientationalCorrelation {
 };
 OrientationalCorrelation orientationalAutocorrelation(const std::vector<Snapshot>& samples,
                                                       int maxLag, int blocks);
+/// MSD: blocks are groups of bodies (1 ≤ blocks ≤ N; one block gives NaN errors), maxLag < T.
 SampledCurve meanSquaredDisplacement(const std::vector<Snapshot>& samples, int maxLag, int blocks);
 
 /// Largest lag (in samples) allowed for T samples and B blocks, and the lag for a request in ps

@@ -65,10 +65,22 @@ TEST(WriteCorrelations, SpheresGetNoOacfAndAStaleOneIsRemoved) {
         EXPECT_TRUE(fs::exists(dir / name));
 }
 
+TEST(WriteCorrelations, ShortRunsUseFewerBlocks) {
+    const auto samples = synthetic::freeRotors(6, 4, 0.1, 25.0, 4.2, 18.0, 1.154, 14);
+    const fs::path dir = freshDirectory("short");
+    const auto summary = writeCorrelations(samples, dir);
+    EXPECT_EQ(summary["blocks"], 3);
+    EXPECT_EQ(summary["blocks_requested"], 8);
+    EXPECT_EQ(summary["msd_blocks_of_bodies"], 3);
+    EXPECT_EQ(readCsv(dir / "vacf.csv").rows(), 3); // lags 0 … (6 − 1)/2
+    EXPECT_TRUE(fs::exists(dir / "oacf.csv"));
+}
+
 TEST(WriteCorrelations, RejectsUnusableSamplesBeforeWritingAnything) {
     const fs::path dir = freshDirectory("bad");
     auto samples = synthetic::ornsteinUhlenbeck(10, 5, 0.1, 20.0, 4.2, 18.0, 2.0, 13);
-    EXPECT_THROW(writeCorrelations(samples, dir, {6, 0.0, 0.05}), std::invalid_argument);
+    EXPECT_THROW(writeCorrelations(samples, dir, {1, 0.0, 0.05}), std::invalid_argument);
+    EXPECT_THROW(writeCorrelations(samples, dir, {2, 0.0, 0.0}), std::invalid_argument);
     EXPECT_THROW(writeCorrelations(samples, dir, {2, -1.0, 0.05}), std::invalid_argument);
     samples[3].time *= 1.5;
     EXPECT_THROW(writeCorrelations(samples, dir), std::invalid_argument);
