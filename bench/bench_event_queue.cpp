@@ -6,6 +6,7 @@
 // N bodies with kPredictionsPerBody pending predictions each. One hold = pop the earliest valid
 // event, schedule 1–3 new ones at now + delay (exponential or uniform, mean τ), and invalidate one
 // random pending prediction per extra one, so that the number of valid predictions stays constant.
+//   none  — pure hold, one pop and one push, nothing invalidated: the queue's own scaling in N;
 //   lazy  — invalidation bumps the prediction's counter; the stale entry stays queued and is
 //           skipped when popped (DESIGN.md: per-particle counters), with removeIf cleanup if stale
 //           entries ever outnumber valid ones kCleanupFactor − 1 to one;
@@ -29,13 +30,21 @@
 namespace terrace::dmd {
 namespace {
 
+// As large as the engine's dmd::Event (48 B), so that bytes per body are the engine's.
 struct HoldEvent {
-    double time = 0.0;         // time units
-    std::uint32_t id = 0;      // which prediction
-    std::uint32_t stamp = 0;   // the prediction's counter when scheduled (lazy invalidation)
-    std::uint32_t partner = 0; // payload a DMD event carries: second body,
-    std::uint32_t kind = 0;    // and event kind
+    double time = 0.0;       // time units
+    std::uint32_t id = 0;    // which prediction
+    std::uint32_t stamp = 0; // the prediction's counter when scheduled (lazy invalidation)
+    double payload[3] = {};  // what a DMD event carries besides: U, dU/dt, bodies, kind
+    std::uint32_t partner = 0;
+    std::uint32_t kind = 0;
 };
+static_assert(sizeof(HoldEvent) == 48);
+
+enum class Invalidation { None, Lazy, Eager };
+constexpr const char* name(Invalidation v) {
+    return v == Invalidation::None ? "none" : v == Invalidation::Lazy ? "lazy" : "eager";
+}
 
 constexpr std::size_t kPredictionsPerBody = 12; // the 10–20 pending events per body
 constexpr double kMeanDelay = 1.0;              // τ, time units; only ratios to it matter
@@ -61,9 +70,10 @@ struct Xorshift {
 
 template <class Q> class HoldModel {
 public:
-    HoldModel(Q queue, bool eager, Delays delays)
-        : queue_(std::move(queue)), eager_(eager), delays_(delays), delayTable_(quantiles(delays)) {
-    }
+    HoldModel(Q queue, Invalidation invalidation, Delays delays)
+        : queue_(std::move(queue)), invalidation_(invalidation),
+          eager_(invalidation == Invalidation::Eager), delays_(delays),
+          delayTable_(quantiles(delays)) {}
 
     void schedule() {
         std::uint32_t id;
@@ -75,7 +85,7 @@ public:
             predictions_.emplace_back();
         }
         Prediction& p = predictions_[id];
-        const QueueHandle h = queue_.push({now_ + delay(), id, p.stamp, id ^ 1u, 0});
+        const QueueHandle h = queue_.push({now_ + delay(), id, p.stamp, {}, id ^ 1u, 0});
         if (eager_) p.handle = h;
         p.validIndex = static_cast<std::uint32_t>(valid_.size());
         valid_.push_back(id);
@@ -93,7 +103,8 @@ public:
             ++stalePops_;
         }
         // 1–3 new predictions and one fewer invalidations keep the valid count fixed.
-        const int pushes = 1 + static_cast<int>(rng_.next() % 3);
+        const int pushes =
+            invalidation_ == Invalidation::None ? 1 : 1 + static_cast<int>(rng_.next() % 3);
         for (int k = 0; k < pushes; ++k)
             schedule();
         for (int k = 1; k < pushes; ++k) {
@@ -101,7 +112,7 @@ public:
             if (eager_) queue_.erase(predictions_[victim].handle);
             retire(victim);
         }
-        if (!eager_ && queue_.size() > kCleanupFactor * valid_.size()) {
+        if (invalidation_ == Invalidation::Lazy && queue_.size() > kCleanupFactor * valid_.size()) {
             queue_.removeIf(
                 [this](const HoldEvent& e) { return e.stamp != predictions_[e.id].stamp; });
             ++cleanups_;
@@ -155,6 +166,7 @@ private:
     };
 
     Q queue_;
+    Invalidation invalidation_;
     bool eager_;
     Delays delays_;
     std::vector<double> delayTable_;
@@ -167,9 +179,10 @@ private:
     std::size_t cleanups_ = 0;
 };
 
-template <class Q> void runHolds(benchmark::State& state, Q queue, bool eager, Delays delays) {
+template <class Q>
+void runHolds(benchmark::State& state, Q queue, Invalidation invalidation, Delays delays) {
     const auto bodies = static_cast<std::size_t>(state.range(0));
-    HoldModel<Q> model(std::move(queue), eager, delays);
+    HoldModel<Q> model(std::move(queue), invalidation, delays);
     for (std::size_t k = 0; k < bodies * kPredictionsPerBody; ++k)
         model.schedule();
     // Reach the steady state (stale population, time spread) before timing.
@@ -217,36 +230,48 @@ std::string benchmarkName(const char* queue, const char* invalidation, const cha
 }
 
 void printRatios(const std::map<std::string, double>& ns) {
-    std::printf("\nns per hold and ratios (> 1: the second named is faster)\n");
-    std::printf("%-11s %7s %9s %9s %9s %9s %9s %9s %9s %9s %11s\n", "delays", "N", "heap-lazy",
-                "bpq-lazy", "heap-eagr", "bpq-eagr", "heap/bpq", "heap/bpq", "eagr/lazy",
-                "eagr/lazy", "heap-eagr/");
-    std::printf("%-11s %7s %9s %9s %9s %9s %9s %9s %9s %9s %11s\n", "", "", "", "", "", "",
-                "(lazy)", "(eager)", "(heap)", "(bpq)", "bpq-lazy");
-    for (const char* delays : {"exponential", "uniform"})
+    const char* queues[] = {"heap", "bpq"};
+    const Invalidation modes[] = {Invalidation::None, Invalidation::Lazy, Invalidation::Eager};
+    for (const char* delays : {"exponential", "uniform"}) {
+        std::printf("\n%s delays: ns per hold (CPU) and ratios (> 1: the second named is faster)\n",
+                    delays);
+        std::printf("%7s", "N");
+        for (const Invalidation m : modes)
+            for (const char* q : queues)
+                std::printf(" %6s-%-5s", q, name(m));
+        std::printf(" | heap/bpq: none  lazy eager | eager/lazy: heap   bpq\n");
         for (const std::size_t n : {512u, 4096u, 32768u, 262144u}) {
-            const auto at = [&](const char* q, const char* inv) {
-                const auto it = ns.find(benchmarkName(q, inv, delays) + "/" + std::to_string(n));
+            const auto at = [&](const char* q, Invalidation m) {
+                const auto it =
+                    ns.find(benchmarkName(q, name(m), delays) + "/" + std::to_string(n));
                 return it == ns.end() ? std::nan("") : it->second;
             };
-            const double hl = at("heap", "lazy"), bl = at("bpq", "lazy");
-            const double he = at("heap", "eager"), be = at("bpq", "eager");
-            if (std::isnan(hl + bl + he + be)) continue; // filtered out of this run
-            std::printf("%-11s %7zu %9.1f %9.1f %9.1f %9.1f %9.3f %9.3f %9.3f %9.3f %11.3f\n",
-                        delays, n, hl, bl, he, be, hl / bl, he / be, he / hl, be / bl, he / bl);
+            if (std::isnan(at("heap", Invalidation::None) + at("bpq", Invalidation::Eager)))
+                continue; // filtered out of this run
+            std::printf("%7zu", n);
+            for (const Invalidation m : modes)
+                for (const char* q : queues)
+                    std::printf(" %12.1f", at(q, m));
+            std::printf(" |        %5.2f %5.2f %5.2f |        %5.2f %5.2f\n",
+                        at("heap", Invalidation::None) / at("bpq", Invalidation::None),
+                        at("heap", Invalidation::Lazy) / at("bpq", Invalidation::Lazy),
+                        at("heap", Invalidation::Eager) / at("bpq", Invalidation::Eager),
+                        at("heap", Invalidation::Eager) / at("heap", Invalidation::Lazy),
+                        at("bpq", Invalidation::Eager) / at("bpq", Invalidation::Lazy));
         }
+    }
 }
 
 void registerAll() {
     for (const std::size_t bodies : {512u, 4096u, 32768u, 262144u})
         for (const Delays delays : {Delays::Exponential, Delays::Uniform})
-            for (const bool eager : {false, true}) {
+            for (const Invalidation mode :
+                 {Invalidation::None, Invalidation::Lazy, Invalidation::Eager}) {
                 const char* d = delays == Delays::Exponential ? "exponential" : "uniform";
-                const char* inv = eager ? "eager" : "lazy";
                 const auto reg = [&](const char* q, auto queueMaker) {
                     benchmark::RegisterBenchmark(
-                        benchmarkName(q, inv, d).c_str(),
-                        [=](benchmark::State& s) { runHolds(s, queueMaker(), eager, delays); })
+                        benchmarkName(q, name(mode), d).c_str(),
+                        [=](benchmark::State& s) { runHolds(s, queueMaker(), mode, delays); })
                         ->Arg(static_cast<std::int64_t>(bodies))
                         ->Iterations(kTimedHolds)
                         ->Unit(benchmark::kNanosecond);
