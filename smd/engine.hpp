@@ -125,7 +125,6 @@ public:
     }
 
     const System<K, P>& system() const { return sys_; }
-    const Forces& forces() const { return forces_; }
     const Parameters& parameters() const { return par_; }
     long steps() const { return steps_; }
     long neighbourRebuilds() const { return list_.rebuilds; }
@@ -140,11 +139,11 @@ private:
 
     void halfKick() {
         const double h = 0.5 * par_.dt, hm = h / sys_.body.mass;
-        for (std::size_t i = 0; i < sys_.bodies.size(); ++i) {
-            auto& b = sys_.bodies[i];
-            b.v += hm * forces_.force[i];
+        for (std::size_t a = 0; a < sys_.bodies.size(); ++a) { // forces are kept per list slot
+            auto& b = sys_.bodies[list_.order[a]];
+            b.v += hm * forces_.force[a];
             if constexpr (K::rotationalDof > 0)
-                K::addAngularMomentum(b, sys_.body, h * forces_.torque[i]);
+                K::addAngularMomentum(b, sys_.body, h * forces_.torque[a]);
         }
     }
 
@@ -155,9 +154,10 @@ private:
 
     void computeForces() {
         const std::size_t n = sys_.bodies.size();
-        for (std::size_t i = 0; i < n; ++i) {
-            local_[i] = position_[i] - list_.offset[i];
-            if constexpr (P::orientational) axis_[i] = K::axis(sys_.bodies[i]);
+        for (std::size_t a = 0; a < n; ++a) {
+            const int i = list_.order[a];
+            local_[a] = position_[i] - list_.offset[a];
+            if constexpr (P::orientational) axis_[a] = K::axis(sys_.bodies[i]);
         }
         forces_.reset(n);
         accumulateListedPairs(forces_, sys_.potential, par_.cutoff, list_, local_, axis_);
@@ -172,8 +172,9 @@ private:
     Parameters par_;
     double sigmaUnit_; // Å: σ of the scene, the unit of skin and cutoffs in statistics()
     NeighbourList list_;
-    Forces forces_;
-    std::vector<Vec3> position_, local_, axis_;
+    Forces forces_;                  // per list slot (list_.order maps slots to bodies)
+    std::vector<Vec3> position_;     // per body, unwrapped
+    std::vector<Vec3> local_, axis_; // per list slot: r - offset, and the long axis
     long steps_ = 0;
     long evaluations_ = 0;
     PhaseSeconds seconds_;

@@ -6,6 +6,7 @@
 // against.
 #include "core/system.hpp"
 #include "smd/neighbour_list.hpp"
+#include "smd/pair_kernels.hpp"
 #include "smd/smoothed_cutoff.hpp"
 #include <span>
 #include <vector>
@@ -27,12 +28,12 @@ struct Forces {
     }
 };
 
-/// Accumulates every listed pair within r_u. x_i = r_i - list.offset[i] (positions in the
-/// list's frame); axis is read only for orientational potentials.
+/// Accumulates every listed pair within r_u into out, per list slot. x[a] = r - list.offset[a]
+/// for the body in slot a; axis is read only for orientational potentials.
 template <PairPotential P>
-void accumulateListedPairs(Forces& out, const P& potential, const SmoothedCutoff& cut,
-                           const NeighbourList& list, std::span<const Vec3> x,
-                           std::span<const Vec3> axis) {
+[[gnu::flatten]] void accumulateListedPairs(Forces& out, const P& potential,
+                                            const SmoothedCutoff& cut, const NeighbourList& list,
+                                            std::span<const Vec3> x, std::span<const Vec3> axis) {
     const double outer2 = cut.outer * cut.outer;
     const Vec3 noAxis = Vec3::UnitZ();
     double u = 0.0;
@@ -49,7 +50,7 @@ void accumulateListedPairs(Forces& out, const P& potential, const SmoothedCutoff
             const double r2 = rij.squaredNorm();
             if (r2 >= outer2) continue;
             const Vec3& sj = P::orientational ? axis[j] : noAxis;
-            const PairForce f = smoothed(potential.evaluate(rij, si, sj), rij, std::sqrt(r2), cut);
+            const PairForce f = PairKernel<P>::evaluate(potential, cut, rij, r2, si, sj);
             ++evaluations;
             u += f.U;
             fi += f.F;

@@ -1,6 +1,6 @@
 // Verlet-list forces against the O(N²) minimum-image reference on random configurations, before
 // and after the bodies drift by up to skin/2 (no rebuild), through the cell-list path (box of
-// three or more cells per edge) and the all-pairs path (fewer).
+// five or more cells of half the reach per edge) and the all-pairs path (fewer).
 #include "smd/neighbour_list.hpp"
 #include "smd/pair_forces.hpp"
 #include "systems.hpp"
@@ -30,10 +30,11 @@ System<LinearRotor, RodPotential> scatteredRods(int perEdge, double density, dou
 
 template <class Sys>
 Forces listForces(const Sys& sys, const NeighbourList& list, const SmoothedCutoff& cut) {
-    std::vector<Vec3> x, axis;
-    for (std::size_t i = 0; i < sys.bodies.size(); ++i) {
-        x.push_back(sys.bodies[i].r - list.offset[i]);
-        axis.push_back(sys.bodies[i].s);
+    std::vector<Vec3> x, axis; // per list slot
+    for (std::size_t a = 0; a < sys.bodies.size(); ++a) {
+        const auto& b = sys.bodies[list.order[a]];
+        x.push_back(b.r - list.offset[a]);
+        axis.push_back(b.s);
     }
     Forces f;
     f.reset(x.size());
@@ -48,9 +49,10 @@ void expectSameForces(const Sys& sys, const NeighbourList& list, const SmoothedC
     ASSERT_GT(slow.evaluations, 0);
     EXPECT_EQ(fast.evaluations, slow.evaluations);
     EXPECT_NEAR(fast.potential, slow.potential, sumOrderTolerance);
-    for (std::size_t i = 0; i < slow.force.size(); ++i) {
-        EXPECT_LT((fast.force[i] - slow.force[i]).norm(), sumOrderTolerance) << "body " << i;
-        EXPECT_LT((fast.torque[i] - slow.torque[i]).norm(), sumOrderTolerance) << "body " << i;
+    for (std::size_t a = 0; a < slow.force.size(); ++a) {
+        const int i = list.order[a];
+        EXPECT_LT((fast.force[a] - slow.force[i]).norm(), sumOrderTolerance) << "body " << i;
+        EXPECT_LT((fast.torque[a] - slow.torque[i]).norm(), sumOrderTolerance) << "body " << i;
     }
 }
 
@@ -83,17 +85,26 @@ void checkAgainstAllPairs(int perEdge, double density, std::uint64_t seed) {
 } // namespace
 
 TEST(NeighbourList, CellListForcesEqualAllPairs) {
-    // 8³ bodies at ρ* = 0.5: L ≈ 10σ, three cells of 3.3σ per edge.
+    // 8³ bodies at ρ* = 0.5: L ≈ 10.1σ, six cells of 1.65σ per edge (the fewest allowed + 1).
     for (std::uint64_t seed : {1u, 2u, 3u})
         checkAgainstAllPairs(8, 0.5, seed);
 }
 
 TEST(NeighbourList, ManyCellsForcesEqualAllPairs) {
-    checkAgainstAllPairs(10, 0.3, 4); // L ≈ 15σ: 4 cells per edge
+    checkAgainstAllPairs(10, 0.3, 4); // L ≈ 15σ: nine cells per edge
+}
+
+TEST(NeighbourList, FiveCellsPerEdgeForcesEqualAllPairs) {
+    checkAgainstAllPairs(7, 0.5, 7); // L ≈ 8.8σ: five cells, the stencil spans the whole box
+}
+
+TEST(NeighbourList, SparseBoxWiderCellsForcesEqualAllPairs) {
+    // L ≈ 21.7σ would hold 13 cells of half the reach; capped at ten per edge (~2 per body).
+    checkAgainstAllPairs(8, 0.05, 8);
 }
 
 TEST(NeighbourList, SmallBoxFallsBackToAllPairs) {
-    checkAgainstAllPairs(6, 0.5, 5); // L ≈ 7.6σ: fewer than 3 cells per edge
+    checkAgainstAllPairs(6, 0.5, 5); // L ≈ 7.6σ: four cells per edge, too few
 }
 
 TEST(NeighbourList, EachPairListedOnce) {
@@ -105,15 +116,19 @@ TEST(NeighbourList, EachPairListedOnce) {
     for (const auto& b : sys.bodies)
         r.push_back(b.r);
     build(list, sys.box, r);
-    std::set<std::pair<std::size_t, std::size_t>> seen;
+    std::set<std::pair<int, int>> seen;
     std::size_t expected = 0;
     for (std::size_t i = 0; i < r.size(); ++i) {
         for (std::size_t j = i + 1; j < r.size(); ++j)
             if (sys.box.minimumImage(r[i] - r[j]).norm() < list.reach) ++expected;
         for (std::size_t k = list.start[i]; k < list.start[i + 1]; ++k) {
-            const std::size_t j = list.entry[k] >> NeighbourList::imageBits;
-            EXPECT_GT(j, i);
-            EXPECT_TRUE(seen.insert({i, j}).second) << i << "-" << j << " listed twice";
+            const std::size_t b = list.entry[k] >> NeighbourList::imageBits;
+            const int bi = list.order[i], bj = list.order[b];
+            const auto key = std::make_pair(std::min(bi, bj), std::max(bi, bj));
+            EXPECT_TRUE(seen.insert(key).second) << bi << "-" << bj << " listed twice";
+            const Vec3 rij = r[bi] - list.offset[i] - (r[bj] - list.offset[b]) +
+                             list.imageShift[list.entry[k] & NeighbourList::imageMask];
+            EXPECT_NEAR(rij.norm(), sys.box.minimumImage(r[bi] - r[bj]).norm(), sumOrderTolerance);
         }
     }
     EXPECT_EQ(seen.size(), expected);

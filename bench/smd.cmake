@@ -1,0 +1,1 @@
+terrace_bench(bench_smd.cpp terrace_smd)

@@ -1,0 +1,45 @@
+#pragma once
+// The smoothed pair interaction as the SMD pair loop evaluates it, from the squared separation
+// r² (Å²) that the loop already has for its cutoff test. The general kernel calls the potential's
+// own evaluate() and smoothed() (smoothed_cutoff.hpp). Plain Lennard-Jones has a cheaper exact
+// form that needs no square root inside r_l and one division per pair:
+//     s6 = (σ²/r²)³,   U = 4ε(s6² - s6),   F_ij = 24ε(2 s6² - s6)/r² · r_ij,
+// the formulas of core/lj_potential.hpp rearranged (test_pair_kernels.cpp checks that both agree
+// to round-off); beyond r_l the switch g(r) and the -U g'(r) r̂ term are applied as in smoothed().
+// Units: Å, kJ/mol, kJ/mol/Å.
+#include "core/lj_potential.hpp"
+#include "smd/smoothed_cutoff.hpp"
+#include <cmath>
+
+namespace terrace::smd {
+
+/// General kernel: any PairPotential.
+template <PairPotential P> struct PairKernel {
+    static PairForce evaluate(const P& potential, const SmoothedCutoff& cut, const Vec3& rij,
+                              double r2, const Vec3& si, const Vec3& sj) {
+        return smoothed(potential.evaluate(rij, si, sj), rij, std::sqrt(r2), cut);
+    }
+};
+
+/// Lennard-Jones spheres: energy and force from r² directly.
+template <> struct PairKernel<LJPotential> {
+    static PairForce evaluate(const LJPotential& lj, const SmoothedCutoff& cut, const Vec3& rij,
+                              double r2, const Vec3&, const Vec3&) {
+        const double inv2 = 1.0 / r2;
+        const double s2 = lj.sigma * lj.sigma * inv2;
+        const double s6 = s2 * s2 * s2;
+        double u = 4.0 * lj.epsilon * s6 * (s6 - 1.0);
+        double forceOverR = 24.0 * lj.epsilon * s6 * (2.0 * s6 - 1.0) * inv2;
+        if (r2 > cut.inner * cut.inner) { // in the switch: g U, g F - U g' r̂
+            const double r = std::sqrt(r2);
+            forceOverR = cut.switching(r) * forceOverR - u * cut.switchingSlope(r) / r;
+            u *= cut.switching(r);
+        }
+        PairForce f;
+        f.U = u;
+        f.F = forceOverR * rij;
+        return f;
+    }
+};
+
+} // namespace terrace::smd
