@@ -1,0 +1,62 @@
+// Long-run conservation and the extremes of the state space (validation tier).
+#include "test_systems.hpp"
+#include <gtest/gtest.h>
+#include <string>
+
+using namespace terrace;
+using namespace terrace::dmdtest;
+
+namespace {
+
+// The requirement: total energy (kinetic + terraced) constant to 1e-10 relative over 10⁶
+// events. Each collision conserves it to a few ulps, so this has ~10³ of headroom only if the
+// rule and bookkeeping are exact.
+constexpr double energyTolerance = 1e-10;
+// Round-off of Σ m v over N bodies after ~10⁶ impulses, each exactly antisymmetric.
+constexpr double momentumTolerance = 1e-10;
+
+void expectHealthy(const RodEngine& e, double e0, const std::string& what) {
+    const RodSystem now = e.synchronisedCopy();
+    for (const auto& b : now.bodies)
+        ASSERT_TRUE(b.r.allFinite() && b.v.allFinite() && b.s.allFinite() && b.w.allFinite())
+            << what;
+    EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::max(1.0, std::abs(e0))) << what;
+    EXPECT_LT(e.totalMomentum().norm(), momentumTolerance) << what;
+    EXPECT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6 * e.levels().step())
+        << what;
+}
+
+} // namespace
+
+TEST(Conservation, AMillionEventsKeepEnergyAndMomentum) {
+    const Scene s = rodScene(256, 0.5, 1.4, 0.5);
+    RodEngine e(rodSystem(s), s);
+    const double e0 = totalEnergy(e);
+    e.runEvents(1000000);
+    EXPECT_GT(e.counts().up + e.counts().down + e.counts().reflect, 100000u);
+    expectHealthy(e, e0, "10^6 events");
+}
+
+// ΔV = 0.05 kT and 8 kT, T* = 0.5 and 50, ρ* = 0.001 and 0.8: each runs without NaN, stuck clock
+// or energy error, and reaches the requested time.
+TEST(Conservation, ExtremesRunCleanly) {
+    struct Extreme {
+        const char* name;
+        int n;
+        double density, temperature, dV, ps;
+    };
+    const Extreme extremes[] = {
+        {"dV 0.05 kT", 64, 0.5, 1.4, 0.05, 0.05},  {"dV 8 kT", 64, 0.5, 1.4, 8.0, 0.5},
+        {"T* 0.5", 64, 0.5, 0.5, 0.5, 0.5},        {"T* 50", 64, 0.5, 50.0, 0.5, 0.2},
+        {"rho* 0.001", 64, 0.001, 1.4, 0.5, 20.0}, {"rho* 0.8", 64, 0.8, 1.4, 0.5, 0.2},
+    };
+    for (const Extreme& x : extremes) {
+        const Scene s = rodScene(x.n, x.density, x.temperature, x.dV);
+        RodEngine e(rodSystem(s), s);
+        const double e0 = totalEnergy(e);
+        e.advanceTo(units::fromPs(x.ps));
+        EXPECT_DOUBLE_EQ(e.time(), units::fromPs(x.ps)) << x.name;
+        EXPECT_GT(e.counts().total(), 10u) << x.name;
+        expectHealthy(e, e0, x.name);
+    }
+}
