@@ -1,6 +1,6 @@
 // Energy conservation of the splitting on the paper's rods at ρ* = 0.5, T* = 1.4: the total-energy
 // error scales as dt² (second-order integrator), there is no secular drift over 100 ps at the
-// paper's 1.8 fs, and std(E)/|mean U| at 1.8 fs is of the paper's size (about 1 %).
+// paper's 1.8 fs, and std(E)/std(U) at 1.8 fs is of the paper's size (about 1 %).
 #include "smd/engine.hpp"
 #include "systems.hpp"
 #include <gtest/gtest.h>
@@ -99,18 +99,22 @@ TEST(EnergyConservation, NoDriftOver100ps) {
     EXPECT_LT(std::abs(drift), fluctuation);
 }
 
-TEST(EnergyConservation, RelativeFluctuationOfPaperSize) {
-    // The paper's state point at its size, N = 512; 5 ps of NVE at 1.8 fs.
+TEST(EnergyConservation, FluctuationRatioOfPaperSize) {
+    // The paper's state point at its size, N = 512; 5 ps of NVE at its 1.8 fs. The paper reports
+    // "relative fluctuations of the total energy to the potential energy of about 1 %": the ratio
+    // std(E)/std(U) of the two fluctuations. (std(E)/|mean U|, the summary's rel_fluct, is two
+    // orders smaller and is printed for reference.)
     const auto start = equilibratedRods(8, 13);
     const Series s = run(start, 1.8, 5004.0, 10.8);
-    const double relFluct = s.std(s.energy) / std::abs(s.mean(s.potential));
     const double fluctRatio = s.std(s.energy) / s.std(s.potential);
-    std::cout << "rel_fluct = std(E)/|mean U| at 1.8 fs, N = 512: " << relFluct
-              << "; std(E)/std(U): " << fluctRatio << "; mean U " << s.mean(s.potential)
-              << " kJ/mol, std(U) " << s.std(s.potential) << ", std(E) " << s.std(s.energy) << "\n";
-    // The paper reports "about 1 %" without error bars; accept a factor of three either way, which
-    // still fails for an integrator of the wrong order or a force inconsistent with U.
-    constexpr double paperRelFluct = 0.01, paperFactor = 3.0;
-    EXPECT_GT(relFluct, paperRelFluct / paperFactor);
-    EXPECT_LT(relFluct, paperRelFluct * paperFactor);
+    const double relFluct = s.std(s.energy) / std::abs(s.mean(s.potential));
+    std::cout << "N = 512, dt = 1.8 fs: std(E)/std(U) = " << fluctRatio
+              << ", rel_fluct = std(E)/|mean U| = " << relFluct << " (mean U "
+              << s.mean(s.potential) << " kJ/mol, std U " << s.std(s.potential) << ", std E "
+              << s.std(s.energy) << ")\n";
+    // "About 1 %" comes without error bars; a factor of three either way still fails for an
+    // integrator of the wrong order (or dt off by ~1.7x) and for a force inconsistent with U.
+    constexpr double paperRatio = 0.01, paperFactor = 3.0;
+    EXPECT_GT(fluctRatio, paperRatio / paperFactor);
+    EXPECT_LT(fluctRatio, paperRatio * paperFactor);
 }
