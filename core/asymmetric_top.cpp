@@ -40,8 +40,9 @@ JacobiElliptic::Values JacobiElliptic::landen(double u) const {
 JacobiElliptic::Values JacobiElliptic::reduced(double u) const {
     if (std::abs(u) <= 0.5 * K_) return landen(u);
     // Near ±K, cn = cos φ would carry only an absolute error ~1 ulp while dn → sqrt(m1) can be
-    // smaller still; the quarter-period shift (A&S 16.8.1) keeps both to full relative precision:
-    // sn(K − v) = cn v / dn v, cn(K − v) = sqrt(m1) sn v / dn v, dn(K − v) = sqrt(m1) / dn v.
+    // smaller still; the quarter-period shift (A&S Table 16.8) keeps both to full relative
+    // precision: sn(K − v) = cn v / dn v, cn(K − v) = sqrt(m1) sn v / dn v, dn(K − v) = sqrt(m1) /
+    // dn v.
     const double v = K_ - std::abs(u); // exact (Sterbenz) since |u| ∈ [K/2, K]
     const Values w = landen(v);
     const double k1 = std::sqrt(m1_);
@@ -155,7 +156,7 @@ Mat3 frameOf(const Vec3& Lb) {
 
 /// ∫₀^u du' / (1 − n sn²(u'|m)) in Carlson form for u = r + 2K j, r ∈ [−K, K]: the integrand
 /// has period 2K, and over one period the integral is 2 Π(n|m) = 2 [RF(0, m1, 1) + n/3 RJ(0, m1,
-/// 1, 1 − n)] (Carlson, Numer. Algorithms 10, 13 (1995), eqs. 4.3 and 4.4 with φ = am u).
+/// 1, 1 − n)] (DLMF §19.25(i) with φ = am u, cos φ = cn u, sqrt(1 − m sin²φ) = dn u).
 double legendreW(const detail::JacobiElliptic::Values& v, double j, double n, double m1) {
     using boost::math::ellint_rf;
     using boost::math::ellint_rj;

@@ -4,15 +4,17 @@
 // reordered (a proper signed permutation) so that I2 is the middle moment and m ∈ [0, 1),
 //     ω1 = ω1m cn(u|m),  ω2 = ω2m sn(u|m),  ω3 = ω3m dn(u|m),  u = ωp t + ε,
 //     A(t) = M(ℓ(t)) R_z(ψ(t)) M(ℓ(0))ᵀ A(0),   ℓ = L_body / |L|,
-// where ψ is the angle about the fixed L, ψ̇ = |L| (L1 ω1 + L2 ω2) / (L1² + L2²). ψ comes from the
-// two real theta series of van Zon & Schofield, or, where their nome q → 1 makes them slow (near
-// the separatrix m → 1), from the equivalent Legendre form
+// where ψ is the angle about the fixed L, ψ̇ = |L| (L1 ω1 + L2 ω2) / (L1² + L2²) (Landau &
+// Lifshitz, Mechanics §37, their φ). ψ comes from the two real theta series of van Zon &
+// Schofield, or, where their nome q → 1 makes them slow (near the separatrix m → 1), from the
+// equivalent Legendre form (with dn² = 1 − m sn² and ω3 = ω3m dn in the formula above)
 //     ψ̇ = |L|/I3 + (|L|/I1 − |L|/I3) / (1 − n sn²u),   n = I3 (I2 − I1) / (I1 (I2 − I3)) < 0,
-//     ψ(t) = |L| t / I3 + (|L|/I1 − |L|/I3) [Π(n; am u | m) − Π(n; am ε | m)] / ωp
-// (Byrd & Friedman 410.00 and 336.02 for ∫ du / (1 − n sn²u), in Carlson form; on the separatrix
-// m = 1 itself, sn = tanh, cn = dn = sech and the integral is elementary).
+//     ψ(t) = |L| t / I3 + (|L|/I1 − |L|/I3) [Π(n; am u | m) − Π(n; am ε | m)] / ωp,
+// evaluated with Carlson's RF and RJ (DLMF §19.25(i)). On the separatrix m = 1 itself
+// sn = tanh, cn = dn = sech and the integral is elementary.
 // Two equal moments dispatch to the symmetric-top formula; ω along a principal axis is a rotation
-// about that fixed axis.
+// about that fixed axis. Verified in tests/core/test_free_motion.cpp against a converged RK4
+// integration of Euler's equations and dA/dt = −[ω]× A.
 #include "core/top_state.hpp"
 #include <array>
 
@@ -35,9 +37,9 @@ struct AsymmetricTop : TopCommon {
 namespace detail {
 
 /// Jacobi elliptic functions sn, cn, dn of parameter m by the descending Landen transformation
-/// (arithmetic-geometric mean; Abramowitz & Stegun 16.4, 17.6). Built from m and its complement
-/// m1 = 1 − m, each given to full relative precision, so that K and dn stay accurate as m → 1.
-/// The table depends on m only: build it once per orbit.
+/// (arithmetic-geometric mean; Abramowitz & Stegun §16.4 and §17.6). Built from m and its
+/// complement m1 = 1 − m, each given to full relative precision, so that K and dn stay accurate as
+/// m → 1. The table depends on m only: build it once per orbit.
 class JacobiElliptic {
 public:
     JacobiElliptic(double m, double m1);

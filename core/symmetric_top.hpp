@@ -10,6 +10,7 @@
 // (REFERENCES.md "Exact free rigid-body motion"; van Zon & Schofield, J. Comput. Phys. 225, 145
 // (2007).)
 #include "core/top_state.hpp"
+#include <cassert>
 #include <cmath>
 
 namespace terrace {
@@ -36,8 +37,10 @@ struct SymmetricTop : TopCommon {
     static constexpr std::string_view name = "symmetric";
     static constexpr int rotationalDof = 3;
 
-    /// Exact torque-free rotation over time t (any sign); requires inertia[0] == inertia[1].
+    /// Exact torque-free rotation over time t (any sign); requires inertia[0] == inertia[1]
+    /// (the scene reader enforces it; AsymmetricTop handles any pair of equal moments).
     static void freeRotate(State& b, const BodyParams& p, double t) {
+        assert(p.inertia[0] == p.inertia[1] && "SymmetricTop needs I1 == I2");
         detail::rotateSymmetricTop(b.A, b.L, p.inertia[0], p.inertia[2], 2, t);
     }
 };

@@ -416,6 +416,19 @@ TEST(AsymmetricTop, OmegaAlongEachPrincipalAxis) {
     }
 }
 
+TEST(AsymmetricTop, NearlyPrincipalAxesMatchReference) {
+    // L within 1e-9 of each axis goes through the general formulas (m ≈ 1e-18 about the extreme
+    // axes, 1 − m ≈ 1e-18 about the middle one), not the fixed-axis shortcut.
+    std::mt19937_64 rng(30);
+    const TopState sAxis1 = topWithBodyL(randomRotation(rng), Vec3(1.3, 1e-9, -2e-9));
+    const TopState sAxis2 = topWithBodyL(randomRotation(rng), Vec3(1e-9, 1.3, 2e-9));
+    const TopState sAxis3 = topWithBodyL(randomRotation(rng), Vec3(-2e-9, 1e-9, 1.3));
+    for (const TopState& s : {sAxis1, sAxis2, sAxis3})
+        for (double t : {2.7, -5.0})
+            expectMatchesReference(s, params(Vec3(1.0, 2.0, 3.0)), t,
+                                   {Method::Automatic, Method::ThetaSeries, Method::LegendrePi});
+}
+
 TEST(AsymmetricTop, ZeroOmegaLeavesAttitude) {
     std::mt19937_64 rng(25);
     const TopState s = topWithBodyL(randomRotation(rng), Vec3::Zero());
