@@ -21,21 +21,27 @@ if [ "$SIZE" = quick ]; then
     EQUIL_PS=0.1
     DENSE_PS=0.4
     GAS_PS=0.4
-    REF_DT_FS=0.5       # converged reference of the trade-off (full: 0.2 fs)
+    REF_DT_FS=${REF_DT_FS:-0.5} # converged reference of the trade-off (Makefile.paper sets it)
     REF_PS_FACTOR=1
     SCAN_PS=0.3         # density scan
     SCAN_REPLICAS=2
+    EXTREME_N=216       # a box that holds two interaction ranges at ΔV = 0.05 kT, ρ* = 0.8
+    EXTREME_EQUIL_PS=0.05
+    EXTREME_PS=0.2      # 21 samples: enough for the correlation files' 8 blocks
 else
     REPLICAS=4
     DENSE_N=512
     GAS_N=512
-    EQUIL_PS=2
-    DENSE_PS=10
+    EQUIL_PS=1
+    DENSE_PS=6
     GAS_PS=20
-    REF_DT_FS=0.2
+    REF_DT_FS=${REF_DT_FS:-0.2}
     REF_PS_FACTOR=2
     SCAN_PS=4
     SCAN_REPLICAS=2     # the scan compares costs; two runs bound their spread
+    EXTREME_N=216
+    EXTREME_EQUIL_PS=0.2
+    EXTREME_PS=1
 fi
 
 log() { echo "[$(date +%H:%M:%S)] $*" >&2; }
@@ -58,18 +64,35 @@ run_one() {
     mv "$partial.log" "$dir/run.log"
 }
 
-# run_replicas DIR SCENE [--set ...]... : REPLICAS independent runs DIR/seed-K (seeds 1..R).
+# run_replicas DIR SCENE [--set ...]... : REPLICAS independent runs DIR/seed-K, seeds from
+# SEED_OFFSET + 1 (offset 0 unless set). A failed run is a result, not a reason to stop: its
+# seed and the engine's message go to DIR/failures.txt and the next seed is tried, up to
+# 2 × REPLICAS seeds in all; the set fails only when fewer than REPLICAS runs complete.
 run_replicas() {
     local dir=$1 scene=$2
     shift 2
-    local k
-    for k in $(seq 1 "$REPLICAS"); do
-        run_one "$dir/seed-$k" "$scene" --set seed="$k" "$@"
+    local k seed done=0
+    mkdir -p "$dir"
+    rm -f "$dir/failures.txt"
+    for k in $(seq 1 $((2 * REPLICAS))); do
+        [ "$done" -lt "$REPLICAS" ] || break
+        seed=$((${SEED_OFFSET:-0} + k))
+        if run_one "$dir/seed-$seed" "$scene" --set seed="$seed" "$@"; then
+            done=$((done + 1))
+        else
+            echo "seed-$seed: $(tail -n 1 "$dir/seed-$seed.partial.log")" >>"$dir/failures.txt"
+        fi
     done
+    [ "$done" -ge "$REPLICAS" ]
 }
 
-# replica_dirs DIR : the replica directories of DIR, one per line.
-replica_dirs() { ls -d "$1"/seed-* ; }
+# replica_dirs DIR : the completed replica directories of DIR, one per line.
+replica_dirs() {
+    local d
+    for d in "$1"/seed-*; do
+        if [ -s "$d/summary.json" ]; then echo "$d"; fi
+    done
+}
 
 # mean_curve DIR FILE OUTCSV : replica mean and standard error of DIR/seed-*/FILE.
 mean_curve() {

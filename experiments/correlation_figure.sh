@@ -17,12 +17,12 @@ mkdir -p "$dir"
 sets=(smd-1.8 dmd-2 dmd-1 dmd-0.5 dmd-0.25)
 labels=('SMD dt = 1.8 fs' 'DMD {/Symbol D}V = 2 kT' 'DMD {/Symbol D}V = kT' 'DMD {/Symbol D}V = kT/2'
     'DMD {/Symbol D}V = kT/4')
-echo "set,rms_distance_from_smd" >"$dir/$fig-distance.csv"
+echo "set,rms_distance_from_smd,noise_floor" >"$dir/$fig-distance.csv"
 for s in "${sets[@]}"; do
     cp "$RUNS/dense/$s/mean-$file.csv" "$dir/$fig-$s.csv"
     [ "$s" = smd-1.8 ] && continue
-    d=$("$TOOLS" error "$dir/$fig-smd-1.8.csv" "$dir/$fig-$s.csv" "$column" "$xmax")
-    echo "$s,$d" >>"$dir/$fig-distance.csv"
+    read -r d noise < <("$TOOLS" error "$dir/$fig-smd-1.8.csv" "$dir/$fig-$s.csv" "$column" "$xmax")
+    echo "$s,$d,$noise" >>"$dir/$fig-distance.csv"
 done
 colors=('#000000' '#d62728' '#ff7f0e' '#2ca02c' '#1f77b4')
 plot=""

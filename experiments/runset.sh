@@ -7,7 +7,7 @@
 #   OPTION  heap | eager (DMD queue and invalidation, default bpq + lazy)
 #           mayfail (a failed run marks the set FAILED instead of stopping make: unstable
 #                    settings are a result of the trade-off, not an error of the pipeline)
-#           ref (the trade-off's converged reference: REF_PS_FACTOR times longer)
+#           ref (the trade-off's converged reference: REF_PS_FACTOR times longer, seeds 101…)
 # Runs land in $RUNS/STATE/ENGINE-PARAM[-OPTION...]/seed-K; the set's replica means of rdf.csv,
 # vacf.csv and oacf.csv go beside them (mean-rdf.csv, ...).
 source "$(dirname "$0")/common.sh"
@@ -38,7 +38,12 @@ for o in "${options[@]}"; do
     mayfail) mayfail=1 ;;
     heap) sets+=(--set dmd.queue=heap) ;;
     eager) sets+=(--set dmd.invalidation=eager) ;;
-    ref) ps=$(awk -v p="$ps" -v f="$REF_PS_FACTOR" 'BEGIN{print p*f}') ;;
+    ref)
+        ps=$(awk -v p="$ps" -v f="$REF_PS_FACTOR" 'BEGIN{print p*f}')
+        # Seeds of its own: a reference run from the same start as the run it judges would share
+        # its noise and flatter it (most of all SMD at another dt, whose trajectory stays close).
+        SEED_OFFSET=100
+        ;;
     *) echo "runset.sh: unknown option '$o'" >&2; exit 2 ;;
     esac
 done
@@ -49,7 +54,7 @@ if ! run_replicas "$dir" "$scene" --set state.n="$n" --set run.equilibrate_ps="$
     --set run.time_ps="$ps" "${sets[@]}"; then
     [ "$mayfail" = 1 ] || exit 1
     # The reason is the failed run's own message, kept for the tables.
-    tail -n 3 "$dir"/seed-*.partial.log 2>/dev/null | tr '\n' ' ' >"$dir/FAILED"
+    cut -c1-300 "$dir/failures.txt" | tr "\n" " " >"$dir/FAILED"
     log "runset $id FAILED (recorded)"
     exit 0
 fi

@@ -3,9 +3,10 @@
 //   potential-map OUT.csv                 fig1 data (potential_map.hpp)
 //   search-trace DIR [dV_kT]              fig2 data (search_trace.hpp)
 //   mean OUT.csv IN.csv IN.csv...         replica mean and standard error (replicas.hpp)
-//   error REF.csv CURVE.csv COLUMN [XMAX] root-mean-square difference (replicas.hpp)
+//   error REF.csv CURVE.csv COLUMN [XMAX] RMS difference and its noise floor (replicas.hpp)
 //   summary-header                        header of summary rows
 //   summary LABEL DIR...                  one table row over replica runs (summaries.hpp)
+//   get FILE.json KEY...                  values of dotted keys, comma separated
 #include "analysis/csv.hpp"
 #include "experiments/tools/potential_map.hpp"
 #include "experiments/tools/replicas.hpp"
@@ -25,7 +26,8 @@ int usage() {
                  "       paper_tools mean OUT.csv IN.csv IN.csv...\n"
                  "       paper_tools error REF.csv CURVE.csv COLUMN [XMAX]\n"
                  "       paper_tools summary-header\n"
-                 "       paper_tools summary LABEL DIR...\n";
+                 "       paper_tools summary LABEL DIR...\n"
+                 "       paper_tools get FILE.json KEY...\n";
     return 2;
 }
 
@@ -42,14 +44,16 @@ int run(const std::vector<std::string>& a) {
             replicas.push_back(analysis::readCsv(a[k]));
         analysis::writeCsv(a[1], experiments::replicaMean(replicas));
     } else if (cmd == "error" && (a.size() == 4 || a.size() == 5)) {
-        const double e =
-            experiments::rmsDifference(analysis::readCsv(a[1]), analysis::readCsv(a[2]), a[3],
-                                       a.size() == 5 ? std::stod(a[4]) : 0.0);
-        std::printf("%.6g\n", e);
+        const auto ref = analysis::readCsv(a[1]), curve = analysis::readCsv(a[2]);
+        const double xMax = a.size() == 5 ? std::stod(a[4]) : 0.0;
+        std::printf("%.6g %.6g\n", experiments::rmsDifference(ref, curve, a[3], xMax),
+                    experiments::rmsNoise(ref, curve, a[3], xMax));
     } else if (cmd == "summary-header" && a.size() == 1) {
         std::cout << experiments::summaryHeader() << '\n';
     } else if (cmd == "summary" && a.size() >= 3) {
         std::cout << experiments::summaryRow(a[1], {a.begin() + 2, a.end()}) << '\n';
+    } else if (cmd == "get" && a.size() >= 3) {
+        std::cout << experiments::jsonValues(a[1], {a.begin() + 2, a.end()}) << '\n';
     } else {
         return usage();
     }

@@ -61,6 +61,35 @@ double interpolate(const analysis::CsvTable& t, int c, double x) {
     return (1.0 - w) * t.columns[c][j - 1] + w * t.columns[c][j];
 }
 
+namespace {
+int errorColumnOf(const analysis::CsvTable& t, const std::string& column) {
+    const int c = t.find(column);
+    if (c < 1) return -1;
+    if (t.find(column + "_err") > 0) return t.find(column + "_err");
+    if (c + 1 < int(t.header.size()) && t.header[c + 1] == "err") return c + 1;
+    return -1;
+}
+} // namespace
+
+double rmsNoise(const analysis::CsvTable& reference, const analysis::CsvTable& curve,
+                const std::string& column, double xMax) {
+    const int er = errorColumnOf(reference, column), ec = errorColumnOf(curve, column);
+    if (er < 0 || ec < 0)
+        throw std::invalid_argument("noise floor: no error column for '" + column + "'");
+    double ss = 0.0;
+    int n = 0;
+    for (int i = 0; i < reference.rows(); ++i) {
+        const double x = reference.columns[0][i];
+        if (xMax > 0.0 && x > xMax) break;
+        const double s = interpolate(curve, ec, x), sRef = reference.columns[er][i];
+        if (!std::isfinite(s) || !std::isfinite(sRef)) continue;
+        ss += s * s + sRef * sRef;
+        ++n;
+    }
+    if (n == 0) throw std::invalid_argument("noise floor: the curves share no grid point");
+    return std::sqrt(ss / n);
+}
+
 double rmsDifference(const analysis::CsvTable& reference, const analysis::CsvTable& curve,
                      const std::string& column, double xMax) {
     const int cr = reference.find(column), cc = curve.find(column);

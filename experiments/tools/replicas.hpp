@@ -30,6 +30,12 @@ analysis::CsvTable replicaMean(const std::vector<analysis::CsvTable>& replicas);
 double rmsDifference(const analysis::CsvTable& reference, const analysis::CsvTable& curve,
                      const std::string& column, double xMax = 0.0);
 
+/// The statistical floor of that difference: sqrt((1/n) Σ_i (σ_ref,i² + σ_i²)) over the same
+/// points, from the error columns of `column` (see isErrorColumn); what rmsDifference would be
+/// for two curves that differ by noise alone. Throws when either table has no error column.
+double rmsNoise(const analysis::CsvTable& reference, const analysis::CsvTable& curve,
+                const std::string& column, double xMax = 0.0);
+
 /// Linear interpolation of column c of t at x (t's first column increasing); NaN outside.
 double interpolate(const analysis::CsvTable& t, int c, double x);
 

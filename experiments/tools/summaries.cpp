@@ -81,4 +81,27 @@ std::string summaryRow(const std::string& label, const std::vector<std::filesyst
     return row.str();
 }
 
+std::string jsonValues(const std::filesystem::path& file, const std::vector<std::string>& keys) {
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error(file.string() + ": cannot read");
+    nlohmann::json j;
+    in >> j;
+    std::ostringstream out;
+    out.precision(8);
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+        const nlohmann::json* v = &j;
+        std::stringstream path(keys[k]);
+        for (std::string part; v && std::getline(path, part, '.');)
+            v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
+        if (k > 0) out << ',';
+        if (v && v->is_boolean())
+            out << (v->get<bool>() ? 1 : 0);
+        else if (v && v->is_number())
+            out << v->get<double>();
+        else
+            out << "nan";
+    }
+    return out.str();
+}
+
 } // namespace terrace::experiments

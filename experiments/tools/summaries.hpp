@@ -22,4 +22,8 @@ std::string summaryHeader();
 /// summary.json). Throws std::runtime_error naming a directory without a usable summary.
 std::string summaryRow(const std::string& label, const std::vector<std::filesystem::path>& dirs);
 
+/// Values of dotted keys (e.g. "energy.rel_fluct") of a JSON file, comma separated; a missing key
+/// or a non-number gives "nan", a boolean 1 or 0.
+std::string jsonValues(const std::filesystem::path& file, const std::vector<std::string>& keys);
+
 } // namespace terrace::experiments

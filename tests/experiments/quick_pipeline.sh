@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# `make -f Makefile.paper quick` into a temporary directory, then checks that every figure and
+# table was produced and that the numbers in them are sane (not their statistical values: the
+# quick runs are far too short for those).
+#   quick_pipeline.sh TERRACE PAPER_TOOLS SOURCE_DIR
+set -euo pipefail
+terrace=$1 tools=$2 src=$3
+out=$(mktemp -d "${TMPDIR:-/tmp}/terrace-quick.XXXXXX")
+trap 'rm -rf "$out"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+start=$(date +%s)
+make -C "$src" -f Makefile.paper quick -j2 TERRACE="$terrace" TOOLS="$tools" QUICK_OUT="$out" \
+    >"$out.log" 2>&1 || { tail -n 30 "$out.log" >&2; rm -f "$out.log"; fail "make quick failed"; }
+rm -f "$out.log"
+echo "make quick: $(($(date +%s) - start)) s"
+
+for f in fig1/fig1.png fig2/fig2.png fig3/fig3.png fig4/fig4.png fig5/fig5.png \
+    table/efficiency.csv table/queues.csv tradeoff/tradeoff-dense.png tradeoff/tradeoff-gas.png \
+    density/density.png extremes/extremes.csv versus/versus.png versus/versus.txt machine.txt; do
+    [ -s "$out/$f" ] || fail "missing or empty $f"
+done
+# PNG files start with the PNG signature.
+for f in "$out"/*/*.png; do
+    [ "$(head -c 4 "$f" | tail -c 3)" = PNG ] || fail "$f is not a PNG"
+done
+
+# Efficiency table: five settings for each state, positive costs, DMD energy conserved to
+# round-off (the collision rule conserves it exactly; 1e-8 leaves room for summation error).
+dmd_energy_limit=1e-8
+awk -F, -v lim=$dmd_energy_limit 'NR > 1 {
+        ++n; if (!($5 > 0)) { print "non-positive cost: " $1; bad = 1 }
+        if ($2 == "dmd" && !($11 < lim)) { print "DMD energy not conserved: " $1 " " $11; bad = 1 }
+        if ($2 == "dmd" && !($7 > 0) && $1 ~ /^dense/) { print "no collisions: " $1; bad = 1 }
+    } END { if (n != 10) { print "expected 10 rows, got " n; bad = 1 } exit bad }' \
+    "$out/table/efficiency.csv" || fail "efficiency table"
+
+# Trade-off: eleven settings per state, the reference's own step among them with a finite error.
+for s in dense gas; do
+    [ "$(tail -n +2 "$out/tradeoff/tradeoff-$s.csv" | wc -l)" -eq 11 ] || fail "tradeoff-$s rows"
+done
+# Every extreme combination is listed (finished or with its reason).
+[ "$(tail -n +2 "$out/extremes/extremes.csv" | wc -l)" -eq 8 ] || fail "extremes rows"
+
+# Fig. 1: V is an integer ≥ V_min = −2 within ½ of U wherever U ≥ −3/2 (the terraced surface).
+awk -F, 'NF == 4 && NR > 1 {
+        if ($4 < -2 || $4 != int($4)) bad = 1
+        if ($3 >= -1.5 && ($4 - $3 > 0.5 + 1e-9 || $3 - $4 > 0.5 + 1e-9)) bad = 1
+    } END { exit bad }' "$out/fig1/fig1.csv" || fail "fig1 terraces"
+echo "quick pipeline OK"
