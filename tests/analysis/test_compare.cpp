@@ -6,6 +6,7 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <random>
+#include <unistd.h>
 
 using namespace terrace;
 using namespace terrace::analysis;
@@ -23,13 +24,16 @@ constexpr double tolSigma = 3.0;
 struct Runs : ::testing::Test {
     static fs::path root;
     static void SetUpTestSuite() {
-        root = fs::temp_directory_path() / "terrace_analysis_compare";
+        // One directory per process: ctest -j runs the tests of this suite side by side.
+        root =
+            fs::temp_directory_path() / ("terrace_analysis_compare_" + std::to_string(::getpid()));
         fs::remove_all(root);
         for (auto [name, seed] : {std::pair{"a", 101u}, std::pair{"b", 202u}})
             writeCorrelations(synthetic::ornsteinUhlenbeck(samples, bodies, interval, length, kT,
                                                            mass, decayRate, seed),
                               root / name);
     }
+    static void TearDownTestSuite() { fs::remove_all(root); }
     /// B's vacf.csv with its columns changed by f, written as a new file.
     static fs::path modified(const std::string& name, void (*f)(CsvTable&)) {
         CsvTable t = readCsv(root / "b" / "vacf.csv");

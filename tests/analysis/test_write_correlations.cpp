@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 using namespace terrace;
 using namespace terrace::analysis;
@@ -17,17 +18,24 @@ constexpr double roundOff = 1e-12;
 /// g over r ∈ [0.4, 0.5] L of randomly placed free rods: 1 within 5 of its quoted errors.
 constexpr double largeRSigmas = 5.0;
 
-fs::path freshDirectory(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("terrace_analysis_" + name);
-    fs::remove_all(dir);
-    return dir;
-}
+/// An empty scratch directory of this process (ctest -j runs tests side by side), removed again
+/// at the end of the test.
+struct ScratchDirectory {
+    fs::path path;
+    explicit ScratchDirectory(const std::string& name)
+        : path(fs::temp_directory_path() /
+               ("terrace_analysis_" + name + "_" + std::to_string(::getpid()))) {
+        fs::remove_all(path);
+    }
+    ~ScratchDirectory() { fs::remove_all(path); }
+};
 
 } // namespace
 
 TEST(WriteCorrelations, FreeRodsWriteFourFilesWithUnitCurvesAtZero) {
     const auto samples = synthetic::freeRotors(64, 200, 0.1, 25.0, 4.2, 18.0, 1.154, 11);
-    const fs::path dir = freshDirectory("rods");
+    const ScratchDirectory scratch("rods");
+    const fs::path& dir = scratch.path;
     const auto summary = writeCorrelations(samples, dir, {8, 0.0, 0.1});
 
     const auto rdf = readCsv(dir / "rdf.csv"), vacf = readCsv(dir / "vacf.csv"),
@@ -55,7 +63,8 @@ TEST(WriteCorrelations, FreeRodsWriteFourFilesWithUnitCurvesAtZero) {
 
 TEST(WriteCorrelations, SpheresGetNoOacfAndAStaleOneIsRemoved) {
     auto samples = synthetic::ornsteinUhlenbeck(40, 20, 0.1, 20.0, 4.2, 18.0, 2.0, 12);
-    const fs::path dir = freshDirectory("spheres");
+    const ScratchDirectory scratch("spheres");
+    const fs::path& dir = scratch.path;
     fs::create_directories(dir);
     std::ofstream(dir / "oacf.csv") << "t_ps,c1,c1_err,c2,c2_err\n0,1,0,1,0\n";
     const auto summary = writeCorrelations(samples, dir);
@@ -67,7 +76,8 @@ TEST(WriteCorrelations, SpheresGetNoOacfAndAStaleOneIsRemoved) {
 
 TEST(WriteCorrelations, ShortRunsUseFewerBlocks) {
     const auto samples = synthetic::freeRotors(6, 4, 0.1, 25.0, 4.2, 18.0, 1.154, 14);
-    const fs::path dir = freshDirectory("short");
+    const ScratchDirectory scratch("short");
+    const fs::path& dir = scratch.path;
     const auto summary = writeCorrelations(samples, dir);
     EXPECT_EQ(summary["blocks"], 3);
     EXPECT_EQ(summary["blocks_requested"], 8);
@@ -77,7 +87,8 @@ TEST(WriteCorrelations, ShortRunsUseFewerBlocks) {
 }
 
 TEST(WriteCorrelations, RejectsUnusableSamplesBeforeWritingAnything) {
-    const fs::path dir = freshDirectory("bad");
+    const ScratchDirectory scratch("bad");
+    const fs::path& dir = scratch.path;
     auto samples = synthetic::ornsteinUhlenbeck(10, 5, 0.1, 20.0, 4.2, 18.0, 2.0, 13);
     EXPECT_THROW(writeCorrelations(samples, dir, {1, 0.0, 0.05}), std::invalid_argument);
     EXPECT_THROW(writeCorrelations(samples, dir, {2, 0.0, 0.0}), std::invalid_argument);
