@@ -2,7 +2,7 @@
 // freeRotate call (one call per iteration, the state carried along so that successive calls
 // visit the whole orbit). The asymmetric top is measured on a generic orbit (theta series), a
 // near-separatrix orbit with 1 − m ≈ 1e-6 (Legendre form chosen automatically), and with each
-// angle method forced on the generic orbit.
+// angle method forced on the generic orbit, and as attitude(t) of an orbit prepared once.
 #include "core/asymmetric_top.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/sphere.hpp"
@@ -79,6 +79,20 @@ void BM_AsymmetricTopNearSeparatrix(benchmark::State& state) {
     asymmetric(state, nearSeparatrix, AsymmetricTop::AngleMethod::Automatic);
 }
 
+// Many times on one orbit (an event search): the orbit is prepared once outside the loop.
+void BM_AsymmetricTopPreparedAttitude(benchmark::State& state) {
+    const BodyParams p{18.0, Vec3(1.0, 2.0, 3.0)};
+    const AsymmetricTop::FreeRotation flight(topState(generic), p);
+    double t = 0.0;
+    for (auto _ : state) {
+        t += dt;
+        benchmark::DoNotOptimize(flight.attitude(t));
+    }
+    state.counters["ns_per_call"] =
+        benchmark::Counter(static_cast<double>(state.iterations()),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 } // namespace
 
 BENCHMARK(BM_Sphere);
@@ -88,4 +102,5 @@ BENCHMARK(BM_AsymmetricTopGeneric);
 BENCHMARK(BM_AsymmetricTopThetaSeries);
 BENCHMARK(BM_AsymmetricTopLegendrePi);
 BENCHMARK(BM_AsymmetricTopNearSeparatrix);
+BENCHMARK(BM_AsymmetricTopPreparedAttitude);
 BENCHMARK_MAIN();

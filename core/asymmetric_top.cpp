@@ -76,6 +76,8 @@ double sign(double x) {
     return x < 0.0 ? -1.0 : 1.0;
 }
 
+using LongVec3 = Eigen::Matrix<long double, 3, 1>;
+
 /// Axes reordered by a proper signed permutation P (rows ±unit vectors, det +1) so that I2 is the
 /// middle moment and m ∈ [0, 1): the third axis is the one L circulates about (REFERENCES.md step
 /// 1; for D = E2 I2 − L² < 0 the largest moment, for D > 0 the smallest).
@@ -84,8 +86,6 @@ struct Ordering {
     Vec3 I, L;
     double D = 0.0;
 };
-
-using LongVec3 = Eigen::Matrix<long double, 3, 1>;
 
 Ordering orderAxes(const LongVec3& Lbody, const Vec3& I) {
     int lo = 0, hi = 0;
@@ -114,26 +114,16 @@ Ordering orderAxes(const LongVec3& Lbody, const Vec3& I) {
 
 /// Constants of the orbit in the ordered frame (REFERENCES.md step 2, signs as derived there:
 /// ω1m has the sign of ω1(0), ω2m the opposite sign, ω3m the sign of ω3, which never changes).
-struct Orbit {
-    double I1, I2, I3, L;
-    double w1m, w2m, w3m, wp;
-    double m, m1;   // elliptic parameter and 1 − m, each to full relative precision
-    double n;       // characteristic of the Legendre form of ψ, depends on the moments only
-    bool principal; // L along a principal axis to within underflow
-};
-
-Orbit orbitOf(const Ordering& o) {
+/// Returns false if L lies along a principal axis (also to within underflow, where the formulas
+/// would divide by zero); the middle axis is D = 0 with L1 = L3 = 0, an equilibrium.
+bool orbitOf(const Ordering& o, detail::TopOrbit& b) {
     const double I1 = o.I[0], I2 = o.I[1], I3 = o.I[2];
     const double L1 = o.L[0], L2 = o.L[1], L3 = o.L[2];
     const double I13 = I1 - I3, I23 = I2 - I3, I21 = I2 - I1;
     const double L12 = L1 * L1 * I13 / I1 + L2 * L2 * I23 / I2; // L² − E2 I3, like-signed terms
     const double L23 = L2 * L2 * I21 / I2 - L3 * L3 * I13 / I3; // L² − E2 I1, like-signed terms
-    Orbit b{};
+    if (L12 == 0.0 || L23 == 0.0 || (L1 * L1 == 0.0 && L3 * L3 == 0.0)) return false;
     b.I1 = I1, b.I2 = I2, b.I3 = I3, b.L = o.L.norm();
-    // Along an axis (also to within underflow, where the formulas below would divide by zero);
-    // the middle axis is D = 0 with L1 = L3 = 0, an equilibrium on the separatrix.
-    b.principal = L12 == 0.0 || L23 == 0.0 || (L1 * L1 == 0.0 && L3 * L3 == 0.0);
-    if (b.principal) return b;
     const double s1 = sign(L1), s3 = sign(L3);
     b.w1m = s1 * std::sqrt(L12 / (I1 * I13));
     b.w2m = -s1 * std::sqrt(L12 / (I2 * I23));
@@ -142,7 +132,7 @@ Orbit orbitOf(const Ordering& o) {
     b.m = I21 * L12 / (I23 * L23);
     b.m1 = (I3 - I1) * o.D / (I23 * L23); // 1 − m without cancellation
     b.n = I3 * I21 / (I1 * I23);
-    return b;
+    return true;
 }
 
 /// The rotation M(ℓ) whose third column is ℓ = Lb/|Lb| (REFERENCES.md step 5).
@@ -154,113 +144,32 @@ Mat3 frameOf(const Vec3& Lb) {
     return M;
 }
 
+/// R_z(ψ) of REFERENCES.md step 5 (maps the rotated L-frame back by −ψ about z).
+Mat3 rotationZ(double psi) {
+    const double c = std::cos(psi), s = std::sin(psi);
+    Mat3 R;
+    R << c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0;
+    return R;
+}
+
 /// ∫₀^u du' / (1 − n sn²(u'|m)) in Carlson form for u = r + 2K j, r ∈ [−K, K]: the integrand
 /// has period 2K, and over one period the integral is 2 Π(n|m) = 2 [RF(0, m1, 1) + n/3 RJ(0, m1,
 /// 1, 1 − n)] (DLMF §19.25(i) with φ = am u, cos φ = cn u, sqrt(1 − m sin²φ) = dn u).
-double legendreW(const detail::JacobiElliptic::Values& v, double j, double n, double m1) {
-    using boost::math::ellint_rf;
-    using boost::math::ellint_rj;
+double completePi(double n, double m1) {
+    return boost::math::ellint_rf(0.0, m1, 1.0) +
+           n / 3.0 * boost::math::ellint_rj(0.0, m1, 1.0, 1.0 - n);
+}
+
+double legendreW(const detail::JacobiElliptic::Values& v, double j, double n, double Pi) {
     const double c2 = v.cn * v.cn, d2 = v.dn * v.dn, s = v.sn;
-    double w =
-        s * ellint_rf(c2, d2, 1.0) + n / 3.0 * s * s * s * ellint_rj(c2, d2, 1.0, 1.0 - n * s * s);
-    if (j != 0.0)
-        w += 2.0 * j * (ellint_rf(0.0, m1, 1.0) + n / 3.0 * ellint_rj(0.0, m1, 1.0, 1.0 - n));
-    return w;
+    return s * boost::math::ellint_rf(c2, d2, 1.0) +
+           n / 3.0 * s * s * s * boost::math::ellint_rj(c2, d2, 1.0, 1.0 - n * s * s) +
+           2.0 * j * Pi;
 }
 
-/// The van Zon–Schofield theta-function quantities of one orbit (REFERENCES.md step 4), with
-/// q = e^{−a}, ξ = e^{b}; the terms are formed as exponentials of sums to avoid inf · 0.
-struct ThetaSeries {
-    double K = 0.0, a = 0.0, b = 0.0, A2 = 0.0;
-    int termsA2 = 0;
-
-    ThetaSeries() = default;
-    ThetaSeries(const Orbit& o, const detail::JacobiElliptic& jac) : K(jac.K()) {
-        const double Kc = detail::JacobiElliptic(o.m1, o.m).K(); // K' = K(1 − m)
-        a = pi * Kc / K;
-        // η = sgn(ω3) K' − F(arcsin(I3 |ω3m| / L) | 1 − m) = sgn(ω3) F(χ | 1 − m) by Legendre's
-        // complement relation, with tan²χ = I1 (I3 − I2) / (I3 (I2 − I1)) independent of the state.
-        const double wA = o.I1 * (o.I3 - o.I2), wB = o.I3 * (o.I2 - o.I1);
-        const double sin2 = wA / (wA + wB), cos2 = wB / (wA + wB);
-        const double F = std::sqrt(sin2) * boost::math::ellint_rf(cos2, cos2 + o.m * sin2, 1.0);
-        b = sign(o.w3m) * pi * F / K;
-        const double decay = 2.0 * a - std::abs(b); // A2 terms fall like e^{−n(2a − |b|)}
-        termsA2 = static_cast<int>(std::ceil(-std::log(seriesTolerance) / decay));
-        double sum = 0.0;
-        for (int k = 1; k <= termsA2; ++k)
-            sum += (std::exp(k * (b - 2.0 * a)) - std::exp(-k * (b + 2.0 * a))) /
-                   -std::expm1(-2.0 * k * a);
-        A2 = o.L / o.I1 + pi * o.wp / (2.0 * K) / std::tanh(0.5 * b) - pi * o.wp / K * sum;
-    }
-
-    /// Continuous arg of the theta function at u = r + 2K j. For b > 0 the series (scaled by
-    /// ξ^{−1/2}) stays in the lower half plane on r ∈ [−K, K] and turns by +π per period 2K;
-    /// b < 0 is its complex conjugate.
-    double arg(double r, double j) const {
-        const double x = pi * r / (2.0 * K), B = std::abs(b);
-        double re = 0.0, im = 0.0;
-        for (int k = 0;; ++k) {
-            const double base = -a * k * (k + 1.0), alt = (k % 2 == 0) ? 1.0 : -1.0;
-            const double ep = std::exp(base + k * B), em = std::exp(base - (k + 1.0) * B);
-            re += alt * (ep + em) * std::sin((2 * k + 1) * x);
-            im -= alt * (ep - em) * std::cos((2 * k + 1) * x);
-            if (ep < seriesTolerance) break;
-        }
-        return sign(b) * (std::atan2(re, -im) - 0.5 * pi + j * pi);
-    }
-};
-
-void rotateAboutPrincipalAxis(Mat3& A, const Vec3& Lbody, const Vec3& I, double t) {
-    int k = 0;
-    for (int i = 1; i < 3; ++i)
-        if (std::abs(Lbody[i]) > std::abs(Lbody[k])) k = i;
-    // dA/dt = −[ω]× A with ω = ω_k e_k constant: A(t) = exp(−t [ω]×) A(0).
-    A = rotationMatrix(Vec3::Unit(k), -Lbody[k] / I[k] * t) * A;
-}
-
-/// The separatrix m = 1 itself: sn = tanh, cn = dn = sech, and ∫ du / (1 − n tanh² u) =
-/// (u + √ν atan(√ν tanh u)) / (1 + ν), ν = −n > 0.
-void rotateOnSeparatrix(Mat3& A, const Orbit& o, const Vec3& L0, double t) {
-    const double eps = std::asinh((L0[1] / (o.I2 * o.w2m)) / (L0[0] / (o.I1 * o.w1m)));
-    const double u = o.wp * t + eps, nu = -o.n, rnu = std::sqrt(nu);
-    auto W = [&](double x) { return (x + rnu * std::atan(rnu * std::tanh(x))) / (1.0 + nu); };
-    const double psi = o.L * t / o.I3 + (o.L / o.I1 - o.L / o.I3) * (W(u) - W(eps)) / o.wp;
-    const double sech = 1.0 / std::cosh(u);
-    const Vec3 Lt(o.I1 * o.w1m * sech, o.I2 * o.w2m * std::tanh(u), o.I3 * o.w3m * sech);
-    Mat3 Rz;
-    Rz << std::cos(psi), std::sin(psi), 0.0, -std::sin(psi), std::cos(psi), 0.0, 0.0, 0.0, 1.0;
-    A = frameOf(Lt) * Rz * frameOf(L0).transpose() * A;
-}
-
-void rotateElliptic(Mat3& A, const Orbit& o, const Vec3& L0, double t,
-                    AsymmetricTop::AngleMethod method) {
-    const detail::JacobiElliptic jac(o.m, o.m1);
-    // ε from sn ε = ω2/ω2m, cn ε = ω1/ω1m ≥ 0, dn ε = ω3/ω3m: ε = F(am ε | m) in Carlson form.
-    const double snE = L0[1] / (o.I2 * o.w2m), cnE = L0[0] / (o.I1 * o.w1m);
-    const double dnE = L0[2] / (o.I3 * o.w3m);
-    const double eps = snE * boost::math::ellint_rf(cnE * cnE, dnE * dnE, 1.0);
-    const auto red = jac.reduce(o.wp * t + eps);
-    detail::JacobiElliptic::Values v = jac.reduced(red.r);
-
-    double psi;
-    const bool useTheta = method != AsymmetricTop::AngleMethod::LegendrePi;
-    const ThetaSeries ts = useTheta ? ThetaSeries(o, jac) : ThetaSeries{};
-    if (useTheta && (method == AsymmetricTop::AngleMethod::ThetaSeries ||
-                     ts.termsA2 <= AsymmetricTop::maxThetaTerms)) {
-        psi = ts.A2 * t - (ts.arg(red.r, red.j) - ts.arg(eps, 0.0));
-    } else {
-        const double dW =
-            legendreW(v, red.j, o.n, o.m1) - legendreW({snE, cnE, dnE}, 0.0, o.n, o.m1);
-        psi = o.L * t / o.I3 + (o.L / o.I1 - o.L / o.I3) * dW / o.wp;
-    }
-    if (std::fmod(red.j, 2.0) != 0.0) {
-        v.sn = -v.sn;
-        v.cn = -v.cn;
-    }
-    const Vec3 Lt(o.I1 * o.w1m * v.cn, o.I2 * o.w2m * v.sn, o.I3 * o.w3m * v.dn);
-    Mat3 Rz;
-    Rz << std::cos(psi), std::sin(psi), 0.0, -std::sin(psi), std::cos(psi), 0.0, 0.0, 0.0, 1.0;
-    A = frameOf(Lt) * Rz * frameOf(L0).transpose() * A;
+/// Exact rotation when L is along principal axis k: dA/dt = −[ω]× A with ω = ω_k e_k constant.
+Mat3 principalRotation(int k, double omega, double t) {
+    return rotationMatrix(Vec3::Unit(k), -omega * t);
 }
 
 } // namespace
@@ -268,38 +177,145 @@ void rotateElliptic(Mat3& A, const Orbit& o, const Vec3& L0, double t,
 namespace detail {
 
 double complementaryEllipticParameter(const Vec3& Lbody, const Vec3& I) {
-    return orbitOf(orderAxes(Lbody.cast<long double>(), I)).m1;
+    TopOrbit o;
+    const Ordering ord = orderAxes(Lbody.cast<long double>(), I);
+    return orbitOf(ord, o) ? o.m1 : (ord.D == 0.0 ? 0.0 : 1.0);
 }
 
 } // namespace detail
+
+AsymmetricTop::FreeRotation::FreeRotation(const TopState& s, const BodyParams& p,
+                                          AngleMethod method)
+    : A0_(s.A), L_(s.L) {
+    const Vec3& I = p.inertia;
+    if (s.L.squaredNorm() == 0.0) return; // Kind::Still
+    // Two equal moments: the symmetric (or spherical) top, unique axis the odd one out.
+    if (I[0] == I[1] || I[1] == I[2] || I[0] == I[2]) {
+        kind_ = Kind::Symmetric;
+        axis_ = I[0] == I[1] ? 2 : (I[1] == I[2] ? 0 : 1);
+        Iaxis_ = I[axis_];
+        Iperp_ = I[(axis_ + 1) % 3];
+        return;
+    }
+    const LongVec3 LbodyPrecise = s.A.cast<long double>() * s.L.cast<long double>();
+    const Ordering ord = orderAxes(LbodyPrecise, I);
+    if (!orbitOf(ord, o_)) {
+        kind_ = Kind::PrincipalAxis;
+        const Vec3 Lbody = LbodyPrecise.cast<double>();
+        Lbody.cwiseAbs().maxCoeff(&axis_);
+        omegaAxis_ = Lbody[axis_] / I[axis_];
+        return;
+    }
+    P_ = ord.P;
+    B0_ = frameOf(ord.L).transpose() * ord.P * s.A;
+    const Vec3& L0 = ord.L;
+    // sn ε = ω2/ω2m, cn ε = ω1/ω1m ≥ 0, dn ε = ω3/ω3m.
+    const double snE = L0[1] / (o_.I2 * o_.w2m), cnE = L0[0] / (o_.I1 * o_.w1m);
+    const double dnE = L0[2] / (o_.I3 * o_.w3m);
+    if (o_.m1 == 0.0) {
+        // On the separatrix sn = tanh, cn = sech: ε = asinh(sn ε / cn ε).
+        kind_ = Kind::Separatrix;
+        eps_ = std::asinh(snE / cnE);
+        const double rnu = std::sqrt(-o_.n);
+        W0_ = (eps_ + rnu * std::atan(rnu * std::tanh(eps_))) / (1.0 - o_.n);
+        return;
+    }
+    kind_ = Kind::Elliptic;
+    jac_ = detail::JacobiElliptic(o_.m, o_.m1);
+    K_ = jac_.K();
+    eps_ = snE * boost::math::ellint_rf(cnE * cnE, dnE * dnE, 1.0); // ε = F(am ε | m)
+    if (method != AngleMethod::LegendrePi) {
+        // Theta constants (REFERENCES.md step 4). η = sgn(ω3) K' − F(arcsin(I3|ω3m|/L) | 1 − m)
+        // = sgn(ω3) F(χ | 1 − m) by Legendre's complement relation, with
+        // tan²χ = I1 (I3 − I2) / (I3 (I2 − I1)) independent of the state.
+        a_ = pi * detail::JacobiElliptic(o_.m1, o_.m).K() / K_;
+        const double wA = o_.I1 * (o_.I3 - o_.I2), wB = o_.I3 * (o_.I2 - o_.I1);
+        const double sin2 = wA / (wA + wB), cos2 = wB / (wA + wB);
+        const double F = std::sqrt(sin2) * boost::math::ellint_rf(cos2, cos2 + o_.m * sin2, 1.0);
+        b_ = sign(o_.w3m) * pi * F / K_;
+        // A2's terms fall like e^{−k(2a − |b|)}: the count that reaches seriesTolerance.
+        const int terms =
+            static_cast<int>(std::ceil(-std::log(seriesTolerance) / (2.0 * a_ - std::abs(b_))));
+        theta_ = method == AngleMethod::ThetaSeries || terms <= maxThetaTerms;
+        if (theta_) {
+            double sum = 0.0;
+            for (int k = 1; k <= terms; ++k)
+                sum += (std::exp(k * (b_ - 2.0 * a_)) - std::exp(-k * (b_ + 2.0 * a_))) /
+                       -std::expm1(-2.0 * k * a_);
+            A2_ = o_.L / o_.I1 + pi * o_.wp / (2.0 * K_) / std::tanh(0.5 * b_) -
+                  pi * o_.wp / K_ * sum;
+            arg0_ = thetaArg(eps_, 0.0);
+            return;
+        }
+    }
+    Pi_ = completePi(o_.n, o_.m1);
+    W0_ = legendreW({snE, cnE, dnE}, 0.0, o_.n, Pi_);
+}
+
+/// Continuous arg of the theta function at u = r + 2K j. For b > 0 the series (scaled by ξ^{−1/2})
+/// stays in the lower half plane on r ∈ [−K, K] and turns by +π per period 2K; b < 0 is its
+/// complex conjugate.
+double AsymmetricTop::FreeRotation::thetaArg(double r, double j) const {
+    const double x = pi * r / (2.0 * K_), B = std::abs(b_);
+    double re = 0.0, im = 0.0;
+    for (int k = 0;; ++k) {
+        const double base = -a_ * k * (k + 1.0), alt = (k % 2 == 0) ? 1.0 : -1.0;
+        const double ep = std::exp(base + k * B), em = std::exp(base - (k + 1.0) * B);
+        re += alt * (ep + em) * std::sin((2 * k + 1) * x);
+        im -= alt * (ep - em) * std::cos((2 * k + 1) * x);
+        if (ep < seriesTolerance) break;
+    }
+    return sign(b_) * (std::atan2(re, -im) - 0.5 * pi + j * pi);
+}
+
+Mat3 AsymmetricTop::FreeRotation::attitude(double t) const {
+    Mat3 A;
+    switch (kind_) {
+    case Kind::Still:
+        return A0_;
+    case Kind::Symmetric:
+        A = A0_;
+        detail::rotateSymmetricTop(A, L_, Iperp_, Iaxis_, axis_, t);
+        return A;
+    case Kind::PrincipalAxis:
+        A = principalRotation(axis_, omegaAxis_, t) * A0_;
+        break;
+    case Kind::Separatrix: {
+        const double u = o_.wp * t + eps_, rnu = std::sqrt(-o_.n);
+        const double W = (u + rnu * std::atan(rnu * std::tanh(u))) / (1.0 - o_.n);
+        const double psi = o_.L * t / o_.I3 + (o_.L / o_.I1 - o_.L / o_.I3) * (W - W0_) / o_.wp;
+        const double sech = 1.0 / std::cosh(u);
+        const Vec3 Lt(o_.I1 * o_.w1m * sech, o_.I2 * o_.w2m * std::tanh(u), o_.I3 * o_.w3m * sech);
+        A = P_.transpose() * frameOf(Lt) * rotationZ(psi) * B0_;
+        break;
+    }
+    case Kind::Elliptic: {
+        const auto red = jac_.reduce(o_.wp * t + eps_);
+        detail::JacobiElliptic::Values v = jac_.reduced(red.r);
+        const double psi = theta_ ? A2_ * t - (thetaArg(red.r, red.j) - arg0_)
+                                  : o_.L * t / o_.I3 + (o_.L / o_.I1 - o_.L / o_.I3) *
+                                                           (legendreW(v, red.j, o_.n, Pi_) - W0_) /
+                                                           o_.wp;
+        if (std::fmod(red.j, 2.0) != 0.0) {
+            v.sn = -v.sn;
+            v.cn = -v.cn;
+        }
+        const Vec3 Lt(o_.I1 * o_.w1m * v.cn, o_.I2 * o_.w2m * v.sn, o_.I3 * o_.w3m * v.dn);
+        A = P_.transpose() * frameOf(Lt) * rotationZ(psi) * B0_;
+        break;
+    }
+    }
+    detail::reorthonormalise(A);
+    return A;
+}
 
 void AsymmetricTop::freeRotate(State& b, const BodyParams& p, double t) {
     freeRotate(b, p, t, AngleMethod::Automatic);
 }
 
 void AsymmetricTop::freeRotate(State& b, const BodyParams& p, double t, AngleMethod method) {
-    const Vec3& I = p.inertia;
-    if (t == 0.0 || b.L.squaredNorm() == 0.0) return;
-    // Two equal moments: the symmetric (or spherical) top, unique axis the odd one out.
-    if (I[0] == I[1]) return detail::rotateSymmetricTop(b.A, b.L, I[0], I[2], 2, t);
-    if (I[1] == I[2]) return detail::rotateSymmetricTop(b.A, b.L, I[1], I[0], 0, t);
-    if (I[0] == I[2]) return detail::rotateSymmetricTop(b.A, b.L, I[0], I[1], 1, t);
-
-    const LongVec3 LbodyPrecise = b.A.cast<long double>() * b.L.cast<long double>();
-    const Vec3 Lbody = LbodyPrecise.cast<double>();
-    const Ordering ord = orderAxes(LbodyPrecise, I);
-    const Orbit orbit = orbitOf(ord);
-    if (orbit.principal) {
-        rotateAboutPrincipalAxis(b.A, Lbody, I, t);
-    } else {
-        Mat3 A = ord.P * b.A; // lab -> ordered body frame
-        if (orbit.m1 == 0.0)
-            rotateOnSeparatrix(A, orbit, ord.L, t);
-        else
-            rotateElliptic(A, orbit, ord.L, t, method);
-        b.A = ord.P.transpose() * A;
-    }
-    detail::reorthonormalise(b.A);
+    if (t == 0.0) return;
+    b.A = FreeRotation(b, p, method).attitude(t);
 }
 
 } // namespace terrace

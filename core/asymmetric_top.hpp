@@ -32,6 +32,11 @@ struct AsymmetricTop : TopCommon {
     /// Exact torque-free rotation over time t (any sign). Implemented in asymmetric_top.cpp.
     static void freeRotate(State& b, const BodyParams& p, double t);
     static void freeRotate(State& b, const BodyParams& p, double t, AngleMethod method);
+
+    /// The free rotation from one state, prepared once (ordering, K, K', ε, theta constants), for
+    /// evaluating the attitude at many times, e.g. in an event search. freeRotate(b, p, t) is
+    /// b.A = FreeRotation(b, p).attitude(t).
+    class FreeRotation;
 };
 
 namespace detail {
@@ -42,6 +47,7 @@ namespace detail {
 /// m → 1. The table depends on m only: build it once per orbit.
 class JacobiElliptic {
 public:
+    JacobiElliptic() : JacobiElliptic(0.0, 1.0) {}
     JacobiElliptic(double m, double m1);
     double K() const { return K_; } // complete elliptic integral of the first kind K(m)
     double m() const { return m_; }
@@ -67,11 +73,46 @@ private:
     std::array<double, maxLevels> a_{}, c_{};
 };
 
+/// Constants of the free orbit in the reordered principal frame (see asymmetric_top.cpp).
+struct TopOrbit {
+    double I1 = 0, I2 = 0, I3 = 0, L = 0;     // ordered moments, |L|
+    double w1m = 0, w2m = 0, w3m = 0, wp = 0; // amplitudes of ω1, ω2, ω3 and the rate of u
+    double m = 0, m1 = 1;                     // elliptic parameter and 1 − m
+    double n = 0;                             // characteristic of the Legendre form of ψ
+};
+
 /// The complementary elliptic parameter 1 − m of the free orbit of body angular momentum Lbody
 /// for principal moments I (distinct), after the reordering of the axes that makes m < 1.
 /// Zero on the separatrix (rotation about the middle axis and its homoclinic orbits).
 double complementaryEllipticParameter(const Vec3& Lbody, const Vec3& I);
 
 } // namespace detail
+
+class AsymmetricTop::FreeRotation {
+public:
+    FreeRotation(const TopState& s, const BodyParams& p,
+                 AngleMethod method = AngleMethod::Automatic);
+    /// The attitude A(t) (lab -> body) after free rotation over time t (any sign).
+    Mat3 attitude(double t) const;
+    /// Whether ψ is taken from the theta series (else the Legendre form or a closed form).
+    bool usesThetaSeries() const { return kind_ == Kind::Elliptic && theta_; }
+
+private:
+    enum class Kind { Still, Symmetric, PrincipalAxis, Separatrix, Elliptic };
+    Kind kind_ = Kind::Still;
+    Mat3 A0_; // initial attitude
+    Vec3 L_;  // lab angular momentum
+    double Iperp_ = 0, Iaxis_ = 0, omegaAxis_ = 0;
+    int axis_ = 2; // symmetric top's unique axis, or the principal axis of rotation
+    Mat3 P_, B0_;  // reordering, and M(ℓ(0))ᵀ P A(0)
+    detail::TopOrbit o_;
+    detail::JacobiElliptic jac_;
+    double eps_ = 0; // initial elliptic argument
+    bool theta_ = false;
+    double K_ = 0, a_ = 0, b_ = 0, A2_ = 0, arg0_ = 0; // theta series: q = e^−a, ξ = e^b
+    double Pi_ = 0, W0_ = 0;                           // Legendre form: Π(n|m) and W(ε)
+
+    double thetaArg(double r, double j) const;
+};
 
 } // namespace terrace

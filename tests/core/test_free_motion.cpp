@@ -481,6 +481,27 @@ TEST(AsymmetricTop, CompositionAndInversion) {
               2.0 * roundoffTol);
 }
 
+TEST(AsymmetricTop, PreparedRotationEqualsFreeRotate) {
+    std::mt19937_64 rng(31);
+    const Vec3 I(1.0, 2.0, 3.0);
+    const BodyParams p = params(I);
+    for (const Vec3& Lb : {bodyLs[2], nearSeparatrixL(I, 1e-6), nearSeparatrixL(I, 1e-12),
+                           Vec3(0.0, 0.0, 1.3), Vec3(1.0, 0.5, 1.0)}) {
+        const TopState s = topWithBodyL(randomRotation(rng), Lb);
+        const AsymmetricTop::FreeRotation flight(s, p);
+        for (double t : {0.01, -2.5, 37.0})
+            EXPECT_EQ(flight.attitude(t), asym(s, p, t).A);
+    }
+    // Automatic: the theta series while its A2 sum needs at most maxThetaTerms terms (for these
+    // moments about 4.8 K(m) terms, i.e. down to 1 − m ≈ 5e-11), the Legendre form beyond.
+    const auto flight = [&](const Vec3& Lb) {
+        return AsymmetricTop::FreeRotation(topWithBodyL(Mat3::Identity(), Lb), p);
+    };
+    EXPECT_TRUE(flight(bodyLs[2]).usesThetaSeries());
+    EXPECT_TRUE(flight(nearSeparatrixL(I, 1e-6)).usesThetaSeries());
+    EXPECT_FALSE(flight(nearSeparatrixL(I, 1e-12)).usesThetaSeries());
+}
+
 TEST(AsymmetricTop, ConservationOverHundredsOfPeriods) {
     std::mt19937_64 rng(29);
     const Vec3 I(1.0, 2.0, 3.0);
