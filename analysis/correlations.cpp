@@ -14,6 +14,10 @@ namespace {
 /// g(r) far from a body should be 1: average over the outer fifth of the range, r ∈ [0.4, 0.5] L.
 constexpr double largeRFraction = 0.4;
 
+} // namespace
+
+namespace detail {
+
 nlohmann::json rdfSummary(const RadialDistribution& rdf, double boxLength) {
     const double from = largeRFraction * boxLength;
     double sum = 0.0, var = 0.0;
@@ -31,16 +35,16 @@ nlohmann::json rdfSummary(const RadialDistribution& rdf, double boxLength) {
     return j;
 }
 
-/// D = (1/3) ∫₀^tmax ⟨v(0)·v(t)⟩ dt by the trapezoid rule, Å²/ps; truncated at the last lag.
-double greenKuboDiffusion(const SampledCurve& vacf, double meanSquareVelocity) {
+double greenKuboDiffusion(const std::vector<double>& tPs, const std::vector<double>& c,
+                          double meanSquareVelocity) {
     double integral = 0.0; // ∫ c dt in ps
-    for (std::size_t k = 1; k < vacf.tPs.size(); ++k)
-        integral += 0.5 * (vacf.value[k] + vacf.value[k - 1]) * (vacf.tPs[k] - vacf.tPs[k - 1]);
+    for (std::size_t k = 1; k < tPs.size(); ++k)
+        integral += 0.5 * (c[k] + c[k - 1]) * (tPs[k] - tPs[k - 1]);
     const double v2 = meanSquareVelocity / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
     return v2 * integral / 3.0;
 }
 
-} // namespace
+} // namespace detail
 
 nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
                                  const std::filesystem::path& dir, const Options& options) {
@@ -91,17 +95,18 @@ nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
         {"blocks_requested", options.blocks},
         {"msd_blocks_of_bodies", msdBlocks},
         {"max_lag_ps", maxLag * dtPs},
-        {"rdf", rdfSummary(rdf, samples.front().boxLength)},
+        {"rdf", detail::rdfSummary(rdf, samples.front().boxLength)},
         {"vacf", {{"c0", vacf.value.front()}, {"mean_square_velocity_angstrom2_per_ps2", v2ps}}}};
     if (rotating)
         summary["oacf"] = {{"c1_0", oacf.c1.value.front()}, {"c2_0", oacf.c2.value.front()}};
     else
         summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
-    summary["diffusion"] = {{"einstein_angstrom2_per_ps", d.coefficient},
-                            {"einstein_err", d.err},
-                            {"fit_from_ps", d.fromPs},
-                            {"fit_to_ps", d.toPs},
-                            {"green_kubo_angstrom2_per_ps", greenKuboDiffusion(vacf, v2)}};
+    summary["diffusion"] = {
+        {"einstein_angstrom2_per_ps", d.coefficient},
+        {"einstein_err", d.err},
+        {"fit_from_ps", d.fromPs},
+        {"fit_to_ps", d.toPs},
+        {"green_kubo_angstrom2_per_ps", detail::greenKuboDiffusion(vacf.tPs, vacf.value, v2)}};
     return summary;
 }
 
