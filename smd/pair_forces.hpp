@@ -8,6 +8,7 @@
 #include "smd/neighbour_list.hpp"
 #include "smd/pair_kernels.hpp"
 #include "smd/smoothed_cutoff.hpp"
+#include <array>
 #include <span>
 #include <vector>
 
@@ -31,37 +32,54 @@ struct Forces {
 /// Accumulates every listed pair within r_u into out, per list slot. x[a] = r - list.offset[a]
 /// for the body in slot a; axis is read only for orientational potentials.
 template <PairPotential P>
-[[gnu::flatten]] void accumulateListedPairs(Forces& out, const P& potential,
-                                            const SmoothedCutoff& cut, const NeighbourList& list,
+[[gnu::flatten]] void accumulateListedPairs(Forces& out, const P& potentialIn,
+                                            const SmoothedCutoff& cutIn, const NeighbourList& list,
                                             std::span<const Vec3> x, std::span<const Vec3> axis) {
+    using Kernel = PairKernel<P>;
+    // Local copies and raw pointers: the force stores below could otherwise alias the parameters
+    // and the vectors' bookkeeping, forcing reloads in every iteration.
+    const P potential = potentialIn;
+    const SmoothedCutoff cut = cutIn;
+    const std::array<Vec3, 27> shift = list.imageShift;
     const double outer2 = cut.outer * cut.outer;
     const Vec3 noAxis = Vec3::UnitZ();
+    const std::size_t* start = list.start.data();
+    const std::uint32_t* entry = list.entry.data();
+    const Vec3* xs = x.data();
+    const Vec3* axes = axis.data();
+    Vec3* force = out.force.data();
+    Vec3* torque = out.torque.data();
     double u = 0.0;
     long evaluations = 0;
     const std::size_t n = x.size();
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec3 xi = x[i];
-        const Vec3& si = P::orientational ? axis[i] : noAxis;
+        const Vec3 xi = xs[i];
+        const Vec3 si = P::orientational ? axes[i] : noAxis;
         Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
-        for (std::size_t k = list.start[i]; k < list.start[i + 1]; ++k) {
-            const std::uint32_t e = list.entry[k];
+        const std::size_t end = start[i + 1];
+        for (std::size_t k = start[i]; k < end; ++k) {
+            const std::uint32_t e = entry[k];
             const std::size_t j = e >> NeighbourList::imageBits;
-            const Vec3 rij = xi - x[j] + list.imageShift[e & NeighbourList::imageMask];
+            const Vec3 rij = xi - xs[j] + shift[e & NeighbourList::imageMask];
             const double r2 = rij.squaredNorm();
-            if (r2 >= outer2) continue;
-            const Vec3& sj = P::orientational ? axis[j] : noAxis;
-            const PairForce f = PairKernel<P>::evaluate(potential, cut, rij, r2, si, sj);
-            ++evaluations;
+            if constexpr (Kernel::evaluatesBeyondCutoff) {
+                evaluations += r2 < outer2;
+            } else {
+                if (r2 >= outer2) continue;
+                ++evaluations;
+            }
+            const Vec3 sj = P::orientational ? axes[j] : noAxis;
+            const auto f = Kernel::evaluate(potential, cut, rij, r2, si, sj);
             u += f.U;
             fi += f.F;
-            out.force[j] -= f.F;
+            force[j] -= f.F;
             if constexpr (P::orientational) {
                 ti += f.tauI;
-                out.torque[j] += f.tauJ;
+                torque[j] += f.tauJ;
             }
         }
-        out.force[i] += fi;
-        if constexpr (P::orientational) out.torque[i] += ti;
+        force[i] += fi;
+        if constexpr (P::orientational) torque[i] += ti;
     }
     out.potential += u;
     out.evaluations += evaluations;

@@ -2,10 +2,10 @@
 // The smoothed pair interaction as the SMD pair loop evaluates it, from the squared separation
 // r² (Å²) that the loop already has for its cutoff test. The general kernel calls the potential's
 // own evaluate() and smoothed() (smoothed_cutoff.hpp). Plain Lennard-Jones has a cheaper exact
-// form that needs no square root inside r_l and one division per pair:
+// form with one division per pair and a square root only between r_l and r_u:
 //     s6 = (σ²/r²)³,   U = 4ε(s6² - s6),   F_ij = 24ε(2 s6² - s6)/r² · r_ij,
 // the formulas of core/lj_potential.hpp rearranged (test_pair_kernels.cpp checks that both agree
-// to round-off); beyond r_l the switch g(r) and the -U g'(r) r̂ term are applied as in smoothed().
+// to round-off), with the switch g(r) and the -U g'(r) r̂ term of smoothed().
 // Units: Å, kJ/mol, kJ/mol/Å.
 #include "core/lj_potential.hpp"
 #include "smd/smoothed_cutoff.hpp"
@@ -15,30 +15,39 @@ namespace terrace::smd {
 
 /// General kernel: any PairPotential.
 template <PairPotential P> struct PairKernel {
+    static constexpr bool evaluatesBeyondCutoff = false; // the loop skips pairs beyond r_u
+
     static PairForce evaluate(const P& potential, const SmoothedCutoff& cut, const Vec3& rij,
                               double r2, const Vec3& si, const Vec3& sj) {
         return smoothed(potential.evaluate(rij, si, sj), rij, std::sqrt(r2), cut);
     }
 };
 
-/// Lennard-Jones spheres: energy and force from r² directly.
+/// A central force without torques: all a sphere pair needs, and cheaper to build in the pair
+/// loop than a PairForce with its zeroed torques.
+struct CentralForce {
+    double U;
+    Vec3 F;
+};
+
+/// Lennard-Jones spheres: energy and force from r² directly; the square root only in the switch.
 template <> struct PairKernel<LJPotential> {
-    static PairForce evaluate(const LJPotential& lj, const SmoothedCutoff& cut, const Vec3& rij,
-                              double r2, const Vec3&, const Vec3&) {
+    static constexpr bool evaluatesBeyondCutoff = false;
+
+    static CentralForce evaluate(const LJPotential& lj, const SmoothedCutoff& cut, const Vec3& rij,
+                                 double r2, const Vec3&, const Vec3&) {
         const double inv2 = 1.0 / r2;
         const double s2 = lj.sigma * lj.sigma * inv2;
         const double s6 = s2 * s2 * s2;
         double u = 4.0 * lj.epsilon * s6 * (s6 - 1.0);
         double forceOverR = 24.0 * lj.epsilon * s6 * (2.0 * s6 - 1.0) * inv2;
+        // A branch, not a clamped t in [0, 1] for every pair: measured faster in the pair loop.
         if (r2 > cut.inner * cut.inner) { // in the switch: g U, g F - U g' r̂
-            const double r = std::sqrt(r2);
-            forceOverR = cut.switching(r) * forceOverR - u * cut.switchingSlope(r) / r;
-            u *= cut.switching(r);
+            const double r = std::sqrt(r2), g = cut.switching(r);
+            forceOverR = g * forceOverR - u * cut.switchingSlope(r) * (r * inv2);
+            u *= g;
         }
-        PairForce f;
-        f.U = u;
-        f.F = forceOverR * rij;
-        return f;
+        return {u, forceOverR * rij};
     }
 };
 
