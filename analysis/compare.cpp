@@ -15,6 +15,9 @@ namespace {
 
 /// Points with zero combined error must agree to this relative round-off (e.g. VACF(0) = 1).
 constexpr double exactRelativeTolerance = 1e-9;
+/// Error bars this small relative to the value are round-off of an exact point (OACF(0) = 1
+/// comes out with err ~1e-17): such points are judged as exact, not in units of their "error".
+constexpr double roundOffSigma = 1e-12;
 /// A's x lies "inside" B's range up to this fraction of B's span (grids written from the same
 /// sample interval differ in the last digits only).
 constexpr double gridTolerance = 1e-9;
@@ -126,14 +129,15 @@ Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::pat
         ++r.points;
         const double sigma = std::hypot(ea, eb), diff = std::abs(ya - yb);
         double z = 0.0;
-        if (sigma > 0.0) {
+        const double scale = std::max({1.0, std::abs(ya), std::abs(yb)});
+        if (sigma > roundOffSigma * scale) {
             const double nu = sigma * sigma * sigma * sigma /
                               ((ea * ea * ea * ea + eb * eb * eb * eb) / errorDegreesOfFreedom);
             rawMax = std::max(rawMax, diff / sigma);
             z = normalEquivalent(diff / sigma, nu);
             chi2 += z * z, ++dof;
             if (std::isfinite(z)) signedZ.push_back(ya >= yb ? z : -z);
-        } else if (diff > exactRelativeTolerance * std::max({1.0, std::abs(ya), std::abs(yb)})) {
+        } else if (diff > exactRelativeTolerance * scale) {
             z = std::numeric_limits<double>::infinity(), exactMismatch = true;
         }
         if (z > r.maxDeviationSigma || std::isnan(r.atX)) r.maxDeviationSigma = z, r.atX = x;

@@ -15,8 +15,9 @@
 // with ν = B − 1 = 7 per file and Welch–Satterthwaite's ν_i = σ_i⁴ / (σ_a,i⁴/ν + σ_b,i⁴/ν) for
 // the pair, z_i is converted to the normal deviate with the same two-sided tail probability,
 // ẑ_i. (Without this, 7-dof error bars make 5σ points common among a thousand lags and χ²/dof
-// average 1.4 for identical physics.) All limits below apply to ẑ_i. A point with σ_i = 0 must
-// agree to round-off (it then takes no part in χ²), otherwise ẑ_i = ∞.
+// average 1.4 for identical physics.) All limits below apply to ẑ_i. A point with σ_i = 0 (or below
+// 1e-12 of the value: round-off) must agree to 1e-9 relative (it then takes no part in χ²),
+// otherwise ẑ_i = ∞.
 //
 // Verdict. tolSigma sets a false-alarm probability p = erfc(tolSigma/√2), that of one normal
 // deviate beyond ±tolSigma (3 → 0.27 %). The curves disagree when either

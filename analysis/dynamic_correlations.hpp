@@ -1,6 +1,6 @@
 #pragma once
 // Time correlations of rigid bodies from samples equally spaced in time, averaged over bodies and
-// all time origins (FFT sums of time_correlation.hpp), with block errors over origin blocks:
+// all time origins (FFT sums of time_correlation.hpp), with block error bars (below):
 //
 //   VACF   c(t)  = ⟨v(0)·v(t)⟩ / ⟨v²⟩                       centre-of-mass velocity, normalised
 //   OACF   c1(t) = ⟨s(0)·s(t)⟩,  c2(t) = ⟨P₂(s(0)·s(t))⟩    unit long axis s, P₂(x) = (3x² − 1)/2
@@ -24,7 +24,10 @@
 // most of their path once k exceeds a block, so blocks of origins scatter far less than the
 // estimate does (a re-run then "disagrees"). Its B blocks are groups of bodies instead, each with
 // every time origin; bodies move nearly independently (correlations O(1/N) from the fixed centre
-// of mass), so their spread is an honest error at every lag, including the diffusion fit.
+// of mass), so their spread is an honest error at every lag, including the diffusion fit. In a
+// run at fixed total energy the kinetic energy of each group fluctuates while the total does
+// not, so at short (ballistic, Δ² ≈ ⟨v²⟩t²) lags this error is conservative: two SMD re-runs of
+// the dense rods give χ²/dof ≈ 0.04 on msd.csv.
 // Normalised curves are normalised fine block by fine block (each by its own ⟨v²⟩), so that
 // c(0) = 1 with zero error. Times: samples in 100 fs units (core/units.hpp), curves in ps.
 #include "core/snapshot.hpp"
@@ -37,6 +40,7 @@ struct SampledCurve {
     int blocks = 0;                              // B: coarse blocks behind err
     std::vector<std::vector<double>> fineValue;  // [fine block][lag], for derived error bars
     std::vector<std::vector<double>> fineWeight; // [fine block][lag]: its origins at the lag
+                                                 // (MSD: origins × bodies of the group)
 };
 
 /// Fine origin blocks used for B coarse blocks and T samples.

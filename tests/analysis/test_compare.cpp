@@ -135,6 +135,16 @@ TEST_F(Runs, ExactPointsMustMatch) {
     EXPECT_TRUE(std::isinf(c.maxDeviationSigma));
 }
 
+TEST_F(Runs, RoundOffAtAnExactPointIsNoDisagreement) {
+    // OACF(0) = 1 comes out as 1 + 2e-16 with an "error" of 1e-17: round-off, not a deviation.
+    const auto roundOff = modified("roundoff.csv", [](CsvTable& t) {
+        t.columns[1][0] = 1.0 + 2.2e-16;
+        t.columns[2][0] = 1e-17;
+    });
+    const Comparison c = compareCsv(root / "a" / "vacf.csv", roundOff, tolSigma);
+    EXPECT_TRUE(c.agree) << c.verdict;
+}
+
 TEST_F(Runs, NoErrorBarsOrNoCommonColumnIsAnError) {
     CsvTable bare{{"t_ps", "c"}, {{0.0, 0.01}, {1.0, 0.9}}};
     writeCsv(root / "bare.csv", bare);
