@@ -52,6 +52,9 @@ inline constexpr double horizonJitter = 0.1;
 inline constexpr double nudgeFraction = 1.0 / 32.0;
 /// Extrema of the interpolant within this fraction of a terrace height of a level are examined.
 inline constexpr double grazeFraction = 0.25;
+/// Distance from a level, as a fraction of the terrace height, below which U counts as on it:
+/// far above the round-off of U (~1e-15 kJ/mol), far below any physical energy.
+inline constexpr double levelTolerance = 1e-10;
 /// The queue is cleaned of stale events when it exceeds this multiple of its size after the last
 /// cleanup (and at least cleanupMinimumPerBody entries per body).
 inline constexpr double cleanupGrowth = 3.0;
@@ -78,6 +81,7 @@ public:
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
         search_.grazeWindow = grazeFraction * terraceHeight();
+        search_.levelTolerance = levelTolerance * terraceHeight();
         checkBodies();
         if (settings_.queue == QueueKind::Heap)
             queue_.template emplace<BinaryHeapQueue<Event>>();
@@ -345,8 +349,8 @@ private:
         if (impulse.outcome != Outcome::Reflect) terraces_.set(i, j, target);
         invalidate(q, i);
         invalidate(q, j);
-        predictBody(q, i, -1);
-        predictBody(q, j, i);
+        predictBody(q, i, -1, j);
+        predictBody(q, j, i, -1);
     }
 
     template <class Q> void resume(Q& q, const Event& e) {
@@ -392,9 +396,10 @@ private:
 
     // ---- prediction ----
 
-    template <class Q> void predictBody(Q& q, int i, int exclude) {
+    /// Predicts every pair of i except (i, exclude); (i, partner) has just been resolved.
+    template <class Q> void predictBody(Q& q, int i, int exclude, int partner = -1) {
         cells_.forEachNeighbour(i, [&](int j) {
-            if (j != exclude) predictPair(q, i, j, nullptr);
+            if (j != exclude) predictPair(q, i, j, nullptr, j == partner);
         });
         scheduleCellCrossing(q, i);
     }
@@ -415,7 +420,8 @@ private:
 
     /// Next event of the pair (i, j) from now: screening with r_m, then the adaptive search up to
     /// the jittered horizon; a truncated search leaves a virtual event holding its end point.
-    template <class Q> void predictPair(Q& q, int i, int j, const PairSample* resumeFrom) {
+    template <class Q>
+    void predictPair(Q& q, int i, int j, const PairSample* resumeFrom, bool afterEvent = false) {
         const State &bi0 = sys_.bodies[i], &bj0 = sys_.bodies[j];
         const double dti = time_ - clock_[i], dtj = time_ - clock_[j];
         const Vec3 r0 = sys_.box.minimumImage((bi0.r + bi0.v * dti) - (bj0.r + bj0.v * dtj));
@@ -457,8 +463,9 @@ private:
             ++evaluations_;
         }
         const double tEnd = std::min(win.exit, horizon);
-        const SearchResult r = findTerraceExit(eval, start, settings_.levels.lower(n),
-                                               settings_.levels.upper(n), tEnd, search_);
+        const SearchResult r =
+            findTerraceExit(eval, start, settings_.levels.lower(n), settings_.levels.upper(n), tEnd,
+                            search_, afterEvent);
         evaluations_ += r.evaluations;
         if (r.side != ExitSide::None) {
             Event e = pairEvent(EventKind::Collision, i, j, time_ + r.t);

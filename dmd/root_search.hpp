@@ -15,12 +15,12 @@
 //      Newton step leaves the bracket) and returns the time on the far side of the level.
 // Extrema are examined in time order, before the end point, so the earliest crossing wins.
 //
-// Right after an event the pair sits on a level. The Bannerman rule (Bannerman, Lue & Woodcock,
-// "Stable algorithm for event detection in event-driven particle dynamics", 2013) decides: on or
-// past a level and moving outwards → the event is now; moving inwards → no event at that level
-// now (the start is clamped onto the level, and a later crossing of the same level is bracketed
-// only after the maximum of f in between, so τ = 0 is never returned again).
-// Times are relative to the caller's reference (time unit 100 fs); energies kJ/mol.
+// Right after an event the pair sits on a level (within round-off of U). The Bannerman rule
+// (Bannerman, Lue & Woodcock, "Stable algorithm for event detection in event-driven particle
+// dynamics", 2013) decides: on or past a level and moving outwards → the event is now; moving
+// inwards → no event at that level now (the start is clamped onto the level, and a later crossing
+// of the same level is bracketed only after the maximum of f in between, so τ = 0 is never returned
+// again). Times are relative to the caller's reference (time unit 100 fs); energies kJ/mol.
 #include <algorithm>
 #include <array>
 #include <boost/math/tools/minima.hpp>
@@ -40,6 +40,7 @@ struct SearchSettings {
     double maxStep = 0.04;    // Δt, the largest grid step (time units; paper: 4 fs)
     double nudge = 0.00125;   // δt added to a linear prediction
     double grazeWindow = 0.5; // kJ/mol: extrema of f_c closer than this to a level are examined
+    double levelTolerance = 1e-12; // kJ/mol: |U − level| below this counts as on the level
 };
 
 enum class ExitSide : std::int8_t { None = 0, Lower = -1, Upper = +1 };
@@ -157,15 +158,24 @@ double refineRoot(Eval& eval, PairSample a, PairSample b, ExitSide side, double 
 } // namespace detail
 
 /// First time in (start.t, tEnd] at which U leaves (lower, upper); eval(τ) → PairSample.
-/// lower may be −∞ and upper +∞ (outermost explicit terraces).
+/// lower may be −∞ and upper +∞ (outermost explicit terraces). afterEvent: the pair's event was
+/// just resolved at the start, and the collision rule has set it moving into this terrace; the
+/// sign of dU/dt recomputed here may disagree by round-off when it is ~0, so no event is taken
+/// at the start (a stuck loop of zero-time events otherwise).
 template <class Eval>
 SearchResult findTerraceExit(Eval&& eval, PairSample a, double lower, double upper, double tEnd,
-                             const SearchSettings& s) {
+                             const SearchSettings& s, bool afterEvent = false) {
     SearchResult result;
-    // Bannerman rule at the start point.
-    if (a.U <= lower && a.dUdt < 0.0) return {ExitSide::Lower, a.t, a, 0};
-    if (a.U >= upper && a.dUdt > 0.0) return {ExitSide::Upper, a.t, a, 0};
-    a.U = std::clamp(a.U, lower, upper);
+    // Bannerman rule at the start point; "on" a level means within the round-off of U.
+    const double near = s.levelTolerance;
+    if (!afterEvent) {
+        if (a.U <= lower + near && a.dUdt < 0.0) return {ExitSide::Lower, a.t, a, 0};
+        if (a.U >= upper - near && a.dUdt > 0.0) return {ExitSide::Upper, a.t, a, 0};
+    }
+    // On a level and moving inwards (or just resolved there): exactly on it, so that the root
+    // refinement looks for the excursion into the terrace first and never returns the start.
+    if (a.U <= lower + near) a.U = lower;
+    if (a.U >= upper - near) a.U = upper;
     const double tolerance = 1e-13 * s.maxStep;
 
     auto bracketed = [&](const PairSample& from, const PairSample& to, ExitSide side) {
