@@ -25,6 +25,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace terrace::dmd {
@@ -185,7 +186,9 @@ void runHolds(benchmark::State& state, Q queue, Invalidation invalidation, Delay
     HoldModel<Q> model(std::move(queue), invalidation, delays);
     for (std::size_t k = 0; k < bodies * kPredictionsPerBody; ++k)
         model.schedule();
-    // Reach the steady state (stale population, time spread) before timing.
+    // Reach the steady state (stale population, time spread) before timing; bins tuned on the
+    // way in and again for the steady state, as the engine retunes after measuring.
+    model.tune();
     for (std::size_t k = 0; k < 2 * bodies * kPredictionsPerBody; ++k)
         model.hold();
     model.tune();
@@ -206,6 +209,9 @@ void runHolds(benchmark::State& state, Q queue, Invalidation invalidation, Delay
 // --benchmark_repetitions the median is kept (robust to other jobs on a shared machine).
 class RatioReporter : public benchmark::ConsoleReporter {
 public:
+    // Colours only on a terminal, so that saved output stays plain text.
+    RatioReporter() : ConsoleReporter(isatty(fileno(stdout)) ? OO_ColorTabular : OO_Tabular) {}
+
     void ReportRuns(const std::vector<Run>& runs) override {
         for (const Run& run : runs) {
             const std::string name = run.run_name.function_name + "/" + run.run_name.args;

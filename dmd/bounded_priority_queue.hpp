@@ -78,7 +78,7 @@ public:
     bool empty() const { return size_ == 0; }
 
     template <class Pred> std::size_t removeIf(Pred&& pred) {
-        const std::size_t before = size_;
+        const std::size_t queuedBefore = size_;
         std::size_t kept = 0;
         for (const detail::HeapEntry& entry : heap_) {
             if (pred(static_cast<const E&>(pool_[entry.node].event)))
@@ -87,7 +87,7 @@ public:
                 heap_[kept++] = entry;
         }
         heap_.resize(kept);
-        detail::heapify(heap_, this->before(), placed());
+        detail::heapify(heap_, before(), placed());
         for (std::uint32_t slot = 0; slot < pool_.slots(); ++slot) {
             const Node& n = pool_[slot];
             if (n.where != kFree && (n.where & kListed) && pred(static_cast<const E&>(n.event))) {
@@ -96,7 +96,7 @@ public:
             }
         }
         refill();
-        return before - size_;
+        return queuedBefore - size_;
     }
 
     void clear() {
