@@ -2,8 +2,9 @@
 // State and the frame-independent helpers shared by the symmetric and the asymmetric top.
 // A maps lab vectors to the body (principal-axis) frame; L is the lab-frame angular momentum.
 // Free motion leaves L unchanged and moves A along dA/dt = −[ω]× A (ω in the body frame), which
-// follows from Q = Aᵀ (body -> lab) obeying dQ/dt = Q [ω]× (van Zon & Schofield, J. Comput. Phys.
-// 225, 145 (2007), eq. 2.1 in our notation).
+// follows from Q = Aᵀ (body -> lab) obeying dQ/dt = Q [ω]×, i.e. (dA/dt)ᵀ A = [ω_lab]× (paper,
+// "Rigid Systems Interacting Via Stepped-Potentials"; van Zon & Schofield, J. Comput. Phys. 225,
+// 145 (2007)).
 #include "core/body_kind.hpp"
 
 namespace terrace {
