@@ -1,0 +1,113 @@
+// The adaptive terrace-exit search (paper sec. 3) and the r_m screening on analytic indicators.
+#include "dmd/root_search.hpp"
+#include "dmd/shell_screening.hpp"
+#include <cmath>
+#include <gtest/gtest.h>
+
+using namespace terrace;
+using namespace terrace::dmd;
+
+namespace {
+
+// Roots are refined until the bracket is ~1e-13 of the largest step; allow that and round-off.
+constexpr double rootTolerance = 1e-12;
+
+SearchSettings settings() {
+    SearchSettings s;
+    s.maxStep = 0.04;
+    s.nudge = 0.04 / 32;
+    s.grazeWindow = 0.25;
+    s.levelTolerance = 1e-12;
+    return s;
+}
+
+/// U(t) = A cos(ω t) + c: oscillating, with extrema at multiples of π/ω.
+struct Cosine {
+    double A, omega, c;
+    PairSample operator()(double t) const {
+        return {t, A * std::cos(omega * t) + c, -A * omega * std::sin(omega * t)};
+    }
+};
+
+} // namespace
+
+TEST(RootSearch, FindsTheFirstCrossingOfALinearRamp) {
+    auto ramp = [](double t) { return PairSample{t, 0.5 - 2.0 * t, -2.0}; };
+    const SearchResult r = findTerraceExit(ramp, ramp(0.0), -1.0, 1.0, 10.0, settings());
+    EXPECT_EQ(r.side, ExitSide::Lower);
+    EXPECT_NEAR(r.t, 0.75, rootTolerance);
+    EXPECT_LE(ramp(r.t).U, -1.0); // reported on the far side of the level
+}
+
+TEST(RootSearch, StopsAtTheEndOfTheWindowWithTheEndPoint) {
+    const Cosine f{0.5, 3.0, 0.0}; // stays inside (−1, 1)
+    const SearchResult r = findTerraceExit(f, f(0.0), -1.0, 1.0, 0.1, settings());
+    EXPECT_EQ(r.side, ExitSide::None);
+    EXPECT_DOUBLE_EQ(r.end.t, 0.1);
+    EXPECT_DOUBLE_EQ(r.end.U, f(0.1).U);
+}
+
+// A maximum that rises 1e-9 above the upper level between two grid points is a grazing event.
+TEST(RootSearch, CatchesAGrazingMaximumJustAboveTheLevel) {
+    const double omega = 2.0 * M_PI / 0.3, c = 0.3;
+    for (double excess : {1e-9, -1e-9}) {
+        const Cosine f{1.0 - c + excess, omega, c}; // maxima at t = 0.3 k reach 1 + excess
+        const PairSample start = f(0.05);
+        const SearchResult r = findTerraceExit(f, start, -5.0, 1.0, 0.5, settings());
+        if (excess > 0) {
+            EXPECT_EQ(r.side, ExitSide::Upper);
+            EXPECT_NEAR(r.t, 0.3, 1e-4); // within the tiny window around the maximum
+            EXPECT_GE(f(r.t).U, 1.0);
+        } else {
+            EXPECT_EQ(r.side, ExitSide::None);
+        }
+    }
+}
+
+// Right after an event the pair sits on the level, moving inwards: the start is not an event,
+// but the next crossing of the same level is found.
+TEST(RootSearch, NeverReturnsTheStartOfAPairOnItsLevelMovingInwards) {
+    const Cosine f{1.0, 10.0, 0.0}; // U = cos 10t: U = 1 at t = 0, back at 2π/10 ≈ 0.628
+    PairSample start = f(0.0);
+    start.dUdt = -1e-3; // moving inwards, as the collision rule leaves it
+    const SearchResult r = findTerraceExit(f, start, -2.0, 1.0, 1.0, settings());
+    EXPECT_EQ(r.side, ExitSide::None);     // the maximum at 0.628 only touches 1: not above it
+    const Cosine g{1.0 + 1e-6, 10.0, 0.0}; // resolved just past U = 1, above it again near 0.628
+    PairSample s2 = g(0.0);
+    s2.dUdt = -1e-3;
+    const SearchResult r2 = findTerraceExit(g, s2, -2.0, 1.0, 1.0, settings(), true);
+    EXPECT_EQ(r2.side, ExitSide::Upper);
+    EXPECT_GT(r2.t, 0.5);
+}
+
+// Bannerman's rule: on or past a level and moving outwards, the event is now (zero delay).
+TEST(RootSearch, PastALevelMovingOutwardsIsAnEventNow) {
+    auto ramp = [](double t) { return PairSample{t, -1.0 - 1e-14 - t, -1.0}; };
+    const SearchResult r = findTerraceExit(ramp, ramp(0.0), -1.0, 1.0, 1.0, settings());
+    EXPECT_EQ(r.side, ExitSide::Lower);
+    EXPECT_EQ(r.t, 0.0);
+    // The same position just resolved (afterEvent) is not taken again.
+    auto back = [](double t) { return PairSample{t, -1.0 - 1e-14 + t, 1.0}; };
+    const SearchResult r2 = findTerraceExit(back, back(0.0), -1.0, 1.0, 3.0, settings(), true);
+    EXPECT_EQ(r2.side, ExitSide::Upper);
+    EXPECT_NEAR(r2.t, 2.0, 1e-10);
+}
+
+TEST(ShellScreening, WindowsOfTheInteractionShell) {
+    // Inside, moving out along x from r = 1 at speed 2: leaves r_m = 3 at τ = 1.
+    ShellWindow w = shellWindow(Vec3(1, 0, 0), Vec3(2, 0, 0), 3.0);
+    EXPECT_EQ(w.enter, 0.0);
+    EXPECT_NEAR(w.exit, 1.0, 1e-15);
+    // Outside, approaching head-on from 5: enters at τ = 1, leaves at τ = 4.
+    w = shellWindow(Vec3(5, 0, 0), Vec3(-2, 0, 0), 3.0);
+    EXPECT_NEAR(w.enter, 1.0, 1e-15);
+    EXPECT_NEAR(w.exit, 4.0, 1e-15);
+    // Passing by at impact parameter 4 > r_m: never inside.
+    EXPECT_TRUE(shellWindow(Vec3(5, 4, 0), Vec3(-1, 0, 0), 3.0).empty());
+    // Receding: never inside.
+    EXPECT_TRUE(shellWindow(Vec3(5, 0, 0), Vec3(1, 0, 0), 3.0).empty());
+    // At rest inside: inside forever.
+    w = shellWindow(Vec3(1, 1, 0), Vec3::Zero(), 3.0);
+    EXPECT_EQ(w.enter, 0.0);
+    EXPECT_TRUE(std::isinf(w.exit));
+}

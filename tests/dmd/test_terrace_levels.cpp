@@ -1,0 +1,62 @@
+// Terrace levels, indices and energies, r_m, and rejection of a level on the potential minimum.
+#include "core/lj_potential.hpp"
+#include "core/rod_potential.hpp"
+#include "dmd/terrace_levels.hpp"
+#include <gtest/gtest.h>
+#include <string>
+
+using namespace terrace;
+using namespace terrace::dmd;
+
+TEST(TerraceLevels, UniformLevelsRoundUToTheNearestMultiple) {
+    const TerraceLevels t = TerraceLevels::uniform(2.0);
+    EXPECT_EQ(t.terraceOf(0.3), 0);
+    EXPECT_EQ(t.terraceOf(-0.99), 0);
+    EXPECT_EQ(t.terraceOf(-1.01), -1);
+    EXPECT_EQ(t.terraceOf(5.2), 3);
+    EXPECT_DOUBLE_EQ(t.energy(-2), -4.0);
+    EXPECT_DOUBLE_EQ(t.lower(1), 1.0);
+    EXPECT_DOUBLE_EQ(t.upper(1), 3.0);
+    // Exactly on a level: the terrace the pair is heading into.
+    EXPECT_EQ(t.terraceOf(1.0, +1.0), 1);
+    EXPECT_EQ(t.terraceOf(1.0, -1.0), 0);
+}
+
+TEST(TerraceLevels, ExplicitLevelsPutTheZeroTerraceAroundZero) {
+    const TerraceLevels t = TerraceLevels::explicitLevels({-2.5, -1.0, 0.5, 3.0});
+    EXPECT_EQ(t.terraceOf(0.0), 0);
+    EXPECT_DOUBLE_EQ(t.energy(0), 0.0);
+    EXPECT_DOUBLE_EQ(t.lower(0), -1.0);
+    EXPECT_DOUBLE_EQ(t.upper(0), 0.5);
+    EXPECT_DOUBLE_EQ(t.energy(-1) - t.energy(0), -1.75 - (-0.25)); // midpoints −1.75, −0.25
+    EXPECT_TRUE(std::isinf(t.lower(-2)));
+    EXPECT_TRUE(std::isinf(t.upper(2)));
+    EXPECT_EQ(t.terraceOf(10.0), 2);
+    EXPECT_EQ(t.terraceOf(-10.0), -2);
+}
+
+// r_m against the paper's formula as tabulated in /work/shared/testdata/rod_reference.json
+// (`interaction_range`, "computed directly from the paper's formulas") at T* = 1.4.
+TEST(TerraceLevels, InteractionRangeMatchesThePaper) {
+    const RodPotential rod;
+    const double kT = 4.199999999999999;
+    const double dVInKT[] = {0.25, 0.5, 1.0, 2.0};
+    const double rm[] = {5.573000938573839, 4.978312130461398, 4.388327827082952,
+                         3.414718151364337};
+    for (int k = 0; k < 4; ++k)
+        EXPECT_NEAR(interactionRange(TerraceLevels::uniform(dVInKT[k] * kT), rod), rm[k], 1e-12);
+}
+
+TEST(TerraceLevels, ALevelOnTheMinimumIsRejected) {
+    EXPECT_THROW(TerraceLevels::uniform(6.0).checkMinimum(-3.0, "dmd.dV"), SceneError);
+    EXPECT_NO_THROW(TerraceLevels::uniform(5.9).checkMinimum(-3.0, "dmd.dV"));
+    try {
+        TerraceLevels::explicitLevels({-3.0, 1.0}).checkMinimum(-3.0, "dmd.levels");
+        ADD_FAILURE();
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("dmd.levels"), std::string::npos);
+    }
+    EXPECT_THROW(TerraceLevels::uniform(0.0), SceneError);
+    EXPECT_THROW(TerraceLevels::explicitLevels({-1.0, 0.0, 1.0}), SceneError);
+    EXPECT_THROW(TerraceLevels::explicitLevels({1.0, -1.0}), SceneError);
+}
