@@ -42,7 +42,7 @@ template <PairPotential P>
     const SmoothedCutoff cut = cutIn;
     const std::array<Vec3, 27> shift = list.imageShift;
     const double outer2 = cut.outer * cut.outer;
-    const Vec3 noAxis = Vec3::UnitZ();
+    const Vec3 noAxis(0.0, 0.0, 1.0);
     const std::size_t* start = list.start.data();
     const std::uint32_t* entry = list.entry.data();
     const Vec3* xs = x.data();
@@ -55,7 +55,7 @@ template <PairPotential P>
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3 xi = xs[i];
         const Vec3 si = P::orientational ? axes[i] : noAxis;
-        Vec3 fi = Vec3::Zero(), ti = Vec3::Zero();
+        Vec3 fi(0.0, 0.0, 0.0), ti(0.0, 0.0, 0.0); // not Vec3::Zero(): an out-of-line call at -O2
         const std::size_t end = start[i + 1];
         for (std::size_t k = start[i]; k < end; ++k) {
             const std::uint32_t e = entry[k];

@@ -34,15 +34,14 @@ struct SmoothedCutoff {
 
 /// The smoothed pair interaction from the raw one at separation rij (r = |rij| > 0, Å).
 /// Valid for r < r_u; callers skip pairs beyond r_u, where every term is zero.
-inline PairForce smoothed(const PairForce& raw, const Vec3& rij, double r,
-                          const SmoothedCutoff& cut) {
-    if (r <= cut.inner) return raw; // the common case in a dense liquid: nothing to do
+inline PairForce smoothed(PairForce f, const Vec3& rij, double r, const SmoothedCutoff& cut) {
+    if (r <= cut.inner) return f; // the common case in a dense liquid: nothing to do
+    // Scaled in place: a fresh PairForce would zero three vectors first (out-of-line at -O2).
     const double g = cut.switching(r);
-    PairForce f;
-    f.U = g * raw.U;
-    f.F = g * raw.F - (raw.U * cut.switchingSlope(r) / r) * rij;
-    f.tauI = g * raw.tauI;
-    f.tauJ = g * raw.tauJ;
+    f.F = g * f.F - (f.U * cut.switchingSlope(r) / r) * rij;
+    f.tauI *= g;
+    f.tauJ *= g;
+    f.U *= g;
     return f;
 }
 
