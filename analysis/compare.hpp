@@ -7,7 +7,9 @@
 // counts as exact (σ = 0), e.g. an analytic curve; if neither file has one, there is no scale to
 // judge agreement on and compareCsv throws.
 //
-// Grids: B (values and errors) is interpolated linearly onto A's points inside B's x range; A's
+// Grids: B is interpolated onto A's points inside B's x range, values by a four-point cubic
+// (linear interpolation of a curve bent on the scale of the grid adds a bias of several error
+// bars at short times), error bars linearly; on a common grid B's values are used as they are. A's
 // points outside it are left out. Points where a value or an error is NaN are left out.
 //
 // Per point: z_i = (a_i − b_i)/σ_i with σ_i² = σ_a,i² + σ_b,i². The error bars are themselves

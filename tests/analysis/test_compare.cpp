@@ -71,6 +71,34 @@ TEST(CompareLimits, EffectivePointsOfIndependentAndOfSmoothDeviations) {
     EXPECT_EQ(effectivePoints(std::vector<double>(50, 1.5)), 1.0);
 }
 
+TEST(CompareGrids, CurvedCurveOnAnotherGridAgreesWithItself) {
+    // c(t) = exp(−(t/τ)²), τ = 0.1 ps: A on SMD's 10.8 fs grid with errors 1e-4, B the same
+    // function on a 10 fs grid without errors. Linear interpolation would be off by ~h²c''/8 ≈
+    // 2.5e-3 = 25 error bars at short times; the cubic is off by ~3e-5.
+    const auto curve = [](double t) { return std::exp(-(t / 0.1) * (t / 0.1)); };
+    CsvTable a{{"t_ps", "c", "err"}, {{}, {}, {}}}, b{{"t_ps", "c"}, {{}, {}}};
+    for (int k = 0; k < 60; ++k) {
+        a.columns[0].push_back(k * 0.0108);
+        a.columns[1].push_back(curve(k * 0.0108));
+        a.columns[2].push_back(1e-4);
+    }
+    for (int k = 0; k < 70; ++k) {
+        b.columns[0].push_back(k * 0.01);
+        b.columns[1].push_back(curve(k * 0.01));
+    }
+    const fs::path dir = fs::temp_directory_path();
+    const std::string tag = std::to_string(::getpid());
+    writeCsv(dir / ("terrace_grid_a_" + tag + ".csv"), a);
+    writeCsv(dir / ("terrace_grid_b_" + tag + ".csv"), b);
+    const Comparison c = compareCsv(dir / ("terrace_grid_a_" + tag + ".csv"),
+                                    dir / ("terrace_grid_b_" + tag + ".csv"), tolSigma);
+    EXPECT_TRUE(c.agree) << c.verdict;
+    EXPECT_LT(c.maxDeviationSigma, 1.0);
+    EXPECT_EQ(c.points, 60); // 59 · 10.8 fs = 637 fs lies inside B's 690 fs
+    fs::remove(dir / ("terrace_grid_a_" + tag + ".csv"));
+    fs::remove(dir / ("terrace_grid_b_" + tag + ".csv"));
+}
+
 TEST_F(Runs, IndependentReRunAgrees) {
     for (const char* file : {"vacf.csv", "msd.csv", "rdf.csv"}) {
         const Comparison c = compareCsv(root / "a" / file, root / "b" / file, tolSigma);
