@@ -26,8 +26,9 @@ if [ "$SIZE" = quick ]; then
     SCAN_PS=0.3         # density scan
     SCAN_REPLICAS=2
     EXTREME_N=216       # a box that holds two interaction ranges at ΔV = 0.05 kT, ρ* = 0.8
-    EXTREME_EQUIL_PS=0.05
-    EXTREME_PS=0.2      # 21 samples: enough for the correlation files' 8 blocks
+    EXTREME_EQUIL_PS=0.01
+    EXTREME_PS=0.04
+    EXTREME_SAMPLE_FS=2 # 21 samples: enough for the correlation files' 8 blocks
 else
     REPLICAS=4
     DENSE_N=512
@@ -40,8 +41,9 @@ else
     SCAN_PS=4
     SCAN_REPLICAS=2     # the scan compares costs; two runs bound their spread
     EXTREME_N=216
-    EXTREME_EQUIL_PS=0.2
-    EXTREME_PS=1
+    EXTREME_EQUIL_PS=0.05 # ΔV = 0.05 kT in the dense liquid costs minutes per ps
+    EXTREME_PS=0.2
+    EXTREME_SAMPLE_FS=5
 fi
 
 log() { echo "[$(date +%H:%M:%S)] $*" >&2; }

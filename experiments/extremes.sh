@@ -17,7 +17,8 @@ run)
     rm -f "$run_dir.failed"
     run_one "$run_dir" "$SCENES/dense-rods.json" --set engine=dmd --set dmd.dV="$dV" \
         --set state.temperature="$T" --set state.density="$rho" --set state.n="$EXTREME_N" \
-        --set run.equilibrate_ps="$EXTREME_EQUIL_PS" --set run.time_ps="$EXTREME_PS" ||
+        --set run.equilibrate_ps="$EXTREME_EQUIL_PS" --set run.time_ps="$EXTREME_PS" \
+        --set run.sample_fs="$EXTREME_SAMPLE_FS" ||
         { tail -n 2 "$run_dir.partial.log" | tr -d ',' | tr '\n' ' ' >"$run_dir.failed"; }
     ;;
 table)

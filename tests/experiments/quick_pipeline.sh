@@ -17,7 +17,8 @@ echo "make quick: $(($(date +%s) - start)) s"
 
 for f in fig1/fig1.png fig2/fig2.png fig3/fig3.png fig4/fig4.png fig5/fig5.png \
     table/efficiency.csv table/queues.csv tradeoff/tradeoff-dense.png tradeoff/tradeoff-gas.png \
-    density/density.png extremes/extremes.csv versus/versus.png versus/versus.txt machine.txt; do
+    density/density.png extremes/extremes.csv versus/versus.png versus/versus.txt machine.txt \
+    runs.csv; do
     [ -s "$out/$f" ] || fail "missing or empty $f"
 done
 # PNG files start with the PNG signature.
