@@ -1,3 +1,6 @@
 if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/bench_event_queue.cpp)
     terrace_bench(bench_event_queue.cpp terrace_dmd)
 endif()
+if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/bench_dmd.cpp)
+    terrace_bench(bench_dmd.cpp terrace_dmd)
+endif()

@@ -92,6 +92,7 @@ public:
             cells_.insert(i, sys_.bodies[i].r);
         assignInitialTerraces();
         visitQueue([&](auto& q) { predictAll(q); });
+        if (auto* bpq = std::get_if<BoundedPriorityQueue<Event>>(&queue_)) retune(*bpq);
     }
 
     // ---- the Engine contract (core/engine.hpp) ----
@@ -380,11 +381,13 @@ private:
     /// Bins of the bounded priority queue sized from the measured push rate and lead time: a few
     /// events per bin, a window spanning the usual scheduling lead (G. Paul 2007, sec. 3).
     void retune(BoundedPriorityQueue<Event>& q) {
-        const double elapsed = time_ - retuneStart_;
-        if (elapsed > 0.0 && pushesSinceRetune_ > 0) {
+        // Before any event has run, the pushes of the initial prediction stand in for the rate:
+        // they cover about one horizon.
+        const double elapsed = time_ > retuneStart_ ? time_ - retuneStart_ : settings_.horizon;
+        if (pushesSinceRetune_ > 0) {
             const double rate = pushesSinceRetune_ / elapsed;
             const double width = eventsPerBin / rate;
-            const double window = 4.0 * leadSum_ / pushesSinceRetune_;
+            const double window = std::max(4.0 * leadSum_ / pushesSinceRetune_, settings_.horizon);
             const double bins = std::clamp(window / width, 64.0, double(1 << 22));
             q.retune(width, static_cast<std::size_t>(bins));
         }
