@@ -34,7 +34,7 @@ public:
                 throw SceneError("state: a body has a non-finite position, velocity, orientation "
                                  "or angular velocity");
         if (!(sys_.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
-        list_.reach = par_.cutoff.outer + par_.skin;
+        list_.reach = par_.cutoff.outer() + par_.skin;
         list_.skin = par_.skin;
         const std::size_t n = sys_.bodies.size();
         position_.resize(n);
@@ -114,8 +114,8 @@ public:
                 {"pair_evaluations", evaluations_},
                 {"dt_fs", units::toFs(par_.dt)},
                 {"skin_sigma", par_.skin / sigma},
-                {"r_l_sigma", par_.cutoff.inner / sigma},
-                {"r_u_sigma", par_.cutoff.outer / sigma},
+                {"r_l_sigma", par_.cutoff.inner() / sigma},
+                {"r_u_sigma", par_.cutoff.outer() / sigma},
                 {"listed_pairs", list_.pairCount()},
                 {"phase_seconds",
                  {{"kick", seconds_.kick},

@@ -41,7 +41,7 @@ template <PairPotential P>
     const P potential = potentialIn;
     const SmoothedCutoff cut = cutIn;
     const std::array<Vec3, 27> shift = list.imageShift;
-    const double outer2 = cut.outer * cut.outer;
+    const double outer2 = cut.outer() * cut.outer();
     const Vec3 noAxis(0.0, 0.0, 1.0);
     const std::size_t* start = list.start.data();
     const std::uint32_t* entry = list.entry.data();
@@ -95,7 +95,7 @@ Forces allPairsForces(const System<K, P>& sys, const SmoothedCutoff& cut) {
             const auto &bi = sys.bodies[i], &bj = sys.bodies[j];
             const Vec3 rij = sys.box.minimumImage(bi.r - bj.r);
             const double r = rij.norm();
-            if (r >= cut.outer) continue;
+            if (r >= cut.outer()) continue;
             const PairForce f =
                 smoothed(sys.potential.evaluate(rij, K::axis(bi), K::axis(bj)), rij, r, cut);
             ++out.evaluations;

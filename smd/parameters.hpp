@@ -48,7 +48,7 @@ inline Parameters parameters(const Scene& scene, double boxLength) {
     p.dt = units::fromFs(s.dt_fs);
     p.skin = s.skin * sigma;
     p.cutoff = {s.r_l * sigma, s.r_u * sigma};
-    const double needed = 2.0 * (p.cutoff.outer + p.skin);
+    const double needed = 2.0 * (p.cutoff.outer() + p.skin);
     if (!(boxLength >= needed))
         throw SceneError("smd.r_u: the box edge " + show(boxLength) +
                          " Å is shorter than 2·(r_u + skin) = " + show(needed) +

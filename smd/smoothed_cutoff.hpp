@@ -13,29 +13,38 @@
 
 namespace terrace::smd {
 
-struct SmoothedCutoff {
-    double inner = 0.0; // r_l, Å: the potential is untouched inside
-    double outer = 0.0; // r_u, Å: zero beyond
+class SmoothedCutoff {
+public:
+    SmoothedCutoff() = default;
+    SmoothedCutoff(double rl, double ru)
+        : rl_(rl), ru_(ru), invWidthCubed_(1.0 / ((ru - rl) * (ru - rl) * (ru - rl))) {}
+
+    double inner() const { return rl_; } // r_l, Å: the potential is untouched inside
+    double outer() const { return ru_; } // r_u, Å: zero beyond
 
     /// g(r): 1 inside r_l, the cubic switch on [r_l, r_u], 0 beyond r_u.
     double switching(double r) const {
-        if (r <= inner) return 1.0;
-        if (r >= outer) return 0.0;
-        const double w = outer - inner, a = outer - r;
-        return a * a * (outer - 3.0 * inner + 2.0 * r) / (w * w * w);
+        if (r <= rl_) return 1.0;
+        if (r >= ru_) return 0.0;
+        const double a = ru_ - r;
+        return a * a * (ru_ - 3.0 * rl_ + 2.0 * r) * invWidthCubed_;
     }
     /// g'(r) = dg/dr.
     double switchingSlope(double r) const {
-        if (r <= inner || r >= outer) return 0.0;
-        const double w = outer - inner;
-        return -6.0 * (outer - r) * (r - inner) / (w * w * w);
+        if (r <= rl_ || r >= ru_) return 0.0;
+        return -6.0 * (ru_ - r) * (r - rl_) * invWidthCubed_;
     }
+
+private:
+    // 1/(r_u - r_l)³, computed once: the pair loop would otherwise divide twice per pair in the
+    // switch (a division inside a branch is not hoisted out of the loop).
+    double rl_ = 0.0, ru_ = 0.0, invWidthCubed_ = 0.0;
 };
 
 /// The smoothed pair interaction from the raw one at separation rij (r = |rij| > 0, Å).
 /// Valid for r < r_u; callers skip pairs beyond r_u, where every term is zero.
 inline PairForce smoothed(PairForce f, const Vec3& rij, double r, const SmoothedCutoff& cut) {
-    if (r <= cut.inner) return f; // the common case in a dense liquid: nothing to do
+    if (r <= cut.inner()) return f; // the common case in a dense liquid: nothing to do
     // Scaled in place: a fresh PairForce would zero three vectors first (out-of-line at -O2).
     const double g = cut.switching(r);
     f.F = g * f.F - (f.U * cut.switchingSlope(r) / r) * rij;

@@ -62,7 +62,7 @@ void checkAgainstAllPairs(int perEdge, double density, std::uint64_t seed) {
     const SmoothedCutoff cut{2.5 * sigma, 3.0 * sigma};
     NeighbourList list;
     list.skin = 0.3 * sigma;
-    list.reach = cut.outer + list.skin;
+    list.reach = cut.outer() + list.skin;
     std::vector<Vec3> r;
     for (const auto& b : sys.bodies)
         r.push_back(b.r);

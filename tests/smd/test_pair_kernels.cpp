@@ -29,7 +29,7 @@ TEST(PairKernels, LennardJonesSquaredDistanceFormEqualsEvaluate) {
     const LJPotential lj{1.3, 0.9};
     const SmoothedCutoff cut{2.5 * 0.9, 3.0 * 0.9};
     const Vec3 dir = Vec3(0.3, -0.5, 0.81).normalized(), z = Vec3::UnitZ();
-    for (double r = 0.8; r < cut.outer; r += 0.013) {
+    for (double r = 0.8; r < cut.outer(); r += 0.013) {
         const Vec3 rij = r * dir;
         const CentralForce f =
             PairKernel<LJPotential>::evaluate(lj, cut, rij, rij.squaredNorm(), z, z);
@@ -44,7 +44,7 @@ TEST(PairKernels, RodKernelIsEvaluateThenSmoothed) {
     const RodPotential rod{};
     const SmoothedCutoff cut{2.5 * rod.sigma, 3.0 * rod.sigma};
     const Vec3 si = Vec3(1, 0.2, 0.1).normalized(), sj = Vec3(-0.3, 1, 0.5).normalized();
-    for (double r = 2.8; r < cut.outer; r += 0.05) {
+    for (double r = 2.8; r < cut.outer(); r += 0.05) {
         const Vec3 rij = r * Vec3(0, 0.6, 0.8);
         expectSame(PairKernel<RodPotential>::evaluate(rod, cut, rij, rij.squaredNorm(), si, sj),
                    smoothed(rod.evaluate(rij, si, sj), rij, r, cut));

@@ -70,13 +70,13 @@ TEST(SmoothedCutoff, ForceContinuousAtBothEnds) {
     const Vec3 si = Vec3(0, 0, 1), sj = Vec3(0, 0.6, 0.8);
     const Vec3 dir = Vec3(1, 2, 2) / 3.0;
     // One part in 1e-12 of r: the force changes by at most |dF/dr|·δr ~ 1e-12 kJ/mol/Å there.
-    const double delta = 1e-12 * paperCut.outer;
+    const double delta = 1e-12 * paperCut.outer();
     constexpr double continuityTolerance = 1e-10;
-    for (double edge : {paperCut.inner, paperCut.outer}) {
+    for (double edge : {paperCut.inner(), paperCut.outer()}) {
         const Vec3 below = (edge - delta) * dir, above = (edge + delta) * dir;
         const PairForce fb = smoothed(rod.evaluate(below, si, sj), below, below.norm(), paperCut);
         const PairForce fa =
-            edge < paperCut.outer
+            edge < paperCut.outer()
                 ? smoothed(rod.evaluate(above, si, sj), above, above.norm(), paperCut)
                 : PairForce{}; // beyond r_u the pair does not interact at all
         EXPECT_LT((fb.F - fa.F).norm(), continuityTolerance) << "edge " << edge;
@@ -84,7 +84,7 @@ TEST(SmoothedCutoff, ForceContinuousAtBothEnds) {
         EXPECT_LT(std::abs(fb.U - fa.U), continuityTolerance) << "edge " << edge;
     }
     // And the raw force is clearly not zero at r_u, so the smoothing is what makes it continuous.
-    const Vec3 atOuter = paperCut.outer * dir;
+    const Vec3 atOuter = paperCut.outer() * dir;
     EXPECT_GT(rod.evaluate(atOuter, si, sj).F.norm(), 1e3 * continuityTolerance);
 }
 
