@@ -77,8 +77,8 @@ int analyseMain(const std::vector<std::string>& args) {
         throw TrajectoryError((dir / "trajectory.xyz").string() +
                               ": fewer than 4 frames, too few to correlate");
     const auto summary = analysis::writeCorrelations(frames, dir);
-    std::printf("%zu frames analysed; wrote rdf.csv vacf.csv oacf.csv msd.csv in %s/\n",
-                frames.size(), dir.c_str());
+    std::printf("%zu frames analysed; wrote the correlation CSVs in %s/\n", frames.size(),
+                dir.c_str());
     std::printf("%s\n", summary.dump().c_str());
     return 0;
 }

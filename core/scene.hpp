@@ -72,7 +72,7 @@ struct Scene {
     struct Run {
         double equilibrate_ps = 2.0;
         double time_ps = 10.0;
-        double sample_fs = 10.0;
+        double sample_fs = 9.0; // a whole number of SMD steps at dt = 0.2, 0.5, 1, 1.8 and 3 fs
     } run;
 
     struct Output {
