@@ -6,7 +6,8 @@
 // N bodies with kPredictionsPerBody pending predictions each. One hold = pop the earliest valid
 // event, schedule 1–3 new ones at now + delay (exponential or uniform, mean τ), and invalidate one
 // random pending prediction per extra one, so that the number of valid predictions stays constant.
-//   none  — pure hold, one pop and one push, nothing invalidated: the queue's own scaling in N;
+//   none  — pure hold, one pop and one push, nothing invalidated and no bookkeeping: the queue's
+//           own cost and its scaling in N;
 //   lazy  — invalidation bumps the prediction's counter; the stale entry stays queued and is
 //           skipped when popped (DESIGN.md: per-particle counters), with removeIf cleanup if stale
 //           entries ever outnumber valid ones kCleanupFactor − 1 to one;
@@ -85,6 +86,10 @@ public:
             id = static_cast<std::uint32_t>(predictions_.size());
             predictions_.emplace_back();
         }
+        if (invalidation_ == Invalidation::None) { // no bookkeeping: time the queue alone
+            queue_.push({now_ + delay(), id, 0, {}, id ^ 1u, 0});
+            return;
+        }
         Prediction& p = predictions_[id];
         const QueueHandle h = queue_.push({now_ + delay(), id, p.stamp, {}, id ^ 1u, 0});
         if (eager_) p.handle = h;
@@ -93,6 +98,14 @@ public:
     }
 
     void hold() {
+        if (invalidation_ == Invalidation::None) {
+            const HoldEvent e = queue_.top();
+            queue_.pop();
+            now_ = e.time;
+            freeIds_.push_back(e.id);
+            schedule();
+            return;
+        }
         for (;;) {
             const HoldEvent e = queue_.top();
             queue_.pop();
@@ -104,8 +117,7 @@ public:
             ++stalePops_;
         }
         // 1–3 new predictions and one fewer invalidations keep the valid count fixed.
-        const int pushes =
-            invalidation_ == Invalidation::None ? 1 : 1 + static_cast<int>(rng_.next() % 3);
+        const int pushes = 1 + static_cast<int>(rng_.next() % 3);
         for (int k = 0; k < pushes; ++k)
             schedule();
         for (int k = 1; k < pushes; ++k) {
@@ -239,31 +251,36 @@ void printRatios(const std::map<std::string, double>& ns) {
     const char* queues[] = {"heap", "bpq"};
     const Invalidation modes[] = {Invalidation::None, Invalidation::Lazy, Invalidation::Eager};
     for (const char* delays : {"exponential", "uniform"}) {
-        std::printf("\n%s delays: ns per hold (CPU) and ratios (> 1: the second named is faster)\n",
-                    delays);
-        std::printf("%7s", "N");
-        for (const Invalidation m : modes)
-            for (const char* q : queues)
-                std::printf(" %6s-%-5s", q, name(m));
-        std::printf(" | heap/bpq: none  lazy eager | eager/lazy: heap   bpq\n");
+        const auto at = [&](const char* q, Invalidation m, std::size_t n) {
+            const auto it = ns.find(benchmarkName(q, name(m), delays) + "/" + std::to_string(n));
+            return it == ns.end() ? std::nan("") : it->second;
+        };
+        bool header = false;
         for (const std::size_t n : {512u, 4096u, 32768u, 262144u}) {
-            const auto at = [&](const char* q, Invalidation m) {
-                const auto it =
-                    ns.find(benchmarkName(q, name(m), delays) + "/" + std::to_string(n));
-                return it == ns.end() ? std::nan("") : it->second;
-            };
-            if (std::isnan(at("heap", Invalidation::None) + at("bpq", Invalidation::Eager)))
+            if (std::isnan(at("heap", Invalidation::None, n) + at("bpq", Invalidation::Eager, n)))
                 continue; // filtered out of this run
+            if (!header) {
+                std::printf("\n%s delays: ns per hold (CPU) and ratios (> 1: the second named is "
+                            "faster)\n%7s",
+                            delays, "N");
+                for (const Invalidation m : modes)
+                    for (const char* q : queues)
+                        std::printf(" %6s-%-5s", q, name(m));
+                std::printf(" | heap/bpq: none  lazy eager | eager/lazy: heap   bpq\n");
+                header = true;
+            }
             std::printf("%7zu", n);
             for (const Invalidation m : modes)
                 for (const char* q : queues)
-                    std::printf(" %12.1f", at(q, m));
+                    std::printf(" %12.1f", at(q, m, n));
+            const auto ratio = [&](const char* q1, Invalidation m1, const char* q2,
+                                   Invalidation m2) { return at(q1, m1, n) / at(q2, m2, n); };
             std::printf(" |        %5.2f %5.2f %5.2f |        %5.2f %5.2f\n",
-                        at("heap", Invalidation::None) / at("bpq", Invalidation::None),
-                        at("heap", Invalidation::Lazy) / at("bpq", Invalidation::Lazy),
-                        at("heap", Invalidation::Eager) / at("bpq", Invalidation::Eager),
-                        at("heap", Invalidation::Eager) / at("heap", Invalidation::Lazy),
-                        at("bpq", Invalidation::Eager) / at("bpq", Invalidation::Lazy));
+                        ratio("heap", Invalidation::None, "bpq", Invalidation::None),
+                        ratio("heap", Invalidation::Lazy, "bpq", Invalidation::Lazy),
+                        ratio("heap", Invalidation::Eager, "bpq", Invalidation::Eager),
+                        ratio("heap", Invalidation::Eager, "heap", Invalidation::Lazy),
+                        ratio("bpq", Invalidation::Eager, "bpq", Invalidation::Lazy));
         }
     }
 }

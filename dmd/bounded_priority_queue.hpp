@@ -144,13 +144,15 @@ private:
     // Current-bin heap capacity kept through a retune regardless of its size (entries).
     static constexpr std::size_t kHeapSlack = 1024;
 
+    // Links first, then the event, whose time comes first: walking a list reads `next` and `time`,
+    // which then usually share a cache line.
     struct Node {
-        E event{};
-        std::uint64_t sequence = 0;
         std::uint32_t prev = kNil;
         std::uint32_t next = kNil;
         std::uint32_t where = kFree; // heap index, or kListed | list number (n = overflow)
         std::uint32_t generation = 0;
+        std::uint64_t sequence = 0;
+        E event{};
     };
 
     void setBins(double binWidth, std::size_t nBins) {
