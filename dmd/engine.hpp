@@ -261,10 +261,11 @@ private:
 
     template <class Q> void predictAll(Q& q) {
         for (int i = 0; i < sys_.size(); ++i) {
+            double entry = std::numeric_limits<double>::infinity();
             cells_.forEachNeighbour(i, [&](int j) {
-                if (j > i) predictPair(q, i, j, nullptr);
+                if (j > i) entry = std::min(entry, predictPair(q, i, j, nullptr));
             });
-            scheduleCellCrossing(q, i);
+            scheduleBodyEvents(q, i, entry);
         }
         cleanupThreshold_ = std::max(cleanupMinimumPerBody * sys_.size(),
                                      cleanupGrowth * static_cast<double>(q.size()));
@@ -306,7 +307,7 @@ private:
 
     bool isStale(const Event& e) const {
         if (counter_[e.i] != e.countI) return true;
-        return e.kind != EventKind::CellCrossing && counter_[e.j] != e.countJ;
+        return e.j >= 0 && counter_[e.j] != e.countJ;
     }
 
     void watchClock(const Event& e) {
@@ -355,8 +356,14 @@ private:
     }
 
     template <class Q> void resume(Q& q, const Event& e) {
+        if (e.j < 0) { // a body's entry event: some pair of i comes within r_m now
+            invalidate(q, e.i);
+            predictBody(q, e.i, -1);
+            return;
+        }
         const PairSample start{0.0, e.U, e.dUdt};
-        predictPair(q, e.i, e.j, std::isnan(e.U) ? nullptr : &start);
+        const double entry = predictPair(q, e.i, e.j, std::isnan(e.U) ? nullptr : &start);
+        if (std::isfinite(entry)) schedule(q, pairEvent(EventKind::Virtual, e.i, e.j, entry));
     }
 
     template <class Q> void crossCell(Q& q, const Event& e) {
@@ -401,10 +408,25 @@ private:
 
     /// Predicts every pair of i except (i, exclude); (i, partner) has just been resolved.
     template <class Q> void predictBody(Q& q, int i, int exclude, int partner = -1) {
+        double entry = std::numeric_limits<double>::infinity();
         cells_.forEachNeighbour(i, [&](int j) {
-            if (j != exclude) predictPair(q, i, j, nullptr, j == partner);
+            if (j != exclude) entry = std::min(entry, predictPair(q, i, j, nullptr, j == partner));
         });
+        scheduleBodyEvents(q, i, entry);
+    }
+
+    /// The cell crossing of i and, when some pair of i enters r_m only beyond the horizon, one
+    /// virtual event of i at the earliest such entry: one queued event per body instead of one
+    /// per approaching pair. Should i have no event before then, it re-predicts all its pairs.
+    template <class Q> void scheduleBodyEvents(Q& q, int i, double entry) {
         scheduleCellCrossing(q, i);
+        if (!std::isfinite(entry)) return;
+        Event e;
+        e.time = entry;
+        e.kind = EventKind::Virtual;
+        e.i = i;
+        e.countI = counter_[i];
+        schedule(q, e);
     }
 
     template <class Q> void scheduleCellCrossing(Q& q, int i) {
@@ -423,8 +445,11 @@ private:
 
     /// Next event of the pair (i, j) from now: screening with r_m, then the adaptive search up to
     /// the jittered horizon; a truncated search leaves a virtual event holding its end point.
+    /// A pair entering r_m only beyond the horizon is not searched: its entry time (absolute) is
+    /// returned for the caller to schedule; +∞ otherwise.
     template <class Q>
-    void predictPair(Q& q, int i, int j, const PairSample* resumeFrom, bool afterEvent = false) {
+    double predictPair(Q& q, int i, int j, const PairSample* resumeFrom, bool afterEvent = false) {
+        constexpr double none = std::numeric_limits<double>::infinity();
         const State &bi0 = sys_.bodies[i], &bj0 = sys_.bodies[j];
         const double dti = time_ - clock_[i], dtj = time_ - clock_[j];
         const Vec3 r0 = sys_.box.minimumImage((bi0.r + bi0.v * dti) - (bj0.r + bj0.v * dtj));
@@ -440,12 +465,9 @@ private:
             win.enter = 0.0;
             win.exit = std::numeric_limits<double>::infinity();
         }
-        if (win.empty()) return;
+        if (win.empty()) return none;
         const double horizon = jitteredHorizon();
-        if (win.enter > horizon) {
-            schedule(q, pairEvent(EventKind::Virtual, i, j, time_ + win.enter));
-            return;
-        }
+        if (win.enter > horizon) return time_ + win.enter;
         State bi = bi0, bj = bj0;
         freeMove<K>(bi, sys_.body, dti);
         freeMove<K>(bj, sys_.body, dtj);
@@ -480,6 +502,7 @@ private:
             e.dUdt = r.end.dUdt;
             schedule(q, e);
         }
+        return none;
     }
 
     Event pairEvent(EventKind kind, int i, int j, double t) const {
