@@ -21,6 +21,7 @@ if [ "$SIZE" = quick ]; then
     EQUIL_PS=0.1
     DENSE_PS=0.4
     GAS_PS=0.4
+    TRADE_PS=0.4        # the trade-off's extra settings
     REF_DT_FS=${REF_DT_FS:-0.5} # converged reference of the trade-off (Makefile.paper sets it)
     REF_PS_FACTOR=1
     SCAN_PS=0.3         # density scan
@@ -36,15 +37,20 @@ else
     EQUIL_PS=1
     DENSE_PS=6
     GAS_PS=20
+    TRADE_PS=3          # the trade-off's extra settings (ΔV = ⅛ kT alone costs ~14 CPU s/ps)
     REF_DT_FS=${REF_DT_FS:-0.2}
     REF_PS_FACTOR=2
-    SCAN_PS=4
+    SCAN_PS=3
     SCAN_REPLICAS=2     # the scan compares costs; two runs bound their spread
     EXTREME_N=216
     EXTREME_EQUIL_PS=0.05 # ΔV = 0.05 kT in the dense liquid costs minutes per ps
     EXTREME_PS=0.2
     EXTREME_SAMPLE_FS=5
 fi
+
+# Sample interval of every run, fixed here rather than taken from the scenes: a whole number of
+# SMD steps at dt = 0.2, 0.5, 1, 1.8 and 3 fs, so that all curves of one figure share one grid.
+SAMPLE_FS=9
 
 log() { echo "[$(date +%H:%M:%S)] $*" >&2; }
 
@@ -79,7 +85,7 @@ run_replicas() {
     for k in $(seq 1 $((2 * REPLICAS))); do
         [ "$done" -lt "$REPLICAS" ] || break
         seed=$((${SEED_OFFSET:-0} + k))
-        if run_one "$dir/seed-$seed" "$scene" --set seed="$seed" "$@"; then
+        if run_one "$dir/seed-$seed" "$scene" --set seed="$seed" --set run.sample_fs="$SAMPLE_FS" "$@"; then
             done=$((done + 1))
         else
             echo "seed-$seed: $(tail -n 1 "$dir/seed-$seed.partial.log")" >>"$dir/failures.txt"

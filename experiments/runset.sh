@@ -6,7 +6,8 @@
 #   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs)
 #   OPTION  heap | eager (DMD queue and invalidation, default bpq + lazy)
 #           mayfail (a failed run marks the set FAILED instead of stopping make: unstable
-#                    settings are a result of the trade-off, not an error of the pipeline)
+#                    settings are a result of the trade-off, not an error of the pipeline;
+#                    in the dense and gas states such sets run TRADE_PS)
 #           ref (the trade-off's converged reference: REF_PS_FACTOR times longer, seeds 101…)
 # Runs land in $RUNS/STATE/ENGINE-PARAM[-OPTION...]/seed-K; the set's replica means of rdf.csv,
 # vacf.csv and oacf.csv go beside them (mean-rdf.csv, ...).
@@ -47,6 +48,9 @@ for o in "${options[@]}"; do
     *) echo "runset.sh: unknown option '$o'" >&2; exit 2 ;;
     esac
 done
+
+# The trade-off's extra settings are shorter: their errors carry their own statistical floor.
+if [ "$mayfail" = 1 ] && { [ "$state" = dense ] || [ "$state" = gas ]; }; then ps=$TRADE_PS; fi
 
 dir=$RUNS/$id
 rm -f "$dir/FAILED"
