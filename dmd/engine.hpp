@@ -34,7 +34,6 @@
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -77,7 +76,7 @@ public:
           settings_(readDmdSettings(scene.dmd, sys_.potential, sys_.kT, sys_.box.length)),
           cells_(sys_.box.length, settings_.rm, sys_.size()), terraces_(sys_.size()),
           clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
-          handles_(settings_.eager ? sys_.size() : 0), jitterStream_(jitterSeed(scene.seed)) {
+          handles_(settings_.eager ? sys_.size() : 0), jitterState_(jitterSeed(scene.seed)) {
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
         search_.grazeWindow = grazeFraction * terraceHeight();
@@ -516,14 +515,19 @@ private:
         return e;
     }
 
-    /// The horizon-jitter stream, named and derived from the one scene seed.
-    static std::mt19937_64 jitterSeed(std::uint64_t seed) {
-        std::seed_seq seq{seed, std::uint64_t{0x646d642e686f72ull}}; // "dmd.hor"
-        return std::mt19937_64(seq);
+    /// The horizon-jitter stream, named ("dmd.hor") and derived from the one scene seed:
+    /// SplitMix64 (Steele, Lea & Flood, OOPSLA 2014), cheap enough to draw at every search.
+    static std::uint64_t jitterSeed(std::uint64_t seed) {
+        return seed ^ std::uint64_t{0x646d642e686f72ull};
     }
 
     double jitteredHorizon() {
-        return settings_.horizon * (1.0 - horizonJitter * jitter_(jitterStream_));
+        std::uint64_t z = (jitterState_ += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        z ^= z >> 31;
+        const double u = static_cast<double>(z >> 11) * 0x1.0p-53; // uniform in [0, 1)
+        return settings_.horizon * (1.0 - horizonJitter * u);
     }
 
     // ---- bookkeeping ----
@@ -571,8 +575,7 @@ private:
     std::vector<std::vector<QueueHandle>> handles_; // eager invalidation only
     Queue queue_;
     SearchSettings search_;
-    std::mt19937_64 jitterStream_;
-    std::uniform_real_distribution<double> jitter_{0.0, 1.0};
+    std::uint64_t jitterState_;
     double time_ = 0.0;
     EventCounts counts_;
     std::uint64_t stalledEvents_ = 0, stallLimit_ = stalledEventLimit;
