@@ -1,4 +1,5 @@
 #include "cli/run_driver.hpp"
+#include <set>
 
 namespace terrace::cli {
 
@@ -27,15 +28,28 @@ nlohmann::json vec3Json(const Vec3& v) {
 
 namespace {
 
-nlohmann::json difference(const nlohmann::json& before, const nlohmann::json& after) {
+/// Statistics that count things since the engine was built; the run reports their increase
+/// over production. Everything else (sizes, settings, maxima) is reported as it stands at the end.
+bool isCounter(const std::string& path) {
+    static const std::set<std::string> counters = {
+        "steps",    "neighbour_rebuilds", "pair_evaluations",
+        "cleanups", "stale_events",       "search_evaluations"};
+    return path.rfind("events.", 0) == 0 || counters.count(path) > 0;
+}
+
+nlohmann::json difference(const nlohmann::json& before, const nlohmann::json& after,
+                          const std::string& path = "") {
     if (after.is_object()) {
         nlohmann::json out = nlohmann::json::object();
-        for (const auto& [key, value] : after.items())
-            out[key] =
-                before.is_object() && before.contains(key) ? difference(before[key], value) : value;
+        for (const auto& [key, value] : after.items()) {
+            const std::string sub = path.empty() ? key : path + "." + key;
+            out[key] = before.is_object() && before.contains(key)
+                           ? difference(before[key], value, sub)
+                           : value;
+        }
         return out;
     }
-    if (after.is_number_integer() && before.is_number_integer())
+    if (isCounter(path) && after.is_number_integer() && before.is_number_integer())
         return after.get<long long>() - before.get<long long>();
     return after;
 }

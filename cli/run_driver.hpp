@@ -36,8 +36,8 @@ RunPlan planRun(const Scene& scene);
 
 nlohmann::json vec3Json(const Vec3& v);
 
-/// Merges the engine's statistics into the summary: counters (integers, also nested, e.g.
-/// events.up) as their increase over production, everything else as its final value; adds
+/// Merges the engine's statistics into the summary: counters (events.*, steps, ...) as their
+/// increase over production, everything else as its final value; adds
 /// collisions_per_ps (DMD: up + down + reflect) and steps_per_ps (SMD) where those counters exist.
 void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& before,
                          const nlohmann::json& after, double simulatedPs);
