@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # terrace quick start, for a fresh Debian 12 machine as root (or with sudo):
-#   ./quickstart.sh run    install what is missing, build, run the built-in default scene
+#   ./quickstart.sh run    install what is missing, build, run the built-in default scene with
+#                          both engines and print them side by side (experiments/versus.sh:
+#                          table in out/versus/versus.txt, figure out/versus/versus.png)
 #   ./quickstart.sh test   install what is missing, build, run the whole test suite
-# Extra arguments after `run` go to `terrace run` (e.g. ./quickstart.sh run --set engine=smd).
+# Arguments after `run` go to `terrace run` instead (e.g. ./quickstart.sh run --set engine=smd).
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -35,7 +37,8 @@ run)
     shift
     install_missing
     build
-    exec ./build/terrace run "$@"
+    if [ $# -gt 0 ]; then exec ./build/terrace run "$@"; fi
+    exec experiments/versus.sh out/versus
     ;;
 test)
     install_missing
