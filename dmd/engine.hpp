@@ -17,6 +17,7 @@
 // A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error.
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
 #include "core/engine.hpp"
+#include "core/free_orbit.hpp"
 #include "core/scene.hpp"
 #include "core/snapshot.hpp"
 #include "core/system.hpp"
@@ -219,6 +220,11 @@ public:
     }
 
 private:
+    /// A body brought to now without touching its stored state: the search's view of it.
+    struct Moving {
+        Vec3 r, v;
+        FreeOrbit<K> orbit;
+    };
     using Queue = std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>>;
 
     template <class F> void visitQueue(F&& f) { std::visit(std::forward<F>(f), queue_); }
@@ -261,8 +267,9 @@ private:
     template <class Q> void predictAll(Q& q) {
         for (int i = 0; i < sys_.size(); ++i) {
             double entry = std::numeric_limits<double>::infinity();
+            const Moving mi = movingNow(i);
             cells_.forEachNeighbour(i, [&](int j) {
-                if (j > i) entry = std::min(entry, predictPair(q, i, j, nullptr));
+                if (j > i) entry = std::min(entry, predictPair(q, mi, i, j, nullptr));
             });
             scheduleBodyEvents(q, i, entry);
         }
@@ -361,7 +368,8 @@ private:
             return;
         }
         const PairSample start{0.0, e.U, e.dUdt};
-        const double entry = predictPair(q, e.i, e.j, std::isnan(e.U) ? nullptr : &start);
+        const double entry =
+            predictPair(q, movingNow(e.i), e.i, e.j, std::isnan(e.U) ? nullptr : &start);
         if (std::isfinite(entry)) schedule(q, pairEvent(EventKind::Virtual, e.i, e.j, entry));
     }
 
@@ -408,8 +416,10 @@ private:
     /// Predicts every pair of i except (i, exclude); (i, partner) has just been resolved.
     template <class Q> void predictBody(Q& q, int i, int exclude, int partner = -1) {
         double entry = std::numeric_limits<double>::infinity();
+        const Moving mi = movingNow(i);
         cells_.forEachNeighbour(i, [&](int j) {
-            if (j != exclude) entry = std::min(entry, predictPair(q, i, j, nullptr, j == partner));
+            if (j != exclude)
+                entry = std::min(entry, predictPair(q, mi, i, j, nullptr, j == partner));
         });
         scheduleBodyEvents(q, i, entry);
     }
@@ -446,13 +456,15 @@ private:
     /// the jittered horizon; a truncated search leaves a virtual event holding its end point.
     /// A pair entering r_m only beyond the horizon is not searched: its entry time (absolute) is
     /// returned for the caller to schedule; +∞ otherwise.
+    /// mi is body i brought to now (movingNow(i)), prepared once for all pairs of i.
     template <class Q>
-    double predictPair(Q& q, int i, int j, const PairSample* resumeFrom, bool afterEvent = false) {
+    double predictPair(Q& q, const Moving& mi, int i, int j, const PairSample* resumeFrom,
+                       bool afterEvent = false) {
         constexpr double none = std::numeric_limits<double>::infinity();
-        const State &bi0 = sys_.bodies[i], &bj0 = sys_.bodies[j];
-        const double dti = time_ - clock_[i], dtj = time_ - clock_[j];
-        const Vec3 r0 = sys_.box.minimumImage((bi0.r + bi0.v * dti) - (bj0.r + bj0.v * dtj));
-        const Vec3 w = bi0.v - bj0.v;
+        const State& bj0 = sys_.bodies[j];
+        const double dtj = time_ - clock_[j];
+        const Vec3 r0 = sys_.box.minimumImage(mi.r - (bj0.r + bj0.v * dtj));
+        const Vec3 w = mi.v - bj0.v;
         ShellWindow win = shellWindow(r0, w, settings_.rm);
         // Only a pair inside r_m (up to round-off) can be bound; skip the lookup for the rest.
         constexpr double boundSlack = 1.0 + 1e-6;
@@ -467,17 +479,11 @@ private:
         if (win.empty()) return none;
         const double horizon = jitteredHorizon();
         if (win.enter > horizon) return time_ + win.enter;
-        State bi = bi0, bj = bj0;
-        freeMove<K>(bi, sys_.body, dti);
-        freeMove<K>(bj, sys_.body, dtj);
+        const Moving mj = movingNow(j);
         auto eval = [&](double tau) {
-            State ci = bi, cj = bj;
-            freeMove<K>(ci, sys_.body, tau);
-            freeMove<K>(cj, sys_.body, tau);
-            const PairForce f = sys_.potential.evaluate(r0 + w * tau, K::axis(ci), K::axis(cj));
-            return PairSample{
-                tau, f.U,
-                dUdt(f, w, K::angularVelocity(ci, sys_.body), K::angularVelocity(cj, sys_.body))};
+            const auto ai = mi.orbit.at(tau), aj = mj.orbit.at(tau);
+            const PairForce f = sys_.potential.evaluate(r0 + w * tau, ai.axis, aj.axis);
+            return PairSample{tau, f.U, dUdt(f, w, ai.w, aj.w)};
         };
         PairSample start;
         if (resumeFrom && win.enter == 0.0) {
@@ -502,6 +508,12 @@ private:
             schedule(q, e);
         }
         return none;
+    }
+
+    Moving movingNow(int i) const {
+        State b = sys_.bodies[i];
+        freeMove<K>(b, sys_.body, time_ - clock_[i]);
+        return {b.r, b.v, FreeOrbit<K>(b, sys_.body)};
     }
 
     Event pairEvent(EventKind kind, int i, int j, double t) const {

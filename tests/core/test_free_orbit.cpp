@@ -1,0 +1,88 @@
+// FreeOrbit (core/free_orbit.hpp) against freeMove from the same State: the orbit is the kind's
+// own free rotation prepared once, so the two must agree to round-off at every τ, for every kind.
+#include "core/asymmetric_top.hpp"
+#include "core/free_orbit.hpp"
+#include "core/symmetric_top.hpp"
+#include <cmath>
+#include <gtest/gtest.h>
+#include <limits>
+#include <random>
+
+namespace {
+
+using namespace terrace;
+
+// The linear rotor's orbit evaluates freeRotate's expression term for term: no difference at all
+// is expected; a few ulp are allowed so that the test states the contract (round-off), not the
+// compiler's choice of instruction order.
+constexpr double roundoffTol = 8.0 * std::numeric_limits<double>::epsilon();
+
+Vec3 randomUnit(std::mt19937_64& rng) {
+    std::normal_distribution<double> g;
+    const Vec3 v(g(rng), g(rng), g(rng));
+    return v / v.norm();
+}
+
+const double taus[] = {0.0, 1e-9, 0.013, 0.04, -0.02, 0.7, 35.0};
+
+TEST(FreeOrbit, LinearRotorMatchesFreeMove) {
+    std::mt19937_64 rng(11);
+    const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
+    for (int k = 0; k < 50; ++k) {
+        LinearRotor::State b;
+        b.s = randomUnit(rng);
+        const Vec3 u = randomUnit(rng);
+        b.w = 25.0 * (u - u.dot(b.s) * b.s); // ω ⟂ s, a few rad per 100 fs
+        const FreeOrbit<LinearRotor> orbit(b, p);
+        for (double tau : taus) {
+            LinearRotor::State moved = b;
+            freeMove<LinearRotor>(moved, p, tau);
+            const auto a = orbit.at(tau);
+            EXPECT_LE((a.axis - LinearRotor::axis(moved)).norm(), roundoffTol) << tau;
+            EXPECT_LE((a.w - LinearRotor::angularVelocity(moved, p)).norm(), roundoffTol);
+        }
+    }
+}
+
+TEST(FreeOrbit, LinearRotorAtRest) {
+    const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
+    LinearRotor::State b;
+    b.s = Vec3(0.6, 0.0, 0.8);
+    const auto a = FreeOrbit<LinearRotor>(b, p).at(3.0);
+    EXPECT_EQ(a.axis, b.s);
+    EXPECT_EQ(a.w, Vec3::Zero());
+}
+
+TEST(FreeOrbit, SphereDoesNotTurn) {
+    const BodyParams p{18.0, Vec3::Zero()};
+    const auto a = FreeOrbit<Sphere>(Sphere::State{}, p).at(2.0);
+    EXPECT_EQ(a.axis, Vec3::UnitZ());
+    EXPECT_EQ(a.w, Vec3::Zero());
+}
+
+template <class K> void expectTopMatchesFreeMove(const BodyParams& p) {
+    std::mt19937_64 rng(5);
+    for (int k = 0; k < 10; ++k) {
+        typename K::State b;
+        b.A = rotationMatrix(randomUnit(rng), 2.0 * k + 0.3);
+        b.L = 4.0 * randomUnit(rng);
+        const FreeOrbit<K> orbit(b, p);
+        for (double tau : taus) {
+            typename K::State moved = b;
+            freeMove<K>(moved, p, tau);
+            const auto a = orbit.at(tau);
+            EXPECT_LE((a.axis - K::axis(moved)).norm(), roundoffTol) << tau;
+            EXPECT_LE((a.w - K::angularVelocity(moved, p)).norm(), roundoffTol) << tau;
+        }
+    }
+}
+
+TEST(FreeOrbit, SymmetricTopMatchesFreeMove) {
+    expectTopMatchesFreeMove<SymmetricTop>({18.0, Vec3(1.2, 1.2, 0.4)});
+}
+
+TEST(FreeOrbit, AsymmetricTopMatchesFreeMove) {
+    expectTopMatchesFreeMove<AsymmetricTop>({18.0, Vec3(0.6, 1.2, 1.7)});
+}
+
+} // namespace
