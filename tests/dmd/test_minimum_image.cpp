@@ -1,0 +1,71 @@
+// The inline rounding behind PeriodicBox::minimumImage (core/box.hpp), used in every DMD pair
+// prediction, must give std::nearbyint's value bit for bit: ties to even, signed zeros, huge and
+// non-finite arguments; and minimumImage must pick the same image as the library rounding.
+#include "core/box.hpp"
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <gtest/gtest.h>
+#include <limits>
+#include <random>
+
+namespace {
+
+using namespace terrace;
+
+bool sameBits(double a, double b) {
+    return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+TEST(MinimumImage, NearestIntegerEqualsNearbyintOnEdgeCases) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const double cases[] = {0.0,
+                            -0.0,
+                            0.3,
+                            -0.3,
+                            0.5,
+                            -0.5,
+                            1.5,
+                            -1.5,
+                            2.5,
+                            -2.5,
+                            0.49999999999999994,
+                            -0.49999999999999994,
+                            1e-310,
+                            -1e-310,
+                            0x1p51 - 0.5,
+                            -0x1p51 + 0.5,
+                            0x1p51 + 0.5,
+                            -0x1p51 - 0.5,
+                            0x1p52 + 1.0,
+                            1e300,
+                            -1e300,
+                            inf,
+                            -inf};
+    for (double x : cases)
+        EXPECT_TRUE(sameBits(nearestInteger(x), std::nearbyint(x))) << x;
+    EXPECT_TRUE(std::isnan(nearestInteger(std::numeric_limits<double>::quiet_NaN())));
+}
+
+TEST(MinimumImage, NearestIntegerEqualsNearbyintOnRandomValues) {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(-4.0, 4.0);
+    for (int k = 0; k < 100000; ++k) {
+        const double x = u(rng) * std::pow(10.0, static_cast<int>(k % 12) - 3);
+        ASSERT_TRUE(sameBits(nearestInteger(x), std::nearbyint(x))) << x;
+    }
+}
+
+TEST(MinimumImage, SameImageAsLibraryRounding) {
+    const PeriodicBox box{30.6};
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> u(-100.0, 100.0);
+    for (int k = 0; k < 10000; ++k) {
+        const Vec3 d(u(rng), u(rng), u(rng));
+        const Vec3 m = box.minimumImage(d);
+        for (int a = 0; a < 3; ++a)
+            ASSERT_TRUE(sameBits(m[a], d[a] - box.length * std::nearbyint(d[a] / box.length)));
+    }
+}
+
+} // namespace
