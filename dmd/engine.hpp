@@ -26,6 +26,7 @@
 #include "dmd/cell_list.hpp"
 #include "dmd/collision_rule.hpp"
 #include "dmd/event.hpp"
+#include "dmd/neighbour_lists.hpp"
 #include "dmd/pair_terraces.hpp"
 #include "dmd/root_search.hpp"
 #include "dmd/settings.hpp"
@@ -62,10 +63,20 @@ inline constexpr double cleanupMinimumPerBody = 16.0;
 /// Bounded priority queue: events per bin aimed at, and the period (in events) of its retuning.
 inline constexpr double eventsPerBin = 8.0;
 inline constexpr std::uint64_t retunePeriod = 1u << 16;
+/// Skin of the per-body candidate lists as a fraction of r_m: lists of bodies within
+/// r_m (1 + 0.15) hold ~1.5× the pairs inside r_m (against ~7× for the 27 cells), and a body
+/// travels skin/2 ≈ 0.4 Å (dense rods) between rebuilds, tens of its collisions.
+inline constexpr double listSkinFraction = 0.15;
+/// A list is rebuilt a hair before the body has moved skin/2, so that round-off in the rebuild
+/// time can never let an unlisted pair inside r_m.
+inline constexpr double relistMargin = 1e-6;
 
 struct EventCounts {
-    std::uint64_t up = 0, down = 0, reflect = 0, virtualEvents = 0, cell = 0, sample = 0;
-    std::uint64_t total() const { return up + down + reflect + virtualEvents + cell + sample; }
+    std::uint64_t up = 0, down = 0, reflect = 0, virtualEvents = 0, cell = 0, relist = 0,
+                  sample = 0;
+    std::uint64_t total() const {
+        return up + down + reflect + virtualEvents + cell + relist + sample;
+    }
 };
 
 template <BodyKind K, PairPotential P> class Engine {
@@ -75,7 +86,8 @@ public:
     Engine(System<K, P> initial, const Scene& scene)
         : sys_(std::move(initial)),
           settings_(readDmdSettings(scene.dmd, sys_.potential, sys_.kT, sys_.box.length)),
-          cells_(sys_.box.length, settings_.rm, sys_.size()), terraces_(sys_.size()),
+          cells_(sys_.box.length, settings_.rm * (1.0 + listSkinFraction), sys_.size()),
+          terraces_(sys_.size()), lists_(sys_.size(), listSkinFraction * settings_.rm),
           clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
           handles_(settings_.eager ? sys_.size() : 0), jitterState_(jitterSeed(scene.seed)) {
         search_.maxStep = settings_.horizon;
@@ -90,6 +102,8 @@ public:
                                                                  0.0);
         for (int i = 0; i < sys_.size(); ++i)
             cells_.insert(i, sys_.bodies[i].r);
+        for (int i = 0; i < sys_.size(); ++i)
+            rebuildList(i);
         assignInitialTerraces();
         visitQueue([&](auto& q) { predictAll(q); });
         if (auto* bpq = std::get_if<BoundedPriorityQueue<Event>>(&queue_)) retune(*bpq);
@@ -153,6 +167,7 @@ public:
                        {"reflect", counts_.reflect},
                        {"virtual", counts_.virtualEvents},
                        {"cell", counts_.cell},
+                       {"relist", counts_.relist},
                        {"sample", counts_.sample}};
         j["dV_kJ_per_mol"] = settings_.levels.isUniform() ? nlohmann::json(terraceHeight())
                                                           : nlohmann::json(nullptr);
@@ -181,6 +196,8 @@ public:
     /// The terrace index the engine holds for the pair (i, j).
     int terrace(int i, int j) const { return terraces_.get(i, j); }
     const PairTerraces& pairTerraces() const { return terraces_; }
+    const NeighbourLists& neighbourLists() const { return lists_; }
+    int cellsPerSide() const { return cells_.cellsPerSide(); }
     const TerraceLevels& levels() const { return settings_.levels; }
     double interactionRange() const { return settings_.rm; }
     const EventCounts& counts() const { return counts_; }
@@ -213,7 +230,7 @@ public:
         std::size_t b = std::visit([](const auto& q) { return q.bytesReserved(); }, queue_);
         b += sys_.bodies.capacity() * sizeof(State) + cells_.bytesReserved() +
              terraces_.bytesReserved() + clock_.capacity() * sizeof(double) +
-             counter_.capacity() * sizeof(std::uint32_t);
+             counter_.capacity() * sizeof(std::uint32_t) + lists_.bytesReserved();
         for (const auto& h : handles_)
             b += h.capacity() * sizeof(QueueHandle);
         return b;
@@ -268,9 +285,8 @@ private:
         for (int i = 0; i < sys_.size(); ++i) {
             double entry = std::numeric_limits<double>::infinity();
             const Moving mi = movingNow(i);
-            cells_.forEachNeighbour(i, [&](int j) {
+            for (const int j : lists_.partners(i))
                 if (j > i) entry = std::min(entry, predictPair(q, mi, i, j, nullptr));
-            });
             scheduleBodyEvents(q, i, entry);
         }
         cleanupThreshold_ = std::max(cleanupMinimumPerBody * sys_.size(),
@@ -302,6 +318,10 @@ private:
             case EventKind::CellCrossing:
                 ++counts_.cell;
                 crossCell(q, e);
+                break;
+            case EventKind::Relist:
+                ++counts_.relist;
+                relist(q, e.i);
                 break;
             case EventKind::Sample:
                 break;
@@ -373,11 +393,36 @@ private:
         if (std::isfinite(entry)) schedule(q, pairEvent(EventKind::Virtual, e.i, e.j, entry));
     }
 
+    /// The cell only serves list rebuilds: nothing about i's pairs changes.
     template <class Q> void crossCell(Q& q, const Event& e) {
         bringToNow(e.i);
         cells_.cross(e.i, e.side / 2, e.side % 2 ? 1 : -1);
-        invalidate(q, e.i);
-        predictBody(q, e.i, -1);
+        scheduleCellCrossing(q, e.i);
+    }
+
+    /// i has moved half the skin: new candidates may come within reach, so all its pairs are
+    /// predicted afresh.
+    template <class Q> void relist(Q& q, int i) {
+        bringToNow(i);
+        rebuildList(i);
+        invalidate(q, i);
+        predictBody(q, i, -1);
+    }
+
+    /// i's list from the cells: every j within r_m + skin now, listed on both sides.
+    void rebuildList(int i) {
+        lists_.detach(i);
+        const Vec3 ri = positionNow(i);
+        const double reach = settings_.rm + lists_.skin();
+        cells_.forEachNeighbour(i, [&](int j) {
+            if (sys_.box.minimumImage(ri - positionNow(j)).squaredNorm() <= reach * reach)
+                lists_.link(i, j);
+        });
+        lists_.setAnchor(i, ri);
+    }
+
+    Vec3 positionNow(int i) const {
+        return sys_.bodies[i].r + sys_.bodies[i].v * (time_ - clock_[i]);
     }
 
     template <class Q> void afterEvent(Q& q) {
@@ -417,10 +462,9 @@ private:
     template <class Q> void predictBody(Q& q, int i, int exclude, int partner = -1) {
         double entry = std::numeric_limits<double>::infinity();
         const Moving mi = movingNow(i);
-        cells_.forEachNeighbour(i, [&](int j) {
+        for (const int j : lists_.partners(i))
             if (j != exclude)
                 entry = std::min(entry, predictPair(q, mi, i, j, nullptr, j == partner));
-        });
         scheduleBodyEvents(q, i, entry);
     }
 
@@ -429,10 +473,28 @@ private:
     /// per approaching pair. Should i have no event before then, it re-predicts all its pairs.
     template <class Q> void scheduleBodyEvents(Q& q, int i, double entry) {
         scheduleCellCrossing(q, i);
+        scheduleRelist(q, i);
         if (!std::isfinite(entry)) return;
         Event e;
         e.time = entry;
         e.kind = EventKind::Virtual;
+        e.i = i;
+        e.countI = counter_[i];
+        schedule(q, e);
+    }
+
+    /// When i will have moved (1 − relistMargin) skin/2 from its list's anchor.
+    template <class Q> void scheduleRelist(Q& q, int i) {
+        const double radius = 0.5 * lists_.skin() * (1.0 - relistMargin);
+        const Vec3 moved = positionNow(i) - lists_.anchor(i);
+        // Already out (an event tied with the rebuild came first): rebuild now.
+        const double dt = moved.squaredNorm() >= radius * radius
+                              ? 0.0
+                              : shellWindow(moved, sys_.bodies[i].v, radius).exit;
+        if (!std::isfinite(dt)) return;
+        Event e;
+        e.time = time_ + dt;
+        e.kind = EventKind::Relist;
         e.i = i;
         e.countI = counter_[i];
         schedule(q, e);
@@ -582,6 +644,7 @@ private:
     DmdSettings settings_;
     CellList cells_;
     PairTerraces terraces_;
+    NeighbourLists lists_;
     std::vector<double> clock_;
     std::vector<std::uint32_t> counter_;
     std::vector<std::vector<QueueHandle>> handles_; // eager invalidation only
