@@ -95,6 +95,9 @@ public:
         search_.grazeWindow = grazeFraction * terraceHeight();
         search_.levelTolerance = levelTolerance * terraceHeight();
         checkBodies();
+        orbit_.reserve(sys_.bodies.size());
+        for (const State& b : sys_.bodies)
+            orbit_.emplace_back(b, sys_.body);
         if (settings_.queue == QueueKind::Heap)
             queue_.template emplace<BinaryHeapQueue<Event>>();
         else
@@ -149,6 +152,8 @@ public:
                 b.v *= f;
                 K::scaleAngularVelocity(b, sys_.body, f);
             }
+            for (int i = 0; i < sys_.size(); ++i)
+                refreshOrbit(i);
         }
         visitQueue([&](auto& q) {
             q.clear();
@@ -230,7 +235,8 @@ public:
         std::size_t b = std::visit([](const auto& q) { return q.bytesReserved(); }, queue_);
         b += sys_.bodies.capacity() * sizeof(State) + cells_.bytesReserved() +
              terraces_.bytesReserved() + clock_.capacity() * sizeof(double) +
-             counter_.capacity() * sizeof(std::uint32_t) + lists_.bytesReserved();
+             counter_.capacity() * sizeof(std::uint32_t) + lists_.bytesReserved() +
+             orbit_.capacity() * sizeof(FreeOrbit<K>);
         for (const auto& h : handles_)
             b += h.capacity() * sizeof(QueueHandle);
         return b;
@@ -240,7 +246,9 @@ private:
     /// A body brought to now without touching its stored state: the search's view of it.
     struct Moving {
         Vec3 r, v;
-        FreeOrbit<K> orbit;
+        const FreeOrbit<K>* orbit; // prepared at the body's own clock
+        double offset;             // now − the body's clock
+        auto at(double tau) const { return orbit->at(offset + tau); }
     };
     using Queue = std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>>;
 
@@ -363,6 +371,8 @@ private:
         const double dE = settings_.levels.energy(target) - settings_.levels.energy(n);
         const Impulse impulse = solveImpulse(impulseCoefficients<K>(f, bi, bj, sys_.body), dE);
         applyImpulse<K>(bi, bj, f, impulse.S, sys_.body);
+        refreshOrbit(i);
+        refreshOrbit(j);
         switch (impulse.outcome) {
         case Outcome::Up:
             ++counts_.up;
@@ -543,7 +553,7 @@ private:
         if (win.enter > horizon) return time_ + win.enter;
         const Moving mj = movingNow(j);
         auto eval = [&](double tau) {
-            const auto ai = mi.orbit.at(tau), aj = mj.orbit.at(tau);
+            const auto ai = mi.at(tau), aj = mj.at(tau);
             const PairForce f = sys_.potential.evaluate(r0 + w * tau, ai.axis, aj.axis);
             return PairSample{tau, f.U, dUdt(f, w, ai.w, aj.w)};
         };
@@ -572,10 +582,12 @@ private:
         return none;
     }
 
+    /// Body i as the search sees it now, through its orbit cached at its clock: no state is
+    /// copied or moved per pair.
     Moving movingNow(int i) const {
-        State b = sys_.bodies[i];
-        freeMove<K>(b, sys_.body, time_ - clock_[i]);
-        return {b.r, b.v, FreeOrbit<K>(b, sys_.body)};
+        const State& b = sys_.bodies[i];
+        const double dt = time_ - clock_[i];
+        return {b.r + b.v * dt, b.v, &orbit_[i], dt};
     }
 
     Event pairEvent(EventKind kind, int i, int j, double t) const {
@@ -629,7 +641,10 @@ private:
     void bringToNow(int i) {
         freeMove<K>(sys_.bodies[i], sys_.body, time_ - clock_[i]);
         clock_[i] = time_;
+        refreshOrbit(i);
     }
+    /// The cached orbit follows every change of a stored state (free motion, impulse, rescale).
+    void refreshOrbit(int i) { orbit_[i] = FreeOrbit<K>(sys_.bodies[i], sys_.body); }
 
     void synchronise(double t) {
         time_ = t;
@@ -646,6 +661,7 @@ private:
     PairTerraces terraces_;
     NeighbourLists lists_;
     std::vector<double> clock_;
+    std::vector<FreeOrbit<K>> orbit_; // each body's free orbit from its state at its clock
     std::vector<std::uint32_t> counter_;
     std::vector<std::vector<QueueHandle>> handles_; // eager invalidation only
     Queue queue_;
