@@ -63,7 +63,11 @@ run_one() {
     rm -rf "$partial"
     mkdir -p "$(dirname "$dir")"
     log "run $dir"
-    if ! "$TERRACE" run "$scene" --quiet --out "$partial" "$@" >"$partial.log" 2>&1; then
+    local rc=0
+    "$TERRACE" run "$scene" --quiet --out "$partial" "$@" >"$partial.log" 2>&1 || rc=$?
+    if [ "$rc" -ne 0 ]; then
+        # A crash leaves no message of its own; the exit status (128 + signal) is then the record.
+        [ "$rc" -gt 128 ] && echo "terrace killed by signal $((rc - 128)) (exit status $rc)" >>"$partial.log"
         log "FAILED $dir (see $partial.log)"
         return 1
     fi

@@ -9,7 +9,7 @@ fig=$1
 case $fig in
 fig3) file=rdf column=g xlabel='r (Å)' ylabel='g(r)' xmax=12 range='[2:12]' ;;
 fig4) file=vacf column=c xlabel='t (ps)' ylabel='VACF' xmax=1 range='[0:1]' ;;
-fig5) file=oacf column=c1 xlabel='t (ps)' ylabel='OACF ⟨s(0)·s(t)⟩' xmax=2 range='[0:2]' ;;
+fig5) file=oacf column=c1 xlabel='t (ps)' ylabel='OACF ⟨s(0)·s(t)⟩' xmax=2 range='[0:0.6]' ;;
 *) echo "correlation_figure.sh: fig3, fig4 or fig5" >&2; exit 2 ;;
 esac
 dir=$OUT/$fig

@@ -12,7 +12,7 @@ void writePotentialMap(const std::filesystem::path& csv, const PotentialMapSetti
     const auto levels = dmd::TerraceLevels::uniform(s.dV);
     std::ofstream out(csv);
     if (!out) throw std::runtime_error(csv.string() + ": cannot write");
-    out.precision(10);
+    out.precision(7); // a figure's data: seven digits are plenty and keep the file small
     out << "r,c,U,V\n";
     for (int i = 0; i < s.rPoints; ++i) {
         const double r = s.rMin + (s.rMax - s.rMin) * i / (s.rPoints - 1);

@@ -13,8 +13,8 @@ namespace terrace::experiments {
 
 struct PotentialMapSettings {
     double epsilon = 2.5, sigma = 1.0, zeta = 1.0, dV = 1.0, vMin = -2.0;
-    double rMin = 0.9, rMax = 2.6; // range of r shown
-    int rPoints = 241, cPoints = 121;
+    double rMin = 0.9, rMax = 2.6;   // range of r shown
+    int rPoints = 121, cPoints = 61; // fine enough to show every step of the figure's terraces
 };
 
 /// Writes r,c,U,V on a grid (c from −1 to 1), one block per r separated by a blank line, the
