@@ -5,11 +5,10 @@
 //
 // Linear rotor (REFERENCES.md "Exact free rigid-body motion"; DESIGN.md "Rigid bodies"):
 //     s(τ) = s cos(|ω|τ) + (ω̂ × s) sin(|ω|τ),   ω constant,
-// with |ω| and ω̂ × s computed once here instead of at every τ. The expression and its
-// normalisation are those of LinearRotor::freeRotate, term for term, so the result is the same
-// to the last bit. Spheres have a fixed axis and no rotation. Other kinds keep the State and call
-// their own freeRotate at every τ: the exact motion stays written once, in the kind's header.
-// Units: time unit 100 fs, ω in rad per time unit.
+// with |ω| and ω̂ × s computed once here instead of at every τ: LinearRotor::freeRotate's
+// expression, without its renormalisation, so the two agree to a few ulp. Spheres have a fixed axis
+// and no rotation. Other kinds keep the State and call their own freeRotate at every τ: the exact
+// motion stays written once, in the kind's header. Units: time unit 100 fs, ω in rad per time unit.
 #include "core/body_kind.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/sphere.hpp"
@@ -50,8 +49,9 @@ public:
     Attitude at(double tau) const {
         if (speed_ == 0.0) return {s_, w_};
         const double angle = speed_ * tau;
-        const Vec3 s = s_ * std::cos(angle) + sideways_ * std::sin(angle);
-        return {s / s.norm(), w_};
+        // s and ω̂ × s are orthonormal to round-off, so |s(τ)| = 1 to a few ulp without the
+        // renormalisation freeRotate applies to the State it keeps (where errors would build up).
+        return {s_ * std::cos(angle) + sideways_ * std::sin(angle), w_};
     }
 
 private:

@@ -12,9 +12,8 @@ namespace {
 
 using namespace terrace;
 
-// The linear rotor's orbit evaluates freeRotate's expression term for term: no difference at all
-// is expected; a few ulp are allowed so that the test states the contract (round-off), not the
-// compiler's choice of instruction order.
+// The linear rotor's orbit evaluates freeRotate's expression without its renormalisation (the
+// rotated axis has unit length to a few ulp): differences of a few ulp per component.
 constexpr double roundoffTol = 8.0 * std::numeric_limits<double>::epsilon();
 
 Vec3 randomUnit(std::mt19937_64& rng) {
