@@ -6,8 +6,6 @@
 // CPU time is measured around the engine calls only, so output and analysis do not count against
 // either engine. A SIGINT stops the loop at the next sample; everything gathered so far is still
 // written, and summary.json says "interrupted": true.
-#include "analysis/conservation.hpp"
-#include "analysis/correlations.hpp"
 #include "cli/cpu_clock.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/provenance.hpp"
@@ -20,6 +18,9 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace terrace::cli {
 
@@ -42,111 +43,106 @@ nlohmann::json vec3Json(const Vec3& v);
 void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& before,
                          const nlohmann::json& after, double simulatedPs);
 
-/// Drives `engine` through the scene's run and writes trajectory.xyz (optional), summary.json and
-/// the correlation CSVs into `dir`. Returns the summary.
+/// What a run gathered, handed from the engine loop to the summary.
+struct RunRecord {
+    std::vector<double> tPs, total, potential, kinetic; // per production sample; kJ/mol
+    std::vector<Snapshot> samples;
+    Vec3 momentumInitial = Vec3::Zero(), momentumFinal = Vec3::Zero(); // internal units
+    nlohmann::json statsBefore, statsAfter; // engine statistics around production
+    double simulatedPs = 0.0, cpuSeconds = 0.0, cpuEquilibration = 0.0;
+    double sampleInterval = 0.0, kT = 0.0;
+    int bodies = 0, dof = 0;
+    bool interrupted = false;
+    std::string failure; // the engine's error, empty when the run went through
+};
+
+/// Builds summary.json from the record, runs the correlation analysis into dir and writes both.
+nlohmann::json writeSummary(const Scene& scene, const RunRecord& run,
+                            const std::filesystem::path& dir);
+
+/// Drives `engine` through the scene's run and writes initial.xyz, trajectory.xyz (optional),
+/// summary.json and the correlation CSVs into `dir`. Returns the summary; an engine failure is
+/// raised again after everything gathered until then has been written.
 template <Engine E>
 nlohmann::json drive(E& engine, const Scene& scene, const std::filesystem::path& dir,
                      TrajectoryLayout layout, bool quiet = false) {
     const RunPlan plan = planRun(scene);
-    const double kT = scene.kT();
-    const int n = engine.snapshot().size();
-    const int dof = (layout == TrajectoryLayout::Sphere ? 3
-                     : layout == TrajectoryLayout::Rod  ? 5
-                                                        : 6) *
-                        n -
-                    3;
+    RunRecord run;
+    run.kT = scene.kT();
+    run.sampleInterval = plan.sampleInterval;
+    run.bodies = engine.snapshot().size();
+    const int rotational = layout == TrajectoryLayout::Sphere ? 0
+                           : layout == TrajectoryLayout::Rod  ? 2
+                                                              : 3;
+    run.dof = (3 + rotational) * run.bodies - 3;
     ProgressReporter progress(quiet);
     CpuClock cpu;
     InterruptGuard interrupt;
-
     {
         std::ofstream initial(dir / "initial.xyz");
         writeXyzFrame(initial, engine.snapshot(), layout);
     }
+    // An engine that fails (an unstable time step, a stuck event cascade) ends the run; what was
+    // gathered until then is still written, with the error in summary.json.
+    auto guarded = [&](auto&& work) {
+        if (!run.failure.empty()) return;
+        try {
+            work();
+        } catch (const std::exception& e) {
+            cpu.stop();
+            run.failure = e.what();
+        }
+    };
     long k = 0; // sample index since the start of the run
-    for (long e = 0; e < plan.equilibrationSamples && !interrupt.requested(); ++e) {
-        cpu.start();
-        engine.advanceTo(double(++k) * plan.sampleInterval);
-        engine.rescaleTemperature(kT);
-        cpu.stop();
-        progress.report("equilibration", e + 1, plan.equilibrationSamples, engine.time());
-    }
-    const double equilibrationCpu = cpu.seconds();
+    guarded([&] {
+        for (long e = 0; e < plan.equilibrationSamples && !interrupt.requested(); ++e) {
+            cpu.start();
+            engine.advanceTo(double(++k) * plan.sampleInterval);
+            engine.rescaleTemperature(run.kT);
+            cpu.stop();
+            progress.report("equilibration", e + 1, plan.equilibrationSamples, engine.time());
+        }
+    });
+    run.cpuEquilibration = cpu.seconds();
     cpu.reset();
 
     std::ofstream trajectory;
     if (plan.trajectoryEvery > 0) trajectory.open(dir / "trajectory.xyz");
-    const nlohmann::json statsBefore = engine.statistics();
-    const Vec3 momentumInitial = engine.totalMomentum();
+    run.statsBefore = engine.statistics();
+    run.momentumInitial = engine.totalMomentum();
     const double tStart = engine.time();
-    std::vector<double> tPs, total, potential, temperature;
-    std::vector<Snapshot> samples;
-    samples.reserve(plan.productionSamples + 1);
     auto record = [&] {
         const double u = engine.potentialEnergy(), kin = engine.kineticEnergy();
-        tPs.push_back(units::toPs(engine.time() - tStart));
-        total.push_back(u + kin);
-        potential.push_back(u);
-        temperature.push_back(units::kelvin(2.0 * kin / dof));
-        samples.push_back(engine.snapshot());
-        const long index = long(samples.size()) - 1;
+        run.tPs.push_back(units::toPs(engine.time() - tStart));
+        run.total.push_back(u + kin);
+        run.potential.push_back(u);
+        run.kinetic.push_back(kin);
+        run.samples.push_back(engine.snapshot());
+        const long index = long(run.samples.size()) - 1;
         if (plan.trajectoryEvery > 0 && index % plan.trajectoryEvery == 0) {
-            writeXyzFrame(trajectory, samples.back(), layout);
+            writeXyzFrame(trajectory, run.samples.back(), layout);
             trajectory.flush();
         }
     };
-    record();
-    for (long s = 0; s < plan.productionSamples && !interrupt.requested(); ++s) {
-        cpu.start();
-        engine.advanceTo(double(++k) * plan.sampleInterval);
-        cpu.stop();
+    run.samples.reserve(plan.productionSamples + 1);
+    guarded([&] {
         record();
-        progress.report("production", s + 1, plan.productionSamples, engine.time());
-    }
-
-    nlohmann::json summary;
-    summary["engine"] = scene.engine;
-    summary["scene"] = scene.name;
-    summary["n_bodies"] = n;
-    summary["interrupted"] = interrupt.requested();
-    const double simulatedPs = units::toPs(engine.time() - tStart);
-    summary["simulated_ps"] = simulatedPs;
-    summary["sample_fs"] = units::toFs(plan.sampleInterval);
-    summary["samples"] = samples.size();
-    summary["cpu_seconds"] = cpu.seconds();
-    summary["cpu_seconds_equilibration"] = equilibrationCpu;
-    summary["cpu_seconds_per_ps"] = simulatedPs > 0 ? cpu.seconds() / simulatedPs : 0.0;
-    double tMean = 0.0;
-    for (double x : temperature)
-        tMean += x / temperature.size();
-    summary["temperature_K"] = tMean;
-    summary["temperature_target_K"] = units::kelvin(kT);
-    const auto es = analysis::energyStats(tPs, total, potential);
-    summary["energy"] = {{"initial", es.initial},
-                         {"final", es.final},
-                         {"mean", es.mean},
-                         {"std", es.std},
-                         {"max_abs_dev", es.maxAbsDev},
-                         {"rel_fluct", es.relFluct},
-                         {"drift_per_ps", es.driftPerPs},
-                         {"units", "kJ/mol"}};
-    double uMean = 0.0, uVar = 0.0;
-    for (double x : potential)
-        uMean += x / potential.size();
-    for (double x : potential)
-        uVar += (x - uMean) * (x - uMean) / potential.size();
-    summary["potential_energy_mean"] = uMean;
-    summary["potential_energy_std"] = std::sqrt(uVar);
-    // The paper's "relative fluctuations of the total energy to the potential energy", read as
-    // the ratio of the two standard deviations; rel_fluct above divides by |<U>| instead.
-    summary["energy"]["fluct_ratio_to_U"] = uVar > 0.0 ? es.std / std::sqrt(uVar) : 0.0;
-    summary["momentum"] = {{"initial", vec3Json(momentumInitial / units::psPerTimeUnit)},
-                           {"final", vec3Json(engine.totalMomentum() / units::psPerTimeUnit)},
-                           {"units", "g/mol A/ps"}};
-    addEngineStatistics(summary, statsBefore, engine.statistics(), simulatedPs);
-    summary["provenance"] = provenance(scene);
-    if (samples.size() >= 4) summary["analysis"] = analysis::writeCorrelations(samples, dir);
-    std::ofstream(dir / "summary.json") << summary.dump(2) << '\n';
+        for (long s = 0; s < plan.productionSamples && !interrupt.requested(); ++s) {
+            cpu.start();
+            engine.advanceTo(double(++k) * plan.sampleInterval);
+            cpu.stop();
+            record();
+            progress.report("production", s + 1, plan.productionSamples, engine.time());
+        }
+    });
+    run.interrupted = interrupt.requested();
+    run.simulatedPs = units::toPs(engine.time() - tStart);
+    run.cpuSeconds = cpu.seconds();
+    run.momentumFinal = engine.totalMomentum();
+    run.statsAfter = engine.statistics();
+    auto summary = writeSummary(scene, run, dir);
+    if (!run.failure.empty())
+        throw std::runtime_error(run.failure + " (output so far in " + dir.string() + ")");
     return summary;
 }
 

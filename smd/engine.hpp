@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <vector>
 
 namespace terrace::smd {
@@ -66,7 +67,9 @@ public:
             freeMove<K>(b, sys_.body, par_.dt);
         gatherPositions();
         const auto t2 = Clock::now();
-        if (needsRebuild(list_, position_)) {
+        const double moved2 = maxSquaredDisplacement(list_, position_);
+        if (!(moved2 <= 0.25 * list_.skin * list_.skin)) {
+            checkStable(moved2);
             build(list_, sys_.box, position_);
             ++list_.rebuilds;
         }
@@ -136,6 +139,21 @@ public:
     long pairEvaluations() const { return evaluations_; }
 
 private:
+    /// Between two list checks a body moves one step. A jump past the whole skin, or a position
+    /// that is no longer finite, means the time step is far too long for the forces met (pairs
+    /// would be missed, then NaN spreads): stop with an error instead.
+    void checkStable(double moved2) const {
+        const double skin = list_.skin;
+        if (std::isfinite(moved2) && (skin == 0.0 || moved2 <= skin * skin)) return;
+        std::ostringstream msg;
+        msg << "smd: the integration became unstable at t = " << units::toFs(time())
+            << " fs: a body moved " << std::sqrt(moved2)
+            << " Å since the last neighbour-list check (skin " << skin
+            << " Å); smd.dt_fs = " << units::toFs(par_.dt)
+            << " is too long for this state point, use a shorter one";
+        throw std::runtime_error(msg.str());
+    }
+
     static constexpr double gridTolerance = 1e-9; // in steps: far above round-off of t/dt
 
     template <class T> static double seconds(T a, T b) {

@@ -13,6 +13,7 @@
 //     r_ab = x_a - x_b + shift,   x = r - offset   (a, b slots).
 // Units: Å.
 #include "core/box.hpp"
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -172,13 +173,22 @@ inline void halfStencil(int m, int cx, int cy, int cz,
     list.start[n] = list.entry.size();
 }
 
+/// The largest squared displacement of any body since the build (Å²); NaN when a position is
+/// not finite, so that a blown-up integration cannot pass for a quiet one.
+inline double maxSquaredDisplacement(const NeighbourList& list, std::span<const Vec3> r) {
+    double largest = 0.0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const double d2 = (r[i] - list.builtAt[i]).squaredNorm();
+        if (std::isnan(d2)) return d2;
+        largest = std::max(largest, d2);
+    }
+    return largest;
+}
+
 /// True once some body has moved more than skin/2 since the build: two such bodies could then
 /// have come within r_u unlisted.
 inline bool needsRebuild(const NeighbourList& list, std::span<const Vec3> r) {
-    const double limit2 = 0.25 * list.skin * list.skin;
-    for (std::size_t i = 0; i < r.size(); ++i)
-        if ((r[i] - list.builtAt[i]).squaredNorm() > limit2) return true;
-    return false;
+    return !(maxSquaredDisplacement(list, r) <= 0.25 * list.skin * list.skin);
 }
 
 } // namespace terrace::smd
