@@ -10,7 +10,10 @@
 // The loop, per popped event:  pop → discard if stale → resolve → invalidate → predict.
 //   bookkeeping: local clocks (a body is brought to the current time only when it takes part in
 //   an event), per-body event counters captured in each event (lazy invalidation; `eager` erases
-//   queued events through stored handles instead), a cell list with crossing events, virtual
+//   queued events through stored handles instead), a cell list with crossing events from which
+//   per-body candidate lists with a skin are rebuilt by relist events (dmd/neighbour_lists.hpp;
+//   a body's pairs are screened from its list only), a free orbit per body cached at its clock
+//   (core/free_orbit.hpp) for the searches, virtual
 //   events at a jittered horizon that resume a truncated search from its stored end point,
 //   sample events that synchronise all clocks, and a cleanup of stale entries when the queue grows
 //   beyond a multiple of its size after the previous cleanup.
