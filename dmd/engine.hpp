@@ -66,10 +66,6 @@ inline constexpr double cleanupMinimumPerBody = 16.0;
 /// Bounded priority queue: events per bin aimed at, and the period (in events) of its retuning.
 inline constexpr double eventsPerBin = 8.0;
 inline constexpr std::uint64_t retunePeriod = 1u << 16;
-/// Skin of the per-body candidate lists as a fraction of r_m: lists of bodies within
-/// r_m (1 + 0.15) hold ~1.5× the pairs inside r_m (against ~7× for the 27 cells), and a body
-/// travels skin/2 ≈ 0.4 Å (dense rods) between rebuilds, tens of its collisions.
-inline constexpr double listSkinFraction = 0.15;
 /// A list is rebuilt a hair before the body has moved skin/2, so that round-off in the rebuild
 /// time can never let an unlisted pair inside r_m.
 inline constexpr double relistMargin = 1e-6;
@@ -89,9 +85,10 @@ public:
     Engine(System<K, P> initial, const Scene& scene)
         : sys_(std::move(initial)),
           settings_(readDmdSettings(scene.dmd, sys_.potential, sys_.kT, sys_.box.length)),
-          cells_(sys_.box.length, settings_.rm * (1.0 + listSkinFraction), sys_.size()),
-          terraces_(sys_.size()), lists_(sys_.size(), listSkinFraction * settings_.rm),
-          clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
+          lists_(sys_.size(),
+                 listSkin(settings_.rm, sys_.size() / sys_.box.volume(), sys_.box.length)),
+          cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
+          terraces_(sys_.size()), clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
           handles_(settings_.eager ? sys_.size() : 0), jitterState_(jitterSeed(scene.seed)) {
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
@@ -660,9 +657,9 @@ private:
 
     System<K, P> sys_;
     DmdSettings settings_;
+    NeighbourLists lists_; // before cells_: the cell width follows the skin
     CellList cells_;
     PairTerraces terraces_;
-    NeighbourLists lists_;
     std::vector<double> clock_;
     std::vector<FreeOrbit<K>> orbit_; // each body's free orbit from its state at its clock
     std::vector<std::uint32_t> counter_;

@@ -10,10 +10,30 @@
 // triangle inequality, so the argument holds across periodic images. Units: Å.
 #include "core/vec.hpp"
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <vector>
 
 namespace terrace::dmd {
+
+/// Thinnest skin, as a fraction of r_m (tuned on the paper's dense rods, where it is also what
+/// the shell rule below gives).
+inline constexpr double minimumSkinFraction = 0.15;
+/// Bodies aimed at in the shell r_m < r ≤ r_m + skin at the mean number density.
+inline constexpr double shellBodies = 5.0;
+
+/// Skin of the candidate lists. A rebuild (a scan of the neighbouring cells) comes every skin/2
+/// of travel, and every listed partner is screened at each prediction: a thin skin suits a dense
+/// liquid, where the shell fills quickly, and a wide one a gas, where a thin skin would rebuild
+/// the lists many times between collisions for no partner gained. So the skin is chosen to hold
+/// about `shellBodies` bodies (n: bodies per Å³), at least minimumSkinFraction r_m, and short of
+/// reaching past half the box (Å).
+inline double listSkin(double rm, double numberDensity, double boxLength) {
+    const double shellVolume = shellBodies / numberDensity;
+    const double wide = std::cbrt(rm * rm * rm + shellVolume / (4.0 / 3.0 * std::numbers::pi)) - rm;
+    return std::max(minimumSkinFraction * rm, std::min(wide, 0.5 * boxLength - rm));
+}
 
 class NeighbourLists {
 public:
