@@ -61,18 +61,6 @@ template <BodyKind K> void setOrientation(typename K::State& b, const Vec3& axis
 
 } // namespace detail
 
-/// Scale v and ω of every body so that the kinetic temperature equals kT exactly.
-template <BodyKind K, PairPotential P> void rescaleToTemperature(System<K, P>& sys, double kT) {
-    const double target = 0.5 * degreesOfFreedom<K>(sys.size()) * kT;
-    const double now = totalKinetic(sys);
-    if (now <= 0.0) return;
-    const double f = std::sqrt(target / now);
-    for (auto& b : sys.bodies) {
-        b.v *= f;
-        K::scaleAngularVelocity(b, sys.body, f);
-    }
-}
-
 template <BodyKind K, PairPotential P>
 System<K, P> buildInitialState(const Scene& scene, const P& potential) {
     System<K, P> sys;

@@ -4,6 +4,7 @@
 #include "core/body_kind.hpp"
 #include "core/box.hpp"
 #include "core/pair_potential.hpp"
+#include <cmath>
 #include <vector>
 
 namespace terrace {
@@ -37,6 +38,18 @@ template <BodyKind K, PairPotential P> Vec3 totalMomentum(const System<K, P>& sy
     for (const auto& b : sys.bodies)
         p += sys.body.mass * b.v;
     return p;
+}
+
+/// Scale v and ω of every body so that the kinetic temperature equals kT exactly.
+template <BodyKind K, PairPotential P> void rescaleToTemperature(System<K, P>& sys, double kT) {
+    const double target = 0.5 * degreesOfFreedom<K>(sys.size()) * kT;
+    const double now = totalKinetic(sys);
+    if (now <= 0.0) return;
+    const double f = std::sqrt(target / now);
+    for (auto& b : sys.bodies) {
+        b.v *= f;
+        K::scaleAngularVelocity(b, sys.body, f);
+    }
 }
 
 /// Total angular momentum about the origin, Σ (r_i × p_i + L_i). Meaningful for isolated

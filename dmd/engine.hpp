@@ -144,17 +144,9 @@ public:
     Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }
     void rescaleTemperature(double kT) {
         synchronise(time_);
-        const double target = 0.5 * degreesOfFreedom<K>(sys_.size()) * kT;
-        const double now = totalKinetic(sys_);
-        if (now > 0.0) {
-            const double f = std::sqrt(target / now);
-            for (auto& b : sys_.bodies) {
-                b.v *= f;
-                K::scaleAngularVelocity(b, sys_.body, f);
-            }
-            for (int i = 0; i < sys_.size(); ++i)
-                refreshOrbit(i);
-        }
+        rescaleToTemperature(sys_, kT);
+        for (int i = 0; i < sys_.size(); ++i)
+            refreshOrbit(i);
         visitQueue([&](auto& q) {
             q.clear();
             for (int i = 0; i < sys_.size(); ++i)

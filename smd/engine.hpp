@@ -93,15 +93,7 @@ public:
     Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }
 
     /// Scale v and ω so that the kinetic energy is ½ degreesOfFreedom<K>(N) kT.
-    void rescaleTemperature(double kT) {
-        const double now = kineticEnergy();
-        if (now <= 0.0) return;
-        const double f = std::sqrt(0.5 * degreesOfFreedom<K>(sys_.size()) * kT / now);
-        for (auto& b : sys_.bodies) {
-            b.v *= f;
-            K::scaleAngularVelocity(b, sys_.body, f);
-        }
-    }
+    void rescaleTemperature(double kT) { rescaleToTemperature(sys_, kT); }
 
     /// Flip every velocity and angular velocity: the step map is then run backwards in time.
     void reverseMotion() {
