@@ -9,7 +9,7 @@ nlohmann::json runDmd(const Scene& scene, const std::filesystem::path& outDir, b
     return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) {
         dmd::Engine<K, P> engine(buildInitialState<K, P>(scene, potential), scene);
         prepareOutput(outDir, scene);
-        return drive(engine, scene, outDir, layoutFor(K::rotationalDof), quiet);
+        return drive(engine, scene, outDir, K::rotationalDof, quiet);
     });
 }
 

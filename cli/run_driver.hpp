@@ -65,16 +65,14 @@ nlohmann::json writeSummary(const Scene& scene, const RunRecord& run,
 /// raised again after everything gathered until then has been written.
 template <Engine E>
 nlohmann::json drive(E& engine, const Scene& scene, const std::filesystem::path& dir,
-                     TrajectoryLayout layout, bool quiet = false) {
+                     int rotationalDof, bool quiet = false) {
     const RunPlan plan = planRun(scene);
     RunRecord run;
     run.kT = scene.kT();
     run.sampleInterval = plan.sampleInterval;
     run.bodies = engine.snapshot().size();
-    const int rotational = layout == TrajectoryLayout::Sphere ? 0
-                           : layout == TrajectoryLayout::Rod  ? 2
-                                                              : 3;
-    run.dof = (3 + rotational) * run.bodies - 3;
+    run.dof = degreesOfFreedom(rotationalDof, run.bodies);
+    const TrajectoryLayout layout = layoutFor(rotationalDof);
     ProgressReporter progress(quiet);
     CpuClock cpu;
     InterruptGuard interrupt;

@@ -9,7 +9,7 @@ nlohmann::json runSmd(const Scene& scene, const std::filesystem::path& outDir, b
     return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) {
         smd::Engine<K, P> engine(buildInitialState<K, P>(scene, potential), scene);
         prepareOutput(outDir, scene);
-        return drive(engine, scene, outDir, layoutFor(K::rotationalDof), quiet);
+        return drive(engine, scene, outDir, K::rotationalDof, quiet);
     });
 }
 

@@ -22,8 +22,11 @@ template <BodyKind K, PairPotential P> struct System {
 };
 
 /// Degrees of freedom used for the instantaneous temperature: total momentum is fixed (-3).
+inline int degreesOfFreedom(int rotationalDof, int n) {
+    return (3 + rotationalDof) * n - 3;
+}
 template <BodyKind K> int degreesOfFreedom(int n) {
-    return (3 + K::rotationalDof) * n - 3;
+    return degreesOfFreedom(K::rotationalDof, n);
 }
 
 template <BodyKind K, PairPotential P> double totalKinetic(const System<K, P>& sys) {
