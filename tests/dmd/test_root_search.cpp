@@ -111,3 +111,42 @@ TEST(ShellScreening, WindowsOfTheInteractionShell) {
     EXPECT_EQ(w.enter, 0.0);
     EXPECT_TRUE(std::isinf(w.exit));
 }
+
+// Cost, not only correctness: a bracketed root of a smooth indicator is pinned down to the time
+// tolerance in at most three samples (each a pair evaluation), on the outside of the level.
+TEST(RootSearch, RefinesABracketedRootInAFewSamples) {
+    constexpr double tolerance = 4e-15;
+    for (double omega : {3.0, 10.0, 30.0, 60.0}) {
+        const Cosine f{1.0, omega, 0.0};
+        const double root = M_PI / 2.0 / omega; // cos crosses 0 downwards
+        int evaluations = 0;
+        const double t = detail::refineRoot(f, f(root - 0.013), f(root + 0.027), ExitSide::Lower,
+                                            0.0, tolerance, evaluations);
+        EXPECT_LE(evaluations, 3) << "omega " << omega;
+        EXPECT_GE(t, root) << "omega " << omega;                   // reported past the level...
+        EXPECT_LE(t - root, 3.0 * tolerance) << "omega " << omega; // ...by the tolerance only
+        EXPECT_LT(f(t).U, 0.0);
+    }
+}
+
+// The grazing check costs a sample or three when the extremum clears the level, and it still
+// finds a dip of 1e-9 through it.
+TEST(RootSearch, RulesOutAClearExtremumInAFewSamples) {
+    for (double omega : {3.0, 10.0, 30.0, 60.0}) {
+        const double tm = M_PI / omega; // the minimum of cos
+        for (double clearance : {0.2, 1e-2, 1e-4, -1e-9}) {
+            const Cosine f{1.0, omega, 1.0 + clearance}; // minimum clearance at tm
+            int evaluations = 0;
+            const PairSample m =
+                detail::probeExtremum(f, f(tm - 0.017), f(tm + 0.023), detail::Signed{1.0, 0.0},
+                                      1e-12, 4e-15, evaluations);
+            if (clearance > 0.0) {
+                EXPECT_LE(evaluations, 3) << omega << " " << clearance;
+                EXPECT_GT(m.U, 0.0);
+            } else {
+                EXPECT_LT(m.U, 0.0) << omega; // the dip is caught
+                EXPECT_LE(evaluations, 12) << omega;
+            }
+        }
+    }
+}
