@@ -8,9 +8,13 @@
 // with |ω| and ω̂ × s computed once here instead of at every τ: LinearRotor::freeRotate's
 // expression, without its renormalisation, so the two agree to a few ulp. Spheres have a fixed axis
 // and no rotation. Other kinds keep the State and call their own freeRotate at every τ: the exact
-// motion stays written once, in the kind's header. Units: time unit 100 fs, ω in rad per time unit.
+// motion stays written once, in the kind's header. from(τ₀) gives the same orbit seen from τ₀ on,
+// so that a search sampling a few fs past "now" turns each body through small angles only (where
+// the rotor's sin and cos come from a short series, core/small_angle.hpp).
+// Units: time unit 100 fs, ω in rad per time unit.
 #include "core/body_kind.hpp"
 #include "core/linear_rotor.hpp"
+#include "core/small_angle.hpp"
 #include "core/sphere.hpp"
 #include <cmath>
 
@@ -28,6 +32,11 @@ public:
         typename K::State b = start_;
         K::freeRotate(b, *params_, tau);
         return {K::axis(b), K::angularVelocity(b, *params_)};
+    }
+    FreeOrbit from(double tau0) const {
+        FreeOrbit o = *this;
+        if (tau0 != 0.0) K::freeRotate(o.start_, *params_, tau0);
+        return o;
     }
 
 private:
@@ -48,10 +57,19 @@ public:
     };
     Attitude at(double tau) const {
         if (speed_ == 0.0) return {s_, w_};
-        const double angle = speed_ * tau;
         // s and ω̂ × s are orthonormal to round-off, so |s(τ)| = 1 to a few ulp without the
         // renormalisation freeRotate applies to the State it keeps (where errors would build up).
-        return {s_ * std::cos(angle) + sideways_ * std::sin(angle), w_};
+        const SinCos turn = sinCos(speed_ * tau);
+        return {s_ * turn.cos + sideways_ * turn.sin, w_};
+    }
+    /// The pair (s, ω̂ × s) turned on by τ₀: one rotation of the plane they span.
+    FreeOrbit from(double tau0) const {
+        FreeOrbit o = *this;
+        if (tau0 == 0.0 || speed_ == 0.0) return o;
+        const SinCos turn = sinCos(speed_ * tau0);
+        o.s_ = s_ * turn.cos + sideways_ * turn.sin;
+        o.sideways_ = sideways_ * turn.cos - s_ * turn.sin;
+        return o;
     }
 
 private:
@@ -69,6 +87,7 @@ public:
         Vec3 w;
     };
     Attitude at(double) const { return {Vec3::UnitZ(), Vec3::Zero()}; }
+    FreeOrbit from(double) const { return *this; }
 };
 
 } // namespace terrace

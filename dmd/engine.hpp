@@ -89,7 +89,8 @@ public:
                  listSkin(settings_.rm, sys_.size() / sys_.box.volume(), sys_.box.length)),
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
           terraces_(sys_.size()), clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
-          handles_(settings_.eager ? sys_.size() : 0), jitterState_(jitterSeed(scene.seed)) {
+          listedBefore_(sys_.size(), 0), handles_(settings_.eager ? sys_.size() : 0),
+          jitterState_(jitterSeed(scene.seed)) {
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
         search_.grazeWindow = grazeFraction * terraceHeight();
@@ -228,6 +229,7 @@ public:
         b += sys_.bodies.capacity() * sizeof(State) + cells_.bytesReserved() +
              terraces_.bytesReserved() + clock_.capacity() * sizeof(double) +
              counter_.capacity() * sizeof(std::uint32_t) + lists_.bytesReserved() +
+             listedBefore_.capacity() * sizeof(std::uint64_t) +
              orbit_.capacity() * sizeof(FreeOrbit<K>);
         for (const auto& h : handles_)
             b += h.capacity() * sizeof(QueueHandle);
@@ -235,12 +237,12 @@ public:
     }
 
 private:
-    /// A body brought to now without touching its stored state: the search's view of it.
+    /// A body brought to now without touching its stored state: the search's view of it, with
+    /// its orbit re-based to now so that the search's samples turn it by small angles only.
     struct Moving {
         Vec3 r, v;
-        const FreeOrbit<K>* orbit; // prepared at the body's own clock
-        double offset;             // now − the body's clock
-        auto at(double tau) const { return orbit->at(offset + tau); }
+        FreeOrbit<K> orbit; // from now on
+        auto at(double tau) const { return orbit.at(tau); }
     };
     using Queue = std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>>;
 
@@ -389,6 +391,9 @@ private:
             predictBody(q, e.i, -1);
             return;
         }
+        // A pair dropped from the lists since: relist predicts it afresh if it comes back.
+        const auto& listed = lists_.partners(e.i);
+        if (std::find(listed.begin(), listed.end(), e.j) == listed.end()) return;
         const PairSample start{0.0, e.U, e.dUdt};
         const double entry =
             predictPair(q, movingNow(e.i), e.i, e.j, std::isnan(e.U) ? nullptr : &start);
@@ -402,13 +407,24 @@ private:
         scheduleCellCrossing(q, e.i);
     }
 
-    /// i has moved half the skin: new candidates may come within reach, so all its pairs are
-    /// predicted afresh.
+    /// i has moved half the skin: partners may have come within reach. Its motion is unchanged,
+    /// so the queued events of the pairs it keeps stand and only partners new to its list are
+    /// predicted (one entering r_m beyond the horizon gets a fresh-start virtual event there).
+    /// A dropped pair (now farther apart than r_m + skin) keeps its queued events, which remain
+    /// true to the motion, but its chain of virtual events ends (resume).
     template <class Q> void relist(Q& q, int i) {
         bringToNow(i);
+        ++listStamp_;
+        for (const int j : lists_.partners(i))
+            listedBefore_[j] = listStamp_;
         rebuildList(i);
-        invalidate(q, i);
-        predictBody(q, i, -1);
+        const Moving mi = movingNow(i);
+        for (const int j : lists_.partners(i)) {
+            if (listedBefore_[j] == listStamp_) continue;
+            const double entry = predictPair(q, mi, i, j, nullptr);
+            if (std::isfinite(entry)) schedule(q, pairEvent(EventKind::Virtual, i, j, entry));
+        }
+        scheduleRelist(q, i);
     }
 
     /// i's list from the cells: every j within r_m + skin now, listed on both sides.
@@ -574,12 +590,12 @@ private:
         return none;
     }
 
-    /// Body i as the search sees it now, through its orbit cached at its clock: no state is
-    /// copied or moved per pair.
+    /// Body i as the search sees it now, from its orbit cached at its clock: the stored state is
+    /// not touched.
     Moving movingNow(int i) const {
         const State& b = sys_.bodies[i];
         const double dt = time_ - clock_[i];
-        return {b.r + b.v * dt, b.v, &orbit_[i], dt};
+        return {b.r + b.v * dt, b.v, orbit_[i].from(dt)};
     }
 
     Event pairEvent(EventKind kind, int i, int j, double t) const {
@@ -655,6 +671,8 @@ private:
     std::vector<double> clock_;
     std::vector<FreeOrbit<K>> orbit_; // each body's free orbit from its state at its clock
     std::vector<std::uint32_t> counter_;
+    std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
+    std::uint64_t listStamp_ = 0;
     std::vector<std::vector<QueueHandle>> handles_; // eager invalidation only
     Queue queue_;
     SearchSettings search_;

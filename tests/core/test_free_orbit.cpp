@@ -84,4 +84,44 @@ TEST(FreeOrbit, AsymmetricTopMatchesFreeMove) {
     expectTopMatchesFreeMove<AsymmetricTop>({18.0, Vec3(0.6, 1.2, 1.7)});
 }
 
+// from(τ₀) is the same orbit re-based: from(τ₀).at(τ) = at(τ₀ + τ), for every kind, up to the
+// rounding of the angle turned (ε per radian: at(τ₀ + τ) rounds τ₀ + τ, from(τ₀) does not).
+template <class K> void expectRebasedOrbitAgrees(const typename K::State& b, const BodyParams& p) {
+    const FreeOrbit<K> orbit(b, p);
+    for (double tau0 : {0.0, 0.3, 4.7, -1.1})
+        for (double tau : {0.0, 0.004, 0.04, 0.9}) {
+            const auto direct = orbit.at(tau0 + tau), rebased = orbit.from(tau0).at(tau);
+            const double angle = direct.w.norm() * (std::abs(tau0) + std::abs(tau));
+            EXPECT_LE((direct.axis - rebased.axis).norm(), roundoffTol * (4.0 + angle))
+                << tau0 << " " << tau;
+            EXPECT_LE((direct.w - rebased.w).norm(), 4.0 * roundoffTol * (1.0 + direct.w.norm()));
+        }
+}
+
+TEST(FreeOrbit, RebasedOrbitIsTheSameOrbit) {
+    std::mt19937_64 rng(3);
+    LinearRotor::State rod;
+    rod.s = randomUnit(rng);
+    const Vec3 u = randomUnit(rng);
+    rod.w = 25.0 * (u - u.dot(rod.s) * rod.s);
+    expectRebasedOrbitAgrees<LinearRotor>(rod, {18.0, Vec3(1.154, 1.154, 0.0)});
+    SymmetricTop::State top;
+    top.A = rotationMatrix(randomUnit(rng), 0.7);
+    top.L = 4.0 * randomUnit(rng);
+    expectRebasedOrbitAgrees<SymmetricTop>(top, {18.0, Vec3(1.2, 1.2, 0.4)});
+    expectRebasedOrbitAgrees<Sphere>(Sphere::State{}, {18.0, Vec3::Zero()});
+}
+
+// The series branch of sinCos agrees with the library to round-off, on both sides of its limit.
+TEST(SmallAngle, SinCosAgreesWithTheLibrary) {
+    for (int k = -4000; k <= 4000; ++k) {
+        const double x = 1.2 * k / 4000.0; // beyond π/4 the library itself answers
+        const SinCos sc = sinCos(x);
+        EXPECT_NEAR(sc.sin, std::sin(x), 2.5e-16) << x;
+        EXPECT_NEAR(sc.cos, std::cos(x), 2.5e-16) << x;
+    }
+    EXPECT_EQ(sinCos(0.0).sin, 0.0);
+    EXPECT_EQ(sinCos(0.0).cos, 1.0);
+}
+
 } // namespace
