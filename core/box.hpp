@@ -24,8 +24,9 @@ struct PeriodicBox {
 
     /// The periodic image of d closest to the origin, component by component.
     Vec3 minimumImage(Vec3 d) const {
+        const double inverse = 1.0 / length; // one division instead of three
         for (int a = 0; a < 3; ++a)
-            d[a] -= length * nearestInteger(d[a] / length);
+            d[a] -= length * nearestInteger(d[a] * inverse);
         return d;
     }
 

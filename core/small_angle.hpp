@@ -37,12 +37,16 @@ inline constexpr double cosSeries[] = {1.0,
 inline SinCos sinCos(double x) {
     constexpr double seriesLimit = 0.7853981633974483; // π/4
     if (!(std::abs(x) <= seriesLimit)) return {std::sin(x), std::cos(x)};
-    const double x2 = x * x;
-    double s = detail::sinSeries[7], c = detail::cosSeries[8];
-    for (int k = 6; k >= 0; --k)
-        s = s * x2 + detail::sinSeries[k];
-    for (int k = 7; k >= 0; --k)
-        c = c * x2 + detail::cosSeries[k];
+    using detail::cosSeries, detail::sinSeries;
+    // Estrin's scheme in y = x²: pairs first, so the chain of dependent multiplications is three
+    // deep instead of eight.
+    const double y = x * x, y2 = y * y, y4 = y2 * y2;
+    const double s01 = sinSeries[0] + sinSeries[1] * y, s23 = sinSeries[2] + sinSeries[3] * y,
+                 s45 = sinSeries[4] + sinSeries[5] * y, s67 = sinSeries[6] + sinSeries[7] * y;
+    const double c01 = cosSeries[0] + cosSeries[1] * y, c23 = cosSeries[2] + cosSeries[3] * y,
+                 c45 = cosSeries[4] + cosSeries[5] * y, c67 = cosSeries[6] + cosSeries[7] * y;
+    const double s = (s01 + s23 * y2) + (s45 + s67 * y2) * y4;
+    const double c = (c01 + c23 * y2) + (c45 + c67 * y2) * y4 + cosSeries[8] * (y4 * y4);
     return {x * s, c};
 }
 

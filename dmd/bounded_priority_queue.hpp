@@ -159,13 +159,15 @@ private:
         assert(binWidth > 0.0 && std::isfinite(binWidth));
         assert(nBins >= 1 && nBins < kListed - 1);
         binWidth_ = binWidth;
+        inverseWidth_ = 1.0 / binWidth;
         nBins_ = nBins;
         heads_.assign(nBins + 1, kNil);
         binned_ = overflowed_ = 0;
+        currentList_ = listOf(currentBin_);
     }
 
     std::int64_t binOf(double t) const {
-        const double b = std::floor(t / binWidth_);
+        const double b = std::floor(t * inverseWidth_);
         return static_cast<std::int64_t>(std::clamp(b, -kBinLimit, kBinLimit));
     }
     std::uint32_t listOf(std::int64_t bin) const {
@@ -176,7 +178,12 @@ private:
 
     void jumpTo(std::int64_t bin) {
         currentBin_ = bin;
+        currentList_ = listOf(bin);
         nextRescanBin_ = bin + static_cast<std::int64_t>(nBins_);
+    }
+    void advanceBin() {
+        ++currentBin_;
+        if (++currentList_ == nBins_) currentList_ = 0;
     }
 
     // Puts a queued node where its bin says (see the table at the top).
@@ -185,8 +192,12 @@ private:
         if (bin <= currentBin_) {
             heap_.push_back({pool_[slot].event.time, slot});
             detail::siftUp(heap_, heap_.size() - 1, before(), placed());
-        } else if (bin - currentBin_ < static_cast<std::int64_t>(nBins_)) {
-            link(slot, listOf(bin));
+        } else if (const std::int64_t ahead = bin - currentBin_;
+                   ahead < static_cast<std::int64_t>(nBins_)) {
+            // The list of bin c + ahead, from the current bin's list without a division.
+            std::size_t list = currentList_ + static_cast<std::size_t>(ahead);
+            if (list >= nBins_) list -= nBins_;
+            link(slot, static_cast<std::uint32_t>(list));
             ++binned_;
         } else {
             link(slot, overflowList());
@@ -231,7 +242,7 @@ private:
                 jumpTo(earliestOverflowBin());
                 rescanOverflow();
             } else {
-                ++currentBin_;
+                advanceBin();
                 if (currentBin_ >= nextRescanBin_) rescanOverflow();
             }
             loadCurrentBin();
@@ -259,7 +270,7 @@ private:
     }
 
     void loadCurrentBin() {
-        const std::uint32_t list = listOf(currentBin_);
+        const auto list = static_cast<std::uint32_t>(currentList_);
         for (std::uint32_t s = heads_[list]; s != kNil; s = pool_[s].next) {
             heap_.push_back({pool_[s].event.time, s});
             --binned_;
@@ -284,8 +295,10 @@ private:
     std::vector<detail::HeapEntry> heap_;      // the current bin, fine-sorted
     std::vector<std::uint32_t> heads_;         // n bin lists, then the overflow list
     double binWidth_ = 1.0;                    // time units
+    double inverseWidth_ = 1.0;                // 1/binWidth_: bins by multiplication
     std::size_t nBins_ = 1;
     std::int64_t currentBin_ = 0;
+    std::size_t currentList_ = 0;    // listOf(currentBin_), kept in step with it
     std::int64_t nextRescanBin_ = 0; // the overflow is rescanned when c reaches this bin
     std::size_t size_ = 0;
     std::size_t binned_ = 0;     // events in the n bin lists

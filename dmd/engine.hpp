@@ -545,17 +545,14 @@ private:
         const double dtj = time_ - clock_[j];
         const Vec3 r0 = sys_.box.minimumImage(mi.r - (bj0.r + bj0.v * dtj));
         const Vec3 w = mi.v - bj0.v;
-        ShellWindow win = shellWindow(r0, w, settings_.rm);
         // Only a pair inside r_m (up to round-off) can be bound; skip the lookup for the rest.
         constexpr double boundSlack = 1.0 + 1e-6;
         const bool maybeBound = r0.squaredNorm() <= settings_.rm * settings_.rm * boundSlack;
         const int n = maybeBound ? terraces_.get(i, j) : 0;
-        if (n != 0) {
-            // A bound pair must reach a level before |r_ij| = r_m; in the worst orientation it
-            // does so exactly there, so the shell must not cut its search short.
-            win.enter = 0.0;
-            win.exit = std::numeric_limits<double>::infinity();
-        }
+        // A bound pair must reach a level before |r_ij| = r_m; in the worst orientation it does
+        // so exactly there, so the shell must not cut its search short.
+        const ShellWindow win = n != 0 ? ShellWindow{0.0, std::numeric_limits<double>::infinity()}
+                                       : shellWindow(r0, w, settings_.rm);
         if (win.empty()) return none;
         const double horizon = jitteredHorizon();
         if (win.enter > horizon) return time_ + win.enter;

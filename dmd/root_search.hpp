@@ -270,7 +270,15 @@ SearchResult findTerraceExit(Eval&& eval, PairSample a, double lower, double upp
 
         const detail::HermiteCubic cubic(a, b);
         std::array<double, 2> ext{};
-        const int n = cubic.extrema(ext);
+        // The cubic strays from the chord between the samples by at most (4/27)·h·(|ḟ₁ − s| +
+        // |ḟ₂ − s|), s the chord's slope (its Hermite basis functions peak at 4/27): when even
+        // that leaves it farther than grazeWindow from both levels, no extremum can matter.
+        const double rise = b.U - a.U;
+        const double stray =
+            4.0 / 27.0 * (std::abs(cubic.h * a.dUdt - rise) + std::abs(cubic.h * b.dUdt - rise));
+        const bool clear = std::min(a.U, b.U) - stray > lower + s.grazeWindow &&
+                           std::max(a.U, b.U) + stray < upper - s.grazeWindow;
+        const int n = clear ? 0 : cubic.extrema(ext);
         for (int e = 0; e < n; ++e) {
             const double predicted = cubic.value(ext[e]);
             if (cubic.curvature(ext[e]) > 0.0) {
