@@ -44,10 +44,12 @@ struct Radial {
 };
 
 inline Radial lennardJones(double x, double epsilon, double sigma) {
-    const double s2 = sigma * sigma / (x * x);
+    const double inverse = 1.0 / x; // the one division
+    const double s = sigma * inverse;
+    const double s2 = s * s;
     const double s6 = s2 * s2 * s2;
     const double s12 = s6 * s6;
-    return {4.0 * epsilon * (s12 - s6), -24.0 * epsilon / x * (2.0 * s12 - s6)};
+    return {4.0 * epsilon * (s12 - s6), -24.0 * epsilon * inverse * (2.0 * s12 - s6)};
 }
 
 /// Distance x at which the Lennard-Jones curve equals u: for -ε < u < 0 the outer (attractive)

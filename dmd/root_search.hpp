@@ -92,6 +92,16 @@ struct HermiteCubic {
     /// Roots of the derivative strictly inside (0, h), increasing; returns how many.
     int extrema(std::array<double, 2>& s) const {
         const double A = 3.0 * beta, B = 2.0 * alpha, C = d0;
+        // The derivative A s² + B s + C has the same sign at both ends (checked without a
+        // square root): it vanishes in between only if its vertex lies inside and crosses zero.
+        const double d1 = C + h * (B + A * h);
+        if ((C > 0.0 && d1 > 0.0) || (C < 0.0 && d1 < 0.0)) {
+            if (A == 0.0) return 0;
+            const double vertex = -B / (2.0 * A);
+            if (!(vertex > 0.0 && vertex < h)) return 0;
+            const double dv = C + vertex * (B + A * vertex);
+            if ((C > 0.0 && dv > 0.0) || (C < 0.0 && dv < 0.0)) return 0;
+        }
         int n = 0;
         auto keep = [&](double x) {
             if (x > 0.0 && x < h) s[n++] = x;
