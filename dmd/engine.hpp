@@ -381,7 +381,12 @@ private:
         if (impulse.outcome != Outcome::Reflect) terraces_.set(i, j, target);
         invalidate(q, i);
         invalidate(q, j);
-        predictBody(q, i, -1, j);
+        // The pair's own search starts from the evaluation above: U and the force are those of
+        // now, only the rate changes with the new velocities.
+        const PairSample start{0.0, f.U,
+                               dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys_.body),
+                                    K::angularVelocity(bj, sys_.body))};
+        predictBody(q, i, -1, j, &start);
         predictBody(q, j, i, -1);
     }
 
@@ -477,12 +482,16 @@ private:
     // ---- prediction ----
 
     /// Predicts every pair of i except (i, exclude); (i, partner) has just been resolved.
-    template <class Q> void predictBody(Q& q, int i, int exclude, int partner = -1) {
+    /// partnerStart: the sample of (i, partner) now, when the caller has it.
+    template <class Q>
+    void predictBody(Q& q, int i, int exclude, int partner = -1,
+                     const PairSample* partnerStart = nullptr) {
         double entry = std::numeric_limits<double>::infinity();
         const Moving mi = movingNow(i);
         for (const int j : lists_.partners(i))
             if (j != exclude)
-                entry = std::min(entry, predictPair(q, mi, i, j, nullptr, j == partner));
+                entry = std::min(entry, j == partner ? predictPair(q, mi, i, j, partnerStart, true)
+                                                     : predictPair(q, mi, i, j, nullptr));
         scheduleBodyEvents(q, i, entry);
     }
 
