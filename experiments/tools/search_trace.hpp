@@ -11,14 +11,13 @@
 // eq. 14), so the figure shows exactly what the search saw.
 //
 // Files written to dir (times in fs, energies in kJ/mol):
-//   fig2_exact.csv   t_fs,U            the pair's continuous U along free motion, finely sampled
-//   fig2_grid.csv    t_fs,U,dUdt       grid points in order (dUdt in kJ/mol per fs)
-//   fig2_cubic.csv   t_fs,U_cubic      each interpolant, blocks separated by blank lines
-//   fig2_extrema.csv t_fs,U_cubic      extrema of the interpolants (where the search looks for
-//   grazing) fig2_inner.csv   t_fs,U            samples inside bracketed intervals (extremum
-//   checks, root) fig2_root.csv    t_fs,U,level      the event time the search returned and the
-//   level crossed fig2_info.json   the pair, its terrace, the levels, the settings and the counts
-//   above
+//   fig2_exact.csv    (t_fs, U) the pair's continuous U along free motion, finely sampled
+//   fig2_grid.csv     (t_fs, U, dUdt) grid points in order, dUdt in kJ/mol per fs
+//   fig2_cubic.csv    (t_fs, U_cubic) each interpolant, blocks separated by blank lines
+//   fig2_extrema.csv  (t_fs, U_cubic) extrema of the interpolants, where grazing is looked for
+//   fig2_inner.csv    (t_fs, U) samples inside bracketed intervals: extremum probes, root
+//   fig2_root.csv     (t_fs, U, level) the event time the search returned, the level crossed
+//   fig2_info.json    the pair, its terrace, the levels, the settings and the counts above
 #include <filesystem>
 
 namespace terrace::experiments {
