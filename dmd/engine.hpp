@@ -13,33 +13,37 @@
 //   queued events through stored handles instead), a cell list with crossing events from which
 //   per-body candidate lists with a skin are rebuilt by relist events (dmd/neighbour_lists.hpp;
 //   a body's pairs are screened from its list only), a free orbit per body cached at its clock
-//   (core/free_orbit.hpp) for the searches, virtual
-//   events at a jittered horizon that resume a truncated search from its stored end point,
-//   sample events that synchronise all clocks, and a cleanup of stale entries when the queue grows
-//   beyond a multiple of its size after the previous cleanup.
-// A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error.
+//   (core/free_orbit.hpp) for the searches, virtual events at a jittered horizon
+//   (dmd/horizon_jitter.hpp) that resume a truncated search from its stored end point, sample
+//   events that synchronise all clocks, a cleanup of stale entries when the queue grows beyond a
+//   multiple of its size after the previous cleanup, and bins of the bounded queue tuned from
+//   the measured push rate (dmd/bin_tuning.hpp).
+// A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error
+// (dmd/stall_watch.hpp).
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
 #include "core/engine.hpp"
 #include "core/free_orbit.hpp"
 #include "core/scene.hpp"
 #include "core/snapshot.hpp"
 #include "core/system.hpp"
+#include "dmd/bin_tuning.hpp"
 #include "dmd/binary_heap_queue.hpp"
 #include "dmd/bounded_priority_queue.hpp"
 #include "dmd/cell_list.hpp"
 #include "dmd/collision_rule.hpp"
 #include "dmd/event.hpp"
+#include "dmd/horizon_jitter.hpp"
 #include "dmd/neighbour_lists.hpp"
 #include "dmd/pair_terraces.hpp"
 #include "dmd/root_search.hpp"
 #include "dmd/settings.hpp"
 #include "dmd/shell_screening.hpp"
+#include "dmd/stall_watch.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 #include <type_traits>
 #include <variant>
@@ -47,9 +51,6 @@
 
 namespace terrace::dmd {
 
-/// Consecutive events without the clock advancing beyond round-off before the run is declared
-/// stuck. Genuinely simultaneous events involve distinct bodies, a handful at a time.
-inline constexpr std::uint64_t stalledEventLimit = 1'000'000;
 /// Relative jitter of the virtual-event horizon, so that virtual events do not coincide (paper).
 inline constexpr double horizonJitter = 0.1;
 /// The search's nudge δt as a fraction of its largest step.
@@ -63,9 +64,6 @@ inline constexpr double levelTolerance = 1e-10;
 /// cleanup (and at least cleanupMinimumPerBody entries per body).
 inline constexpr double cleanupGrowth = 3.0;
 inline constexpr double cleanupMinimumPerBody = 16.0;
-/// Bounded priority queue: events per bin aimed at, and the period (in events) of its retuning.
-inline constexpr double eventsPerBin = 8.0;
-inline constexpr std::uint64_t retunePeriod = 1u << 16;
 /// A list is rebuilt a hair before the body has moved skin/2, so that round-off in the rebuild
 /// time can never let an unlisted pair inside r_m.
 inline constexpr double relistMargin = 1e-6;
@@ -90,7 +88,7 @@ public:
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
           terraces_(sys_.size()), clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
           listedBefore_(sys_.size(), 0), handles_(settings_.eager ? sys_.size() : 0),
-          jitterState_(jitterSeed(scene.seed)) {
+          jitter_(settings_.horizon, horizonJitter, scene.seed), tuning_(settings_.horizon) {
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
         search_.grazeWindow = grazeFraction * terraceHeight();
@@ -110,7 +108,8 @@ public:
             rebuildList(i);
         assignInitialTerraces();
         visitQueue([&](auto& q) { predictAll(q); });
-        if (auto* bpq = std::get_if<BoundedPriorityQueue<Event>>(&queue_)) retune(*bpq);
+        if (auto* bpq = std::get_if<BoundedPriorityQueue<Event>>(&queue_))
+            tuning_.retune(*bpq, time_);
     }
 
     // ---- the Engine contract (core/engine.hpp) ----
@@ -190,7 +189,7 @@ public:
         });
     }
     /// Consecutive events at one instant tolerated before the clock counts as stopped.
-    void setStallLimit(std::uint64_t n) { stallLimit_ = n; }
+    void setStallLimit(std::uint64_t n) { stallWatch_.setLimit(n); }
     /// The terrace index the engine holds for the pair (i, j).
     int terrace(int i, int j) const { return terraces_.get(i, j); }
     const PairTerraces& pairTerraces() const { return terraces_; }
@@ -307,7 +306,7 @@ private:
                 ++staleEvents_;
                 continue;
             }
-            watchClock(e);
+            stallWatch_.check(time_, e.time, e.i, e.j);
             time_ = e.time;
             switch (e.kind) {
             case EventKind::Collision:
@@ -336,21 +335,6 @@ private:
     bool isStale(const Event& e) const {
         if (counter_[e.i] != e.countI) return true;
         return e.j >= 0 && counter_[e.j] != e.countJ;
-    }
-
-    void watchClock(const Event& e) {
-        const double roundOff =
-            64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(e.time));
-        if (e.time - time_ > roundOff) {
-            stalledEvents_ = 0;
-            return;
-        }
-        if (++stalledEvents_ <= stallLimit_) return;
-        std::ostringstream msg;
-        msg << "dmd: the clock stopped at t = " << units::toFs(e.time) << " fs: " << stalledEvents_
-            << " consecutive events without time advancing (last: bodies " << e.i << " and " << e.j
-            << "); the terraced dynamics is stuck";
-        throw std::runtime_error(msg.str());
     }
 
     template <class Q> void collide(Q& q, const Event& e) {
@@ -457,26 +441,7 @@ private:
                                          cleanupGrowth * static_cast<double>(q.size()));
         }
         if constexpr (std::is_same_v<Q, BoundedPriorityQueue<Event>>)
-            if (++eventsSinceRetune_ >= retunePeriod) retune(q);
-    }
-
-    /// Bins of the bounded priority queue sized from the measured push rate and lead time: a few
-    /// events per bin, a window spanning the usual scheduling lead (G. Paul 2007, sec. 3).
-    void retune(BoundedPriorityQueue<Event>& q) {
-        // Before any event has run, the pushes of the initial prediction stand in for the rate:
-        // they cover about one horizon.
-        const double elapsed = time_ > retuneStart_ ? time_ - retuneStart_ : settings_.horizon;
-        if (pushesSinceRetune_ > 0) {
-            const double rate = pushesSinceRetune_ / elapsed;
-            const double width = eventsPerBin / rate;
-            const double window = std::max(4.0 * leadSum_ / pushesSinceRetune_, settings_.horizon);
-            const double bins = std::clamp(window / width, 64.0, double(1 << 22));
-            q.retune(width, static_cast<std::size_t>(bins));
-        }
-        eventsSinceRetune_ = 0;
-        pushesSinceRetune_ = 0;
-        leadSum_ = 0.0;
-        retuneStart_ = time_;
+            if (tuning_.due()) tuning_.retune(q, time_);
     }
 
     // ---- prediction ----
@@ -563,7 +528,7 @@ private:
         const ShellWindow win = n != 0 ? ShellWindow{0.0, std::numeric_limits<double>::infinity()}
                                        : shellWindow(r0, w, settings_.rm);
         if (win.empty()) return none;
-        const double horizon = jitteredHorizon();
+        const double horizon = jitter_.next();
         if (win.enter > horizon) return time_ + win.enter;
         const Moving mj = movingNow(j);
         auto eval = [&](double tau) {
@@ -615,21 +580,6 @@ private:
         return e;
     }
 
-    /// The horizon-jitter stream, named ("dmd.hor") and derived from the one scene seed:
-    /// SplitMix64 (Steele, Lea & Flood, OOPSLA 2014), cheap enough to draw at every search.
-    static std::uint64_t jitterSeed(std::uint64_t seed) {
-        return seed ^ std::uint64_t{0x646d642e686f72ull};
-    }
-
-    double jitteredHorizon() {
-        std::uint64_t z = (jitterState_ += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        z ^= z >> 31;
-        const double u = static_cast<double>(z >> 11) * 0x1.0p-53; // uniform in [0, 1)
-        return settings_.horizon * (1.0 - horizonJitter * u);
-    }
-
     // ---- bookkeeping ----
 
     template <class Q> void schedule(Q& q, const Event& e) {
@@ -639,8 +589,7 @@ private:
             if (e.j >= 0) handles_[e.j].push_back(h);
         }
         maxQueueSize_ = std::max<std::uint64_t>(maxQueueSize_, q.size());
-        ++pushesSinceRetune_;
-        leadSum_ += e.time - time_;
+        tuning_.pushed(e.time - time_);
     }
 
     /// Body i's velocities changed (or its cell did): its queued events no longer hold.
@@ -682,14 +631,13 @@ private:
     std::vector<std::vector<QueueHandle>> handles_; // eager invalidation only
     Queue queue_;
     SearchSettings search_;
-    std::uint64_t jitterState_;
+    HorizonJitter jitter_;
+    BinTuning tuning_;
+    StallWatch stallWatch_;
     double time_ = 0.0;
     EventCounts counts_;
-    std::uint64_t stalledEvents_ = 0, stallLimit_ = stalledEventLimit;
     std::uint64_t maxQueueSize_ = 0, cleanups_ = 0, staleEvents_ = 0, evaluations_ = 0;
     double cleanupThreshold_ = 0.0;
-    std::uint64_t eventsSinceRetune_ = 0, pushesSinceRetune_ = 0;
-    double leadSum_ = 0.0, retuneStart_ = 0.0;
 };
 
 } // namespace terrace::dmd

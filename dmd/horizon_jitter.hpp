@@ -1,0 +1,31 @@
+#pragma once
+// The jittered horizon of the DMD searches (paper, "Implementation of the event-driven
+// simulation"): each search is truncated at Δt (1 − j u) with u uniform in [0, 1), so that the
+// virtual events of many pairs do not fall on one instant. u comes from a named stream ("dmd.hor")
+// derived from the scene's one seed: SplitMix64 (Steele, Lea & Flood, OOPSLA 2014), cheap enough to
+// draw at every search. Times in the caller's unit.
+#include <cstdint>
+
+namespace terrace::dmd {
+
+class HorizonJitter {
+public:
+    /// horizon: Δt; jitter: j, the largest relative shortening.
+    HorizonJitter(double horizon, double jitter, std::uint64_t seed)
+        : horizon_(horizon), jitter_(jitter), state_(seed ^ std::uint64_t{0x646d642e686f72ull}) {}
+
+    double next() {
+        std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        z ^= z >> 31;
+        const double u = static_cast<double>(z >> 11) * 0x1.0p-53; // uniform in [0, 1)
+        return horizon_ * (1.0 - jitter_ * u);
+    }
+
+private:
+    double horizon_, jitter_;
+    std::uint64_t state_;
+};
+
+} // namespace terrace::dmd
