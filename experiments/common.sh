@@ -98,10 +98,12 @@ run_replicas() {
     [ "$done" -ge "$REPLICAS" ]
 }
 
-# replica_dirs DIR : the completed replica directories of DIR, one per line.
+# replica_dirs DIR : the completed replica directories of DIR, one per line. A failed run keeps
+# its directory as seed-K.partial, with a summary.json that records the error: not a replica.
 replica_dirs() {
     local d
     for d in "$1"/seed-*; do
+        case $d in *.partial | *.log) continue ;; esac
         if [ -s "$d/summary.json" ]; then echo "$d"; fi
     done
 }
