@@ -64,6 +64,8 @@ inline constexpr double levelTolerance = 1e-10;
 /// cleanup (and at least cleanupMinimumPerBody entries per body).
 inline constexpr double cleanupGrowth = 3.0;
 inline constexpr double cleanupMinimumPerBody = 16.0;
+/// Eager invalidation: a body's handle list is pruned of departed events from this size on.
+inline constexpr std::size_t handlePruneSize = 32;
 /// A list is rebuilt a hair before the body has moved skin/2, so that round-off in the rebuild
 /// time can never let an unlisted pair inside r_m.
 inline constexpr double relistMargin = 1e-6;
@@ -585,11 +587,22 @@ private:
     template <class Q> void schedule(Q& q, const Event& e) {
         const QueueHandle h = q.push(e);
         if (settings_.eager) {
-            handles_[e.i].push_back(h);
-            if (e.j >= 0) handles_[e.j].push_back(h);
+            keepHandle(q, e.i, h);
+            if (e.j >= 0) keepHandle(q, e.j, h);
         }
         maxQueueSize_ = std::max<std::uint64_t>(maxQueueSize_, q.size());
         tuning_.pushed(e.time - time_);
+    }
+
+    /// Eager invalidation: i's handles are cleared when i is invalidated, but a body that rarely
+    /// collides would pile up the handles of its popped cell-crossing, relist and virtual events;
+    /// when its list reaches 32, 64, 128, … entries, those of events no longer queued are dropped
+    /// (amortised O(1) per push).
+    template <class Q> void keepHandle(const Q& q, int i, QueueHandle h) {
+        auto& list = handles_[i];
+        if (list.size() >= handlePruneSize && (list.size() & (list.size() - 1)) == 0)
+            std::erase_if(list, [&](QueueHandle k) { return !q.contains(k); });
+        list.push_back(h);
     }
 
     /// Body i's velocities changed (or its cell did): its queued events no longer hold.
