@@ -242,7 +242,7 @@ TEST(Engine, EveryBodyKindConservesEnergy) {
 
 // Memory stays bounded when bodies rarely collide: in a dilute gas a body's events are mostly
 // cell crossings and relists, and with eager invalidation each leaves a handle behind that only
-// a collision of the body would clear.
+// a collision of the body would clear (without pruning the engine grew by 40 % here).
 TEST(Engine, EagerHandlesStayBoundedWithoutCollisions) {
     Scene s = rodScene(64, 0.001, 50.0, 0.5); // hot and dilute: no pair stays bound
     s.dmd.invalidation = "eager";
@@ -251,6 +251,4 @@ TEST(Engine, EagerHandlesStayBoundedWithoutCollisions) {
     const std::size_t early = e.bytesReserved();
     e.runEvents(400000);
     EXPECT_LT(e.bytesReserved(), early + early / 10) << "grew from " << early;
-    std::printf("%zu %zu %lu\n", early, e.bytesReserved(),
-                (unsigned long)(e.counts().up + e.counts().down + e.counts().reflect));
 }
