@@ -468,13 +468,7 @@ private:
     template <class Q> void scheduleBodyEvents(Q& q, int i, double entry) {
         scheduleCellCrossing(q, i);
         scheduleRelist(q, i);
-        if (!std::isfinite(entry)) return;
-        Event e;
-        e.time = entry;
-        e.kind = EventKind::Virtual;
-        e.i = i;
-        e.countI = counter_[i];
-        schedule(q, e);
+        if (std::isfinite(entry)) schedule(q, bodyEvent(EventKind::Virtual, i, entry));
     }
 
     /// When i will have moved (1 − relistMargin) skin/2 from its list's anchor.
@@ -485,13 +479,7 @@ private:
         const double dt = moved.squaredNorm() >= radius * radius
                               ? 0.0
                               : shellWindow(moved, sys_.bodies[i].v, radius).exit;
-        if (!std::isfinite(dt)) return;
-        Event e;
-        e.time = time_ + dt;
-        e.kind = EventKind::Relist;
-        e.i = i;
-        e.countI = counter_[i];
-        schedule(q, e);
+        if (std::isfinite(dt)) schedule(q, bodyEvent(EventKind::Relist, i, time_ + dt));
     }
 
     template <class Q> void scheduleCellCrossing(Q& q, int i) {
@@ -499,11 +487,7 @@ private:
         int axis = 0, dir = 0;
         const double dt = cells_.crossingTime(i, b.r + b.v * (time_ - clock_[i]), b.v, axis, dir);
         if (!std::isfinite(dt)) return;
-        Event e;
-        e.time = time_ + dt;
-        e.kind = EventKind::CellCrossing;
-        e.i = i;
-        e.countI = counter_[i];
+        Event e = bodyEvent(EventKind::CellCrossing, i, time_ + dt);
         e.side = static_cast<std::int8_t>(2 * axis + (dir > 0 ? 1 : 0));
         schedule(q, e);
     }
@@ -571,13 +555,18 @@ private:
         return {b.r + b.v * dt, b.v, orbit_[i].from(dt)};
     }
 
-    Event pairEvent(EventKind kind, int i, int j, double t) const {
+    Event bodyEvent(EventKind kind, int i, double t) const {
         Event e;
         e.time = t;
         e.kind = kind;
         e.i = i;
-        e.j = j;
         e.countI = counter_[i];
+        return e;
+    }
+
+    Event pairEvent(EventKind kind, int i, int j, double t) const {
+        Event e = bodyEvent(kind, i, t);
+        e.j = j;
         e.countJ = counter_[j];
         return e;
     }
