@@ -120,11 +120,6 @@ struct HermiteCubic {
     }
 };
 
-/// Indicator for one side: positive inside the terrace.
-inline double inside(const PairSample& p, ExitSide side, double level) {
-    return side == ExitSide::Lower ? p.U - level : level - p.U;
-}
-
 /// A sample seen through g = sign·(U − level): the extremum probe below always looks for a minimum
 /// of g and for g < 0 ("past the level").
 struct Signed {
@@ -209,7 +204,7 @@ PairSample probeExtremum(Eval& eval, PairSample l, PairSample r, const Signed& g
 template <class Eval>
 double refineRoot(Eval& eval, PairSample a, PairSample b, ExitSide side, double level,
                   double tolerance, int& evaluations) {
-    // In the signed view g = inside(U): g(a) ≥ 0, g(b) < 0.
+    // In the signed view g, the indicator (positive inside the terrace): g(a) ≥ 0, g(b) < 0.
     const Signed g{side == ExitSide::Lower ? 1.0 : -1.0, level};
     if (g(a).U <= 0.0) {
         // a sits on the level (the start of a search): the root lies beyond the maximum of the

@@ -38,7 +38,10 @@ double trueMinimum(const Waves& f) {
     double b = std::min(window, tmin + window / denseSamples);
     for (int it = 0; it < 100; ++it) {
         const double m1 = a + 0.381966 * (b - a), m2 = a + 0.618034 * (b - a);
-        (f(m1).U < f(m2).U ? b : a) = f(m1).U < f(m2).U ? m2 : m1;
+        if (f(m1).U < f(m2).U)
+            b = m2;
+        else
+            a = m1;
     }
     return std::min(umin, f(0.5 * (a + b)).U);
 }
