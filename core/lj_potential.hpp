@@ -19,6 +19,13 @@ struct LJPotential {
         f.F = (-lj.dUdx / r) * rij;
         return f;
     }
+    /// U and dU/dt = U'(r) r̂_ij·v_ij (no orientations).
+    EnergyRate energyRate(const Vec3& rij, const Vec3& vij, const Vec3&, const Vec3&, const Vec3&,
+                          const Vec3&) const {
+        const double r = rij.norm();
+        const auto lj = detail::lennardJones(r, epsilon, sigma);
+        return {lj.U, lj.dUdx * rij.dot(vij) / r};
+    }
     double energy(const Vec3& rij, const Vec3&, const Vec3&) const {
         return detail::lennardJones(rij.norm(), epsilon, sigma).U;
     }

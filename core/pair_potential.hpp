@@ -36,6 +36,27 @@ inline double dUdt(const PairForce& f, const Vec3& vij, const Vec3& wi, const Ve
     return -f.F.dot(vij) - f.tauI.dot(wi) - f.tauJ.dot(wj);
 }
 
+/// U and dU/dt together: all that the DMD search asks of a pair at each of its samples.
+struct EnergyRate {
+    double U = 0.0;    // kJ/mol
+    double dUdt = 0.0; // kJ/mol per time unit of the velocities
+};
+
+/// U and dU/dt (paper eq. 13) of the pair (rij, si, sj) moving with v_ij = v_i - v_j and angular
+/// velocities wi, wj. A potential may provide energyRate() with the same arguments, which skips
+/// the force and torque vectors (a potential's rate is a scalar chain rule); otherwise the rate
+/// comes from evaluate() and dUdt().
+template <PairPotential P>
+EnergyRate energyAndRate(const P& p, const Vec3& rij, const Vec3& vij, const Vec3& si,
+                         const Vec3& wi, const Vec3& sj, const Vec3& wj) {
+    if constexpr (requires { p.energyRate(rij, vij, si, wi, sj, wj); }) {
+        return p.energyRate(rij, vij, si, wi, sj, wj);
+    } else {
+        const PairForce f = p.evaluate(rij, si, sj);
+        return {f.U, dUdt(f, vij, wi, wj)};
+    }
+}
+
 namespace detail {
 
 struct Radial {

@@ -30,6 +30,18 @@ struct RodPotential {
         f.tauJ = -f.tauI;
         return f;
     }
+    /// U and dU/dt along free motion by the chain rule through r_e:
+    ///     dU/dt = U'(r_e) [ r̂_ij·v_ij − 2ζc (ω_i − ω_j)·(s_i × s_j) ],
+    /// since ṙ = r̂·v_ij and ċ = (ω_i × s_i)·s_j + s_i·(ω_j × s_j) = (ω_i − ω_j)·(s_i × s_j);
+    /// the same value as eq. (13) with evaluate()'s force and torques, at about half the cost.
+    EnergyRate energyRate(const Vec3& rij, const Vec3& vij, const Vec3& si, const Vec3& wi,
+                          const Vec3& sj, const Vec3& wj) const {
+        const double r = rij.norm();
+        const double c = si.dot(sj);
+        const auto lj = detail::lennardJones(effectiveDistance(r, c), epsilon, sigma);
+        const double cDot = (wi - wj).dot(si.cross(sj));
+        return {lj.U, lj.dUdx * (rij.dot(vij) / r - 2.0 * zeta * c * cDot)};
+    }
     double energy(const Vec3& rij, const Vec3& si, const Vec3& sj) const {
         const double c = si.dot(sj);
         return detail::lennardJones(effectiveDistance(rij.norm(), c), epsilon, sigma).U;

@@ -519,8 +519,9 @@ private:
         const Moving mj = movingNow(j);
         auto eval = [&](double tau) {
             const auto ai = mi.at(tau), aj = mj.at(tau);
-            const PairForce f = sys_.potential.evaluate(r0 + w * tau, ai.axis, aj.axis);
-            return PairSample{tau, f.U, dUdt(f, w, ai.w, aj.w)};
+            const EnergyRate e =
+                energyAndRate(sys_.potential, r0 + w * tau, w, ai.axis, ai.w, aj.axis, aj.w);
+            return PairSample{tau, e.U, e.dUdt};
         };
         PairSample start;
         if (resumeFrom && win.enter == 0.0) {
