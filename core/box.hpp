@@ -23,11 +23,13 @@ struct PeriodicBox {
     double volume() const { return length * length * length; }
 
     /// The periodic image of d closest to the origin, component by component.
-    Vec3 minimumImage(Vec3 d) const {
-        const double inverse = 1.0 / length; // one division instead of three
-        for (int a = 0; a < 3; ++a)
-            d[a] -= length * nearestInteger(d[a] * inverse);
-        return d;
+    Vec3 minimumImage(const Vec3& d) const {
+        // Components written out, with L in a local: a loop over d[a] made the compiler reload L
+        // from memory at every component (d might have aliased it).
+        const double L = length, inverse = 1.0 / L; // one division instead of three
+        return {d.x() - L * nearestInteger(d.x() * inverse),
+                d.y() - L * nearestInteger(d.y() * inverse),
+                d.z() - L * nearestInteger(d.z() * inverse)};
     }
 
     /// The image of r inside [0, L)^3.

@@ -16,6 +16,7 @@
 #include "core/linear_rotor.hpp"
 #include "core/small_angle.hpp"
 #include "core/sphere.hpp"
+#include <array>
 #include <cmath>
 
 namespace terrace {
@@ -43,6 +44,11 @@ private:
     typename K::State start_;
     const BodyParams* params_;
 };
+
+/// Both bodies of a pair at τ (the DMD search's sample): {i.at(τ), j.at(τ)}.
+template <BodyKind K> auto attitudesAt(const FreeOrbit<K>& i, const FreeOrbit<K>& j, double tau) {
+    return std::array{i.at(tau), j.at(tau)};
+}
 
 /// Linear rotor: one sincos per τ; ω is constant.
 template <> class FreeOrbit<LinearRotor> {
@@ -75,6 +81,14 @@ public:
         o.sideways_ = sideways_ * turn.cos - s_ * turn.sin;
         o.shift_ = 0.0;
         return o;
+    }
+
+    /// The pair's two sincos in one packed pass. A rotor at rest has speed 0 and a zero sideways
+    /// vector, so its angle is 0 and its axis comes out as s exactly, without a branch.
+    friend std::array<Attitude, 2> attitudesAt(const FreeOrbit& i, const FreeOrbit& j, double tau) {
+        const auto turn = sinCosPair(i.speed_ * (i.shift_ + tau), j.speed_ * (j.shift_ + tau));
+        return {Attitude{i.s_ * turn[0].cos + i.sideways_ * turn[0].sin, i.w_},
+                Attitude{j.s_ * turn[1].cos + j.sideways_ * turn[1].sin, j.w_}};
     }
 
 private:

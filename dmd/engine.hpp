@@ -243,7 +243,6 @@ private:
     struct Moving {
         Vec3 r, v;
         FreeOrbit<K> orbit; // from now on
-        auto at(double tau) const { return orbit.at(tau); }
     };
     using Queue = std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>>;
 
@@ -518,7 +517,7 @@ private:
         if (win.enter > horizon) return time_ + win.enter;
         const Moving mj = movingNow(j);
         auto eval = [&](double tau) {
-            const auto ai = mi.at(tau), aj = mj.at(tau);
+            const auto [ai, aj] = attitudesAt(mi.orbit, mj.orbit, tau);
             const EnergyRate e =
                 energyAndRate(sys_.potential, r0 + w * tau, w, ai.axis, ai.w, aj.axis, aj.w);
             return PairSample{tau, e.U, e.dUdt};

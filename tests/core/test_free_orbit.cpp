@@ -124,4 +124,43 @@ TEST(SmallAngle, SinCosAgreesWithTheLibrary) {
     EXPECT_EQ(sinCos(0.0).cos, 1.0);
 }
 
+// The packed pair gives each angle exactly what sinCos gives it, inside and beyond the series.
+TEST(SmallAngle, PairIsTwoSingles) {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> angle(-1.2, 1.2);
+    for (int k = 0; k < 2000; ++k) {
+        const double a = angle(rng), b = k % 7 == 0 ? 0.0 : angle(rng);
+        const auto pair = sinCosPair(a, b);
+        EXPECT_EQ(pair[0].sin, sinCos(a).sin) << a;
+        EXPECT_EQ(pair[0].cos, sinCos(a).cos) << a;
+        EXPECT_EQ(pair[1].sin, sinCos(b).sin) << b;
+        EXPECT_EQ(pair[1].cos, sinCos(b).cos) << b;
+    }
+}
+
+// A pair's two attitudes at τ are those of the two orbits taken one at a time, rotors at rest and
+// re-based orbits included.
+TEST(FreeOrbit, PairAttitudesAreTheSingleAttitudes) {
+    std::mt19937_64 rng(19);
+    const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
+    auto rotor = [&](double speed) {
+        LinearRotor::State b;
+        b.s = randomUnit(rng);
+        const Vec3 u = randomUnit(rng);
+        b.w = speed * (u - u.dot(b.s) * b.s).normalized();
+        return FreeOrbit<LinearRotor>(b, p);
+    };
+    for (int k = 0; k < 50; ++k) {
+        const FreeOrbit<LinearRotor> i = rotor(k % 5 == 0 ? 0.0 : 3.0 + k),
+                                     j = rotor(2.0 + 0.5 * k).from(0.01 * k);
+        for (double tau : taus) {
+            const auto both = attitudesAt(i, j, tau);
+            EXPECT_EQ(both[0].axis, i.at(tau).axis) << tau;
+            EXPECT_EQ(both[0].w, i.at(tau).w);
+            EXPECT_EQ(both[1].axis, j.at(tau).axis) << tau;
+            EXPECT_EQ(both[1].w, j.at(tau).w);
+        }
+    }
+}
+
 } // namespace
