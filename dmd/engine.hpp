@@ -12,7 +12,8 @@
 //   an event), per-body event counters captured in each event (lazy invalidation; `eager` erases
 //   queued events through stored handles instead), a cell list with crossing events from which
 //   per-body candidate lists with a skin are rebuilt by relist events (dmd/neighbour_lists.hpp;
-//   a body's pairs are screened from its list only), a free orbit per body cached at its clock
+//   a body's pairs are screened from its list only; of a body's own events — cell crossing,
+//   relist, entry — only the earliest is queued), a free orbit per body cached at its clock
 //   (core/free_orbit.hpp) for the searches, virtual events at a jittered horizon
 //   (dmd/horizon_jitter.hpp) that resume a truncated search from its stored end point, sample
 //   events that synchronise all clocks, a cleanup of stale entries when the queue grows beyond a
@@ -55,6 +56,14 @@ namespace terrace::dmd {
 inline constexpr double horizonJitter = 0.1;
 /// The search's nudge δt as a fraction of its largest step.
 inline constexpr double nudgeFraction = 1.0 / 32.0;
+/// A search step never moves the pair farther than these, so that its cubic interpolants follow
+/// U however hot the system: the relative displacement of the centres, as a fraction of r_m, and
+/// the sum of the two bodies' turns (rad). On the paper's rods at T* = 1.4 they hardly bind below
+/// the 4 fs step (a thermal pair shifts ~0.05 Å and turns ~0.2 rad in 4 fs; the evaluations per
+/// collision stay within 0.2 %); at T* = 50 they cut it two- to three-fold, where a 4 fs cubic
+/// missed whole excursions over a level on the repulsive wall (Conservation.HotPairsOnTheWall...).
+inline constexpr double stepShiftFraction = 0.03;
+inline constexpr double stepTurn = 0.5;
 /// Extrema of the interpolant within this fraction of a terrace height of a level are examined.
 inline constexpr double grazeFraction = 0.25;
 /// Distance from a level, as a fraction of the terrace height, below which U counts as on it:
@@ -89,7 +98,8 @@ public:
                  listSkin(settings_.rm, sys_.size() / sys_.box.volume(), sys_.box.length)),
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
           terraces_(sys_.size()), clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
-          listedBefore_(sys_.size(), 0), handles_(settings_.eager ? sys_.size() : 0),
+          listedBefore_(sys_.size(), 0), plans_(sys_.size()),
+          handles_(settings_.eager ? sys_.size() : 0),
           jitter_(settings_.horizon, horizonJitter, scene.seed), tuning_(settings_.horizon) {
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
@@ -97,8 +107,10 @@ public:
         search_.levelTolerance = levelTolerance * terraceHeight();
         checkBodies();
         orbit_.reserve(sys_.bodies.size());
-        for (const State& b : sys_.bodies)
+        for (const State& b : sys_.bodies) {
             orbit_.emplace_back(b, sys_.body);
+            spin_.push_back(K::angularVelocity(b, sys_.body).norm());
+        }
         if (settings_.queue == QueueKind::Heap)
             queue_.template emplace<BinaryHeapQueue<Event>>();
         else
@@ -231,7 +243,8 @@ public:
              terraces_.bytesReserved() + clock_.capacity() * sizeof(double) +
              counter_.capacity() * sizeof(std::uint32_t) + lists_.bytesReserved() +
              listedBefore_.capacity() * sizeof(std::uint64_t) +
-             orbit_.capacity() * sizeof(FreeOrbit<K>);
+             plans_.capacity() * sizeof(BodyPlan) + orbit_.capacity() * sizeof(FreeOrbit<K>) +
+             spin_.capacity() * sizeof(double);
         for (const auto& h : handles_)
             b += h.capacity() * sizeof(QueueHandle);
         return b;
@@ -394,7 +407,8 @@ private:
     template <class Q> void crossCell(Q& q, const Event& e) {
         bringToNow(e.i);
         cells_.cross(e.i, e.side / 2, e.side % 2 ? 1 : -1);
-        scheduleCellCrossing(q, e.i);
+        planCellCrossing(e.i);
+        scheduleBodyEvent(q, e.i);
     }
 
     /// i has moved half the skin: partners may have come within reach. Its motion is unchanged,
@@ -414,7 +428,8 @@ private:
             const double entry = predictPair(q, mi, i, j, nullptr);
             if (std::isfinite(entry)) schedule(q, pairEvent(EventKind::Virtual, i, j, entry));
         }
-        scheduleRelist(q, i);
+        planRelist(i);
+        scheduleBodyEvent(q, i);
     }
 
     /// i's list from the cells: every j within r_m + skin now, listed on both sides.
@@ -461,34 +476,50 @@ private:
         scheduleBodyEvents(q, i, entry);
     }
 
-    /// The cell crossing of i and, when some pair of i enters r_m only beyond the horizon, one
-    /// virtual event of i at the earliest such entry: one queued event per body instead of one
-    /// per approaching pair. Should i have no event before then, it re-predicts all its pairs.
+    /// Body i's own events: its next cell crossing, its next list rebuild and, when some pair of i
+    /// enters r_m only beyond the horizon, a virtual event at the earliest such entry (one per
+    /// body instead of one per approaching pair; should i have no event before then, it
+    /// re-predicts all its pairs). Only the earliest of the three is queued: most are overtaken
+    /// by a collision of i, and the others are planned again when it is processed.
     template <class Q> void scheduleBodyEvents(Q& q, int i, double entry) {
-        scheduleCellCrossing(q, i);
-        scheduleRelist(q, i);
-        if (std::isfinite(entry)) schedule(q, bodyEvent(EventKind::Virtual, i, entry));
+        plans_[i].entry = entry;
+        planCellCrossing(i);
+        planRelist(i);
+        scheduleBodyEvent(q, i);
+    }
+
+    /// Queues the earliest of i's planned body events (ties: cell, relist, entry).
+    template <class Q> void scheduleBodyEvent(Q& q, int i) {
+        const BodyPlan& p = plans_[i];
+        if (p.cell <= p.relist && p.cell <= p.entry) {
+            if (!std::isfinite(p.cell)) return;
+            Event e = bodyEvent(EventKind::CellCrossing, i, p.cell);
+            e.side = p.cellSide;
+            schedule(q, e);
+        } else if (p.relist <= p.entry) {
+            schedule(q, bodyEvent(EventKind::Relist, i, p.relist));
+        } else {
+            schedule(q, bodyEvent(EventKind::Virtual, i, p.entry));
+        }
     }
 
     /// When i will have moved (1 − relistMargin) skin/2 from its list's anchor.
-    template <class Q> void scheduleRelist(Q& q, int i) {
+    void planRelist(int i) {
         const double radius = 0.5 * lists_.skin() * (1.0 - relistMargin);
         const Vec3 moved = positionNow(i) - lists_.anchor(i);
         // Already out (an event tied with the rebuild came first): rebuild now.
         const double dt = moved.squaredNorm() >= radius * radius
                               ? 0.0
                               : shellWindow(moved, sys_.bodies[i].v, radius).exit;
-        if (std::isfinite(dt)) schedule(q, bodyEvent(EventKind::Relist, i, time_ + dt));
+        plans_[i].relist = time_ + dt;
     }
 
-    template <class Q> void scheduleCellCrossing(Q& q, int i) {
+    void planCellCrossing(int i) {
         const State& b = sys_.bodies[i];
         int axis = 0, dir = 0;
         const double dt = cells_.crossingTime(i, b.r + b.v * (time_ - clock_[i]), b.v, axis, dir);
-        if (!std::isfinite(dt)) return;
-        Event e = bodyEvent(EventKind::CellCrossing, i, time_ + dt);
-        e.side = static_cast<std::int8_t>(2 * axis + (dir > 0 ? 1 : 0));
-        schedule(q, e);
+        plans_[i].cell = time_ + dt;
+        plans_[i].cellSide = static_cast<std::int8_t>(2 * axis + (dir > 0 ? 1 : 0));
     }
 
     /// Next event of the pair (i, j) from now: screening with r_m, then the adaptive search up to
@@ -532,7 +563,7 @@ private:
         const double tEnd = std::min(win.exit, horizon);
         const SearchResult r =
             findTerraceExit(eval, start, settings_.levels.lower(n), settings_.levels.upper(n), tEnd,
-                            search_, afterEvent);
+                            pairSearch(w, spin_[i] + spin_[j]), afterEvent);
         evaluations_ += r.evaluations;
         if (r.side != ExitSide::None) {
             Event e = pairEvent(EventKind::Collision, i, j, time_ + r.t);
@@ -545,6 +576,18 @@ private:
             schedule(q, e);
         }
         return none;
+    }
+
+    /// The search settings for a pair with relative velocity w and summed angular speed turn: the
+    /// step shortened where the pair would move more than stepShiftFraction r_m or turn more
+    /// than stepTurn in one.
+    SearchSettings pairSearch(const Vec3& w, double turn) const {
+        SearchSettings s = search_;
+        const double shift = stepShiftFraction * settings_.rm;
+        const double w2 = w.squaredNorm();
+        if (w2 * s.maxStep * s.maxStep > shift * shift) s.maxStep = shift / std::sqrt(w2);
+        if (turn * s.maxStep > stepTurn) s.maxStep = stepTurn / turn;
+        return s;
     }
 
     /// Body i as the search sees it now, from its orbit cached at its clock: the stored state is
@@ -609,7 +652,10 @@ private:
         refreshOrbit(i);
     }
     /// The cached orbit follows every change of a stored state (free motion, impulse, rescale).
-    void refreshOrbit(int i) { orbit_[i] = FreeOrbit<K>(sys_.bodies[i], sys_.body); }
+    void refreshOrbit(int i) {
+        orbit_[i] = FreeOrbit<K>(sys_.bodies[i], sys_.body);
+        spin_[i] = K::angularVelocity(sys_.bodies[i], sys_.body).norm();
+    }
 
     void synchronise(double t) {
         time_ = t;
@@ -620,6 +666,14 @@ private:
     /// A start with a pair above this multiple of |U_min| is an overlap, not a state point.
     static constexpr double overlapFactor = 1e4;
 
+    /// A body's own events, planned (absolute times, +∞: none); only the earliest is queued.
+    struct BodyPlan {
+        double cell = std::numeric_limits<double>::infinity();
+        double relist = std::numeric_limits<double>::infinity();
+        double entry = std::numeric_limits<double>::infinity(); // virtual: a pair enters r_m
+        std::int8_t cellSide = 0;                               // as Event::side
+    };
+
     System<K, P> sys_;
     DmdSettings settings_;
     NeighbourLists lists_; // before cells_: the cell width follows the skin
@@ -627,8 +681,10 @@ private:
     PairTerraces terraces_;
     std::vector<double> clock_;
     std::vector<FreeOrbit<K>> orbit_; // each body's free orbit from its state at its clock
+    std::vector<double> spin_;        // |ω| at its clock (rad per time unit), for the search step
     std::vector<std::uint32_t> counter_;
     std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
+    std::vector<BodyPlan> plans_;
     std::uint64_t listStamp_ = 0;
     std::vector<std::vector<QueueHandle>> handles_; // eager invalidation only
     Queue queue_;
