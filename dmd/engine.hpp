@@ -7,18 +7,21 @@
 // bounding its terrace (dmd/root_search.hpp); the collision rule (dmd/collision_rule.hpp) then
 // transmits the pair up or down or reflects it, conserving energy and both momenta.
 //
-// The loop, per popped event:  pop → discard if stale → resolve → invalidate → predict.
+// The loop, per calendar entry:  pop → discard if stale → resolve → invalidate → predict.
 //   bookkeeping: local clocks (a body is brought to the current time only when it takes part in
-//   an event), per-body event counters captured in each event (lazy invalidation; `eager` erases
-//   queued events through stored handles instead), a cell list with crossing events from which
-//   per-body candidate lists with a skin are rebuilt by relist events (dmd/neighbour_lists.hpp;
-//   a body's pairs are screened from its list only; of a body's own events — cell crossing,
-//   relist, entry — only the earliest is queued), a free orbit per body cached at its clock
-//   (core/free_orbit.hpp) for the searches, virtual events at a jittered horizon
-//   (dmd/horizon_jitter.hpp) that resume a truncated search from its stored end point, sample
-//   events that synchronise all clocks, a cleanup of stale entries when the queue grows beyond a
-//   multiple of its size after the previous cleanup, and bins of the bounded queue tuned from
-//   the measured push rate (dmd/bin_tuning.hpp).
+//   an event); per-body agendas of pending events with one calendar entry per body, its earliest
+//   event (a collision makes some 20 predicted events stale, which then mostly never reach the
+//   calendar); per-body event counters captured in each pair event (lazy invalidation; `eager`
+//   erases the calendar entries of an invalidated body and those about it through stored
+//   handles instead); a cell list with crossing events from which per-body candidate lists with
+//   a skin are rebuilt by relist events (dmd/neighbour_lists.hpp; a body's pairs are screened
+//   from its list only; of a body's own events — cell crossing, relist, entry — only the
+//   earliest is planned in its agenda); a free orbit per body cached at its clock
+//   (core/free_orbit.hpp) for the searches; virtual events at a jittered horizon
+//   (dmd/horizon_jitter.hpp) that resume a truncated search from its stored end point; sample
+//   events that synchronise all clocks; a cleanup of stale entries when the calendar grows beyond
+//   a multiple of its size after the previous cleanup; bins of the bounded queue tuned from the
+//   measured push rate (dmd/bin_tuning.hpp).
 // A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error
 // (dmd/stall_watch.hpp).
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
@@ -73,7 +76,7 @@ inline constexpr double levelTolerance = 1e-10;
 /// cleanup (and at least cleanupMinimumPerBody entries per body).
 inline constexpr double cleanupGrowth = 3.0;
 inline constexpr double cleanupMinimumPerBody = 16.0;
-/// Eager invalidation: a body's handle list is pruned of departed events from this size on.
+/// Eager invalidation: a body's list of calendar entries about it is pruned from this size on.
 inline constexpr std::size_t handlePruneSize = 32;
 /// A list is rebuilt a hair before the body has moved skin/2, so that round-off in the rebuild
 /// time can never let an unlisted pair inside r_m.
@@ -98,8 +101,11 @@ public:
                  listSkin(settings_.rm, sys_.size() / sys_.box.volume(), sys_.box.length)),
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
           terraces_(sys_.size()), clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
-          listedBefore_(sys_.size(), 0), plans_(sys_.size()),
-          handles_(settings_.eager ? sys_.size() : 0),
+          listedBefore_(sys_.size(), 0), plans_(sys_.size()), agenda_(sys_.size()),
+          queuedAt_(sys_.size(), std::numeric_limits<double>::infinity()),
+          entryStamp_(sys_.size(), 0), entry_(settings_.eager ? sys_.size() : 0),
+          entryPartner_(settings_.eager ? sys_.size() : 0, -1),
+          about_(settings_.eager ? sys_.size() : 0), unsettledRound_(sys_.size(), 0),
           jitter_(settings_.horizon, horizonJitter, scene.seed), tuning_(settings_.horizon) {
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
@@ -163,9 +169,11 @@ public:
             refreshOrbit(i);
         visitQueue([&](auto& q) {
             q.clear();
-            for (int i = 0; i < sys_.size(); ++i)
+            for (int i = 0; i < sys_.size(); ++i) {
                 ++counter_[i];
-            for (auto& h : handles_)
+                forgetAgenda(i);
+            }
+            for (auto& h : about_)
                 h.clear();
             predictAll(q);
         });
@@ -188,6 +196,7 @@ public:
         j["max_queue_size"] = maxQueueSize_;
         j["cleanups"] = cleanups_;
         j["stale_events"] = staleEvents_;
+        j["stale_in_agendas"] = staleInAgendas_;
         j["cells_per_side"] = cells_.cellsPerSide();
         j["search_evaluations"] = evaluations_;
         return j;
@@ -245,8 +254,15 @@ public:
              listedBefore_.capacity() * sizeof(std::uint64_t) +
              plans_.capacity() * sizeof(BodyPlan) + orbit_.capacity() * sizeof(FreeOrbit<K>) +
              spin_.capacity() * sizeof(double);
-        for (const auto& h : handles_)
-            b += h.capacity() * sizeof(QueueHandle);
+        b += agenda_.capacity() * sizeof(agenda_[0]) + queuedAt_.capacity() * sizeof(double) +
+             entryStamp_.capacity() * sizeof(std::uint32_t) +
+             entry_.capacity() * sizeof(QueueHandle) + entryPartner_.capacity() * sizeof(int) +
+             about_.capacity() * sizeof(about_[0]) +
+             unsettledRound_.capacity() * sizeof(std::uint64_t);
+        for (const auto& a : agenda_)
+            b += a.capacity() * sizeof(Event);
+        for (const auto& h : about_)
+            b += h.capacity() * sizeof(int);
         return b;
     }
 
@@ -304,6 +320,7 @@ private:
                 if (j > i) entry = std::min(entry, predictPair(q, mi, i, j, nullptr));
             scheduleBodyEvents(q, i, entry);
         }
+        settle(q);
         cleanupThreshold_ = std::max(cleanupMinimumPerBody * sys_.size(),
                                      cleanupGrowth * static_cast<double>(q.size()));
     }
@@ -316,8 +333,14 @@ private:
             const Event e = q.top();
             q.pop();
             if (e.kind == EventKind::Sample) return false;
-            if (isStale(e)) {
+            if (!isCurrentEntry(e)) { // superseded, or its owner has been invalidated
                 ++staleEvents_;
+                continue;
+            }
+            takeFromAgenda(e);
+            if (e.j >= 0 && counter_[e.j] != e.countJ) { // the partner has moved on since
+                ++staleEvents_;
+                settle(q);
                 continue;
             }
             stallWatch_.check(time_, e.time, e.i, e.j);
@@ -341,15 +364,15 @@ private:
             case EventKind::Sample:
                 break;
             }
+            settle(q);
             afterEvent(q);
             return true;
         }
     }
 
-    bool isStale(const Event& e) const {
-        if (counter_[e.i] != e.countI) return true;
-        return e.j >= 0 && counter_[e.j] != e.countJ;
-    }
+    /// Whether a calendar entry is its owner's current one (only the stamp can tell, in either
+    /// mode: the partner's counter is checked once the entry is taken).
+    bool isCurrentEntry(const Event& e) const { return e.stamp == entryStamp_[e.i]; }
 
     template <class Q> void collide(Q& q, const Event& e) {
         const int i = e.i, j = e.j;
@@ -450,8 +473,9 @@ private:
 
     template <class Q> void afterEvent(Q& q) {
         if (!settings_.eager && static_cast<double>(q.size()) > cleanupThreshold_) {
-            q.removeIf(
-                [this](const Event& e) { return e.kind != EventKind::Sample && isStale(e); });
+            q.removeIf([this](const Event& e) {
+                return e.kind != EventKind::Sample && !isCurrentEntry(e);
+            });
             ++cleanups_;
             cleanupThreshold_ = std::max(cleanupMinimumPerBody * sys_.size(),
                                          cleanupGrowth * static_cast<double>(q.size()));
@@ -479,7 +503,7 @@ private:
     /// Body i's own events: its next cell crossing, its next list rebuild and, when some pair of i
     /// enters r_m only beyond the horizon, a virtual event at the earliest such entry (one per
     /// body instead of one per approaching pair; should i have no event before then, it
-    /// re-predicts all its pairs). Only the earliest of the three is queued: most are overtaken
+    /// re-predicts all its pairs). Only the earliest of the three is scheduled: most are overtaken
     /// by a collision of i, and the others are planned again when it is processed.
     template <class Q> void scheduleBodyEvents(Q& q, int i, double entry) {
         plans_[i].entry = entry;
@@ -603,7 +627,6 @@ private:
         e.time = t;
         e.kind = kind;
         e.i = i;
-        e.countI = counter_[i];
         return e;
     }
 
@@ -616,34 +639,123 @@ private:
 
     // ---- bookkeeping ----
 
-    template <class Q> void schedule(Q& q, const Event& e) {
-        const QueueHandle h = q.push(e);
-        if (settings_.eager) {
-            keepHandle(q, e.i, h);
-            if (e.j >= 0) keepHandle(q, e.j, h);
+    /// Every event is filed in the agenda of the body it belongs to (e.i: the body whose
+    /// prediction found it); the calendar (the queue) holds one entry per body, a copy of the
+    /// earliest event of its agenda, put there by settle() once the body's predictions are done.
+    /// A collision invalidates some 20 events of its two bodies; with one entry per body they
+    /// mostly never reach the calendar, which then pushes and pops a third as many entries.
+    template <class Q> void schedule(Q&, const Event& e) {
+        auto& agenda = agenda_[e.i];
+        if (agenda.size() >= std::numeric_limits<std::uint16_t>::max())
+            throw std::logic_error("dmd: a body's agenda overflowed");
+        agenda.push_back(e);
+        if (e.time < queuedAt_[e.i]) markUnsettled(e.i);
+    }
+
+    void markUnsettled(int i) {
+        if (unsettledRound_[i] == settleRound_) return;
+        unsettledRound_[i] = settleRound_;
+        unsettled_.push_back(i);
+    }
+
+    /// Gives every body marked unsettled the calendar entry of its earliest valid agenda event.
+    /// An earliest event whose partner has moved on since is dropped from the agenda and the
+    /// search repeats (the others wait until they come first, or until the agenda is emptied);
+    /// a drop moves another event, so the entry is then renewed too: it records its event's place.
+    template <class Q> void settle(Q& q) {
+        for (const int i : unsettled_) {
+            auto& agenda = agenda_[i];
+            bool moved = false;
+            std::size_t best = 0;
+            for (;;) {
+                if (agenda.empty()) break;
+                best = 0;
+                for (std::size_t k = 1; k < agenda.size(); ++k)
+                    if (agenda[k].time < agenda[best].time) best = k;
+                const Event& a = agenda[best];
+                if (a.j < 0 || counter_[a.j] == a.countJ) break;
+                ++staleInAgendas_;
+                agenda[best] = agenda.back();
+                agenda.pop_back();
+                moved = true;
+            }
+            if (agenda.empty()) {
+                dropEntry(q, i);
+                continue;
+            }
+            if (!moved && agenda[best].time >= queuedAt_[i]) continue; // the queued entry stands
+            dropEntry(q, i);
+            Event entry = agenda[best];
+            entry.stamp = ++entryStamp_[i];
+            entry.slot = static_cast<std::uint16_t>(best);
+            queuedAt_[i] = entry.time;
+            const QueueHandle h = q.push(entry);
+            if (settings_.eager) {
+                entry_[i] = h;
+                entryPartner_[i] = entry.j;
+                if (entry.j >= 0) keepAbout(entry.j, i);
+            }
+            maxQueueSize_ = std::max<std::uint64_t>(maxQueueSize_, q.size());
+            tuning_.pushed(entry.time - time_);
         }
-        maxQueueSize_ = std::max<std::uint64_t>(maxQueueSize_, q.size());
-        tuning_.pushed(e.time - time_);
+        unsettled_.clear();
+        ++settleRound_;
     }
 
-    /// Eager invalidation: i's handles are cleared when i is invalidated, but a body that rarely
-    /// collides would pile up the handles of its popped cell-crossing, relist and virtual events;
-    /// when its list reaches 32, 64, 128, … entries, those of events no longer queued are dropped
-    /// (amortised O(1) per push).
-    template <class Q> void keepHandle(const Q& q, int i, QueueHandle h) {
-        auto& list = handles_[i];
+    /// i's calendar entry no longer stands: the stamp makes it stale (lazy), or it is erased
+    /// (eager).
+    template <class Q> void dropEntry(Q& q, int i) {
+        if (!std::isfinite(queuedAt_[i])) return;
+        ++entryStamp_[i];
+        queuedAt_[i] = std::numeric_limits<double>::infinity();
+        if (settings_.eager) q.erase(entry_[i]);
+    }
+
+    /// The entry just popped leaves its owner's agenda; the owner needs a new one.
+    void takeFromAgenda(const Event& e) {
+        auto& agenda = agenda_[e.i];
+        agenda[e.slot] = agenda.back();
+        agenda.pop_back();
+        ++entryStamp_[e.i];
+        queuedAt_[e.i] = std::numeric_limits<double>::infinity();
+        markUnsettled(e.i);
+    }
+
+    /// Eager invalidation: bodies whose calendar entry is about i (a pair event with partner i)
+    /// are listed with i, so that invalidating i erases those entries too. A body that rarely
+    /// collides would pile up owners whose entries have moved on; when its list reaches 32, 64,
+    /// 128, … of them, those are dropped (amortised O(1) per entry).
+    void keepAbout(int i, int owner) {
+        auto& list = about_[i];
         if (list.size() >= handlePruneSize && (list.size() & (list.size() - 1)) == 0)
-            std::erase_if(list, [&](QueueHandle k) { return !q.contains(k); });
-        list.push_back(h);
+            std::erase_if(list, [&](int k) { return !entryIsAbout(k, i); });
+        list.push_back(owner);
+    }
+    bool entryIsAbout(int owner, int i) const {
+        return std::isfinite(queuedAt_[owner]) && entryPartner_[owner] == i;
     }
 
-    /// Body i's velocities changed (or its cell did): its queued events no longer hold.
+    void forgetAgenda(int i) {
+        agenda_[i].clear();
+        ++entryStamp_[i];
+        queuedAt_[i] = std::numeric_limits<double>::infinity();
+    }
+
+    /// Body i's velocities changed: its pending events no longer hold. Its agenda is emptied;
+    /// the events of other bodies about i go stale by its counter (dropped when met, or at once
+    /// from the calendar with eager invalidation).
     template <class Q> void invalidate(Q& q, int i) {
         ++counter_[i];
-        if (!settings_.eager) return;
-        for (const QueueHandle h : handles_[i])
-            q.erase(h);
-        handles_[i].clear();
+        if (settings_.eager) {
+            dropEntry(q, i);
+            for (const int k : about_[i])
+                if (entryIsAbout(k, i)) {
+                    dropEntry(q, k);
+                    markUnsettled(k);
+                }
+            about_[i].clear();
+        }
+        forgetAgenda(i);
     }
 
     void bringToNow(int i) {
@@ -666,7 +778,7 @@ private:
     /// A start with a pair above this multiple of |U_min| is an overlap, not a state point.
     static constexpr double overlapFactor = 1e4;
 
-    /// A body's own events, planned (absolute times, +∞: none); only the earliest is queued.
+    /// A body's own events, planned (absolute times, +∞: none); only the earliest is scheduled.
     struct BodyPlan {
         double cell = std::numeric_limits<double>::infinity();
         double relist = std::numeric_limits<double>::infinity();
@@ -686,7 +798,15 @@ private:
     std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
     std::vector<BodyPlan> plans_;
     std::uint64_t listStamp_ = 0;
-    std::vector<std::vector<QueueHandle>> handles_; // eager invalidation only
+    std::vector<std::vector<Event>> agenda_;    // each body's pending events (e.i = the body)
+    std::vector<double> queuedAt_;              // time of its calendar entry (+∞: none)
+    std::vector<std::uint32_t> entryStamp_;     // stamp of its current calendar entry
+    std::vector<QueueHandle> entry_;            // eager: the handle of that entry
+    std::vector<int> entryPartner_;             // eager: and its partner (−1: a body event)
+    std::vector<std::vector<int>> about_;       // eager: owners whose entry is about the body
+    std::vector<int> unsettled_;                // bodies whose entry settle() must renew
+    std::vector<std::uint64_t> unsettledRound_; // round in which a body was last marked
+    std::uint64_t settleRound_ = 1;
     Queue queue_;
     SearchSettings search_;
     HorizonJitter jitter_;
@@ -694,7 +814,8 @@ private:
     StallWatch stallWatch_;
     double time_ = 0.0;
     EventCounts counts_;
-    std::uint64_t maxQueueSize_ = 0, cleanups_ = 0, staleEvents_ = 0, evaluations_ = 0;
+    std::uint64_t maxQueueSize_ = 0, cleanups_ = 0, staleEvents_ = 0, staleInAgendas_ = 0,
+                  evaluations_ = 0;
     double cleanupThreshold_ = 0.0;
 };
 

@@ -1,9 +1,11 @@
 #pragma once
-// One entry of the DMD event calendar (DESIGN.md "DMD engine"; paper, "Implementation of the
-// event-driven simulation"). Events are scheduled at absolute times (internal unit, 100 fs) and
-// stay in the queue until popped; an event is stale when one of its bodies has had an event since
-// it was scheduled, which the per-body event counters captured at scheduling time reveal (lazy
-// invalidation, Rapaport, J. Comput. Phys. 34, 184 (1980)).
+// One event of the DMD engine (DESIGN.md "DMD engine"; paper, "Implementation of the
+// event-driven simulation"), at an absolute time (internal unit, 100 fs). An event belongs to the
+// body whose prediction found it (i) and waits in that body's agenda; the calendar (the queue)
+// holds a stamped copy of each body's earliest event (dmd/engine.hpp). The owner's events leave
+// with its agenda when it has an event of its own; one of a pair is stale once its partner j has
+// had an event since it was predicted, which the partner's event counter captured at prediction
+// time reveals (lazy invalidation, Rapaport, J. Comput. Phys. 34, 184 (1980)).
 #include <cstdint>
 #include <limits>
 
@@ -28,8 +30,11 @@ struct Event {
     double dUdt = 0.0;
     std::int32_t i = -1;
     std::int32_t j = -1;      // partner of a pair event
-    std::uint32_t countI = 0; // event counter of i when scheduled
-    std::uint32_t countJ = 0; // event counter of j when scheduled
+    std::uint32_t countJ = 0; // event counter of j when predicted
+    // Calendar entries (dmd/engine.hpp): the owner's entry stamp when queued, and where the
+    // event sits in the owner's agenda.
+    std::uint32_t stamp = 0;
+    std::uint16_t slot = 0;
     EventKind kind = EventKind::Sample;
     std::int8_t side = 0; // Collision: LevelSide; CellCrossing: 2*axis + (0 down | 1 up)
 };

@@ -83,6 +83,24 @@ TEST(Engine, LazyAndEagerInvalidationGiveTheSameTrajectory) {
     EXPECT_GT(a.statistics()["stale_events"].get<long>(), 0);
 }
 
+// The calendar holds one entry per body (the earliest event of its agenda): with eager
+// invalidation, where superseded and invalidated entries are erased at once, it never holds more
+// than N; with lazy invalidation the stale ones it keeps are a small fraction of the events,
+// where a calendar of every predicted event pops some two stale events per valid one.
+TEST(Engine, CalendarHoldsOneEntryPerBody) {
+    Scene lazy = denseScene(), eager = denseScene();
+    lazy.dmd.invalidation = "lazy";
+    eager.dmd.invalidation = "eager";
+    RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
+    const std::size_t n = static_cast<std::size_t>(a.synchronisedCopy().size());
+    for (int k = 0; k < 200; ++k) {
+        b.runEvents(100);
+        ASSERT_LE(b.queueSize(), n) << "after " << 100 * (k + 1) << " events";
+    }
+    a.runEvents(20000);
+    EXPECT_LT(a.statistics()["stale_events"].get<double>(), 0.5 * 20000);
+}
+
 TEST(Engine, RescalingSetsTheTemperatureAndKeepsTheEnergyAfterwards) {
     const Scene s = denseScene();
     RodEngine e(rodSystem(s), s);
