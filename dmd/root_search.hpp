@@ -71,18 +71,23 @@ struct HermiteCubic {
     double curvature(double s) const { return 2.0 * alpha + 6.0 * beta * s; }
     double slope(double s) const { return d0 + s * (2.0 * alpha + 3.0 * beta * s); }
     /// A zero of the interpolant in [0, h] when its end values differ in sign (f₀ > 0 here):
-    /// Newton's method kept inside a shrinking bracket, bisecting when it steps out. No sample
+    /// Newton's method kept inside a shrinking bracket (false position, then bisection, where it
+    /// steps out). A point where the cubic is exactly 0 is the answer: taken as a bracket end,
+    /// it left Newton no room, and bisection then crept back to it over ~40 halvings. No sample
     /// is taken; this only places the next one.
     double crossing() const {
-        double lo = 0.0, hi = h, x = f0 / (f0 - value(h)) * h;
+        double lo = 0.0, hi = h, fLo = f0, fHi = value(h);
+        double x = fLo / (fLo - fHi) * h;
         for (int k = 0; k < 48; ++k) {
             const double f = value(x);
+            if (f == 0.0) return x;
             if (f > 0.0)
-                lo = x;
+                lo = x, fLo = f;
             else
-                hi = x;
+                hi = x, fHi = f;
             const double d = slope(x);
-            double next = d != 0.0 ? x - f / d : 0.5 * (lo + hi);
+            double next = d != 0.0 ? x - f / d : lo;
+            if (!(next > lo && next < hi)) next = lo + fLo / (fLo - fHi) * (hi - lo);
             if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
             if (std::abs(next - x) <= 1e-15 * h) return next;
             x = next;

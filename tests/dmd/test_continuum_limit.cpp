@@ -16,6 +16,9 @@ constexpr int bodies = 128;
 // The lattice start is melted once by the continuous dynamics (with rescaling); both dynamics
 // then start from that liquid, DMD after a short re-equilibration on its terraces.
 constexpr double meltPs = 1.0, dmdEquilibratePs = 0.2, productionPs = 2.0, sampleFs = 10.0;
+constexpr double mdProductionPs = 8.0; // the one reference run: four times as long as a DMD run
+// DMD runs per ΔV, with different horizon-jitter streams (the trajectories part within ~1 ps).
+constexpr int dmdRuns = 3;
 constexpr double rescaleEveryFs = 50.0;
 constexpr double binWidth = 0.1; // Å, g(r) histogram
 constexpr double gMaxR = 8.0;    // Å, inside L/2 ≈ 9.6 Å
@@ -115,6 +118,20 @@ private:
     std::vector<Vec3> f_, tau_;
 };
 
+/// The DMD observables averaged over dmdRuns runs from one start, seeds 1, 2, ….
+Observables dmdAverage(Scene s, const RodSystem& start) {
+    Observables sum;
+    for (int run = 1; run <= dmdRuns; ++run) {
+        s.seed = static_cast<std::uint64_t>(run);
+        const Observables o = dmdObservables(s, start);
+        sum.meanU += o.meanU / dmdRuns;
+        sum.g.resize(o.g.size(), 0.0);
+        for (std::size_t k = 0; k < o.g.size(); ++k)
+            sum.g[k] += o.g[k] / dmdRuns;
+    }
+    return sum;
+}
+
 double gDistance(const Observables& a, const Observables& b) {
     double d = 0.0;
     for (std::size_t k = 0; k < a.g.size(); ++k)
@@ -127,10 +144,13 @@ double gDistance(const Observables& a, const Observables& b) {
 // Mean potential energy and g(r) of DMD at ΔV = kT/10 agree with the continuous dynamics, and
 // are closer to it than at ΔV = kT, where the paper sees exaggerated g(r) peaks.
 TEST(ContinuumLimit, SmallTerracesApproachTheContinuousDynamics) {
-    // 2 % of ⟨U⟩/N ≈ −9.2 kJ/mol: above the statistical spread of 2 ps of 128 rods plus the
-    // residual bias of kT/10 terraces (~0.1 measured), well below the kT bias (~0.7 measured).
-    constexpr double energyTolerance = 0.2;
-    // Integrated |Δg| (Å): noise of 200 samples is ~0.15; ΔV = kT gives ~0.5 (measured).
+    // ⟨U⟩/N ≈ −9.2 kJ/mol. Measured over 16 single 2 ps DMD runs at kT/10 from this start: a
+    // residual bias of −0.13 ± 0.02 against the reference and a spread of 0.08 per run (one run
+    // alone, tested against 0.2, failed for 4 of the 16 seeds). Averaged over 3 runs and with the
+    // 8 ps reference's own noise (~0.03), the comparison has σ ≈ 0.055: 0.3 is the bias plus 3 σ,
+    // and the kT bias (−0.55 measured) lies well beyond it.
+    constexpr double energyTolerance = 0.3;
+    // Integrated |Δg| (Å): noise of 200 samples is ~0.15; ΔV = kT gives ~0.45 (measured).
     constexpr double gTolerance = 0.3;
     const Scene fine = rodScene(bodies, 0.5, 1.4, 0.1), coarse = rodScene(bodies, 0.5, 1.4, 1.0);
     ContinuousDynamics dynamics(rodSystem(fine));
@@ -138,10 +158,10 @@ TEST(ContinuumLimit, SmallTerracesApproachTheContinuousDynamics) {
     const RodSystem start = dynamics.system();
     Observables md;
     int samples = 0;
-    dynamics.run(productionPs, false, &md, &samples);
+    dynamics.run(mdProductionPs, false, &md, &samples);
     normalise(md, samples, start.size(), start.box.volume());
-    const Observables dFine = dmdObservables(fine, start);
-    const Observables dCoarse = dmdObservables(coarse, start);
+    const Observables dFine = dmdAverage(fine, start);
+    const Observables dCoarse = dmdAverage(coarse, start);
     std::printf("<U>/N: MD %.4f  DMD(kT/10) %.4f  DMD(kT) %.4f kJ/mol; |dg|: %.4f %.4f A\n",
                 md.meanU, dFine.meanU, dCoarse.meanU, gDistance(dFine, md), gDistance(dCoarse, md));
     EXPECT_NEAR(dFine.meanU, md.meanU, energyTolerance);
