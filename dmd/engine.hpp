@@ -104,8 +104,7 @@ public:
           listedBefore_(sys_.size(), 0), plans_(sys_.size()), agenda_(sys_.size()),
           queuedAt_(sys_.size(), std::numeric_limits<double>::infinity()),
           entryStamp_(sys_.size(), 0), entry_(settings_.eager ? sys_.size() : 0),
-          entryPartner_(settings_.eager ? sys_.size() : 0, -1),
-          about_(settings_.eager ? sys_.size() : 0), unsettledRound_(sys_.size(), 0),
+          entryPartner_(sys_.size(), -1), about_(sys_.size()), unsettledRound_(sys_.size(), 0),
           jitter_(settings_.horizon, horizonJitter, scene.seed), tuning_(settings_.horizon) {
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
@@ -690,11 +689,9 @@ private:
             entry.slot = static_cast<std::uint16_t>(best);
             queuedAt_[i] = entry.time;
             const QueueHandle h = q.push(entry);
-            if (settings_.eager) {
-                entry_[i] = h;
-                entryPartner_[i] = entry.j;
-                if (entry.j >= 0) keepAbout(entry.j, i);
-            }
+            if (settings_.eager) entry_[i] = h;
+            entryPartner_[i] = entry.j;
+            if (entry.j >= 0) keepAbout(entry.j, i);
             maxQueueSize_ = std::max<std::uint64_t>(maxQueueSize_, q.size());
             tuning_.pushed(entry.time - time_);
         }
@@ -721,10 +718,10 @@ private:
         markUnsettled(e.i);
     }
 
-    /// Eager invalidation: bodies whose calendar entry is about i (a pair event with partner i)
-    /// are listed with i, so that invalidating i erases those entries too. A body that rarely
-    /// collides would pile up owners whose entries have moved on; when its list reaches 32, 64,
-    /// 128, … of them, those are dropped (amortised O(1) per entry).
+    /// Bodies whose calendar entry is about i (a pair event with partner i) are listed with i, so
+    /// that invalidating i renews those entries at once. A body that rarely collides would pile
+    /// up owners whose entries have moved on; when its list reaches 32, 64, 128, … of them, those
+    /// are dropped (amortised O(1) per entry).
     void keepAbout(int i, int owner) {
         auto& list = about_[i];
         if (list.size() >= handlePruneSize && (list.size() & (list.size() - 1)) == 0)
@@ -741,20 +738,21 @@ private:
         queuedAt_[i] = std::numeric_limits<double>::infinity();
     }
 
-    /// Body i's velocities changed: its pending events no longer hold. Its agenda is emptied;
-    /// the events of other bodies about i go stale by its counter (dropped when met, or at once
-    /// from the calendar with eager invalidation).
+    /// Body i's velocities changed: its pending events no longer hold. Its agenda is emptied, and
+    /// the bodies whose calendar entry is about i get their next one at once: with lazy
+    /// invalidation the old entries stay in the calendar, stale, with eager invalidation they are
+    /// erased; either way the same entries are pushed in the same order, so both give the same
+    /// trajectory. Other events about i that wait in agendas go stale by its counter and are
+    /// dropped when they come first.
     template <class Q> void invalidate(Q& q, int i) {
         ++counter_[i];
-        if (settings_.eager) {
-            dropEntry(q, i);
-            for (const int k : about_[i])
-                if (entryIsAbout(k, i)) {
-                    dropEntry(q, k);
-                    markUnsettled(k);
-                }
-            about_[i].clear();
-        }
+        dropEntry(q, i);
+        for (const int k : about_[i])
+            if (entryIsAbout(k, i)) {
+                dropEntry(q, k);
+                markUnsettled(k);
+            }
+        about_[i].clear();
         forgetAgenda(i);
     }
 
@@ -802,8 +800,8 @@ private:
     std::vector<double> queuedAt_;              // time of its calendar entry (+∞: none)
     std::vector<std::uint32_t> entryStamp_;     // stamp of its current calendar entry
     std::vector<QueueHandle> entry_;            // eager: the handle of that entry
-    std::vector<int> entryPartner_;             // eager: and its partner (−1: a body event)
-    std::vector<std::vector<int>> about_;       // eager: owners whose entry is about the body
+    std::vector<int> entryPartner_;             // the partner of its entry (−1: a body event)
+    std::vector<std::vector<int>> about_;       // owners whose entry is about the body
     std::vector<int> unsettled_;                // bodies whose entry settle() must renew
     std::vector<std::uint64_t> unsettledRound_; // round in which a body was last marked
     std::uint64_t settleRound_ = 1;
