@@ -467,7 +467,7 @@ private:
     }
 
     Vec3 positionNow(int i) const {
-        return sys_.bodies[i].r + sys_.bodies[i].v * (time_ - clock_[i]);
+        return translated(sys_.bodies[i].r, sys_.bodies[i].v, time_ - clock_[i]);
     }
 
     template <class Q> void afterEvent(Q& q) {
@@ -556,7 +556,7 @@ private:
         constexpr double none = std::numeric_limits<double>::infinity();
         const State& bj0 = sys_.bodies[j];
         const double dtj = time_ - clock_[j];
-        const Vec3 r0 = sys_.box.minimumImage(mi.r - (bj0.r + bj0.v * dtj));
+        const Vec3 r0 = sys_.box.minimumImage(mi.r - translated(bj0.r, bj0.v, dtj));
         const Vec3 w = mi.v - bj0.v;
         // Only a pair inside r_m (up to round-off) can be bound; skip the lookup for the rest.
         constexpr double boundSlack = 1.0 + 1e-6;
@@ -572,8 +572,8 @@ private:
         const Moving mj = movingNow(j);
         auto eval = [&](double tau) {
             const auto [ai, aj] = attitudesAt(mi.orbit, mj.orbit, tau);
-            const EnergyRate e =
-                energyAndRate(sys_.potential, r0 + w * tau, w, ai.axis, ai.w, aj.axis, aj.w);
+            const EnergyRate e = energyAndRate(sys_.potential, translated(r0, w, tau), w, ai.axis,
+                                               ai.w, aj.axis, aj.w);
             return PairSample{tau, e.U, e.dUdt};
         };
         PairSample start;
@@ -618,7 +618,7 @@ private:
     Moving movingNow(int i) const {
         const State& b = sys_.bodies[i];
         const double dt = time_ - clock_[i];
-        return {b.r + b.v * dt, b.v, orbit_[i].from(dt)};
+        return {translated(b.r, b.v, dt), b.v, orbit_[i].from(dt)};
     }
 
     Event bodyEvent(EventKind kind, int i, double t) const {

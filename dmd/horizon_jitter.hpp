@@ -19,7 +19,8 @@ public:
         z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
         z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
         z ^= z >> 31;
-        const double u = static_cast<double>(z >> 11) * 0x1.0p-53; // uniform in [0, 1)
+        // uniform in [0, 1); z >> 11 < 2^53 converts as a signed integer, in one instruction
+        const double u = static_cast<double>(static_cast<std::int64_t>(z >> 11)) * 0x1.0p-53;
         return horizon_ * (1.0 - jitter_ * u);
     }
 

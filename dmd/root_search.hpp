@@ -64,8 +64,9 @@ struct HermiteCubic {
     double t0, h, f0, d0, alpha, beta;
     HermiteCubic(const PairSample& a, const PairSample& b)
         : t0(a.t), h(b.t - a.t), f0(a.U), d0(a.dUdt) {
-        alpha = (3.0 * (b.U - a.U) - (2.0 * a.dUdt + b.dUdt) * h) / (h * h);
-        beta = (2.0 * (a.U - b.U) + (a.dUdt + b.dUdt) * h) / (h * h * h);
+        const double inverse = 1.0 / h, inverse2 = inverse * inverse; // one division, not two
+        alpha = (3.0 * (b.U - a.U) - (2.0 * a.dUdt + b.dUdt) * h) * inverse2;
+        beta = (2.0 * (a.U - b.U) + (a.dUdt + b.dUdt) * h) * inverse2 * inverse;
     }
     double value(double s) const { return f0 + s * (d0 + s * (alpha + s * beta)); }
     double curvature(double s) const { return 2.0 * alpha + 6.0 * beta * s; }
