@@ -70,11 +70,19 @@ public:
                 if (j != i) f(j);
             return;
         }
+        // The three wrapped coordinates along each axis, once: 9 integer divisions instead of the
+        // 162 of wrapping every neighbouring cell's coordinates afresh.
         const auto& c = coord_[i];
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const int cell = index(c[0] + dx, c[1] + dy, c[2] + dz);
+        std::array<int, 3> x, y, z;
+        for (int d = 0; d < 3; ++d) {
+            x[d] = wrap(c[0] + d - 1);
+            y[d] = wrap(c[1] + d - 1);
+            z[d] = wrap(c[2] + d - 1);
+        }
+        for (const int cx : x)
+            for (const int cy : y)
+                for (const int cz : z) {
+                    const int cell = (cx * n_ + cy) * n_ + cz;
                     for (int j = head_[cell]; j >= 0; j = next_[j])
                         if (j != i) f(j);
                 }
@@ -87,8 +95,8 @@ public:
     }
 
 private:
+    int wrap(std::int64_t c) const { return static_cast<int>(((c % n_) + n_) % n_); }
     int index(std::int64_t x, std::int64_t y, std::int64_t z) const {
-        auto wrap = [this](std::int64_t c) { return static_cast<int>(((c % n_) + n_) % n_); };
         return (wrap(x) * n_ + wrap(y)) * n_ + wrap(z);
     }
     void link(int i) {
