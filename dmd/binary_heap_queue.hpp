@@ -104,9 +104,6 @@ public:
         pool_.release(slot);
     }
 
-    /// Whether the event behind h is still queued (not popped, erased or cleaned up).
-    bool contains(QueueHandle h) const { return pool_.holds(h); }
-
     bool erase(QueueHandle h) {
         if (!pool_.holds(h)) return false;
         detail::eraseAt(heap_, pool_[h.slot].heapIndex, before(), placed());

@@ -62,9 +62,6 @@ public:
         refill();
     }
 
-    /// Whether the event behind h is still queued (not popped, erased or cleaned up).
-    bool contains(QueueHandle h) const { return pool_.holds(h); }
-
     bool erase(QueueHandle h) {
         if (!pool_.holds(h)) return false;
         const std::uint32_t where = pool_[h.slot].where;

@@ -76,8 +76,8 @@ inline constexpr double levelTolerance = 1e-10;
 /// cleanup (and at least cleanupMinimumPerBody entries per body).
 inline constexpr double cleanupGrowth = 3.0;
 inline constexpr double cleanupMinimumPerBody = 16.0;
-/// Eager invalidation: a body's list of calendar entries about it is pruned from this size on.
-inline constexpr std::size_t handlePruneSize = 32;
+/// A body's list of the owners of calendar entries about it is pruned from this size on.
+inline constexpr std::size_t aboutPruneSize = 32;
 /// A list is rebuilt a hair before the body has moved skin/2, so that round-off in the rebuild
 /// time can never let an unlisted pair inside r_m.
 inline constexpr double relistMargin = 1e-6;
@@ -316,8 +316,8 @@ private:
             double entry = std::numeric_limits<double>::infinity();
             const Moving mi = movingNow(i);
             for (const int j : lists_.partners(i))
-                if (j > i) entry = std::min(entry, predictPair(q, mi, i, j, nullptr));
-            scheduleBodyEvents(q, i, entry);
+                if (j > i) entry = std::min(entry, predictPair(mi, i, j, nullptr));
+            scheduleBodyEvents(i, entry);
         }
         settle(q);
         cleanupThreshold_ = std::max(cleanupMinimumPerBody * sys_.size(),
@@ -354,11 +354,11 @@ private:
                 break;
             case EventKind::CellCrossing:
                 ++counts_.cell;
-                crossCell(q, e);
+                crossCell(e);
                 break;
             case EventKind::Relist:
                 ++counts_.relist;
-                relist(q, e.i);
+                relist(e.i);
                 break;
             case EventKind::Sample:
                 break;
@@ -406,14 +406,14 @@ private:
         const PairSample start{0.0, f.U,
                                dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys_.body),
                                     K::angularVelocity(bj, sys_.body))};
-        predictBody(q, i, -1, j, &start);
-        predictBody(q, j, i, -1);
+        predictBody(i, -1, j, &start);
+        predictBody(j, i, -1);
     }
 
     template <class Q> void resume(Q& q, const Event& e) {
         if (e.j < 0) { // a body's entry event: some pair of i comes within r_m now
             invalidate(q, e.i);
-            predictBody(q, e.i, -1);
+            predictBody(e.i, -1);
             return;
         }
         // A pair dropped from the lists since: relist predicts it afresh if it comes back.
@@ -421,16 +421,16 @@ private:
         if (std::find(listed.begin(), listed.end(), e.j) == listed.end()) return;
         const PairSample start{0.0, e.U, e.dUdt};
         const double entry =
-            predictPair(q, movingNow(e.i), e.i, e.j, std::isnan(e.U) ? nullptr : &start);
-        if (std::isfinite(entry)) schedule(q, pairEvent(EventKind::Virtual, e.i, e.j, entry));
+            predictPair(movingNow(e.i), e.i, e.j, std::isnan(e.U) ? nullptr : &start);
+        if (std::isfinite(entry)) schedule(pairEvent(EventKind::Virtual, e.i, e.j, entry));
     }
 
     /// The cell only serves list rebuilds: nothing about i's pairs changes.
-    template <class Q> void crossCell(Q& q, const Event& e) {
+    void crossCell(const Event& e) {
         bringToNow(e.i);
         cells_.cross(e.i, e.side / 2, e.side % 2 ? 1 : -1);
         planCellCrossing(e.i);
-        scheduleBodyEvent(q, e.i);
+        scheduleBodyEvent(e.i);
     }
 
     /// i has moved half the skin: partners may have come within reach. Its motion is unchanged,
@@ -438,7 +438,7 @@ private:
     /// predicted (one entering r_m beyond the horizon gets a fresh-start virtual event there).
     /// A dropped pair (now farther apart than r_m + skin) keeps its queued events, which remain
     /// true to the motion, but its chain of virtual events ends (resume).
-    template <class Q> void relist(Q& q, int i) {
+    void relist(int i) {
         bringToNow(i);
         ++listStamp_;
         for (const int j : lists_.partners(i))
@@ -447,11 +447,11 @@ private:
         const Moving mi = movingNow(i);
         for (const int j : lists_.partners(i)) {
             if (listedBefore_[j] == listStamp_) continue;
-            const double entry = predictPair(q, mi, i, j, nullptr);
-            if (std::isfinite(entry)) schedule(q, pairEvent(EventKind::Virtual, i, j, entry));
+            const double entry = predictPair(mi, i, j, nullptr);
+            if (std::isfinite(entry)) schedule(pairEvent(EventKind::Virtual, i, j, entry));
         }
         planRelist(i);
-        scheduleBodyEvent(q, i);
+        scheduleBodyEvent(i);
     }
 
     /// i's list from the cells: every j within r_m + skin now, listed on both sides.
@@ -487,16 +487,15 @@ private:
 
     /// Predicts every pair of i except (i, exclude); (i, partner) has just been resolved.
     /// partnerStart: the sample of (i, partner) now, when the caller has it.
-    template <class Q>
-    void predictBody(Q& q, int i, int exclude, int partner = -1,
+    void predictBody(int i, int exclude, int partner = -1,
                      const PairSample* partnerStart = nullptr) {
         double entry = std::numeric_limits<double>::infinity();
         const Moving mi = movingNow(i);
         for (const int j : lists_.partners(i))
             if (j != exclude)
-                entry = std::min(entry, j == partner ? predictPair(q, mi, i, j, partnerStart, true)
-                                                     : predictPair(q, mi, i, j, nullptr));
-        scheduleBodyEvents(q, i, entry);
+                entry = std::min(entry, j == partner ? predictPair(mi, i, j, partnerStart, true)
+                                                     : predictPair(mi, i, j, nullptr));
+        scheduleBodyEvents(i, entry);
     }
 
     /// Body i's own events: its next cell crossing, its next list rebuild and, when some pair of i
@@ -504,25 +503,25 @@ private:
     /// body instead of one per approaching pair; should i have no event before then, it
     /// re-predicts all its pairs). Only the earliest of the three is scheduled: most are overtaken
     /// by a collision of i, and the others are planned again when it is processed.
-    template <class Q> void scheduleBodyEvents(Q& q, int i, double entry) {
+    void scheduleBodyEvents(int i, double entry) {
         plans_[i].entry = entry;
         planCellCrossing(i);
         planRelist(i);
-        scheduleBodyEvent(q, i);
+        scheduleBodyEvent(i);
     }
 
     /// Queues the earliest of i's planned body events (ties: cell, relist, entry).
-    template <class Q> void scheduleBodyEvent(Q& q, int i) {
+    void scheduleBodyEvent(int i) {
         const BodyPlan& p = plans_[i];
         if (p.cell <= p.relist && p.cell <= p.entry) {
             if (!std::isfinite(p.cell)) return;
             Event e = bodyEvent(EventKind::CellCrossing, i, p.cell);
             e.side = p.cellSide;
-            schedule(q, e);
+            schedule(e);
         } else if (p.relist <= p.entry) {
-            schedule(q, bodyEvent(EventKind::Relist, i, p.relist));
+            schedule(bodyEvent(EventKind::Relist, i, p.relist));
         } else {
-            schedule(q, bodyEvent(EventKind::Virtual, i, p.entry));
+            schedule(bodyEvent(EventKind::Virtual, i, p.entry));
         }
     }
 
@@ -550,8 +549,7 @@ private:
     /// A pair entering r_m only beyond the horizon is not searched: its entry time (absolute) is
     /// returned for the caller to schedule; +∞ otherwise.
     /// mi is body i brought to now (movingNow(i)), prepared once for all pairs of i.
-    template <class Q>
-    double predictPair(Q& q, const Moving& mi, int i, int j, const PairSample* resumeFrom,
+    double predictPair(const Moving& mi, int i, int j, const PairSample* resumeFrom,
                        bool afterEvent = false) {
         constexpr double none = std::numeric_limits<double>::infinity();
         const State& bj0 = sys_.bodies[j];
@@ -591,12 +589,12 @@ private:
         if (r.side != ExitSide::None) {
             Event e = pairEvent(EventKind::Collision, i, j, time_ + r.t);
             e.side = static_cast<std::int8_t>(r.side);
-            schedule(q, e);
+            schedule(e);
         } else if (win.exit > horizon) {
             Event e = pairEvent(EventKind::Virtual, i, j, time_ + r.end.t);
             e.U = r.end.U;
             e.dUdt = r.end.dUdt;
-            schedule(q, e);
+            schedule(e);
         }
         return none;
     }
@@ -643,7 +641,7 @@ private:
     /// earliest event of its agenda, put there by settle() once the body's predictions are done.
     /// A collision invalidates some 20 events of its two bodies; with one entry per body they
     /// mostly never reach the calendar, which then pushes and pops a third as many entries.
-    template <class Q> void schedule(Q&, const Event& e) {
+    void schedule(const Event& e) {
         auto& agenda = agenda_[e.i];
         if (agenda.size() >= std::numeric_limits<std::uint16_t>::max())
             throw std::logic_error("dmd: a body's agenda overflowed");
@@ -720,12 +718,16 @@ private:
 
     /// Bodies whose calendar entry is about i (a pair event with partner i) are listed with i, so
     /// that invalidating i renews those entries at once. A body that rarely collides would pile
-    /// up owners whose entries have moved on; when its list reaches 32, 64, 128, … of them, those
-    /// are dropped (amortised O(1) per entry).
+    /// up owners whose entries have moved on, and the same owner once per entry it renewed (a
+    /// chain of virtual events); when its list reaches 32, 64, 128, … entries, it keeps only the
+    /// owners whose entry is about i now, each once (amortised O(1) per entry).
     void keepAbout(int i, int owner) {
         auto& list = about_[i];
-        if (list.size() >= handlePruneSize && (list.size() & (list.size() - 1)) == 0)
+        if (list.size() >= aboutPruneSize && (list.size() & (list.size() - 1)) == 0) {
             std::erase_if(list, [&](int k) { return !entryIsAbout(k, i); });
+            std::sort(list.begin(), list.end());
+            list.erase(std::unique(list.begin(), list.end()), list.end());
+        }
         list.push_back(owner);
     }
     bool entryIsAbout(int owner, int i) const {

@@ -28,10 +28,9 @@ template <class Q, class E>
 concept EventQueue = requires(Q q, const Q cq, E e, QueueHandle h, bool (*pred)(const E&)) {
     { e.time } -> std::convertible_to<double>;
     { q.push(e) } -> std::same_as<QueueHandle>;
-    { cq.top() } -> std::same_as<const E&>;   // earliest event; precondition !empty()
-    q.pop();                                  // removes top()
-    { q.erase(h) } -> std::same_as<bool>;     // false (no-op) if that event already left the queue
-    { cq.contains(h) } -> std::same_as<bool>; // the event behind h is still queued
+    { cq.top() } -> std::same_as<const E&>; // earliest event; precondition !empty()
+    q.pop();                                // removes top()
+    { q.erase(h) } -> std::same_as<bool>;   // false (no-op) if that event already left the queue
     { cq.size() } -> std::convertible_to<std::size_t>;
     { cq.empty() } -> std::convertible_to<bool>;
     { q.removeIf(pred) } -> std::convertible_to<std::size_t>; // stale-entry cleanup; count removed

@@ -270,11 +270,7 @@ TYPED_TEST(EventQueueTest, EraseOfAnEventThatLeftReturnsFalse) {
     const QueueHandle first = q.push({1.0, 1});
     const QueueHandle second = q.push({2.0, 2});
     EXPECT_FALSE(q.erase(QueueHandle{})); // a default handle refers to nothing
-    EXPECT_FALSE(q.contains(QueueHandle{}));
-    EXPECT_TRUE(q.contains(first));
-    q.pop(); // `first` leaves by pop
-    EXPECT_FALSE(q.contains(first));
-    EXPECT_TRUE(q.contains(second));
+    q.pop();                              // `first` leaves by pop
     EXPECT_FALSE(q.erase(first));
     EXPECT_TRUE(q.erase(second));
     EXPECT_FALSE(q.erase(second));
@@ -282,8 +278,6 @@ TYPED_TEST(EventQueueTest, EraseOfAnEventThatLeftReturnsFalse) {
     // The freed slots are reused; the old handles must not reach the new occupants.
     const QueueHandle third = q.push({3.0, 3});
     const QueueHandle fourth = q.push({4.0, 4});
-    EXPECT_FALSE(q.contains(first) || q.contains(second)); // reused slots, new generations
-    EXPECT_TRUE(q.contains(third) && q.contains(fourth));
     EXPECT_FALSE(q.erase(first));
     EXPECT_FALSE(q.erase(second));
     EXPECT_EQ(q.size(), 2u);
