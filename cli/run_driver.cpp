@@ -35,8 +35,8 @@ namespace {
 /// over production. Everything else (sizes, settings, maxima) is reported as it stands at the end.
 bool isCounter(const std::string& path) {
     static const std::set<std::string> counters = {
-        "steps",        "neighbour_rebuilds", "pair_evaluations",  "cleanups",
-        "stale_events", "stale_in_agendas",   "search_evaluations"};
+        "steps",        "neighbour_rebuilds", "pair_evaluations",   "cleanups",
+        "stale_events", "stale_in_agendas",   "search_evaluations", "searches_screened"};
     return path.rfind("events.", 0) == 0 || counters.count(path) > 0;
 }
 

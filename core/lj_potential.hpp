@@ -11,6 +11,13 @@ struct LJPotential {
     double epsilon = 1.0; // kJ/mol
     double sigma = 1.0;   // Å
 
+    /// U depends on the centre distance alone: r_e = r, whatever the axes.
+    double effectiveDistance(double r, double) const { return r; }
+    double alignmentLength() const { return 0.0; }
+    detail::RadialRoots radialRoots(double u) const {
+        return detail::lennardJonesRoots(u, epsilon, sigma);
+    }
+
     PairForce evaluate(const Vec3& rij, const Vec3&, const Vec3&) const {
         const double r = rij.norm();
         const auto lj = detail::lennardJones(r, epsilon, sigma);

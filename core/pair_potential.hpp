@@ -5,6 +5,7 @@
 #include "core/vec.hpp"
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <string_view>
 
 namespace terrace {
@@ -73,14 +74,29 @@ inline Radial lennardJones(double x, double epsilon, double sigma) {
     return {4.0 * epsilon * (s12 - s6), -24.0 * epsilon * inverse * (2.0 * s12 - s6)};
 }
 
+/// Both distances x at which the Lennard-Jones curve equals u: `inner` on the repulsive wall
+/// (x ≤ 2^(1/6)σ, for u > −ε), `outer` on the attractive side (for −ε < u < 0; +∞ for u ≥ 0, which
+/// the tail never reaches). For u ≤ −ε both are 2^(1/6)σ, the minimum, where the curve only
+/// touches u = −ε. Solves 4ε(y² − y) = u for y = (σ/x)^6.
+struct RadialRoots {
+    double inner, outer;
+};
+inline RadialRoots lennardJonesRoots(double u, double epsilon, double sigma) {
+    const double bottom = sigma * std::pow(2.0, 1.0 / 6.0);
+    if (u <= -epsilon) return {bottom, bottom};
+    const double disc = std::sqrt(1.0 + u / epsilon);
+    const double inner = sigma / std::pow(0.5 * (1.0 + disc), 1.0 / 6.0);
+    const double outer = u < 0.0 ? sigma / std::pow(0.5 * (1.0 - disc), 1.0 / 6.0)
+                                 : std::numeric_limits<double>::infinity();
+    return {inner, outer};
+}
+
 /// Distance x at which the Lennard-Jones curve equals u: for -ε < u < 0 the outer (attractive)
 /// root, for u >= 0 the root on the repulsive wall; 0 for u <= -ε, where it is never reached.
-/// Solves 4ε(y² - y) = u for y = (σ/x)^6.
 inline double lennardJonesRoot(double u, double epsilon, double sigma) {
     if (u <= -epsilon) return 0.0;
-    const double disc = std::sqrt(1.0 + u / epsilon);
-    const double y = u < 0.0 ? 0.5 * (1.0 - disc) : 0.5 * (1.0 + disc);
-    return sigma / std::pow(y, 1.0 / 6.0);
+    const RadialRoots x = lennardJonesRoots(u, epsilon, sigma);
+    return u < 0.0 ? x.outer : x.inner;
 }
 
 } // namespace detail

@@ -18,6 +18,12 @@ struct RodPotential {
     double zeta = 1.0;    // Å
 
     double effectiveDistance(double r, double c) const { return r + zeta * (0.5 - c * c); }
+    /// How far r_e moves as c² runs from 0 to 1 (r_e = r + ζ/2 − ζc²), Å.
+    double alignmentLength() const { return zeta; }
+    /// The effective distances at which U = u: on the repulsive wall and in the attractive tail.
+    detail::RadialRoots radialRoots(double u) const {
+        return detail::lennardJonesRoots(u, epsilon, sigma);
+    }
 
     PairForce evaluate(const Vec3& rij, const Vec3& si, const Vec3& sj) const {
         const double r = rij.norm();

@@ -43,6 +43,7 @@
 #include "dmd/settings.hpp"
 #include "dmd/shell_screening.hpp"
 #include "dmd/stall_watch.hpp"
+#include "dmd/terrace_hold.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -114,7 +115,7 @@ public:
         orbit_.reserve(sys_.bodies.size());
         for (const State& b : sys_.bodies) {
             orbit_.emplace_back(b, sys_.body);
-            spin_.push_back(K::angularVelocity(b, sys_.body).norm());
+            axisRate_.push_back(axisRateBound(b));
         }
         if (settings_.queue == QueueKind::Heap)
             queue_.template emplace<BinaryHeapQueue<Event>>();
@@ -166,16 +167,7 @@ public:
         rescaleToTemperature(sys_, kT);
         for (int i = 0; i < sys_.size(); ++i)
             refreshOrbit(i);
-        visitQueue([&](auto& q) {
-            q.clear();
-            for (int i = 0; i < sys_.size(); ++i) {
-                ++counter_[i];
-                forgetAgenda(i);
-            }
-            for (auto& h : about_)
-                h.clear();
-            predictAll(q);
-        });
+        repredictAll();
     }
     nlohmann::json statistics() const {
         nlohmann::json j;
@@ -198,6 +190,7 @@ public:
         j["stale_in_agendas"] = staleInAgendas_;
         j["cells_per_side"] = cells_.cellsPerSide();
         j["search_evaluations"] = evaluations_;
+        j["searches_screened"] = screened_;
         return j;
     }
 
@@ -209,6 +202,14 @@ public:
             for (std::uint64_t k = 0; k < n; ++k)
                 if (!step(q)) throw std::logic_error("dmd: sample event outside advanceTo");
         });
+    }
+    /// Whether pairs are screened by their hold time before a search (on by default; off only to
+    /// measure what the screen saves, or to check that it changes no event). Every pair is
+    /// predicted afresh.
+    void setHoldScreen(bool on) {
+        holdScreen_ = on;
+        synchronise(time_);
+        repredictAll();
     }
     /// Consecutive events at one instant tolerated before the clock counts as stopped.
     void setStallLimit(std::uint64_t n) { stallWatch_.setLimit(n); }
@@ -252,7 +253,7 @@ public:
              counter_.capacity() * sizeof(std::uint32_t) + lists_.bytesReserved() +
              listedBefore_.capacity() * sizeof(std::uint64_t) +
              plans_.capacity() * sizeof(BodyPlan) + orbit_.capacity() * sizeof(FreeOrbit<K>) +
-             spin_.capacity() * sizeof(double);
+             axisRate_.capacity() * sizeof(double) + bands_.bytesReserved();
         b += agenda_.capacity() * sizeof(agenda_[0]) + queuedAt_.capacity() * sizeof(double) +
              entryStamp_.capacity() * sizeof(std::uint32_t) +
              entry_.capacity() * sizeof(QueueHandle) + entryPartner_.capacity() * sizeof(int) +
@@ -311,6 +312,20 @@ private:
             });
     }
 
+    /// Forgets every pending event and predicts all pairs from now (all clocks at now).
+    void repredictAll() {
+        visitQueue([&](auto& q) {
+            q.clear();
+            for (int i = 0; i < sys_.size(); ++i) {
+                ++counter_[i];
+                forgetAgenda(i);
+            }
+            for (auto& h : about_)
+                h.clear();
+            predictAll(q);
+        });
+    }
+
     template <class Q> void predictAll(Q& q) {
         for (int i = 0; i < sys_.size(); ++i) {
             double entry = std::numeric_limits<double>::infinity();
@@ -329,6 +344,8 @@ private:
     /// Processes the next valid event; false when it was the sample event of advanceTo.
     template <class Q> bool step(Q& q) {
         for (;;) {
+            // Only runEvents() can drain the calendar: advanceTo() queues its sample event.
+            if (q.empty()) throw std::logic_error("dmd: no event left (nothing moves)");
             const Event e = q.top();
             q.pop();
             if (e.kind == EventKind::Sample) return false;
@@ -568,23 +585,38 @@ private:
         const double horizon = jitter_.next();
         if (win.enter > horizon) return time_ + win.enter;
         const Moving mj = movingNow(j);
-        auto eval = [&](double tau) {
-            const auto [ai, aj] = attitudesAt(mi.orbit, mj.orbit, tau);
+        const auto sampleWith = [&](double tau, const auto& attitudes) {
+            const auto& [ai, aj] = attitudes;
             const EnergyRate e = energyAndRate(sys_.potential, translated(r0, w, tau), w, ai.axis,
                                                ai.w, aj.axis, aj.w);
             return PairSample{tau, e.U, e.dUdt};
         };
+        auto eval = [&](double tau) {
+            return sampleWith(tau, attitudesAt(mi.orbit, mj.orbit, tau));
+        };
+        const auto now = attitudesAt(mi.orbit, mj.orbit, 0.0);
+        if constexpr (EffectiveDistanceForm<P>)
+            if (holdScreen_) {
+                // No level within reach for a while: no samples now, a fresh search then.
+                const double hold = holdOnTerrace(now[0].axis, now[1].axis, i, j, r0, w, n);
+                if (hold >= win.exit) return none; // out of r_m before it could change terrace
+                if (hold >= horizon) {
+                    schedule(pairEvent(EventKind::Virtual, i, j, time_ + hold));
+                    ++screened_;
+                    return none;
+                }
+            }
         PairSample start;
         if (resumeFrom && win.enter == 0.0) {
             start = *resumeFrom;
         } else {
-            start = eval(win.enter);
+            start = win.enter == 0.0 ? sampleWith(0.0, now) : eval(win.enter);
             ++evaluations_;
         }
         const double tEnd = std::min(win.exit, horizon);
         const SearchResult r =
             findTerraceExit(eval, start, settings_.levels.lower(n), settings_.levels.upper(n), tEnd,
-                            pairSearch(w, spin_[i] + spin_[j]), afterEvent);
+                            pairSearch(w, axisRate_[i] + axisRate_[j]), afterEvent);
         evaluations_ += r.evaluations;
         if (r.side != ExitSide::None) {
             Event e = pairEvent(EventKind::Collision, i, j, time_ + r.t);
@@ -597,6 +629,17 @@ private:
             schedule(e);
         }
         return none;
+    }
+
+    /// How long (from now) the pair (i, j) on terrace n, at separation r0 and relative velocity w,
+    /// with long axes si and sj, is sure to stay on it (dmd/terrace_hold.hpp).
+    double holdOnTerrace(const Vec3& si, const Vec3& sj, int i, int j, const Vec3& r0,
+                         const Vec3& w, int n) {
+        const double c = P::orientational ? si.dot(sj) : 0.0;
+        const double x = sys_.potential.effectiveDistance(r0.norm(), c);
+        const TerraceBands& b = bands_.of(n, sys_.potential, settings_.levels);
+        return holdTime(x <= b.bottom ? b.wall : b.tail, x, w.norm(), std::abs(c),
+                        axisRate_[i] + axisRate_[j], sys_.potential.alignmentLength());
     }
 
     /// The search settings for a pair with relative velocity w and summed angular speed turn: the
@@ -766,7 +809,21 @@ private:
     /// The cached orbit follows every change of a stored state (free motion, impulse, rescale).
     void refreshOrbit(int i) {
         orbit_[i] = FreeOrbit<K>(sys_.bodies[i], sys_.body);
-        spin_[i] = K::angularVelocity(sys_.bodies[i], sys_.body).norm();
+        axisRate_[i] = axisRateBound(sys_.bodies[i]);
+    }
+
+    /// A bound on how fast the body's long axis turns in free flight, |ṡ| = |ω × s| ≤ |ω| (rad per
+    /// time unit): |ω| itself for a linear rotor, whose ω is constant; for a top, whose |ω| varies,
+    /// the largest |ω| its rotational energy allows, 2T = Σ I_k ω_k² ≥ I_min |ω|².
+    double axisRateBound(const State& b) const {
+        if constexpr (K::rotationalDof == 0) {
+            return 0.0;
+        } else if constexpr (std::is_same_v<K, LinearRotor>) {
+            return b.w.norm();
+        } else {
+            return std::sqrt(2.0 * K::rotationalKinetic(b, sys_.body) /
+                             sys_.body.inertia.minCoeff());
+        }
     }
 
     void synchronise(double t) {
@@ -793,7 +850,8 @@ private:
     PairTerraces terraces_;
     std::vector<double> clock_;
     std::vector<FreeOrbit<K>> orbit_; // each body's free orbit from its state at its clock
-    std::vector<double> spin_;        // |ω| at its clock (rad per time unit), for the search step
+    std::vector<double> axisRate_;    // axisRateBound at its clock (rad per time unit)
+    TerraceBandTable bands_;          // effective-distance bands of the terraces (hold screen)
     std::vector<std::uint32_t> counter_;
     std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
     std::vector<BodyPlan> plans_;
@@ -815,8 +873,9 @@ private:
     double time_ = 0.0;
     EventCounts counts_;
     std::uint64_t maxQueueSize_ = 0, cleanups_ = 0, staleEvents_ = 0, staleInAgendas_ = 0,
-                  evaluations_ = 0;
+                  evaluations_ = 0, screened_ = 0;
     double cleanupThreshold_ = 0.0;
+    bool holdScreen_ = true;
 };
 
 } // namespace terrace::dmd

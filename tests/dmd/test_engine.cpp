@@ -69,6 +69,40 @@ TEST(Engine, HeapAndBoundedQueueGiveTheSameTrajectory) {
     EXPECT_TRUE(sameBodies(a.synchronisedCopy(), b.synchronisedCopy())); // bit for bit
 }
 
+// The hold-time screen (dmd/terrace_hold.hpp) only skips searches that could not find an event:
+// with and without it, 512 dense rods undergo the same collisions, in the same order, to the
+// last digits, until the chaos of the liquid amplifies the round-off of the root refinement
+// (whose samples the screen moves): over 100 fs (~1600 collisions) bodies agree to ~1e-11, and
+// the difference then grows e-fold every ~12 fs. The screened run needs far fewer samples.
+TEST(Engine, HoldScreenChangesNoCollision) {
+    const Scene s = rodScene(512, 0.5, 1.4, 0.5);
+    RodEngine screened(rodSystem(s), s), searched(rodSystem(s), s);
+    screened.setHoldScreen(true); // the same fresh start for both
+    searched.setHoldScreen(false);
+    const auto count = [](const RodEngine& e, const char* key) {
+        return e.statistics()[key].get<double>();
+    };
+    const double screenedAtStart = count(searched, "searches_screened");
+    for (int k = 1; k <= 50; ++k) {
+        screened.advanceTo(units::fromFs(2.0 * k));
+        searched.advanceTo(units::fromFs(2.0 * k));
+        ASSERT_EQ(screened.counts().up, searched.counts().up) << k * 2 << " fs";
+        ASSERT_EQ(screened.counts().down, searched.counts().down) << k * 2 << " fs";
+        ASSERT_EQ(screened.counts().reflect, searched.counts().reflect) << k * 2 << " fs";
+    }
+    EXPECT_GT(screened.counts().up + screened.counts().down + screened.counts().reflect, 1000u);
+    const RodSystem a = screened.synchronisedCopy(), b = searched.synchronisedCopy();
+    double largest = 0.0;
+    for (int i = 0; i < a.size(); ++i)
+        largest = std::max({largest, (a.bodies[i].r - b.bodies[i].r).norm(),
+                            (a.bodies[i].v - b.bodies[i].v).norm(),
+                            (a.bodies[i].w - b.bodies[i].w).norm()});
+    EXPECT_LT(largest, 1e-9);
+    EXPECT_LT(count(screened, "search_evaluations"), 0.7 * count(searched, "search_evaluations"));
+    EXPECT_GT(count(screened, "searches_screened"), screenedAtStart);
+    EXPECT_EQ(count(searched, "searches_screened"), screenedAtStart);
+}
+
 // Both modes push the same calendar entries in the same order (one erases what the other leaves
 // stale), so even events at one instant — a relist due now, say — come in the same order: 512
 // bodies over 1 ps, where entries renewed only when their stale predecessor surfaced had already
@@ -263,11 +297,12 @@ TEST(Engine, EveryBodyKindConservesEnergy) {
     expectConservation<Sphere, LJPotential>(s, ljPotential(s));
 }
 
-// Memory stays bounded when bodies never collide: two rods at rest inside r_m, mid-terrace,
-// keep a chain of virtual events going forever, and each renews the calendar entry of the
-// pair's owner, which is listed with its partner (so that invalidating the partner would renew
-// it at once). Without pruning those lists grow by one entry per virtual event; both modes keep
-// them, eager invalidation also a handle per body.
+// Memory stays bounded when bodies never collide: two rods side by side, one turning in place,
+// keep a chain of virtual events going forever (U swings between −3.0 and −1.08 kJ/mol, close to
+// but never across the level −1.05 above their terrace), and each renews the calendar entry of
+// the pair's owner, which is listed with its partner (so that invalidating the partner would
+// renew it at once). Without pruning those lists grow by one entry per virtual event; both modes
+// keep them, eager invalidation also a handle per body.
 TEST(Engine, BookkeepingStaysBoundedWithoutCollisions) {
     for (const char* invalidation : {"lazy", "eager"}) {
         RodSystem sys;
@@ -275,9 +310,12 @@ TEST(Engine, BookkeepingStaysBoundedWithoutCollisions) {
         sys.body.mass = 18.0;
         sys.body.inertia = Vec3(1.154, 1.154, 0.0);
         sys.kT = 4.2;
-        sys.bodies.resize(2); // parallel along z, at rest, 4 Å apart: U ≈ −2.9 kJ/mol, terrace −1
+        // Parallel along z, 3.95 Å apart along x: r_e = 4.45 − c² runs over [3.45, 4.45] Å as body
+        // 0 turns about x (c = cos ωt); terrace −1 spans r_e in (3.09, 4.48) Å at ΔV = kT/2.
+        sys.bodies.resize(2);
         sys.bodies[0].r = Vec3(10.0, 10.0, 10.0);
-        sys.bodies[1].r = Vec3(14.0, 10.0, 10.0);
+        sys.bodies[0].w = Vec3(3.0, 0.0, 0.0);
+        sys.bodies[1].r = Vec3(13.95, 10.0, 10.0);
         Scene s = defaultScene();
         s.dmd.dV = 0.5;
         s.dmd.invalidation = invalidation;
