@@ -68,6 +68,9 @@ inline constexpr double nudgeFraction = 1.0 / 32.0;
 /// missed whole excursions over a level on the repulsive wall (Conservation.HotPairsOnTheWall...).
 inline constexpr double stepShiftFraction = 0.03;
 inline constexpr double stepTurn = 0.5;
+/// A pair screened by its hold time (dmd/terrace_hold.hpp) is looked at again after at most this
+/// many horizons: by then one of its bodies has usually collided (every ~5 fs in the dense liquid).
+inline constexpr double maxHoldHorizons = 8.0;
 /// Extrema of the interpolant within this fraction of a terrace height of a level are examined.
 inline constexpr double grazeFraction = 0.25;
 /// Distance from a level, as a fraction of the terrace height, below which U counts as on it:
@@ -598,9 +601,9 @@ private:
         if constexpr (EffectiveDistanceForm<P>)
             if (holdScreen_) {
                 // No level within reach for a while: no samples now, a fresh search then.
-                const double hold = holdOnTerrace(now[0].axis, now[1].axis, i, j, r0, w, n);
-                if (hold >= win.exit) return none; // out of r_m before it could change terrace
-                if (hold >= horizon) {
+                const double hold = holdOnTerrace(now, i, j, r0, w, n, horizon, win.exit);
+                if (hold == none) return none; // out of r_m before it could change terrace
+                if (hold > 0.0) {
                     schedule(pairEvent(EventKind::Virtual, i, j, time_ + hold));
                     ++screened_;
                     return none;
@@ -631,15 +634,36 @@ private:
         return none;
     }
 
-    /// How long (from now) the pair (i, j) on terrace n, at separation r0 and relative velocity w,
-    /// with long axes si and sj, is sure to stay on it (dmd/terrace_hold.hpp).
-    double holdOnTerrace(const Vec3& si, const Vec3& sj, int i, int j, const Vec3& r0,
-                         const Vec3& w, int n) {
-        const double c = P::orientational ? si.dot(sj) : 0.0;
-        const double x = sys_.potential.effectiveDistance(r0.norm(), c);
+    /// How long from now the pair (i, j) on terrace n, at separation r0 and relative velocity w,
+    /// with attitudes `now`, is sure to stay on it (dmd/terrace_hold.hpp): +∞ when until it leaves
+    /// r_m at windowExit; otherwise the longest of horizon, 2·horizon, … up to maxHoldHorizons
+    /// horizons, or 0 when not even through the horizon (then the search must look).
+    template <class Attitudes>
+    double holdOnTerrace(const Attitudes& now, int i, int j, const Vec3& r0, const Vec3& w, int n,
+                         double horizon, double windowExit) {
+        const auto& [ai, aj] = now;
+        PairMotion m;
+        m.speedSquared = w.x() * w.x() + w.y() * w.y() + w.z() * w.z();
+        m.r = std::sqrt(r0.x() * r0.x() + r0.y() * r0.y() + r0.z() * r0.z());
+        m.rRate = (r0.x() * w.x() + r0.y() * w.y() + r0.z() * w.z()) / m.r;
+        if constexpr (P::orientational) {
+            const Vec3 &si = ai.axis, &sj = aj.axis;
+            m.c = si.x() * sj.x() + si.y() * sj.y() + si.z() * sj.z();
+            const Vec3 spin = ai.w - aj.w;
+            m.cRate = spin.x() * (si.y() * sj.z() - si.z() * sj.y()) +
+                      spin.y() * (si.z() * sj.x() - si.x() * sj.z()) +
+                      spin.z() * (si.x() * sj.y() - si.y() * sj.x());
+            m.turn = axisRate_[i] + axisRate_[j];
+            // |s̈| = |ω|² for a linear rotor (uniform rotation), so |c̈| ≤ Ω²; a top's ω wanders.
+            if constexpr (std::is_same_v<K, LinearRotor>) m.turnCurvature = m.turn * m.turn;
+        }
+        const double x = sys_.potential.effectiveDistance(m.r, m.c);
         const TerraceBands& b = bands_.of(n, sys_.potential, settings_.levels);
-        return holdTime(x <= b.bottom ? b.wall : b.tail, x, w.norm(), std::abs(c),
-                        axisRate_[i] + axisRate_[j], sys_.potential.alignmentLength());
+        const BandHold hold(x <= b.bottom ? b.wall : b.tail, m, sys_.potential.alignmentLength());
+        const double longest = maxHoldHorizons * horizon;
+        if (windowExit <= longest && hold.through(windowExit))
+            return std::numeric_limits<double>::infinity();
+        return holdTime(hold, horizon, longest);
     }
 
     /// The search settings for a pair with relative velocity w and summed angular speed turn: the

@@ -7,15 +7,18 @@
 // paper's rods, eq. 24; plain Lennard-Jones with ζ = 0), a terrace (lower, upper) is a band of r_e:
 // φ falls along the repulsive wall and rises along the tail, so {φ ∈ (lower, upper)} is one
 // interval on each side of the minimum, or a single interval across it when lower lies below the
-// minimum. In free flight the centre distance changes at most at the relative speed,
-// |dr/dt| ≤ |v_ij|, and the alignment c = s_i·s_j at most at the axes' summed turning rate,
-// |dc/dt| ≤ |ṡ_i| + |ṡ_j| = Ω. Hence, over a time τ, with c₀ the alignment now,
-//     r_e(τ) ≥ r_e(0) − (|v_ij| + 2ζ|c₀|Ω) τ − ζΩ²τ²     (c² ≤ (|c₀| + Ωτ)²)
-//     r_e(τ) ≤ r_e(0) + (|v_ij| + 2ζ|c₀|Ω) τ             (c² ≥ c₀² − 2|c₀|Ωτ)
-// and no level can be reached before the first of these bounds meets an edge of the band. In the
-// paper's dense liquid at ΔV = kT/2 this rules out about half of the searched pairs for the whole
-// horizon, often for several.
-// Units: Å, time unit 100 fs (speeds per time unit, Ω in rad per time unit).
+// minimum. In free flight the pair stays in its band for a while that bounds on its motion give:
+//   - r(τ) = |r₀ + v_ij τ| is convex, so r(τ) ≥ r₀ + ṙ₀τ, and √(r₀² + X) ≤ r₀ + X/(2r₀) gives
+//     r(τ) ≤ r₀ + ṙ₀τ + |v_ij|²τ²/(2r₀);
+//   - the alignment c = s_i·s_j changes at most at |ċ| ≤ |ṡ_i| + |ṡ_j| = Ω and, for linear rotors
+//     (|s̈| = |ω|²), |c̈| ≤ |s̈_i| + 2|ṡ_i||ṡ_j| + |s̈_j| = Ω², so |c(τ) − c₀| ≤ δ(τ) =
+//     min(Ωτ, |ċ₀|τ + ½Ω²τ²);
+// both bounds grow with τ, so over [0, T] r_e ≥ r_lo + ζ(½ − min(1, |c₀| + δ)²) and
+// r_e ≤ r_hi + ζ(½ − max(0, |c₀| − δ)²) with the envelopes taken at T. No level can be reached
+// while both stay inside the band. In the paper's dense liquid at ΔV = kT/2 this holds about four
+// in five of the pairs a collision would have the search examine for the whole horizon, often
+// for several.
+// Units: Å, time unit 100 fs (rates per time unit, angles in rad).
 #include "dmd/terrace_levels.hpp"
 #include <algorithm>
 #include <cmath>
@@ -70,24 +73,53 @@ TerraceBands terraceBands(const P& p, double lower, double upper) {
     return b;
 }
 
-/// A lower bound (time units) on how long r_e stays inside band, starting at x (Å), when the
-/// centres part or close at most at `speed` (|v_ij|, Å per time unit) and the alignment |c| = cAbs
-/// changes at most at `turn` (|ṡ_i| + |ṡ_j|); zeta is the potential's alignment length. 0 when x
-/// is on an edge or outside (right after an event the pair sits on a level), +∞ for a pair that
-/// neither moves nor turns. An edge is kept a relative 1e-9 closer than it is, far above the
-/// round-off of x and of the roots, so that the bound holds for the computed U as well.
-inline double holdTime(const DistanceBand& band, double x, double speed, double cAbs, double turn,
-                       double zeta) {
-    constexpr double edgeMargin = 1e-9;
-    const double below = x - band.lo - edgeMargin * x;
-    const double above = band.hi - x - edgeMargin * x;
-    if (!(below > 0.0 && above > 0.0)) return 0.0;
-    const double drift = speed + 2.0 * zeta * cAbs * turn; // Å per time unit
-    const double bend = zeta * turn * turn;                // Å per time unit²
-    // The positive root of bend τ² + drift τ = below, in cancellation-free form.
-    const double down = 2.0 * below / (drift + std::sqrt(drift * drift + 4.0 * bend * below));
-    const double up = above / drift;
-    return std::min(down, up);
+/// A pair's motion now, as far as the bounds on its effective distance need it.
+struct PairMotion {
+    double r = 0.0;            // centre distance |r_ij|, Å
+    double rRate = 0.0;        // d|r_ij|/dt = r̂_ij·v_ij
+    double speedSquared = 0.0; // |v_ij|²
+    double c = 0.0;            // alignment s_i·s_j
+    double cRate = 0.0;        // dc/dt = (ω_i − ω_j)·(s_i × s_j)
+    double turn = 0.0;         // bound on |dc/dt| during the flight, |ṡ_i| + |ṡ_j|
+    double turnCurvature = std::numeric_limits<double>::infinity(); // on |d²c/dt²| (∞: none)
+};
+
+/// The envelopes of one pair's effective distance r_e = r + ζ(½ − c²), prepared once and asked
+/// at several times T (time units).
+class BandHold {
+public:
+    BandHold(const DistanceBand& band, const PairMotion& m, double zeta)
+        : r_(m.r), rRate_(m.rRate), rBend_(0.5 * m.speedSquared / m.r), c_(std::abs(m.c)),
+          cRate_(std::abs(m.cRate)), turn_(m.turn), cBend_(0.5 * m.turnCurvature), zeta_(zeta),
+          // An edge is kept a relative 1e-9 closer than it is, far above the round-off of r_e and
+          // of the band's roots, so that the answer holds for the computed U as well.
+          lo_(band.lo + edgeMargin * m.r), hi_(band.hi - edgeMargin * m.r) {}
+
+    /// Whether r_e is sure to stay inside the band throughout [0, T].
+    bool through(double T) const {
+        const double rLow = r_ + std::min(0.0, rRate_ * T);
+        const double rHigh = r_ + std::max(0.0, T * (rRate_ + rBend_ * T));
+        const double swing = std::min(turn_ * T, T * (cRate_ + cBend_ * T));
+        const double cMost = std::min(1.0, c_ + swing);
+        const double cLeast = std::max(0.0, c_ - swing);
+        return rLow + zeta_ * (0.5 - cMost * cMost) > lo_ &&
+               rHigh + zeta_ * (0.5 - cLeast * cLeast) < hi_;
+    }
+
+private:
+    static constexpr double edgeMargin = 1e-9;
+    double r_, rRate_, rBend_, c_, cRate_, turn_, cBend_, zeta_, lo_, hi_;
+};
+
+/// The longest of first, 2·first, 4·first, … (none beyond last) through which the pair is sure
+/// to stay in its band; 0 when not even through first (right after an event the pair sits on a
+/// level: 0).
+inline double holdTime(const BandHold& hold, double first, double last) {
+    if (!hold.through(first)) return 0.0;
+    double held = first;
+    while (2.0 * held <= last && hold.through(2.0 * held))
+        held *= 2.0;
+    return held;
 }
 
 /// terraceBands of every terrace the pairs have visited, computed once each (two pow() per level).
