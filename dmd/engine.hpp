@@ -274,7 +274,8 @@ private:
     /// its orbit re-based to now so that the search's samples turn it by small angles only.
     struct Moving {
         Vec3 r, v;
-        FreeOrbit<K> orbit; // from now on
+        FreeOrbit<K> orbit;                  // from now on
+        typename FreeOrbit<K>::Attitude now; // orbit.at(0)
     };
     using Queue = std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>>;
 
@@ -597,7 +598,7 @@ private:
         auto eval = [&](double tau) {
             return sampleWith(tau, attitudesAt(mi.orbit, mj.orbit, tau));
         };
-        const auto now = attitudesAt(mi.orbit, mj.orbit, 0.0);
+        const std::array now{mi.now, mj.now};
         if constexpr (EffectiveDistanceForm<P>)
             if (holdScreen_) {
                 // No level within reach for a while: no samples now, a fresh search then.
@@ -683,7 +684,9 @@ private:
     Moving movingNow(int i) const {
         const State& b = sys_.bodies[i];
         const double dt = time_ - clock_[i];
-        return {translated(b.r, b.v, dt), b.v, orbit_[i].from(dt)};
+        Moving m{translated(b.r, b.v, dt), b.v, orbit_[i].from(dt), {}};
+        m.now = m.orbit.at(0.0);
+        return m;
     }
 
     Event bodyEvent(EventKind kind, int i, double t) const {
