@@ -1,8 +1,9 @@
 // Questions (issue "DMD engine", benchmarks): how many events and collisions per CPU second does
 // the DMD engine process on the paper's dense rods (N 512, ρ* 0.5, T* 1.4) at ΔV = 2, 1, ½, ¼ kT;
-// what do the bounded priority queue (vs a binary heap) and lazy invalidation (vs eager) save in
-// one and the same run; does the cost per event stay flat from N = 512 to 262144; and how much
-// memory does a body cost? Counters are per CPU second (Google Benchmark's default clock).
+// what do the bounded priority queue (vs a binary heap), lazy invalidation (vs eager) and the
+// hold-time screen save in one and the same run; does the cost per event stay flat from N = 512 to
+// 262144; and how much memory does a body cost? Counters are per CPU second (Google Benchmark's
+// default clock).
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "dmd/engine.hpp"
@@ -93,6 +94,29 @@ void QueueAndInvalidationRatios(benchmark::State& state) {
     state.counters["eager_over_lazy"] = eager / bpq;
 }
 BENCHMARK(QueueAndInvalidationRatios)->Iterations(2)->Unit(benchmark::kSecond);
+
+// What the hold-time screen (dmd/terrace_hold.hpp) saves: CPU time and samples of U without it
+// over those with it, over the same simulated span of the same start (ΔV = kT/2).
+void HoldScreenRatio(benchmark::State& state) {
+    const double span = units::fromPs(1.0);
+    double screened = 0.0, searched = 0.0, samplesScreened = 0.0, samplesSearched = 0.0;
+    for (auto _ : state) {
+        auto timeRun = [&](bool screen, double& samples) {
+            RodEngine e = equilibrated(denseRods(512, 0.5));
+            e.setHoldScreen(screen);
+            const double before = e.statistics()["search_evaluations"].get<double>();
+            const double start = cpuSeconds();
+            e.advanceTo(e.time() + span);
+            samples += e.statistics()["search_evaluations"].get<double>() - before;
+            return cpuSeconds() - start;
+        };
+        screened += timeRun(true, samplesScreened);
+        searched += timeRun(false, samplesSearched);
+    }
+    state.counters["searched_over_screened"] = searched / screened;
+    state.counters["samples_searched_over_screened"] = samplesSearched / samplesScreened;
+}
+BENCHMARK(HoldScreenRatio)->Iterations(2)->Unit(benchmark::kSecond);
 
 // CPU time per event against N from a lattice start (ΔV = kT/2, bpq, lazy): an O(1) queue keeps
 // it nearly flat. Events are counted, not simulated time, so that no O(N) synchronisation of the
