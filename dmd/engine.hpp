@@ -82,8 +82,8 @@ inline constexpr double cleanupGrowth = 3.0;
 inline constexpr double cleanupMinimumPerBody = 16.0;
 /// A body's list of the owners of calendar entries about it is pruned from this size on.
 inline constexpr std::size_t aboutPruneSize = 32;
-/// A list is rebuilt a hair before the body has moved skin/2, so that round-off in the rebuild
-/// time can never let an unlisted pair inside r_m.
+/// A list is rebuilt a hair before the body has moved its relist distance (skin/3), so that
+/// round-off in the rebuild time can never let an unlisted pair inside r_m.
 inline constexpr double relistMargin = 1e-6;
 
 struct EventCounts {
@@ -454,11 +454,11 @@ private:
         scheduleBodyEvent(e.i);
     }
 
-    /// i has moved half the skin: partners may have come within reach. Its motion is unchanged,
-    /// so the queued events of the pairs it keeps stand and only partners new to its list are
-    /// predicted (one entering r_m beyond the horizon gets a fresh-start virtual event there).
-    /// A dropped pair (now farther apart than r_m + skin) keeps its queued events, which remain
-    /// true to the motion, but its chain of virtual events ends (resume).
+    /// i has moved its relist distance: partners may have come within reach. Its motion is
+    /// unchanged, so the queued events of the pairs it keeps stand and only partners new to its
+    /// list are predicted (one entering r_m beyond the horizon gets a fresh-start virtual event
+    /// there). A dropped pair (now farther apart than r_m + skin) keeps its queued events, which
+    /// remain true to the motion, but its chain of virtual events ends (resume).
     void relist(int i) {
         bringToNow(i);
         ++listStamp_;
@@ -546,9 +546,9 @@ private:
         }
     }
 
-    /// When i will have moved (1 − relistMargin) skin/2 from its list's anchor.
+    /// When i will have moved (1 − relistMargin) of the relist distance from its list's anchor.
     void planRelist(int i) {
-        const double radius = 0.5 * lists_.skin() * (1.0 - relistMargin);
+        const double radius = lists_.relistDistance() * (1.0 - relistMargin);
         const Vec3 moved = positionNow(i) - lists_.anchor(i);
         // Already out (an event tied with the rebuild came first): rebuild now.
         const double dt = moved.squaredNorm() >= radius * radius

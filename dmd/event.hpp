@@ -15,7 +15,7 @@ enum class EventKind : std::uint8_t {
     Collision,    // U_ij reaches one of the two levels bounding the pair's terrace
     Virtual,      // a truncated search resumes here (paper: "virtual interaction")
     CellCrossing, // body i leaves its cell through a face
-    Relist,       // body i has moved half the skin from its list's anchor: rebuild its list
+    Relist,       // body i has moved skin/3 from its list's anchor: rebuild its list
     Sample,       // all clocks are brought to this time (advanceTo)
 };
 

@@ -44,3 +44,23 @@ TEST(NeighbourLists, EveryPairInsideRangeIsListedAsBodiesMove) {
     }
     EXPECT_GT(e.counts().relist, 216u); // the lists were rebuilt along the way
 }
+
+// The rebuild distance against the worst case of lists rebuilt one body at a time, on a line:
+// j has drifted almost the rebuild distance away from i when i rebuilds (the pair just beyond
+// r_m + skin, so left unlisted); then, before either must rebuild again, i closes in by almost the
+// rebuild distance and j, turned round by collisions, by almost twice it (from one side of its
+// anchor to the other). The pair must still be no closer than r_m. The half-skin rule of lists
+// rebuilt all at once fails this by half a skin.
+TEST(NeighbourLists, RebuildDistanceCoversBodiesRebuiltOneAtATime) {
+    const double rm = 4.98, skin = 0.75, slack = 1e-9;
+    const dmd::NeighbourLists lists(2, skin);
+    const double d = lists.relistDistance();
+    double xi = 0.0;                     // i's anchor
+    double xj = rm + skin + 2.0 * slack; // j's anchor
+    xj += d - slack;                     // j drifts away, short of rebuilding
+    xi += d;                             // i rebuilds here...
+    ASSERT_GT(xj - xi, rm + skin);       // ...and leaves j (just) unlisted
+    xi += d - slack;                     // i closes in, short of rebuilding again
+    xj -= 2.0 * (d - slack);             // j sweeps back through its anchor
+    EXPECT_GE(xj - xi, rm) << "an unlisted pair inside r_m with no rebuild due";
+}
