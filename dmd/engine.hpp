@@ -17,11 +17,13 @@
 //   a skin are rebuilt by relist events (dmd/neighbour_lists.hpp; a body's pairs are screened
 //   from its list only; of a body's own events — cell crossing, relist, entry — only the
 //   earliest is planned in its agenda); a free orbit per body cached at its clock
-//   (core/free_orbit.hpp) for the searches; virtual events at a jittered horizon
-//   (dmd/horizon_jitter.hpp) that resume a truncated search from its stored end point; sample
-//   events that synchronise all clocks; a cleanup of stale entries when the calendar grows beyond
-//   a multiple of its size after the previous cleanup; bins of the bounded queue tuned from the
-//   measured push rate (dmd/bin_tuning.hpp).
+//   (core/free_orbit.hpp) for the searches; a screen in front of every search: a pair sure to
+//   stay on its terrace past the horizon, by bounds on its free motion (dmd/terrace_hold.hpp),
+//   gets a sample-less virtual event at the end of that hold instead; virtual events at a
+//   jittered horizon (dmd/horizon_jitter.hpp) that resume a truncated search from its stored end
+//   point; sample events that synchronise all clocks; a cleanup of stale entries when the
+//   calendar grows beyond a multiple of its size after the previous cleanup; bins of the bounded
+//   queue tuned from the measured push rate (dmd/bin_tuning.hpp).
 // A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error
 // (dmd/stall_watch.hpp).
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
