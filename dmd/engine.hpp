@@ -78,6 +78,9 @@ inline constexpr double grazeFraction = 0.25;
 /// Distance from a level, as a fraction of the terrace height, below which U counts as on it:
 /// far above the round-off of U (~1e-15 kJ/mol), far below any physical energy.
 inline constexpr double levelTolerance = 1e-10;
+/// A pair found farther than this fraction of the terrace height beyond a level of its terrace
+/// has missed an event (checkOnTerrace).
+inline constexpr double missedEventMargin = 1e-6;
 /// The queue is cleaned of stale events when it exceeds this multiple of its size after the last
 /// cleanup (and at least cleanupMinimumPerBody entries per body).
 inline constexpr double cleanupGrowth = 3.0;
@@ -220,6 +223,9 @@ public:
     void setStallLimit(std::uint64_t n) { stallWatch_.setLimit(n); }
     /// The terrace index the engine holds for the pair (i, j).
     int terrace(int i, int j) const { return terraces_.get(i, j); }
+    /// Puts the pair (i, j) on terrace n whatever its U: bookkeeping corrupted on purpose, to test
+    /// that the engine reports it.
+    void overrideTerrace(int i, int j, int n) { terraces_.set(i, j, n); }
     const PairTerraces& pairTerraces() const { return terraces_; }
     const NeighbourLists& neighbourLists() const { return lists_; }
     int cellsPerSide() const { return cells_.cellsPerSide(); }
@@ -618,6 +624,7 @@ private:
         } else {
             start = win.enter == 0.0 ? sampleWith(0.0, now) : eval(win.enter);
             ++evaluations_;
+            if (!afterEvent) checkOnTerrace(start.U, i, j, n);
         }
         const double tEnd = std::min(win.exit, horizon);
         const SearchResult r =
@@ -635,6 +642,21 @@ private:
             schedule(e);
         }
         return none;
+    }
+
+    /// A pair sampled beyond a level of its own terrace has crossed it unseen: the bookkeeping no
+    /// longer describes the system (a defect, never a property of the dynamics). Reported at
+    /// once, rather than left to loop on a reflection at one instant until the stall detector
+    /// fires. A pair can sit past a level by round-off only (an event due now), far below the
+    /// margin.
+    void checkOnTerrace(double U, int i, int j, int n) const {
+        const double margin = missedEventMargin * terraceHeight();
+        if (U >= settings_.levels.lower(n) - margin && U <= settings_.levels.upper(n) + margin)
+            return;
+        throw std::logic_error("dmd: bodies " + std::to_string(i) + " and " + std::to_string(j) +
+                               " have U = " + std::to_string(U) + " kJ/mol at t = " +
+                               std::to_string(units::toFs(time_)) + " fs, beyond the levels of " +
+                               "their terrace " + std::to_string(n) + ": an event was missed");
     }
 
     /// How long from now the pair (i, j) on terrace n, at separation r0 and relative velocity w,

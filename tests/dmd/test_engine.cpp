@@ -270,6 +270,35 @@ TEST(Engine, AStoppedClockIsReportedNotSpunOn) {
     EXPECT_GT(normal.counts().down, 16u);
 }
 
+// Bookkeeping that no longer describes the system (a pair on the wrong terrace, as a missed event
+// leaves it) is reported with the bodies and the time, not spun on: two rods in the well
+// (terrace −1 at ΔV = kT/2), one turning, are put on terrace 0 by hand.
+TEST(Engine, APairBeyondItsTerraceIsReported) {
+    RodSystem sys;
+    sys.box.length = 40.0;
+    sys.body.mass = 18.0;
+    sys.body.inertia = Vec3(1.154, 1.154, 0.0);
+    sys.kT = 4.2;
+    sys.bodies.resize(2);
+    sys.bodies[0].r = Vec3(10.0, 10.0, 10.0);
+    sys.bodies[0].w = Vec3(3.0, 0.0, 0.0);
+    sys.bodies[1].r = Vec3(13.95, 10.0, 10.0);
+    Scene s = defaultScene();
+    s.dmd.dV = 0.5;
+    RodEngine e(sys, s);
+    e.runEvents(100); // consistent: runs
+    ASSERT_EQ(e.terrace(0, 1), -1);
+    e.overrideTerrace(0, 1, 0);
+    try {
+        e.runEvents(100);
+        ADD_FAILURE() << "expected the missed event to be reported";
+    } catch (const std::logic_error& err) {
+        EXPECT_NE(std::string(err.what()).find("an event was missed"), std::string::npos)
+            << err.what();
+        EXPECT_NE(std::string(err.what()).find("bodies 0 and 1"), std::string::npos) << err.what();
+    }
+}
+
 static_assert(terrace::Engine<RodEngine>, "the DMD engine fulfils the engines' contract");
 
 namespace {
