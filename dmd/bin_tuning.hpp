@@ -13,18 +13,15 @@ namespace terrace::dmd {
 /// Events per bin aimed at, and the period (in events) of the retuning.
 inline constexpr double eventsPerBin = 8.0;
 inline constexpr std::uint64_t retunePeriod = 1u << 16;
-inline constexpr double leadCap = 16.0;
 
 class BinTuning {
 public:
     /// horizon: the search horizon, the shortest window the bins may span.
     explicit BinTuning(double horizon) : horizon_(horizon) {}
 
-    /// An event pushed `lead` ahead of now. Leads count up to leadCap horizons: a pair held on its
-    /// terrace for a very long time (dmd/terrace_hold.hpp) must not stretch the window of bins.
     void pushed(double lead) {
         ++pushes_;
-        leadSum_ += std::min(lead, leadCap * horizon_);
+        leadSum_ += lead;
     }
     /// After every processed event: true when the queue is due for a retune.
     bool due() { return ++events_ >= retunePeriod; }

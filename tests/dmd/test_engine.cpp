@@ -30,6 +30,22 @@ bool sameBodies(const RodSystem& a, const RodSystem& b) {
     return true;
 }
 
+/// Two rods in the well, never colliding: parallel along z, 3.95 Å apart along x, body 0 turning
+/// about x (c = cos ωt), so r_e = 4.45 − c² runs over [3.45, 4.45] Å, inside terrace −1
+/// (r_e in (3.09, 4.48) Å at ΔV = kT/2): U swings between −3.0 and −1.08 kJ/mol.
+RodSystem turningPairInTheWell() {
+    RodSystem sys;
+    sys.box.length = 40.0;
+    sys.body.mass = 18.0;
+    sys.body.inertia = Vec3(1.154, 1.154, 0.0);
+    sys.kT = 4.2;
+    sys.bodies.resize(2);
+    sys.bodies[0].r = Vec3(10.0, 10.0, 10.0);
+    sys.bodies[0].w = Vec3(3.0, 0.0, 0.0);
+    sys.bodies[1].r = Vec3(13.95, 10.0, 10.0);
+    return sys;
+}
+
 } // namespace
 
 TEST(Engine, ShortRunConservesEnergyAndMomentum) {
@@ -274,18 +290,9 @@ TEST(Engine, AStoppedClockIsReportedNotSpunOn) {
 // leaves it) is reported with the bodies and the time, not spun on: two rods in the well
 // (terrace −1 at ΔV = kT/2), one turning, are put on terrace 0 by hand.
 TEST(Engine, APairBeyondItsTerraceIsReported) {
-    RodSystem sys;
-    sys.box.length = 40.0;
-    sys.body.mass = 18.0;
-    sys.body.inertia = Vec3(1.154, 1.154, 0.0);
-    sys.kT = 4.2;
-    sys.bodies.resize(2);
-    sys.bodies[0].r = Vec3(10.0, 10.0, 10.0);
-    sys.bodies[0].w = Vec3(3.0, 0.0, 0.0);
-    sys.bodies[1].r = Vec3(13.95, 10.0, 10.0);
     Scene s = defaultScene();
     s.dmd.dV = 0.5;
-    RodEngine e(sys, s);
+    RodEngine e(turningPairInTheWell(), s);
     e.runEvents(100); // consistent: runs
     ASSERT_EQ(e.terrace(0, 1), -1);
     e.overrideTerrace(0, 1, 0);
@@ -331,29 +338,17 @@ TEST(Engine, EveryBodyKindConservesEnergy) {
     expectConservation<Sphere, LJPotential>(s, ljPotential(s));
 }
 
-// Memory stays bounded when bodies never collide: two rods side by side, one turning in place,
-// keep a chain of virtual events going forever (U swings between −3.0 and −1.08 kJ/mol, close to
-// but never across the level −1.05 above their terrace), and each renews the calendar entry of
-// the pair's owner, which is listed with its partner (so that invalidating the partner would
-// renew it at once). Without pruning those lists grow by one entry per virtual event; both modes
-// keep them, eager invalidation also a handle per body.
+// Memory stays bounded when bodies never collide: two rods side by side, one turning in place
+// (turningPairInTheWell), keep a chain of virtual events going forever, and each renews the
+// calendar entry of the pair's owner, which is listed with its partner (so that invalidating the
+// partner would renew it at once). Without pruning those lists grow by one entry per virtual
+// event; both modes keep them, eager invalidation also a handle per body.
 TEST(Engine, BookkeepingStaysBoundedWithoutCollisions) {
     for (const char* invalidation : {"lazy", "eager"}) {
-        RodSystem sys;
-        sys.box.length = 40.0;
-        sys.body.mass = 18.0;
-        sys.body.inertia = Vec3(1.154, 1.154, 0.0);
-        sys.kT = 4.2;
-        // Parallel along z, 3.95 Å apart along x: r_e = 4.45 − c² runs over [3.45, 4.45] Å as body
-        // 0 turns about x (c = cos ωt); terrace −1 spans r_e in (3.09, 4.48) Å at ΔV = kT/2.
-        sys.bodies.resize(2);
-        sys.bodies[0].r = Vec3(10.0, 10.0, 10.0);
-        sys.bodies[0].w = Vec3(3.0, 0.0, 0.0);
-        sys.bodies[1].r = Vec3(13.95, 10.0, 10.0);
         Scene s = defaultScene();
         s.dmd.dV = 0.5;
         s.dmd.invalidation = invalidation;
-        RodEngine e(sys, s);
+        RodEngine e(turningPairInTheWell(), s);
         ASSERT_EQ(e.terrace(0, 1), -1);
         e.runEvents(70000); // past the bounded queue's first retuning of its bins
         const std::size_t early = e.bytesReserved();
