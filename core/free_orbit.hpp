@@ -39,6 +39,8 @@ public:
         if (tau0 != 0.0) K::freeRotate(o.start_, *params_, tau0);
         return o;
     }
+    /// The attitude at τ₀, exactly as from(τ₀).at(0) gives it.
+    Attitude startOf(double tau0) const { return from(tau0).at(0.0); }
 
 private:
     typename K::State start_;
@@ -68,6 +70,10 @@ public:
         const SinCos turn = sinCos(speed_ * (shift_ + tau));
         return {s_ * turn.cos + sideways_ * turn.sin, w_};
     }
+    /// The attitude at τ₀ as from(τ₀).at(0) gives it, bit for bit, without building the shifted
+    /// orbit: both take one sincos of |ω|(shift + τ₀), and at(0) of a turned orbit is its s
+    /// (sin 0 = 0, cos 0 = 1 exactly).
+    Attitude startOf(double tau0) const { return at(tau0); }
     /// Over a small angle the start is only shifted (the series in at() still serves); beyond
     /// it, the pair (s, ω̂ × s) is turned on by τ₀, one rotation of the plane they span.
     FreeOrbit from(double tau0) const {
@@ -111,6 +117,7 @@ public:
     };
     Attitude at(double) const { return {Vec3::UnitZ(), Vec3::Zero()}; }
     FreeOrbit from(double) const { return *this; }
+    Attitude startOf(double) const { return at(0.0); }
 };
 
 } // namespace terrace

@@ -596,17 +596,15 @@ private:
         if (win.empty()) return none;
         const double horizon = jitter_.next();
         if (win.enter > horizon) return time_ + win.enter;
-        const Moving mj = movingNow(j);
+        // Body j's attitude now serves the hold screen; its orbit is built only for a search.
+        const auto ajNow = orbit_[j].startOf(dtj);
         const auto sampleWith = [&](double tau, const auto& attitudes) {
             const auto& [ai, aj] = attitudes;
             const EnergyRate e = energyAndRate(sys_.potential, translated(r0, w, tau), w, ai.axis,
                                                ai.w, aj.axis, aj.w);
             return PairSample{tau, e.U, e.dUdt};
         };
-        auto eval = [&](double tau) {
-            return sampleWith(tau, attitudesAt(mi.orbit, mj.orbit, tau));
-        };
-        const std::array now{mi.now, mj.now};
+        const std::array now{mi.now, ajNow};
         if constexpr (EffectiveDistanceForm<P>)
             if (holdScreen_) {
                 // No level within reach for a while: no samples now, a fresh search then.
@@ -618,6 +616,8 @@ private:
                     return none;
                 }
             }
+        const FreeOrbit<K> orbitJ = orbit_[j].from(dtj);
+        auto eval = [&](double tau) { return sampleWith(tau, attitudesAt(mi.orbit, orbitJ, tau)); };
         PairSample start;
         if (resumeFrom && win.enter == 0.0) {
             start = *resumeFrom;
