@@ -111,6 +111,7 @@ public:
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
           terraces_(sys_.size()), clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
           listedBefore_(sys_.size(), 0), plans_(sys_.size()), agenda_(sys_.size()),
+          agendaFirst_(sys_.size(), 0),
           queuedAt_(sys_.size(), std::numeric_limits<double>::infinity()),
           entryStamp_(sys_.size(), 0), entry_(settings_.eager ? sys_.size() : 0),
           entryPartner_(sys_.size(), -1), about_(sys_.size()), unsettledRound_(sys_.size(), 0),
@@ -489,7 +490,8 @@ private:
         const Vec3 ri = positionNow(i);
         const double reach = settings_.rm + lists_.skin();
         cells_.forEachNeighbour(i, [&](int j) {
-            if (sys_.box.minimumImage(ri - positionNow(j)).squaredNorm() <= reach * reach)
+            if (sys_.box.minimumImage(ri - positionNow(j), inverseBox_).squaredNorm() <=
+                reach * reach)
                 lists_.link(i, j);
         });
         lists_.setAnchor(i, ri);
@@ -583,7 +585,7 @@ private:
         constexpr double none = std::numeric_limits<double>::infinity();
         const State& bj0 = sys_.bodies[j];
         const double dtj = time_ - clock_[j];
-        const Vec3 r0 = sys_.box.minimumImage(mi.r - translated(bj0.r, bj0.v, dtj));
+        const Vec3 r0 = sys_.box.minimumImage(mi.r - translated(bj0.r, bj0.v, dtj), inverseBox_);
         const Vec3 w = mi.v - bj0.v;
         // Only a pair inside r_m (up to round-off) can be bound; skip the lookup for the rest.
         constexpr double boundSlack = 1.0 + 1e-6;
@@ -740,6 +742,11 @@ private:
         if (agenda.size() >= std::numeric_limits<std::uint16_t>::max())
             throw std::logic_error("dmd: a body's agenda overflowed");
         agenda.push_back(e);
+        // Kept as events arrive, so that settling a body just refilled needs no scan (ties keep
+        // the first, as the scan does).
+        auto& first = agendaFirst_[e.i];
+        if (first != unknownFirst && e.time < agenda[first].time)
+            first = static_cast<std::uint16_t>(agenda.size() - 1);
         if (e.time < queuedAt_[e.i]) markUnsettled(e.i);
     }
 
@@ -760,14 +767,11 @@ private:
             std::size_t best = 0;
             for (;;) {
                 if (agenda.empty()) break;
-                best = 0;
-                for (std::size_t k = 1; k < agenda.size(); ++k)
-                    if (agenda[k].time < agenda[best].time) best = k;
+                best = earliestInAgenda(i);
                 const Event& a = agenda[best];
                 if (a.j < 0 || counter_[a.j] == a.countJ) break;
                 ++staleInAgendas_;
-                agenda[best] = agenda.back();
-                agenda.pop_back();
+                removeFromAgenda(i, best);
                 moved = true;
             }
             if (agenda.empty()) {
@@ -802,9 +806,7 @@ private:
 
     /// The entry just popped leaves its owner's agenda; the owner needs a new one.
     void takeFromAgenda(const Event& e) {
-        auto& agenda = agenda_[e.i];
-        agenda[e.slot] = agenda.back();
-        agenda.pop_back();
+        removeFromAgenda(e.i, e.slot);
         ++entryStamp_[e.i];
         queuedAt_[e.i] = std::numeric_limits<double>::infinity();
         markUnsettled(e.i);
@@ -828,8 +830,29 @@ private:
         return std::isfinite(queuedAt_[owner]) && entryPartner_[owner] == i;
     }
 
+    /// Index of the earliest event of i's non-empty agenda (the first of equals).
+    std::size_t earliestInAgenda(int i) {
+        auto& first = agendaFirst_[i];
+        if (first == unknownFirst) {
+            const auto& agenda = agenda_[i];
+            std::size_t best = 0;
+            for (std::size_t k = 1; k < agenda.size(); ++k)
+                if (agenda[k].time < agenda[best].time) best = k;
+            first = static_cast<std::uint16_t>(best);
+        }
+        return first;
+    }
+    /// Removes one event by moving the last into its place: the earliest must be found again.
+    void removeFromAgenda(int i, std::size_t slot) {
+        auto& agenda = agenda_[i];
+        agenda[slot] = agenda.back();
+        agenda.pop_back();
+        agendaFirst_[i] = unknownFirst;
+    }
+
     void forgetAgenda(int i) {
         agenda_[i].clear();
+        agendaFirst_[i] = 0; // the next event scheduled is the earliest
         ++entryStamp_[i];
         queuedAt_[i] = std::numeric_limits<double>::infinity();
     }
@@ -907,7 +930,9 @@ private:
     std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
     std::vector<BodyPlan> plans_;
     std::uint64_t listStamp_ = 0;
-    std::vector<std::vector<Event>> agenda_;    // each body's pending events (e.i = the body)
+    std::vector<std::vector<Event>> agenda_; // each body's pending events (e.i = the body)
+    static constexpr std::uint16_t unknownFirst = std::numeric_limits<std::uint16_t>::max();
+    std::vector<std::uint16_t> agendaFirst_;    // index of its earliest event (unknownFirst: scan)
     std::vector<double> queuedAt_;              // time of its calendar entry (+∞: none)
     std::vector<std::uint32_t> entryStamp_;     // stamp of its current calendar entry
     std::vector<QueueHandle> entry_;            // eager: the handle of that entry
@@ -922,6 +947,7 @@ private:
     BinTuning tuning_;
     StallWatch stallWatch_;
     double time_ = 0.0;
+    double inverseBox_ = 1.0 / sys_.box.length; // 1/L (Å⁻¹) for minimum images; NVE: L is fixed
     EventCounts counts_;
     std::uint64_t maxQueueSize_ = 0, cleanups_ = 0, staleEvents_ = 0, staleInAgendas_ = 0,
                   evaluations_ = 0, screened_ = 0;
