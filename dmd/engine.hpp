@@ -608,7 +608,7 @@ private:
         };
         const std::array now{mi.now, ajNow};
         if constexpr (EffectiveDistanceForm<P>)
-            if (holdScreen_) {
+            if (holdScreen_ && !afterEvent) { // (a pair just resolved sits on a level: no hold)
                 // No level within reach for a while: no samples now, a fresh search then.
                 const double hold = holdOnTerrace(now, i, j, r0, w, n, horizon, win.exit);
                 if (hold == none) return none; // out of r_m before it could change terrace
