@@ -164,3 +164,28 @@ TEST(FreeOrbit, PairAttitudesAreTheSingleAttitudes) {
 }
 
 } // namespace
+
+// startOf(τ₀), the attitude the DMD hold screen takes for a partner, is bit for bit what the
+// search's orbit from(τ₀) gives at its start, for small shifts (kept as a shift), large ones (a
+// turned orbit), orbits shifted before, and rotors at rest: a screened and an unscreened run must
+// see the same attitudes.
+TEST(FreeOrbit, StartOfIsTheShiftedOrbitsStart) {
+    std::mt19937_64 rng(23);
+    const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
+    for (int k = 0; k < 60; ++k) {
+        LinearRotor::State b;
+        b.s = randomUnit(rng);
+        const Vec3 u = randomUnit(rng);
+        b.w = (k % 6 == 0 ? 0.0 : 1.0 + k) * (u - u.dot(b.s) * b.s).normalized();
+        const FreeOrbit<LinearRotor> orbit =
+            FreeOrbit<LinearRotor>(b, p).from(k % 3 == 0 ? 0.0 : 0.003 * k);
+        for (double tau0 : {0.0, 1e-9, 0.004, 0.02, 0.3, -0.05, 2.5}) {
+            const auto direct = orbit.startOf(tau0);
+            const auto shifted = orbit.from(tau0).at(0.0);
+            for (int a = 0; a < 3; ++a) {
+                EXPECT_EQ(direct.axis[a], shifted.axis[a]) << k << " " << tau0;
+                EXPECT_EQ(direct.w[a], shifted.w[a]) << k << " " << tau0;
+            }
+        }
+    }
+}
