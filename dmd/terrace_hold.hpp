@@ -25,8 +25,32 @@
 #include <concepts>
 #include <limits>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace terrace::dmd {
+
+namespace detail {
+// The smaller and larger of two doubles without a branch. std::min and std::max compiled to a
+// compare and a jump in BandHold::through, and the outcomes there are coin tosses (whether the
+// pair approaches, whether the alignment swing saturates) that the branch predictor misses. The
+// two agree with std::min and std::max up to the sign of a zero result, which no use here sees.
+inline double lesser(double a, double b) {
+#if defined(__SSE2__)
+    return _mm_cvtsd_f64(_mm_min_sd(_mm_set_sd(a), _mm_set_sd(b)));
+#else
+    return std::min(a, b);
+#endif
+}
+inline double greater(double a, double b) {
+#if defined(__SSE2__)
+    return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(a), _mm_set_sd(b)));
+#else
+    return std::max(a, b);
+#endif
+}
+} // namespace detail
 
 /// A pair potential that is φ(r_e) of one effective distance, with the roots of φ = u on each side
 /// of the minimum (core/pair_potential.hpp, detail::RadialRoots).
@@ -98,13 +122,15 @@ public:
     /// Whether r_e is sure to stay inside the band throughout [0, T]. (Inlined: the few flops
     /// cost less than the call the compiler would otherwise make for each of the ladder's rungs.)
     [[gnu::always_inline]] bool through(double T) const {
-        const double rLow = r_ + std::min(0.0, rRate_ * T);
-        const double rHigh = r_ + std::max(0.0, T * (rRate_ + rBend_ * T));
-        const double swing = std::min(turn_ * T, T * (cRate_ + cBend_ * T));
-        const double cMost = std::min(1.0, c_ + swing);
-        const double cLeast = std::max(0.0, c_ - swing);
-        return rLow + zeta_ * (0.5 - cMost * cMost) > lo_ &&
-               rHigh + zeta_ * (0.5 - cLeast * cLeast) < hi_;
+        using detail::greater, detail::lesser;
+        const double rLow = r_ + lesser(0.0, rRate_ * T);
+        const double rHigh = r_ + greater(0.0, T * (rRate_ + rBend_ * T));
+        const double swing = lesser(turn_ * T, T * (cRate_ + cBend_ * T));
+        const double cMost = lesser(1.0, c_ + swing);
+        const double cLeast = greater(0.0, c_ - swing);
+        // & rather than &&: both sides are cheap, and a branch between them would mispredict.
+        return (rLow + zeta_ * (0.5 - cMost * cMost) > lo_) &
+               (rHigh + zeta_ * (0.5 - cLeast * cLeast) < hi_);
     }
 
 private:
@@ -114,13 +140,15 @@ private:
 
 /// The longest of first, 2·first, 4·first, … (none beyond last) through which the pair is sure
 /// to stay in its band; 0 when not even through first (right after an event the pair sits on a
-/// level: 0).
+/// level: 0). through(T) only fails more as T grows (both envelopes widen monotonically, and
+/// rounding keeps that order), so the number of rungs it holds through is the answer: every rung
+/// is tried, with no branch on the outcome, which no predictor could guess (in the paper's liquid
+/// each of 0, 1, 2, 4 and 8 horizons is the answer for 12–29 % of pairs).
 inline double holdTime(const BandHold& hold, double first, double last) {
-    if (!hold.through(first)) return 0.0;
-    double held = first;
-    while (2.0 * held <= last && hold.through(2.0 * held))
-        held *= 2.0;
-    return held;
+    int rungs = 0;
+    for (double T = first; T <= last; T *= 2.0)
+        rungs += hold.through(T);
+    return rungs == 0 ? 0.0 : first * static_cast<double>(1 << (rungs - 1));
 }
 
 /// terraceBands of every terrace the pairs have visited, computed once each (two pow() per level).
