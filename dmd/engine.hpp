@@ -27,6 +27,7 @@
 // A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error
 // (dmd/stall_watch.hpp).
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
+#include "core/branch_free.hpp"
 #include "core/engine.hpp"
 #include "core/free_orbit.hpp"
 #include "core/scene.hpp"
@@ -110,8 +111,9 @@ public:
                  listSkin(settings_.rm, sys_.size() / sys_.box.volume(), sys_.box.length)),
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
           terraces_(sys_.size()), clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
-          listedBefore_(sys_.size(), 0), plans_(sys_.size()), agenda_(sys_.size()),
-          agendaFirst_(sys_.size(), 0),
+          listedBefore_(sys_.size(), 0), scanned_(sys_.size()), plans_(sys_.size()),
+          agenda_(sys_.size()), agendaFirst_(sys_.size(), 0),
+          agendaFirstTime_(sys_.size(), std::numeric_limits<double>::infinity()),
           queuedAt_(sys_.size(), std::numeric_limits<double>::infinity()),
           entryStamp_(sys_.size(), 0), entry_(settings_.eager ? sys_.size() : 0),
           entryPartner_(sys_.size(), -1), about_(sys_.size()), unsettledRound_(sys_.size(), 0),
@@ -263,13 +265,15 @@ public:
         b += sys_.bodies.capacity() * sizeof(State) + cells_.bytesReserved() +
              terraces_.bytesReserved() + clock_.capacity() * sizeof(double) +
              counter_.capacity() * sizeof(std::uint32_t) + lists_.bytesReserved() +
-             listedBefore_.capacity() * sizeof(std::uint64_t) +
+             listedBefore_.capacity() * sizeof(std::uint64_t) + scanned_.capacity() * sizeof(int) +
              plans_.capacity() * sizeof(BodyPlan) + orbit_.capacity() * sizeof(FreeOrbit<K>) +
              axisRate_.capacity() * sizeof(double) + bands_.bytesReserved();
         b += agenda_.capacity() * sizeof(agenda_[0]) + queuedAt_.capacity() * sizeof(double) +
              entryStamp_.capacity() * sizeof(std::uint32_t) +
              entry_.capacity() * sizeof(QueueHandle) + entryPartner_.capacity() * sizeof(int) +
              about_.capacity() * sizeof(about_[0]) +
+             agendaFirst_.capacity() * sizeof(std::uint16_t) +
+             agendaFirstTime_.capacity() * sizeof(double) +
              unsettledRound_.capacity() * sizeof(std::uint64_t);
         for (const auto& a : agenda_)
             b += a.capacity() * sizeof(Event);
@@ -489,11 +493,16 @@ private:
         lists_.detach(i);
         const Vec3 ri = positionNow(i);
         const double reach = settings_.rm + lists_.skin();
+        // Every scanned body is written and the count advanced by the test, without a branch:
+        // about one in eight is within reach, at random.
+        std::size_t within = 0;
         cells_.forEachNeighbour(i, [&](int j) {
-            if (sys_.box.minimumImage(ri - positionNow(j), inverseBox_).squaredNorm() <=
-                reach * reach)
-                lists_.link(i, j);
+            scanned_[within] = j;
+            within += sys_.box.minimumImage(ri - positionNow(j), inverseBox_).squaredNorm() <=
+                      reach * reach;
         });
+        for (std::size_t k = 0; k < within; ++k)
+            lists_.link(i, scanned_[k]);
         lists_.setAnchor(i, ri);
     }
 
@@ -744,9 +753,12 @@ private:
         agenda.push_back(e);
         // Kept as events arrive, so that settling a body just refilled needs no scan (ties keep
         // the first, as the scan does).
-        auto& first = agendaFirst_[e.i];
-        if (first != unknownFirst && e.time < agenda[first].time)
-            first = static_cast<std::uint16_t>(agenda.size() - 1);
+        // (without a branch: whether it is earlier is a coin toss; an unknown earliest has time
+        // −∞ and stays unknown)
+        const bool earlier = e.time < agendaFirstTime_[e.i];
+        const auto last = static_cast<std::uint16_t>(agenda.size() - 1);
+        agendaFirst_[e.i] = earlier ? last : agendaFirst_[e.i];
+        agendaFirstTime_[e.i] = lesser(e.time, agendaFirstTime_[e.i]);
         if (e.time < queuedAt_[e.i]) markUnsettled(e.i);
     }
 
@@ -839,6 +851,7 @@ private:
             for (std::size_t k = 1; k < agenda.size(); ++k)
                 if (agenda[k].time < agenda[best].time) best = k;
             first = static_cast<std::uint16_t>(best);
+            agendaFirstTime_[i] = agenda[best].time;
         }
         return first;
     }
@@ -848,11 +861,13 @@ private:
         agenda[slot] = agenda.back();
         agenda.pop_back();
         agendaFirst_[i] = unknownFirst;
+        agendaFirstTime_[i] = -std::numeric_limits<double>::infinity();
     }
 
     void forgetAgenda(int i) {
         agenda_[i].clear();
         agendaFirst_[i] = 0; // the next event scheduled is the earliest
+        agendaFirstTime_[i] = std::numeric_limits<double>::infinity();
         ++entryStamp_[i];
         queuedAt_[i] = std::numeric_limits<double>::infinity();
     }
@@ -928,11 +943,13 @@ private:
     TerraceBandTable bands_;          // effective-distance bands of the terraces (hold screen)
     std::vector<std::uint32_t> counter_;
     std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
+    std::vector<int> scanned_;                // rebuildList: bodies within reach (N slots)
     std::vector<BodyPlan> plans_;
     std::uint64_t listStamp_ = 0;
     std::vector<std::vector<Event>> agenda_; // each body's pending events (e.i = the body)
     static constexpr std::uint16_t unknownFirst = std::numeric_limits<std::uint16_t>::max();
     std::vector<std::uint16_t> agendaFirst_;    // index of its earliest event (unknownFirst: scan)
+    std::vector<double> agendaFirstTime_;       // its time (+∞: agenda empty, −∞: unknown)
     std::vector<double> queuedAt_;              // time of its calendar entry (+∞: none)
     std::vector<std::uint32_t> entryStamp_;     // stamp of its current calendar entry
     std::vector<QueueHandle> entry_;            // eager: the handle of that entry

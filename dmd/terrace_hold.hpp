@@ -19,38 +19,15 @@
 // in five of the pairs a collision would have the search examine for the whole horizon, often
 // for several.
 // Units: Å, time unit 100 fs (rates per time unit, angles in rad).
+#include "core/branch_free.hpp"
 #include "dmd/terrace_levels.hpp"
 #include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <limits>
 #include <vector>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace terrace::dmd {
-
-namespace detail {
-// The smaller and larger of two doubles without a branch. std::min and std::max compiled to a
-// compare and a jump in BandHold::through, and the outcomes there are coin tosses (whether the
-// pair approaches, whether the alignment swing saturates) that the branch predictor misses. The
-// two agree with std::min and std::max up to the sign of a zero result, which no use here sees.
-inline double lesser(double a, double b) {
-#if defined(__SSE2__)
-    return _mm_cvtsd_f64(_mm_min_sd(_mm_set_sd(a), _mm_set_sd(b)));
-#else
-    return std::min(a, b);
-#endif
-}
-inline double greater(double a, double b) {
-#if defined(__SSE2__)
-    return _mm_cvtsd_f64(_mm_max_sd(_mm_set_sd(a), _mm_set_sd(b)));
-#else
-    return std::max(a, b);
-#endif
-}
-} // namespace detail
 
 /// A pair potential that is φ(r_e) of one effective distance, with the roots of φ = u on each side
 /// of the minimum (core/pair_potential.hpp, detail::RadialRoots).
@@ -122,7 +99,7 @@ public:
     /// Whether r_e is sure to stay inside the band throughout [0, T]. (Inlined: the few flops
     /// cost less than the call the compiler would otherwise make for each of the ladder's rungs.)
     [[gnu::always_inline]] bool through(double T) const {
-        using detail::greater, detail::lesser;
+        // Without branches (core/branch_free.hpp): each comparison here is a coin toss.
         const double rLow = r_ + lesser(0.0, rRate_ * T);
         const double rHigh = r_ + greater(0.0, T * (rRate_ + rBend_ * T));
         const double swing = lesser(turn_ * T, T * (cRate_ + cBend_ * T));
