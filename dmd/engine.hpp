@@ -531,11 +531,29 @@ private:
                      const PairSample* partnerStart = nullptr) {
         double entry = std::numeric_limits<double>::infinity();
         const Moving mi = movingNow(i);
-        for (const int j : lists_.partners(i))
+        const std::vector<int>& partners = lists_.partners(i);
+        for (std::size_t k = 0; k < partners.size(); ++k) {
+            // The next partner's state is fetched while this one is predicted: the partners are
+            // scattered in memory, and each prediction starts by reading its partner.
+            if (k + 1 < partners.size()) prefetchBody(partners[k + 1]);
+            const int j = partners[k];
             if (j != exclude)
                 entry = std::min(entry, j == partner ? predictPair(mi, i, j, partnerStart, true)
                                                      : predictPair(mi, i, j, nullptr));
+        }
         scheduleBodyEvents(i, entry);
+    }
+
+    /// Asks the caches for what predictPair reads of body j first.
+    void prefetchBody(int j) const {
+        const char* state = reinterpret_cast<const char*>(&sys_.bodies[j]);
+        const char* orbit = reinterpret_cast<const char*>(&orbit_[j]);
+        __builtin_prefetch(state);
+        __builtin_prefetch(state + sizeof(State) - 1);
+        __builtin_prefetch(orbit);
+        __builtin_prefetch(orbit + sizeof(FreeOrbit<K>) - 1);
+        __builtin_prefetch(&clock_[j]);
+        __builtin_prefetch(&axisRate_[j]);
     }
 
     /// Body i's own events: its next cell crossing, its next list rebuild and, when some pair of i
