@@ -3,7 +3,14 @@
 // engines are kept unwrapped (so that the mean squared displacement needs no image counters);
 // pair separations are always taken through minimumImage().
 #include "core/vec.hpp"
+#include <cfloat>
 #include <cmath>
+
+// The rounding below, (x + 1.5·2^52) − 1.5·2^52, needs IEEE double arithmetic as written:
+// -ffast-math folds it to x, and x87 excess precision (FLT_EVAL_METHOD 2) does not round at all.
+#if defined(__FAST_MATH__) || (defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD != 0)
+#error "core/box.hpp: the minimum image needs IEEE double arithmetic (no -ffast-math, no x87)"
+#endif
 
 namespace terrace {
 
@@ -22,12 +29,15 @@ struct PeriodicBox {
 
     double volume() const { return length * length * length; }
 
-    /// The periodic image of d closest to the origin, component by component, for |d| < 2^51 L.
+    /// The periodic image of d closest to the origin, component by component, for |d| < 2^51 L
+    /// (beyond, the answer is wrong, not NaN; no separation in a simulation comes near that).
     /// Every DMD pair prediction and list rebuild takes one, so it is branch-free and inlined:
-    /// the rounding is nearestInteger's without the library fallback for huge arguments (no
-    /// separation in a simulation comes near 2^51 boxes; NaN stays NaN) and without restoring
-    /// the sign of a zero image number, which leaves d − L·0 unchanged. The image is the one
-    /// std::nearbyint picks (tests/dmd/test_minimum_image.cpp).
+    /// the rounding is nearestInteger's without the library fallback for huge arguments and
+    /// without restoring the sign of a zero image number (only a component d = −0 comes out as −0
+    /// where nearestInteger gave +0). The image is the one std::nearbyint picks for d/L rounded to
+    /// a double (tests/dmd/test_minimum_image.cpp). A build with FMA (-march=native) may fuse the
+    /// product into the rounding and send an exact half-box tie to the other image: a pair half a
+    /// box apart, far beyond any interaction range.
     [[gnu::always_inline]] Vec3 minimumImage(const Vec3& d) const {
         return minimumImage(d, 1.0 / length);
     }

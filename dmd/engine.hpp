@@ -635,7 +635,10 @@ private:
         };
         const std::array now{mi.now, ajNow};
         if constexpr (EffectiveDistanceForm<P>)
-            if (holdScreen_ && !afterEvent) { // (a pair just resolved sits on a level: no hold)
+            // Not for the pair just resolved: it sits on a level, where the screen answers 0 (it
+            // could hold only a root found farther from the level than the screen's edge margin;
+            // a search is right either way).
+            if (holdScreen_ && !afterEvent) {
                 // No level within reach for a while: no samples now, a fresh search then.
                 const double hold = holdOnTerrace(now, i, j, r0, w, n, horizon, win.exit);
                 if (hold == none) return none; // out of r_m before it could change terrace

@@ -22,8 +22,10 @@
 #include "core/branch_free.hpp"
 #include "dmd/terrace_levels.hpp"
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <concepts>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -91,7 +93,9 @@ class BandHold {
 public:
     BandHold(const DistanceBand& band, const PairMotion& m, double zeta)
         : r_(m.r), rRate_(m.rRate), rBend_(0.5 * m.speedSquared / m.r), c_(std::abs(m.c)),
-          cRate_(std::abs(m.cRate)), turn_(m.turn), cBend_(0.5 * m.turnCurvature), zeta_(zeta),
+          cRate_(std::abs(m.cRate)), turn_(m.turn),
+          // Finite even without a curvature bound (∞), so that T = 0 gives 0·finite, not 0·∞.
+          cBend_(lesser(0.5 * m.turnCurvature, std::numeric_limits<double>::max())), zeta_(zeta),
           // An edge is kept a relative 1e-9 closer than it is, far above the round-off of r_e and
           // of the band's roots, so that the answer holds for the computed U as well.
           lo_(band.lo + edgeMargin * m.r), hi_(band.hi - edgeMargin * m.r) {}
@@ -115,17 +119,19 @@ private:
     double r_, rRate_, rBend_, c_, cRate_, turn_, cBend_, zeta_, lo_, hi_;
 };
 
-/// The longest of first, 2·first, 4·first, … (none beyond last) through which the pair is sure
-/// to stay in its band; 0 when not even through first (right after an event the pair sits on a
-/// level: 0). through(T) only fails more as T grows (both envelopes widen monotonically, and
-/// rounding keeps that order), so the number of rungs it holds through is the answer: every rung
-/// is tried, with no branch on the outcome, which no predictor could guess (in the paper's liquid
-/// each of 0, 1, 2, 4 and 8 horizons is the answer for 12–29 % of pairs).
+/// The longest of first, 2·first, 4·first, … (none beyond last; first > 0, last finite) through
+/// which the pair is sure to stay in its band; 0 when not even through first (right after an
+/// event the pair sits on a level: 0). through(T) only fails more as T grows (both envelopes
+/// widen monotonically, and rounding keeps that order), so the number of rungs it holds through
+/// gives the answer: every rung is tried, with no branch on the outcome, which no predictor could
+/// guess (in the paper's liquid each of 0, 1, 2, 4 and 8 horizons is the answer for 12–29 % of
+/// pairs).
 inline double holdTime(const BandHold& hold, double first, double last) {
+    assert(first > 0.0 && last < 0x1p60 * first); // the loop ends, the shift below is defined
     int rungs = 0;
     for (double T = first; T <= last; T *= 2.0)
         rungs += hold.through(T);
-    return rungs == 0 ? 0.0 : first * static_cast<double>(1 << (rungs - 1));
+    return rungs == 0 ? 0.0 : first * static_cast<double>(std::uint64_t{1} << (rungs - 1));
 }
 
 /// terraceBands of every terrace the pairs have visited, computed once each (two pow() per level).

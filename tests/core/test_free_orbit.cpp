@@ -3,7 +3,9 @@
 #include "core/asymmetric_top.hpp"
 #include "core/free_orbit.hpp"
 #include "core/symmetric_top.hpp"
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <gtest/gtest.h>
 #include <limits>
 #include <random>
@@ -163,8 +165,6 @@ TEST(FreeOrbit, PairAttitudesAreTheSingleAttitudes) {
     }
 }
 
-} // namespace
-
 // startOf(τ₀), the attitude the DMD hold screen takes for a partner, is bit for bit what the
 // search's orbit from(τ₀) gives at its start, for small shifts (kept as a shift), large ones (a
 // turned orbit), orbits shifted before, and rotors at rest: a screened and an unscreened run must
@@ -183,9 +183,15 @@ TEST(FreeOrbit, StartOfIsTheShiftedOrbitsStart) {
             const auto direct = orbit.startOf(tau0);
             const auto shifted = orbit.from(tau0).at(0.0);
             for (int a = 0; a < 3; ++a) {
-                EXPECT_EQ(direct.axis[a], shifted.axis[a]) << k << " " << tau0;
-                EXPECT_EQ(direct.w[a], shifted.w[a]) << k << " " << tau0;
+                EXPECT_EQ(std::bit_cast<std::uint64_t>(direct.axis[a]),
+                          std::bit_cast<std::uint64_t>(shifted.axis[a]))
+                    << k << " " << tau0;
+                EXPECT_EQ(std::bit_cast<std::uint64_t>(direct.w[a]),
+                          std::bit_cast<std::uint64_t>(shifted.w[a]))
+                    << k << " " << tau0;
             }
         }
     }
 }
+
+} // namespace

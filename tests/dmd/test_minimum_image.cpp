@@ -69,8 +69,8 @@ TEST(MinimumImage, SameImageAsLibraryRounding) {
 }
 
 // The branch-free rounding holds for unwrapped separations of up to a million boxes (bodies of a
-// long gas run), and the engine's form with 1/L passed in is the same function.
-TEST(MinimumImage, FarSeparationsAndTheCachedInverse) {
+// long gas run), in the form with 1/L passed in that the engine uses.
+TEST(MinimumImage, FarSeparationsWithTheCachedInverse) {
     const PeriodicBox box{27.3};
     const double inverse = 1.0 / box.length;
     std::mt19937_64 rng(5);
@@ -78,10 +78,9 @@ TEST(MinimumImage, FarSeparationsAndTheCachedInverse) {
     for (int k = 0; k < 20000; ++k) {
         const double scale = box.length * std::pow(10.0, k % 7); // 1 … 10⁶ boxes
         const Vec3 d(scale * u(rng), scale * u(rng), scale * u(rng));
-        const Vec3 m = box.minimumImage(d), n = box.minimumImage(d, inverse);
+        const Vec3 m = box.minimumImage(d, inverse);
         for (int a = 0; a < 3; ++a) {
-            ASSERT_TRUE(sameBits(m[a], n[a])) << d[a];
-            ASSERT_EQ(m[a], d[a] - box.length * std::nearbyint(d[a] * inverse)) << d[a];
+            ASSERT_TRUE(sameBits(m[a], d[a] - box.length * std::nearbyint(d[a] * inverse))) << d[a];
             ASSERT_LE(std::abs(m[a]), 0.5 * box.length * (1.0 + 1e-9)) << d[a];
         }
     }

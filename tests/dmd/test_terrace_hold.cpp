@@ -142,6 +142,25 @@ TEST(TerraceHold, LadderOfHorizons) {
     EXPECT_GT(holdTime(BandHold({3.5, INFINITY}, still(9.0, 0.0), 0.0), 0.04, 0.32), 0.0);
 }
 
+// At T = 0 (a pair exactly on r_m has its shell exit at −0) a pair inside its band is held,
+// whether or not its alignment has a curvature bound: no 0·∞ may turn the answer into NaN.
+TEST(TerraceHold, HeldAtTimeZero) {
+    PairMotion m = still(4.0, 0.3);
+    m.rRate = -0.5;
+    m.speedSquared = 2.0;
+    m.cRate = 1.0;
+    m.turn = 3.0;
+    for (double curvature : {9.0, double(INFINITY)}) {
+        m.turnCurvature = curvature;
+        for (double zeta : {0.0, 1.0}) {
+            const BandHold hold({3.5, 4.5}, m, zeta);
+            EXPECT_TRUE(hold.through(0.0)) << curvature << " " << zeta;
+            EXPECT_TRUE(hold.through(-0.0)) << curvature << " " << zeta;
+            EXPECT_TRUE(hold.through(1e-3)) << curvature << " " << zeta;
+        }
+    }
+}
+
 // Random rod pairs in free flight, hot and cold, near and far: wherever the envelopes say the
 // pair stays in its band through T, r_e sampled every 0.02 fs along the exact free motion does,
 // and U never leaves the terrace before the hold time. The bound is useful, too: most thermal
