@@ -26,6 +26,15 @@ Vec3 randomUnit(std::mt19937_64& rng) {
 
 const double taus[] = {0.0, 1e-9, 0.013, 0.04, -0.02, 0.7, 35.0};
 
+/// A rotor with a random axis spinning at `speed` (rad per time unit) about a random ω ⟂ s.
+LinearRotor::State spinningRotor(std::mt19937_64& rng, double speed) {
+    LinearRotor::State b;
+    b.s = randomUnit(rng);
+    const Vec3 u = randomUnit(rng);
+    b.w = speed * (u - u.dot(b.s) * b.s).normalized();
+    return b;
+}
+
 TEST(FreeOrbit, LinearRotorMatchesFreeMove) {
     std::mt19937_64 rng(11);
     const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
@@ -145,13 +154,7 @@ TEST(SmallAngle, PairIsTwoSingles) {
 TEST(FreeOrbit, PairAttitudesAreTheSingleAttitudes) {
     std::mt19937_64 rng(19);
     const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
-    auto rotor = [&](double speed) {
-        LinearRotor::State b;
-        b.s = randomUnit(rng);
-        const Vec3 u = randomUnit(rng);
-        b.w = speed * (u - u.dot(b.s) * b.s).normalized();
-        return FreeOrbit<LinearRotor>(b, p);
-    };
+    auto rotor = [&](double speed) { return FreeOrbit<LinearRotor>(spinningRotor(rng, speed), p); };
     for (int k = 0; k < 50; ++k) {
         const FreeOrbit<LinearRotor> i = rotor(k % 5 == 0 ? 0.0 : 3.0 + k),
                                      j = rotor(2.0 + 0.5 * k).from(0.01 * k);
@@ -173,10 +176,7 @@ TEST(FreeOrbit, StartOfIsTheShiftedOrbitsStart) {
     std::mt19937_64 rng(23);
     const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
     for (int k = 0; k < 60; ++k) {
-        LinearRotor::State b;
-        b.s = randomUnit(rng);
-        const Vec3 u = randomUnit(rng);
-        b.w = (k % 6 == 0 ? 0.0 : 1.0 + k) * (u - u.dot(b.s) * b.s).normalized();
+        const LinearRotor::State b = spinningRotor(rng, k % 6 == 0 ? 0.0 : 1.0 + k);
         const FreeOrbit<LinearRotor> orbit =
             FreeOrbit<LinearRotor>(b, p).from(k % 3 == 0 ? 0.0 : 0.003 * k);
         for (double tau0 : {0.0, 1e-9, 0.004, 0.02, 0.3, -0.05, 2.5}) {
