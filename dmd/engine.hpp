@@ -772,10 +772,9 @@ private:
         if (agenda.size() >= std::numeric_limits<std::uint16_t>::max())
             throw std::logic_error("dmd: a body's agenda overflowed");
         agenda.push_back(e);
-        // Kept as events arrive, so that settling a body just refilled needs no scan (ties keep
-        // the first, as the scan does).
-        // (without a branch: whether it is earlier is a coin toss; an unknown earliest has time
-        // −∞ and stays unknown)
+        // The earliest is kept as events arrive, so that settling a body just refilled needs no
+        // scan; ties keep the first, as the scan does. By a select, not a branch (whether it is
+        // earlier is a coin toss); an unknown earliest has time −∞ and stays unknown.
         const bool earlier = e.time < agendaFirstTime_[e.i];
         const auto last = static_cast<std::uint16_t>(agenda.size() - 1);
         agendaFirst_[e.i] = earlier ? last : agendaFirst_[e.i];
@@ -964,7 +963,7 @@ private:
     TerraceBandTable bands_;          // effective-distance bands of the terraces (hold screen)
     std::vector<std::uint32_t> counter_;
     std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
-    std::vector<int> scanned_;                // rebuildList: bodies within reach (N slots)
+    std::vector<int> scanned_; // rebuildList: scanned bodies, those within reach first
     std::vector<BodyPlan> plans_;
     std::uint64_t listStamp_ = 0;
     std::vector<std::vector<Event>> agenda_; // each body's pending events (e.i = the body)
