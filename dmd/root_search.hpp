@@ -257,8 +257,20 @@ SearchResult findTerraceExit(Eval&& eval, PairSample a, double lower, double upp
     }
     // On a level and moving inwards (or just resolved there): exactly on it, so that the root
     // refinement looks for the excursion into the terrace first and never returns the start.
-    if (a.U <= lower + near) a.U = lower;
-    if (a.U >= upper - near) a.U = upper;
+    // Samples that stay within the tolerance of that level count as on it too, until one leaves
+    // it: over a window shorter than round-off can resolve (a pair leaving r_m just as it leaves
+    // a level at r_m, which is where r_m lies when the lowest terrace holds the whole tail) a
+    // sample beyond the level by round-off alone would put the pair back across at once, and
+    // again after that, a zero-time loop.
+    ExitSide onLevel = ExitSide::None;
+    if (a.U <= lower + near) a.U = lower, onLevel = ExitSide::Lower;
+    if (a.U >= upper - near) a.U = upper, onLevel = ExitSide::Upper;
+    auto stillOnLevel = [&](PairSample& p) {
+        const double level = onLevel == ExitSide::Lower ? lower : upper;
+        if (onLevel == ExitSide::None || !(std::abs(p.U - level) <= near)) return false;
+        p.U = level;
+        return true;
+    };
     const double tolerance = 1e-13 * s.maxStep;
 
     auto bracketed = [&](const PairSample& from, const PairSample& to, ExitSide side) {
@@ -276,8 +288,9 @@ SearchResult findTerraceExit(Eval&& eval, PairSample a, double lower, double upp
             h = std::min(h, (upper - a.U) / a.dUdt + s.nudge);
         const double tb = std::min(a.t + h, tEnd);
         if (!(tb > a.t)) break; // the window cannot be split any further
-        const PairSample b = eval(tb);
+        PairSample b = eval(tb);
         ++result.evaluations;
+        if (!stillOnLevel(b)) onLevel = ExitSide::None;
 
         const detail::HermiteCubic cubic(a, b);
         std::array<double, 2> ext{};
@@ -294,14 +307,14 @@ SearchResult findTerraceExit(Eval&& eval, PairSample a, double lower, double upp
             const double predicted = cubic.value(ext[e]);
             if (cubic.curvature(ext[e]) > 0.0) {
                 if (std::isfinite(lower) && predicted - lower < s.grazeWindow) {
-                    const PairSample m = detail::probeExtremum(eval, a, b, {1.0, lower}, near,
-                                                               tolerance, result.evaluations);
-                    if (m.U < lower) return bracketed(a, m, ExitSide::Lower);
+                    PairSample m = detail::probeExtremum(eval, a, b, {1.0, lower}, near, tolerance,
+                                                         result.evaluations);
+                    if (m.U < lower && !stillOnLevel(m)) return bracketed(a, m, ExitSide::Lower);
                 }
             } else if (std::isfinite(upper) && upper - predicted < s.grazeWindow) {
-                const PairSample m = detail::probeExtremum(eval, a, b, {-1.0, upper}, near,
-                                                           tolerance, result.evaluations);
-                if (m.U > upper) return bracketed(a, m, ExitSide::Upper);
+                PairSample m = detail::probeExtremum(eval, a, b, {-1.0, upper}, near, tolerance,
+                                                     result.evaluations);
+                if (m.U > upper && !stillOnLevel(m)) return bracketed(a, m, ExitSide::Upper);
             }
         }
         if (b.U < lower) return bracketed(a, b, ExitSide::Lower);

@@ -338,6 +338,24 @@ TEST(Engine, EveryBodyKindConservesEnergy) {
     expectConservation<Sphere, LJPotential>(s, ljPotential(s));
 }
 
+// Lennard-Jones spheres at ΔV = kT/2 = 5ε (T* = 10) have no attractive terrace: the lowest terrace
+// holds the whole tail, and r_m lies on the wall's first level. A pair transmitted down through
+// that level leaves r_m at the same instant, and round-off in U once sent it straight back across,
+// in a zero-time loop that the stall watch stopped (here at 184 fs): the gas must run.
+TEST(Engine, HotLennardJonesGasWithoutAnAttractiveTerraceAdvances) {
+    Scene s = rodScene(16, 0.05, 10.0, 0.5);
+    s.seed = 1;
+    s.body.kind = "sphere";
+    s.potential.kind = "lj";
+    dmd::Engine<Sphere, LJPotential> e(buildInitialState<Sphere, LJPotential>(s, ljPotential(s)),
+                                       s);
+    const double e0 = e.kineticEnergy() + e.potentialEnergy();
+    e.advanceTo(units::fromFs(2000.0));
+    EXPECT_EQ(e.time(), units::fromFs(2000.0));
+    EXPECT_GT(e.counts().up + e.counts().down, 40u);
+    EXPECT_NEAR(e.kineticEnergy() + e.potentialEnergy(), e0, energyTolerance * std::abs(e0));
+}
+
 // Memory stays bounded when bodies never collide: two rods side by side, one turning in place
 // (turningPairInTheWell), keep a chain of virtual events going forever, and each renews the
 // calendar entry of the pair's owner, which is listed with its partner (so that invalidating the

@@ -93,6 +93,28 @@ TEST(RootSearch, PastALevelMovingOutwardsIsAnEventNow) {
     EXPECT_NEAR(r2.t, 2.0, 1e-10);
 }
 
+// A pair just moved down through a level sits a round-off beyond it (U = level + 2.8e-13) and moves
+// inwards, while the window ends a few 1e-15 later (it leaves r_m, which lies on that level when
+// the lowest terrace holds the whole tail: LJ spheres at ΔV > ε). Samples that close still read
+// U beyond the level; they must count as on it, or the pair is sent back across at once, again
+// and again (a stall found in hot LJ gases). A real return across the level is still found.
+TEST(RootSearch, SamplesWithinRoundOffOfTheStartLevelAreOnIt) {
+    auto leaving = [](double t) { return PairSample{t, 7.5 + 2.8e-13 - 100.0 * t, -100.0}; };
+    SearchSettings s = settings();
+    s.levelTolerance = 1.5e-9;
+    for (double tEnd : {2.7e-15, 1e-14, 1e-13}) {
+        const SearchResult r = findTerraceExit(leaving, leaving(0.0), -7.5, 7.5, tEnd, s, true);
+        EXPECT_EQ(r.side, ExitSide::None) << tEnd;
+    }
+    // Over a longer window the pair leaves the level and, turned round, crosses it again.
+    auto turning = [](double t) {
+        return PairSample{t, 7.5 + 2.8e-13 - 100.0 * t + 5000.0 * t * t, -100.0 + 10000.0 * t};
+    };
+    const SearchResult back = findTerraceExit(turning, turning(0.0), -7.5, 7.5, 0.04, s, true);
+    EXPECT_EQ(back.side, ExitSide::Upper);
+    EXPECT_NEAR(back.t, 0.02, 1e-9);
+}
+
 TEST(ShellScreening, WindowsOfTheInteractionShell) {
     // Inside, moving out along x from r = 1 at speed 2: leaves r_m = 3 at τ = 1.
     ShellWindow w = shellWindow(Vec3(1, 0, 0), Vec3(2, 0, 0), 3.0);
