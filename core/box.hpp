@@ -14,14 +14,13 @@
 
 namespace terrace {
 
-/// Nearest integer, ties to even: the value of std::nearbyint in the default rounding mode, without
-/// the library call that std::nearbyint costs on baseline x86-64. Adding 1.5·2^52 to |x| < 2^51
-/// leaves no fraction bits, so the FPU rounds x to nearest-even and the subtraction is exact;
-/// copysign restores the sign of a zero result (nearbyint(-0.3) = -0).
-inline double nearestInteger(double x) {
+/// Nearest integer of |x| < 2^51, ties to even: the value of std::nearbyint in the default
+/// rounding mode, up to the sign of a zero result, without its library call and without a branch.
+/// Adding 1.5·2^52 leaves no fraction bits, so the FPU rounds x to nearest-even and the
+/// subtraction is exact. NaN stays NaN; beyond 2^51 the answer is wrong.
+[[gnu::always_inline]] inline double nearestInteger(double x) {
     constexpr double shifter = 0x1.8p52;
-    if (!(std::abs(x) < 0x1p51)) return std::nearbyint(x); // huge, infinite or NaN: rare
-    return std::copysign((x + shifter) - shifter, x);
+    return (x + shifter) - shifter;
 }
 
 struct PeriodicBox {
@@ -31,11 +30,9 @@ struct PeriodicBox {
 
     /// The periodic image of d closest to the origin, component by component, for |d| < 2^51 L
     /// (beyond, the answer is wrong, not NaN; no separation in a simulation comes near that).
-    /// Every DMD pair prediction and list rebuild takes one, so it is branch-free and inlined:
-    /// the rounding is nearestInteger's without the library fallback for huge arguments and
-    /// without restoring the sign of a zero image number (only a component d = −0 comes out as −0
-    /// where nearestInteger gave +0). The image is the one std::nearbyint picks for d/L rounded to
-    /// a double (tests/dmd/test_minimum_image.cpp). A build with FMA (-march=native) may fuse the
+    /// Every DMD pair prediction and list rebuild takes one, so it is branch-free and inlined
+    /// (nearestInteger). The image is the one std::nearbyint picks for d/L rounded to a double
+    /// (tests/dmd/test_minimum_image.cpp). A build with FMA (-march=native) may fuse the
     /// product into the rounding and send an exact half-box tie to the other image: a pair half a
     /// box apart, far beyond any interaction range.
     [[gnu::always_inline]] Vec3 minimumImage(const Vec3& d) const {
@@ -46,11 +43,10 @@ struct PeriodicBox {
     [[gnu::always_inline]] Vec3 minimumImage(const Vec3& d, double inverseLength) const {
         // Components written out, with L in a local: a loop over d[a] made the compiler reload L
         // from memory at every component (d might have aliased it).
-        constexpr double shifter = 0x1.8p52; // see nearestInteger
         const double L = length, inverse = inverseLength;
-        return {d.x() - L * ((d.x() * inverse + shifter) - shifter),
-                d.y() - L * ((d.y() * inverse + shifter) - shifter),
-                d.z() - L * ((d.z() * inverse + shifter) - shifter)};
+        return {d.x() - L * nearestInteger(d.x() * inverse),
+                d.y() - L * nearestInteger(d.y() * inverse),
+                d.z() - L * nearestInteger(d.z() * inverse)};
     }
 
     /// The image of r inside [0, L)^3.
