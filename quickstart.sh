@@ -27,9 +27,25 @@ install_missing() {
     fi
 }
 
+# Two passes: an instrumented terrace runs a short training (experiments/train-profile.sh, a few
+# seconds), then the build proper compiles the engines with the profile it recorded
+# (cli/CMakeLists.txt, TERRACE_PROFILE; the same events, ~6 % less CPU time for DMD).
+# TERRACE_PROFILE=off skips the first pass.
 build() {
-    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-    cmake --build build -j"$(nproc)"
+    local jobs data="$PWD/build-profile/data"
+    jobs=$(nproc)
+    if [ "${TERRACE_PROFILE:-}" = off ]; then
+        cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTERRACE_PROFILE= >/dev/null
+    else
+        cmake -S . -B build-profile -DCMAKE_BUILD_TYPE=Release -DTERRACE_TESTS=OFF \
+            -DTERRACE_BENCH=OFF -DTERRACE_PROFILE=generate -DTERRACE_PROFILE_DATA="$data" >/dev/null
+        cmake --build build-profile -j"$jobs" --target terrace
+        rm -rf "$data"
+        experiments/train-profile.sh build-profile/terrace build-profile/training
+        cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTERRACE_PROFILE=use \
+            -DTERRACE_PROFILE_DATA="$data" >/dev/null
+    fi
+    cmake --build build -j"$jobs"
 }
 
 case "${1:-}" in
