@@ -21,6 +21,9 @@
 // Units: Å, time unit 100 fs (rates per time unit, angles in rad).
 #include "core/branch_free.hpp"
 #include "dmd/terrace_levels.hpp"
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -114,6 +117,34 @@ public:
                (rHigh + zeta_ * (0.5 - cLeast * cLeast) < hi_);
     }
 
+    /// through(T0) + through(T1): the same operations on both times at once, lane by lane in one
+    /// SSE2 register (baseline on x86-64), so the same answers in half the instructions.
+    [[gnu::always_inline]] int throughBoth(double T0, double T1) const {
+#if defined(__SSE2__)
+        const __m128d T = _mm_set_pd(T1, T0), zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0),
+                      half = _mm_set1_pd(0.5), r = _mm_set1_pd(r_), rRate = _mm_set1_pd(rRate_),
+                      c = _mm_set1_pd(c_), zeta = _mm_set1_pd(zeta_);
+        const __m128d rLow = _mm_add_pd(r, _mm_min_pd(zero, _mm_mul_pd(rRate, T)));
+        const __m128d rHigh = _mm_add_pd(
+            r,
+            _mm_max_pd(zero, _mm_mul_pd(T, _mm_add_pd(rRate, _mm_mul_pd(_mm_set1_pd(rBend_), T)))));
+        const __m128d swing = _mm_min_pd(
+            _mm_mul_pd(_mm_set1_pd(turn_), T),
+            _mm_mul_pd(T, _mm_add_pd(_mm_set1_pd(cRate_), _mm_mul_pd(_mm_set1_pd(cBend_), T))));
+        const __m128d cMost = _mm_min_pd(one, _mm_add_pd(c, swing));
+        const __m128d cLeast = _mm_max_pd(zero, _mm_sub_pd(c, swing));
+        const __m128d low =
+            _mm_add_pd(rLow, _mm_mul_pd(zeta, _mm_sub_pd(half, _mm_mul_pd(cMost, cMost))));
+        const __m128d high =
+            _mm_add_pd(rHigh, _mm_mul_pd(zeta, _mm_sub_pd(half, _mm_mul_pd(cLeast, cLeast))));
+        const int inside = _mm_movemask_pd(
+            _mm_and_pd(_mm_cmpgt_pd(low, _mm_set1_pd(lo_)), _mm_cmplt_pd(high, _mm_set1_pd(hi_))));
+        return (inside & 1) + (inside >> 1);
+#else
+        return int(through(T0)) + int(through(T1));
+#endif
+    }
+
 private:
     static constexpr double edgeMargin = 1e-9;
     double r_, rRate_, rBend_, c_, cRate_, turn_, cBend_, zeta_, lo_, hi_;
@@ -129,8 +160,10 @@ private:
 inline double holdTime(const BandHold& hold, double first, double last) {
     assert(first > 0.0 && last < 0x1p60 * first); // the loop ends, the shift below is defined
     int rungs = 0;
-    for (double T = first; T <= last; T *= 2.0)
-        rungs += hold.through(T);
+    double T = first;
+    for (; 2.0 * T <= last; T *= 4.0)
+        rungs += hold.throughBoth(T, 2.0 * T);
+    if (T <= last) rungs += hold.through(T);
     return rungs == 0 ? 0.0 : first * static_cast<double>(std::uint64_t{1} << (rungs - 1));
 }
 
