@@ -142,6 +142,42 @@ TEST(TerraceHold, LadderOfHorizons) {
     EXPECT_GT(holdTime(BandHold({3.5, INFINITY}, still(9.0, 0.0), 0.0), 0.04, 0.32), 0.0);
 }
 
+// The packed pair of rungs answers as the two scalar rungs do, for pairs inside, outside and on
+// the edges of their band, approaching and receding, with and without a curvature bound, at
+// times from 0 to far beyond any hold; and the ladder with an odd number of rungs (the last one
+// scalar) counts them all.
+TEST(TerraceHold, TwoRungsAtOnceAnswerAsEachAlone) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    long held = 0, total = 0;
+    for (int k = 0; k < 20000; ++k) {
+        PairMotion m = still(3.0 + 2.0 * u(rng), 2.0 * u(rng) - 1.0);
+        m.rRate = 4.0 * u(rng) - 2.0;
+        m.speedSquared = m.rRate * m.rRate + 4.0 * u(rng);
+        m.cRate = 6.0 * u(rng) - 3.0;
+        m.turn = std::abs(m.cRate) + 3.0 * u(rng);
+        if (k % 2 == 0) m.turnCurvature = m.turn * m.turn;
+        const BandHold hold({3.5, k % 5 == 0 ? double(INFINITY) : 4.5}, m, k % 3 == 0 ? 0.0 : 1.0);
+        const double T0 = k % 7 == 0 ? 0.0 : 0.2 * u(rng), T1 = 2.0 * T0 + u(rng) * 0.01;
+        const int alone = int(hold.through(T0)) + int(hold.through(T1));
+        EXPECT_EQ(hold.throughBoth(T0, T1), alone) << k;
+        held += alone;
+        total += 2;
+        // Rungs first, 2·first, …: five of them up to 16·first, three up to 4·first.
+        int five = 0, three = 0;
+        for (int rung = 0; rung < 5; ++rung) {
+            const int through = hold.through(std::ldexp(0.04, rung));
+            five += through;
+            if (rung < 3) three += through;
+        }
+        EXPECT_EQ(holdTime(hold, 0.04, 0.64), five == 0 ? 0.0 : std::ldexp(0.04, five - 1)) << k;
+        EXPECT_EQ(holdTime(hold, 0.04, 0.16), three == 0 ? 0.0 : std::ldexp(0.04, three - 1)) << k;
+    }
+    // Both answers occur often enough to be compared.
+    EXPECT_GT(held, total / 10);
+    EXPECT_LT(held, total * 9 / 10);
+}
+
 // At T = 0 (a pair exactly on r_m has its shell exit at −0) a pair inside its band is held,
 // whether or not its alignment has a curvature bound: no 0·∞ may turn the answer into NaN.
 TEST(TerraceHold, HeldAtTimeZero) {
