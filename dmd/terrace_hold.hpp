@@ -11,10 +11,15 @@
 //   - r(τ) = |r₀ + v_ij τ| is convex, so r(τ) ≥ r₀ + ṙ₀τ, and √(r₀² + X) ≤ r₀ + X/(2r₀) gives
 //     r(τ) ≤ r₀ + ṙ₀τ + |v_ij|²τ²/(2r₀);
 //   - the alignment c = s_i·s_j changes at most at |ċ| ≤ |ṡ_i| + |ṡ_j| = Ω and, for linear rotors
-//     (|s̈| = |ω|²), |c̈| ≤ |s̈_i| + 2|ṡ_i||ṡ_j| + |s̈_j| = Ω², so |c(τ) − c₀| ≤ δ(τ) =
-//     min(Ωτ, |ċ₀|τ + ½Ω²τ²);
-// both bounds grow with τ, so over [0, T] r_e ≥ r_lo + ζ(½ − min(1, |c₀| + δ)²) and
-// r_e ≤ r_hi + ζ(½ − max(0, |c₀| − δ)²) with the envelopes taken at T. No level can be reached
+//     (|s̈| = |ω|²), |c̈| ≤ |s̈_i| + 2|ṡ_i||ṡ_j| + |s̈_j| = Ω² = K, so by Taylor's theorem c(τ)
+//     lies within ½Kτ² of its tangent c₀ + ċ₀τ, and within Ωτ of c₀; the tangent's range over
+//     [0, T] is spanned by its ends, so over [0, T]
+//         c ≤ c_hi = min(1, c₀ + min(ΩT, max(0, ċ₀T) + ½KT²)),
+//         c ≥ c_lo = max(−1, c₀ − min(ΩT, max(0, −ċ₀T) + ½KT²))
+//     (the sign of ċ₀ counts: an alignment drifting one way only nears the band's edge on that
+//     side), and |c| lies between max(0, c_lo, −c_hi) and max(c_hi, −c_lo);
+// all these bounds widen with T, so over [0, T] r_e ≥ r_lo + ζ(½ − max|c|²) and
+// r_e ≤ r_hi + ζ(½ − min|c|²) (ζ ≥ 0) with the envelopes taken at T. No level can be reached
 // while both stay inside the band. In the paper's dense liquid at ΔV = kT/2 this holds about four
 // in five of the pairs a collision would have the search examine for the whole horizon, often
 // for several.
@@ -95,8 +100,8 @@ struct PairMotion {
 class BandHold {
 public:
     BandHold(const DistanceBand& band, const PairMotion& m, double zeta)
-        : r_(m.r), rRate_(m.rRate), rBend_(0.5 * m.speedSquared / m.r), c_(std::abs(m.c)),
-          cRate_(std::abs(m.cRate)), turn_(m.turn),
+        : r_(m.r), rRate_(m.rRate), rBend_(0.5 * m.speedSquared / m.r), c_(m.c), cRate_(m.cRate),
+          turn_(m.turn),
           // Finite even without a curvature bound (∞), so that T = 0 gives 0·finite, not 0·∞.
           cBend_(lesser(0.5 * m.turnCurvature, std::numeric_limits<double>::max())), zeta_(zeta),
           // An edge is kept a relative 1e-9 closer than it is, far above the round-off of r_e and
@@ -109,9 +114,11 @@ public:
         // Without branches (core/branch_free.hpp): each comparison here is a coin toss.
         const double rLow = r_ + lesser(0.0, rRate_ * T);
         const double rHigh = r_ + greater(0.0, T * (rRate_ + rBend_ * T));
-        const double swing = lesser(turn_ * T, T * (cRate_ + cBend_ * T));
-        const double cMost = lesser(1.0, c_ + swing);
-        const double cLeast = greater(0.0, c_ - swing);
+        const double reach = turn_ * T, drift = cRate_ * T, bend = cBend_ * T * T;
+        const double cHigh = lesser(1.0, c_ + lesser(reach, greater(0.0, drift) + bend));
+        const double cLow = greater(-1.0, c_ - lesser(reach, bend - lesser(0.0, drift)));
+        const double cMost = greater(cHigh, -cLow);
+        const double cLeast = greater(0.0, greater(cLow, -cHigh));
         // & rather than &&: both sides are cheap, and a branch between them would mispredict.
         return (rLow + zeta_ * (0.5 - cMost * cMost) > lo_) &
                (rHigh + zeta_ * (0.5 - cLeast * cLeast) < hi_);
@@ -128,11 +135,17 @@ public:
         const __m128d rHigh = _mm_add_pd(
             r,
             _mm_max_pd(zero, _mm_mul_pd(T, _mm_add_pd(rRate, _mm_mul_pd(_mm_set1_pd(rBend_), T)))));
-        const __m128d swing = _mm_min_pd(
-            _mm_mul_pd(_mm_set1_pd(turn_), T),
-            _mm_mul_pd(T, _mm_add_pd(_mm_set1_pd(cRate_), _mm_mul_pd(_mm_set1_pd(cBend_), T))));
-        const __m128d cMost = _mm_min_pd(one, _mm_add_pd(c, swing));
-        const __m128d cLeast = _mm_max_pd(zero, _mm_sub_pd(c, swing));
+        const __m128d reach = _mm_mul_pd(_mm_set1_pd(turn_), T),
+                      drift = _mm_mul_pd(_mm_set1_pd(cRate_), T),
+                      bend = _mm_mul_pd(_mm_mul_pd(_mm_set1_pd(cBend_), T), T);
+        const __m128d cHigh = _mm_min_pd(
+            one, _mm_add_pd(c, _mm_min_pd(reach, _mm_add_pd(_mm_max_pd(zero, drift), bend))));
+        const __m128d cLow =
+            _mm_max_pd(_mm_set1_pd(-1.0),
+                       _mm_sub_pd(c, _mm_min_pd(reach, _mm_sub_pd(bend, _mm_min_pd(zero, drift)))));
+        const __m128d sign = _mm_set1_pd(-0.0); // x ^ sign = −x, as in through()
+        const __m128d cMost = _mm_max_pd(cHigh, _mm_xor_pd(cLow, sign));
+        const __m128d cLeast = _mm_max_pd(zero, _mm_max_pd(cLow, _mm_xor_pd(cHigh, sign)));
         const __m128d low =
             _mm_add_pd(rLow, _mm_mul_pd(zeta, _mm_sub_pd(half, _mm_mul_pd(cMost, cMost))));
         const __m128d high =

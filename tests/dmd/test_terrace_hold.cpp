@@ -126,6 +126,26 @@ TEST(TerraceHold, TurningAxes) {
     EXPECT_TRUE(BandHold({3.6, 4.6}, m, 0.0).through(1e6));
 }
 
+// The sign of ċ₀ counts. A rod pair at r = 4 with c₀ = ±0.5 sits at r_e = 4.25, 0.01 Å above the
+// band's lower edge, which it nears only as |c| grows. Turning towards alignment at ċ = 1
+// (Ω = 1, |c̈| ≤ 1) it may reach the edge after ~0.01; turning away, only the curvature can bring
+// |c| back up, by ½T², which takes T ≈ 0.14.
+TEST(TerraceHold, AnAlignmentTurningAwayFromTheEdgeIsHeldLonger) {
+    for (double c0 : {0.5, -0.5}) {
+        PairMotion m = still(4.0, c0);
+        m.turn = 1.0;
+        m.turnCurvature = 1.0;
+        m.cRate = -c0 / std::abs(c0); // |c| shrinks
+        const BandHold away({4.24, 5.0}, m, 1.0);
+        EXPECT_TRUE(away.through(0.1)) << c0;
+        EXPECT_FALSE(away.through(0.2)) << c0;
+        m.cRate = -m.cRate; // |c| grows
+        const BandHold towards({4.24, 5.0}, m, 1.0);
+        EXPECT_TRUE(towards.through(0.005)) << c0;
+        EXPECT_FALSE(towards.through(0.02)) << c0;
+    }
+}
+
 TEST(TerraceHold, LadderOfHorizons) {
     PairMotion m = still(4.2, 0.3);
     m.rRate = -1.0;
