@@ -496,7 +496,7 @@ private:
         // Every scanned body is written and the count advanced by the test, without a branch:
         // about one in eight is within reach, at random.
         std::size_t within = 0;
-        cells_.forEachNeighbour(i, [&](int j) {
+        cells_.forEachNeighbourWithin(i, &ri, reach, [&](int j) {
             scanned_[within] = j;
             within += sys_.box.minimumImage(ri - positionNow(j), inverseBox_).squaredNorm() <=
                       reach * reach;

@@ -34,6 +34,51 @@ TEST(CellList, NeighboursIncludeEveryPairWithinTheEdge) {
     }
 }
 
+// The pruned scan skips only cells beyond the reach: every body within it is still visited, in
+// the order of the full scan, for boxes of 3 (where a neighbouring cell is also two cells away
+// the other way round) to 5 cells a side, with bodies anywhere, on cell faces and at reach exactly.
+TEST(CellList, PrunedScanVisitsEveryBodyWithinReachInOrder) {
+    std::mt19937_64 rng(11);
+    for (const int side : {3, 4, 5}) {
+        const double reach = 4.5, L = side * reach * 1.1;
+        const int n = 300;
+        std::uniform_real_distribution<double> u(-2 * L, 2 * L);
+        CellList cells(L, reach, n);
+        ASSERT_EQ(cells.cellsPerSide(), side);
+        std::vector<Vec3> r(n);
+        for (int i = 0; i < n; ++i) {
+            r[i] = Vec3(u(rng), u(rng), u(rng));
+            if (i % 10 == 0)
+                r[i].x() = std::floor(r[i].x() / cells.edge()) * cells.edge(); // on a face
+            cells.insert(i, r[i]);
+        }
+        // A body at exactly the reach from body 1 along z.
+        r[2] = r[1] + Vec3(0.0, 0.0, reach);
+        CellList moved(L, reach, n);
+        for (int i = 0; i < n; ++i)
+            moved.insert(i, r[i]);
+        long skipped = 0;
+        for (int i = 0; i < n; ++i) {
+            std::vector<int> all, pruned;
+            moved.forEachNeighbour(i, [&](int j) { all.push_back(j); });
+            moved.forEachNeighbourWithin(i, &r[i], reach, [&](int j) { pruned.push_back(j); });
+            std::vector<int> near;
+            for (const int j : all) {
+                Vec3 d = r[i] - r[j];
+                for (int a = 0; a < 3; ++a)
+                    d[a] -= L * std::nearbyint(d[a] / L);
+                if (d.norm() <= reach) near.push_back(j);
+            }
+            std::vector<int> prunedNear;
+            for (const int j : pruned)
+                if (std::find(near.begin(), near.end(), j) != near.end()) prunedNear.push_back(j);
+            EXPECT_EQ(prunedNear, near) << "side " << side << " body " << i;
+            skipped += static_cast<long>(all.size() - pruned.size());
+        }
+        EXPECT_GT(skipped, 0) << side; // it does prune
+    }
+}
+
 TEST(CellList, CrossingTimesMoveTheBodyOneCellAtATime) {
     CellList cells(30.0, 9.0, 1); // 3 cells of 10 Å
     Vec3 r(5.0, 5.0, 5.0);
