@@ -178,7 +178,8 @@ private:
     for (; 2.0 * T <= last; T *= 4.0)
         rungs += hold.throughBoth(T, 2.0 * T);
     if (T <= last) rungs += hold.through(T);
-    return rungs == 0 ? 0.0 : first * static_cast<double>(std::uint64_t{1} << (rungs - 1));
+    // 2^(rungs − 1) rungs' worth, and 0 for none, without a branch on rungs = 0 (a coin toss too)
+    return first * static_cast<double>((std::uint64_t{2} << rungs) >> 2);
 }
 
 /// terraceBands of every terrace the pairs have visited, computed once each (two pow() per level).
