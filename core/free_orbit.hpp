@@ -89,6 +89,23 @@ public:
         return o;
     }
 
+    /// The orbit re-based at τ₀ (s and ω̂ × s turned on by τ₀, no shift left), with s brought
+    /// back to unit length: what a body in free flight keeps when it is brought to τ₀ (its s is
+    /// then axis()). One sincos (a short series over the usual angles) and no square root of
+    /// |ω|, where rebuilding the orbit from a freely rotated state takes three square roots, a
+    /// division and the library's sincos.
+    FreeOrbit advancedBy(double tau0) const {
+        FreeOrbit o = *this;
+        const SinCos turn = sinCos(speed_ * (shift_ + tau0));
+        const Vec3 s = s_ * turn.cos + sideways_ * turn.sin;
+        o.s_ = s / s.norm(); // as freeRotate: round-off must not build up over many flights
+        o.sideways_ = sideways_ * turn.cos - s_ * turn.sin;
+        o.shift_ = 0.0;
+        return o;
+    }
+    /// The long axis where the orbit is based (after advancedBy: at τ₀).
+    const Vec3& axis() const { return s_; }
+
     /// The pair's two sincos in one packed pass. A rotor at rest has speed 0 and a zero sideways
     /// vector, so its angle is 0 and its axis comes out as s exactly, without a branch.
     friend std::array<Attitude, 2> attitudesAt(const FreeOrbit& i, const FreeOrbit& j, double tau) {

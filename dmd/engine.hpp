@@ -911,9 +911,19 @@ private:
     }
 
     void bringToNow(int i) {
-        freeMove<K>(sys_.bodies[i], sys_.body, time_ - clock_[i]);
+        const double dt = time_ - clock_[i];
         clock_[i] = time_;
-        refreshOrbit(i);
+        if constexpr (std::is_same_v<K, LinearRotor>) {
+            // A rotor's ω is constant in free flight: its cached orbit, turned on by dt, gives
+            // its new axis and stays its orbit (FreeOrbit::advancedBy).
+            State& b = sys_.bodies[i];
+            b.r = translated(b.r, b.v, dt);
+            orbit_[i] = orbit_[i].advancedBy(dt);
+            b.s = orbit_[i].axis();
+        } else {
+            freeMove<K>(sys_.bodies[i], sys_.body, dt);
+            refreshOrbit(i);
+        }
     }
     /// The cached orbit follows every change of a stored state (free motion, impulse, rescale).
     void refreshOrbit(int i) {
