@@ -30,11 +30,22 @@ install_missing() {
 # Two passes: an instrumented terrace runs a short training (experiments/train-profile.sh, a few
 # seconds), then the build proper compiles the engines with the profile it recorded
 # (cli/CMakeLists.txt, TERRACE_PROFILE; the same events, ~6 % less CPU time for DMD).
-# TERRACE_PROFILE=off skips the first pass.
+# TERRACE_PROFILE=off skips the first pass, as does a compiler other than GCC.
 build() {
-    local jobs data="$PWD/build-profile/data"
+    local jobs data="$PWD/build-profile/data" profile=on
     jobs=$(nproc)
-    if [ "${TERRACE_PROFILE:-}" = off ]; then
+    case "${TERRACE_PROFILE:-on}" in
+    on | ON | 1 | yes) ;;
+    off | OFF | 0 | no) profile=off ;;
+    *)
+        echo "quickstart: TERRACE_PROFILE must be on or off (got '$TERRACE_PROFILE')" >&2
+        exit 2
+        ;;
+    esac
+    if ! "${CXX:-c++}" --version 2>/dev/null | grep -q -E '^(g\+\+|c\+\+|gcc) '; then
+        profile=off
+    fi
+    if [ "$profile" = off ]; then
         cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DTERRACE_PROFILE= >/dev/null
     else
         cmake -S . -B build-profile -DCMAKE_BUILD_TYPE=Release -DTERRACE_TESTS=OFF \

@@ -12,12 +12,13 @@
 //     r(τ) ≤ r₀ + ṙ₀τ + |v_ij|²τ²/(2r₀);
 //   - the alignment c = s_i·s_j changes at most at |ċ| ≤ |ṡ_i| + |ṡ_j| = Ω and, for linear rotors
 //     (|s̈| = |ω|²), |c̈| ≤ |s̈_i| + 2|ṡ_i||ṡ_j| + |s̈_j| = Ω² = K, so by Taylor's theorem c(τ)
-//     lies within ½Kτ² of its tangent c₀ + ċ₀τ, and within Ωτ of c₀; the tangent's range over
-//     [0, T] is spanned by its ends, so over [0, T]
-//         c ≤ c_hi = min(1, c₀ + min(ΩT, max(0, ċ₀T) + ½KT²)),
-//         c ≥ c_lo = max(−1, c₀ − min(ΩT, max(0, −ċ₀T) + ½KT²))
-//     (the sign of ċ₀ counts: an alignment drifting one way only nears the band's edge on that
-//     side), and |c| lies between max(0, c_lo, −c_hi) and max(c_hi, −c_lo);
+//     lies between c₀ + ċ₀τ − ½Kτ² and c₀ + ċ₀τ + ½Kτ², and within Ωτ of c₀; the upper parabola
+//     is convex and the lower one concave, so over [0, T] each is extreme at an end, and
+//         c ≤ c_hi = min(1, c₀ + min(ΩT, max(0, T(ċ₀ + ½KT)))),
+//         c ≥ c_lo = max(−1, c₀ − min(ΩT, max(0, T(½KT − ċ₀))))
+//     (the sign of ċ₀ counts: an alignment turning one way only nears the band's edge on that
+//     side, and the other side only once the curvature has turned it round), and |c| lies
+//     between max(0, c_lo, −c_hi) and max(c_hi, −c_lo);
 // all these bounds widen with T, so over [0, T] r_e ≥ r_lo + ζ(½ − max|c|²) and
 // r_e ≤ r_hi + ζ(½ − min|c|²) (ζ ≥ 0) with the envelopes taken at T. No level can be reached
 // while both stay inside the band. In the paper's dense liquid at ΔV = kT/2 this holds about four
@@ -114,9 +115,11 @@ public:
         // Without branches (core/branch_free.hpp): each comparison here is a coin toss.
         const double rLow = r_ + lesser(0.0, rRate_ * T);
         const double rHigh = r_ + greater(0.0, T * (rRate_ + rBend_ * T));
-        const double reach = turn_ * T, drift = cRate_ * T, bend = cBend_ * T * T;
-        const double cHigh = lesser(1.0, c_ + lesser(reach, greater(0.0, drift) + bend));
-        const double cLow = greater(-1.0, c_ - lesser(reach, bend - lesser(0.0, drift)));
+        // Each max(0, T(a + bT)) with b ≥ 0 grows with T, as rHigh's does: the ladder needs that.
+        const double reach = turn_ * T, up = T * (cRate_ + cBend_ * T),
+                     down = T * (cBend_ * T - cRate_);
+        const double cHigh = lesser(1.0, c_ + lesser(reach, greater(0.0, up)));
+        const double cLow = greater(-1.0, c_ - lesser(reach, greater(0.0, down)));
         const double cMost = greater(cHigh, -cLow);
         const double cLeast = greater(0.0, greater(cLow, -cHigh));
         // & rather than &&: both sides are cheap, and a branch between them would mispredict.
@@ -135,14 +138,14 @@ public:
         const __m128d rHigh = _mm_add_pd(
             r,
             _mm_max_pd(zero, _mm_mul_pd(T, _mm_add_pd(rRate, _mm_mul_pd(_mm_set1_pd(rBend_), T)))));
+        const __m128d cRate = _mm_set1_pd(cRate_), cBendT = _mm_mul_pd(_mm_set1_pd(cBend_), T);
         const __m128d reach = _mm_mul_pd(_mm_set1_pd(turn_), T),
-                      drift = _mm_mul_pd(_mm_set1_pd(cRate_), T),
-                      bend = _mm_mul_pd(_mm_mul_pd(_mm_set1_pd(cBend_), T), T);
-        const __m128d cHigh = _mm_min_pd(
-            one, _mm_add_pd(c, _mm_min_pd(reach, _mm_add_pd(_mm_max_pd(zero, drift), bend))));
+                      up = _mm_mul_pd(T, _mm_add_pd(cRate, cBendT)),
+                      down = _mm_mul_pd(T, _mm_sub_pd(cBendT, cRate));
+        const __m128d cHigh =
+            _mm_min_pd(one, _mm_add_pd(c, _mm_min_pd(reach, _mm_max_pd(zero, up))));
         const __m128d cLow =
-            _mm_max_pd(_mm_set1_pd(-1.0),
-                       _mm_sub_pd(c, _mm_min_pd(reach, _mm_sub_pd(bend, _mm_min_pd(zero, drift)))));
+            _mm_max_pd(_mm_set1_pd(-1.0), _mm_sub_pd(c, _mm_min_pd(reach, _mm_max_pd(zero, down))));
         const __m128d sign = _mm_set1_pd(-0.0); // x ^ sign = −x, as in through()
         const __m128d cMost = _mm_max_pd(cHigh, _mm_xor_pd(cLow, sign));
         const __m128d cLeast = _mm_max_pd(zero, _mm_max_pd(cLow, _mm_xor_pd(cHigh, sign)));

@@ -128,8 +128,9 @@ TEST(TerraceHold, TurningAxes) {
 
 // The sign of ċ₀ counts. A rod pair at r = 4 with c₀ = ±0.5 sits at r_e = 4.25, 0.01 Å above the
 // band's lower edge, which it nears only as |c| grows. Turning towards alignment at ċ = 1
-// (Ω = 1, |c̈| ≤ 1) it may reach the edge after ~0.01; turning away, only the curvature can bring
-// |c| back up, by ½T², which takes T ≈ 0.14.
+// (Ω = 1, |c̈| ≤ 1) it may reach the edge after ~0.01. Turning away, |c| first falls: its bound
+// can pass 0.5 again only on the far side of c = 0, no sooner than Ωτ = 1 allows, so the pair is
+// held until then (the symmetric bound |c₀| + |ċ₀|τ + ½Kτ² let it go after ~0.01 as well).
 TEST(TerraceHold, AnAlignmentTurningAwayFromTheEdgeIsHeldLonger) {
     for (double c0 : {0.5, -0.5}) {
         PairMotion m = still(4.0, c0);
@@ -137,12 +138,35 @@ TEST(TerraceHold, AnAlignmentTurningAwayFromTheEdgeIsHeldLonger) {
         m.turnCurvature = 1.0;
         m.cRate = -c0 / std::abs(c0); // |c| shrinks
         const BandHold away({4.24, 5.0}, m, 1.0);
-        EXPECT_TRUE(away.through(0.1)) << c0;
-        EXPECT_FALSE(away.through(0.2)) << c0;
+        EXPECT_TRUE(away.through(0.9)) << c0;
+        EXPECT_FALSE(away.through(1.1)) << c0;
         m.cRate = -m.cRate; // |c| grows
         const BandHold towards({4.24, 5.0}, m, 1.0);
         EXPECT_TRUE(towards.through(0.005)) << c0;
         EXPECT_FALSE(towards.through(0.02)) << c0;
+    }
+}
+
+// At an edge exactly (r_e equal to the band's edge as kept, after its margin) the packed rungs
+// answer as the scalar ones: "not held", strictly. The band's edge is stepped ulp by ulp across
+// r_e, so that some step puts them level whatever the margin's rounding.
+TEST(TerraceHold, TwoRungsAtOnceAnswerAsEachAloneOnAnEdge) {
+    for (int side = 0; side < 2; ++side) {
+        const double r = 4.0, nominal = r - 4e-9 * (side == 0 ? 1.0 : -1.0);
+        double edge = nominal;
+        for (int k = 0; k < 16; ++k)
+            edge = std::nextafter(edge, -INFINITY);
+        int flips = 0;
+        bool previous = false;
+        for (int k = 0; k < 32; ++k, edge = std::nextafter(edge, INFINITY)) {
+            const DistanceBand band = side == 0 ? DistanceBand{edge, 5.0} : DistanceBand{3.0, edge};
+            const BandHold hold(band, still(r, 0.0), 0.0);
+            const bool held = hold.through(0.0);
+            EXPECT_EQ(hold.throughBoth(0.0, 0.0), 2 * int(held)) << side << " " << k;
+            flips += k > 0 && held != previous;
+            previous = held;
+        }
+        EXPECT_EQ(flips, 1) << side; // the edge was crossed, once
     }
 }
 
