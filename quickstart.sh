@@ -42,7 +42,8 @@ build() {
         exit 2
         ;;
     esac
-    if ! "${CXX:-c++}" --version 2>/dev/null | grep -q -E '^(g\+\+|c\+\+|gcc) '; then
+    # GCC names the Free Software Foundation in its version text (g++, c++, g++-12, …); clang does not.
+    if ! "${CXX:-c++}" --version 2>/dev/null | grep -q 'Free Software Foundation'; then
         profile=off
     fi
     if [ "$profile" = off ]; then

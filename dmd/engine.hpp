@@ -925,7 +925,9 @@ private:
             refreshOrbit(i);
         }
     }
-    /// The cached orbit follows every change of a stored state (free motion, impulse, rescale).
+    /// The cached orbit is rebuilt after every change of a stored state other than a rotor's free
+    /// flight, which bringToNow follows by turning the orbit itself (impulse, rescale, free motion
+    /// of other kinds).
     void refreshOrbit(int i) {
         orbit_[i] = FreeOrbit<K>(sys_.bodies[i], sys_.body);
         axisRate_[i] = axisRateBound(sys_.bodies[i]);
