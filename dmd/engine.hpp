@@ -110,13 +110,9 @@ public:
           lists_(sys_.size(),
                  listSkin(settings_.rm, sys_.size() / sys_.box.volume(), sys_.box.length)),
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
-          terraces_(sys_.size()), clock_(sys_.size(), 0.0), counter_(sys_.size(), 0),
-          listedBefore_(sys_.size(), 0), scanned_(sys_.size()), plans_(sys_.size()),
-          agenda_(sys_.size()), agendaFirst_(sys_.size(), 0),
-          agendaFirstTime_(sys_.size(), std::numeric_limits<double>::infinity()),
-          queuedAt_(sys_.size(), std::numeric_limits<double>::infinity()),
-          entryStamp_(sys_.size(), 0), entry_(settings_.eager ? sys_.size() : 0),
-          entryPartner_(sys_.size(), -1), about_(sys_.size()), unsettledRound_(sys_.size(), 0),
+          terraces_(sys_.size()), book_(sys_.size()), listedBefore_(sys_.size(), 0),
+          scanned_(sys_.size()), plans_(sys_.size()), agenda_(sys_.size()),
+          entry_(settings_.eager ? sys_.size() : 0), about_(sys_.size()),
           jitter_(settings_.horizon, horizonJitter, scene.seed), tuning_(settings_.horizon) {
         search_.maxStep = settings_.horizon;
         search_.nudge = nudgeFraction * settings_.horizon;
@@ -124,9 +120,9 @@ public:
         search_.levelTolerance = levelTolerance * terraceHeight();
         checkBodies();
         orbit_.reserve(sys_.bodies.size());
-        for (const State& b : sys_.bodies) {
-            orbit_.emplace_back(b, sys_.body);
-            axisRate_.push_back(axisRateBound(b));
+        for (int i = 0; i < sys_.size(); ++i) {
+            orbit_.emplace_back(sys_.bodies[i], sys_.body);
+            book_[i].axisRate = axisRateBound(sys_.bodies[i]);
         }
         if (settings_.queue == QueueKind::Heap)
             queue_.template emplace<BinaryHeapQueue<Event>>();
@@ -239,7 +235,7 @@ public:
     System<K, P> synchronisedCopy() const {
         System<K, P> s = sys_;
         for (int i = 0; i < s.size(); ++i)
-            freeMove<K>(s.bodies[i], s.body, time_ - clock_[i]);
+            freeMove<K>(s.bodies[i], s.body, time_ - book_[i].clock);
         return s;
     }
     /// Terraced energy recomputed from scratch from U of every pair (all pairs, O(N²)). On a
@@ -263,18 +259,12 @@ public:
     std::size_t bytesReserved() const {
         std::size_t b = std::visit([](const auto& q) { return q.bytesReserved(); }, queue_);
         b += sys_.bodies.capacity() * sizeof(State) + cells_.bytesReserved() +
-             terraces_.bytesReserved() + clock_.capacity() * sizeof(double) +
-             counter_.capacity() * sizeof(std::uint32_t) + lists_.bytesReserved() +
-             listedBefore_.capacity() * sizeof(std::uint64_t) + scanned_.capacity() * sizeof(int) +
-             plans_.capacity() * sizeof(BodyPlan) + orbit_.capacity() * sizeof(FreeOrbit<K>) +
-             axisRate_.capacity() * sizeof(double) + bands_.bytesReserved();
-        b += agenda_.capacity() * sizeof(agenda_[0]) + queuedAt_.capacity() * sizeof(double) +
-             entryStamp_.capacity() * sizeof(std::uint32_t) +
-             entry_.capacity() * sizeof(QueueHandle) + entryPartner_.capacity() * sizeof(int) +
-             about_.capacity() * sizeof(about_[0]) +
-             agendaFirst_.capacity() * sizeof(std::uint16_t) +
-             agendaFirstTime_.capacity() * sizeof(double) +
-             unsettledRound_.capacity() * sizeof(std::uint64_t);
+             terraces_.bytesReserved() + book_.capacity() * sizeof(BodyBook) +
+             lists_.bytesReserved() + listedBefore_.capacity() * sizeof(std::uint64_t) +
+             scanned_.capacity() * sizeof(int) + plans_.capacity() * sizeof(BodyPlan) +
+             orbit_.capacity() * sizeof(FreeOrbit<K>) + bands_.bytesReserved();
+        b += agenda_.capacity() * sizeof(agenda_[0]) + entry_.capacity() * sizeof(QueueHandle) +
+             about_.capacity() * sizeof(about_[0]);
         for (const auto& a : agenda_)
             b += a.capacity() * sizeof(Event);
         for (const auto& h : about_)
@@ -334,7 +324,7 @@ private:
         visitQueue([&](auto& q) {
             q.clear();
             for (int i = 0; i < sys_.size(); ++i) {
-                ++counter_[i];
+                ++book_[i].counter;
                 forgetAgenda(i);
             }
             for (auto& h : about_)
@@ -371,7 +361,7 @@ private:
                 continue;
             }
             takeFromAgenda(e);
-            if (e.j >= 0 && counter_[e.j] != e.countJ) { // the partner has moved on since
+            if (e.j >= 0 && book_[e.j].counter != e.countJ) { // the partner has moved on since
                 ++staleEvents_;
                 settle(q);
                 continue;
@@ -405,7 +395,7 @@ private:
 
     /// Whether a calendar entry is its owner's current one (only the stamp can tell, in either
     /// mode: the partner's counter is checked once the entry is taken).
-    bool isCurrentEntry(const Event& e) const { return e.stamp == entryStamp_[e.i]; }
+    bool isCurrentEntry(const Event& e) const { return e.stamp == book_[e.i].entryStamp; }
 
     template <class Q> void collide(Q& q, const Event& e) {
         const int i = e.i, j = e.j;
@@ -507,7 +497,7 @@ private:
     }
 
     Vec3 positionNow(int i) const {
-        return translated(sys_.bodies[i].r, sys_.bodies[i].v, time_ - clock_[i]);
+        return translated(sys_.bodies[i].r, sys_.bodies[i].v, time_ - book_[i].clock);
     }
 
     template <class Q> void afterEvent(Q& q) {
@@ -552,8 +542,7 @@ private:
         __builtin_prefetch(state + sizeof(State) - 1);
         __builtin_prefetch(orbit);
         __builtin_prefetch(orbit + sizeof(FreeOrbit<K>) - 1);
-        __builtin_prefetch(&clock_[j]);
-        __builtin_prefetch(&axisRate_[j]);
+        __builtin_prefetch(&book_[j]);
     }
 
     /// Body i's own events: its next cell crossing, its next list rebuild and, when some pair of i
@@ -597,7 +586,8 @@ private:
     void planCellCrossing(int i) {
         const State& b = sys_.bodies[i];
         int axis = 0, dir = 0;
-        const double dt = cells_.crossingTime(i, b.r + b.v * (time_ - clock_[i]), b.v, axis, dir);
+        const double dt =
+            cells_.crossingTime(i, b.r + b.v * (time_ - book_[i].clock), b.v, axis, dir);
         plans_[i].cell = time_ + dt;
         plans_[i].cellSide = static_cast<std::int8_t>(2 * axis + (dir > 0 ? 1 : 0));
     }
@@ -611,7 +601,7 @@ private:
                        bool afterEvent = false) {
         constexpr double none = std::numeric_limits<double>::infinity();
         const State& bj0 = sys_.bodies[j];
-        const double dtj = time_ - clock_[j];
+        const double dtj = time_ - book_[j].clock;
         const Vec3 r0 = sys_.box.minimumImage(mi.r - translated(bj0.r, bj0.v, dtj), inverseBox_);
         const Vec3 w = mi.v - bj0.v;
         // Only a pair inside r_m (up to round-off) can be bound; skip the lookup for the rest.
@@ -661,7 +651,7 @@ private:
         const double tEnd = std::min(win.exit, horizon);
         const SearchResult r =
             findTerraceExit(eval, start, settings_.levels.lower(n), settings_.levels.upper(n), tEnd,
-                            pairSearch(w, axisRate_[i] + axisRate_[j]), afterEvent);
+                            pairSearch(w, book_[i].axisRate + book_[j].axisRate), afterEvent);
         evaluations_ += r.evaluations;
         if (r.side != ExitSide::None) {
             Event e = pairEvent(EventKind::Collision, i, j, time_ + r.t);
@@ -710,7 +700,7 @@ private:
             m.cRate = spin.x() * (si.y() * sj.z() - si.z() * sj.y()) +
                       spin.y() * (si.z() * sj.x() - si.x() * sj.z()) +
                       spin.z() * (si.x() * sj.y() - si.y() * sj.x());
-            m.turn = axisRate_[i] + axisRate_[j];
+            m.turn = book_[i].axisRate + book_[j].axisRate;
             // |s̈| = |ω|² for a linear rotor (uniform rotation), so |c̈| ≤ Ω²; a top's ω wanders.
             if constexpr (std::is_same_v<K, LinearRotor>) m.turnCurvature = m.turn * m.turn;
         }
@@ -739,7 +729,7 @@ private:
     /// not touched.
     Moving movingNow(int i) const {
         const State& b = sys_.bodies[i];
-        const double dt = time_ - clock_[i];
+        const double dt = time_ - book_[i].clock;
         Moving m{translated(b.r, b.v, dt), b.v, orbit_[i].from(dt), {}};
         m.now = m.orbit.at(0.0);
         return m;
@@ -756,7 +746,7 @@ private:
     Event pairEvent(EventKind kind, int i, int j, double t) const {
         Event e = bodyEvent(kind, i, t);
         e.j = j;
-        e.countJ = counter_[j];
+        e.countJ = book_[j].counter;
         return e;
     }
 
@@ -775,16 +765,16 @@ private:
         // The earliest is kept as events arrive, so that settling a body just refilled needs no
         // scan; ties keep the first, as the scan does. By a select, not a branch (whether it is
         // earlier is a coin toss); an unknown earliest has time −∞ and stays unknown.
-        const bool earlier = e.time < agendaFirstTime_[e.i];
+        const bool earlier = e.time < book_[e.i].agendaFirstTime;
         const auto last = static_cast<std::uint16_t>(agenda.size() - 1);
-        agendaFirst_[e.i] = earlier ? last : agendaFirst_[e.i];
-        agendaFirstTime_[e.i] = lesser(e.time, agendaFirstTime_[e.i]);
-        if (e.time < queuedAt_[e.i]) markUnsettled(e.i);
+        book_[e.i].agendaFirst = earlier ? last : book_[e.i].agendaFirst;
+        book_[e.i].agendaFirstTime = lesser(e.time, book_[e.i].agendaFirstTime);
+        if (e.time < book_[e.i].queuedAt) markUnsettled(e.i);
     }
 
     void markUnsettled(int i) {
-        if (unsettledRound_[i] == settleRound_) return;
-        unsettledRound_[i] = settleRound_;
+        if (book_[i].unsettledRound == settleRound_) return;
+        book_[i].unsettledRound = settleRound_;
         unsettled_.push_back(i);
     }
 
@@ -801,7 +791,7 @@ private:
                 if (agenda.empty()) break;
                 best = earliestInAgenda(i);
                 const Event& a = agenda[best];
-                if (a.j < 0 || counter_[a.j] == a.countJ) break;
+                if (a.j < 0 || book_[a.j].counter == a.countJ) break;
                 ++staleInAgendas_;
                 removeFromAgenda(i, best);
                 moved = true;
@@ -810,15 +800,16 @@ private:
                 dropEntry(q, i);
                 continue;
             }
-            if (!moved && agenda[best].time >= queuedAt_[i]) continue; // the queued entry stands
+            if (!moved && agenda[best].time >= book_[i].queuedAt)
+                continue; // the queued entry stands
             dropEntry(q, i);
             Event entry = agenda[best];
-            entry.stamp = ++entryStamp_[i];
+            entry.stamp = ++book_[i].entryStamp;
             entry.slot = static_cast<std::uint16_t>(best);
-            queuedAt_[i] = entry.time;
+            book_[i].queuedAt = entry.time;
             const QueueHandle h = q.push(entry);
             if (settings_.eager) entry_[i] = h;
-            entryPartner_[i] = entry.j;
+            book_[i].entryPartner = entry.j;
             if (entry.j >= 0) keepAbout(entry.j, i);
             maxQueueSize_ = std::max<std::uint64_t>(maxQueueSize_, q.size());
             tuning_.pushed(entry.time - time_);
@@ -830,17 +821,17 @@ private:
     /// i's calendar entry no longer stands: the stamp makes it stale (lazy), or it is erased
     /// (eager).
     template <class Q> void dropEntry(Q& q, int i) {
-        if (!std::isfinite(queuedAt_[i])) return;
-        ++entryStamp_[i];
-        queuedAt_[i] = std::numeric_limits<double>::infinity();
+        if (!std::isfinite(book_[i].queuedAt)) return;
+        ++book_[i].entryStamp;
+        book_[i].queuedAt = std::numeric_limits<double>::infinity();
         if (settings_.eager) q.erase(entry_[i]);
     }
 
     /// The entry just popped leaves its owner's agenda; the owner needs a new one.
     void takeFromAgenda(const Event& e) {
         removeFromAgenda(e.i, e.slot);
-        ++entryStamp_[e.i];
-        queuedAt_[e.i] = std::numeric_limits<double>::infinity();
+        ++book_[e.i].entryStamp;
+        book_[e.i].queuedAt = std::numeric_limits<double>::infinity();
         markUnsettled(e.i);
     }
 
@@ -859,19 +850,19 @@ private:
         list.push_back(owner);
     }
     bool entryIsAbout(int owner, int i) const {
-        return std::isfinite(queuedAt_[owner]) && entryPartner_[owner] == i;
+        return std::isfinite(book_[owner].queuedAt) && book_[owner].entryPartner == i;
     }
 
     /// Index of the earliest event of i's non-empty agenda (the first of equals).
     std::size_t earliestInAgenda(int i) {
-        auto& first = agendaFirst_[i];
+        auto& first = book_[i].agendaFirst;
         if (first == unknownFirst) {
             const auto& agenda = agenda_[i];
             std::size_t best = 0;
             for (std::size_t k = 1; k < agenda.size(); ++k)
                 if (agenda[k].time < agenda[best].time) best = k;
             first = static_cast<std::uint16_t>(best);
-            agendaFirstTime_[i] = agenda[best].time;
+            book_[i].agendaFirstTime = agenda[best].time;
         }
         return first;
     }
@@ -880,16 +871,16 @@ private:
         auto& agenda = agenda_[i];
         agenda[slot] = agenda.back();
         agenda.pop_back();
-        agendaFirst_[i] = unknownFirst;
-        agendaFirstTime_[i] = -std::numeric_limits<double>::infinity();
+        book_[i].agendaFirst = unknownFirst;
+        book_[i].agendaFirstTime = -std::numeric_limits<double>::infinity();
     }
 
     void forgetAgenda(int i) {
         agenda_[i].clear();
-        agendaFirst_[i] = 0; // the next event scheduled is the earliest
-        agendaFirstTime_[i] = std::numeric_limits<double>::infinity();
-        ++entryStamp_[i];
-        queuedAt_[i] = std::numeric_limits<double>::infinity();
+        book_[i].agendaFirst = 0; // the next event scheduled is the earliest
+        book_[i].agendaFirstTime = std::numeric_limits<double>::infinity();
+        ++book_[i].entryStamp;
+        book_[i].queuedAt = std::numeric_limits<double>::infinity();
     }
 
     /// Body i's velocities changed: its pending events no longer hold. Its agenda is emptied, and
@@ -899,7 +890,7 @@ private:
     /// trajectory. Other events about i that wait in agendas go stale by its counter and are
     /// dropped when they come first.
     template <class Q> void invalidate(Q& q, int i) {
-        ++counter_[i];
+        ++book_[i].counter;
         dropEntry(q, i);
         for (const int k : about_[i])
             if (entryIsAbout(k, i)) {
@@ -911,8 +902,8 @@ private:
     }
 
     void bringToNow(int i) {
-        const double dt = time_ - clock_[i];
-        clock_[i] = time_;
+        const double dt = time_ - book_[i].clock;
+        book_[i].clock = time_;
         if constexpr (std::is_same_v<K, LinearRotor>) {
             // A rotor's ω is constant in free flight: its cached orbit, turned on by dt, gives
             // its new axis and stays its orbit (FreeOrbit::advancedBy).
@@ -930,7 +921,7 @@ private:
     /// of other kinds).
     void refreshOrbit(int i) {
         orbit_[i] = FreeOrbit<K>(sys_.bodies[i], sys_.body);
-        axisRate_[i] = axisRateBound(sys_.bodies[i]);
+        book_[i].axisRate = axisRateBound(sys_.bodies[i]);
     }
 
     /// A bound on how fast the body's long axis turns in free flight, |ṡ| = |ω × s| ≤ |ω| (rad per
@@ -964,31 +955,39 @@ private:
         std::int8_t cellSide = 0;                               // as Event::side
     };
 
+    /// A body's scalars, in one cache line: an event reads most of them for its own body, and
+    /// clock, axis rate and counter for each partner; in a large system, where an event's bodies
+    /// are far apart in memory, that is one line fetched per body instead of one per array.
+    struct alignas(64) BodyBook {
+        double clock = 0.0;    // its local clock: the time its stored state is for
+        double axisRate = 0.0; // axisRateBound at its clock (rad per time unit)
+        // time of its earliest agenda event (+∞: agenda empty, −∞: unknown)
+        double agendaFirstTime = std::numeric_limits<double>::infinity();
+        double queuedAt = std::numeric_limits<double>::infinity(); // its calendar entry's time
+        std::uint64_t unsettledRound = 0; // round in which it was last marked unsettled
+        std::uint32_t counter = 0;        // bumped whenever its velocities change
+        std::uint32_t entryStamp = 0;     // stamp of its current calendar entry
+        std::int32_t entryPartner = -1;   // the partner of that entry (−1: a body event)
+        std::uint16_t agendaFirst = 0;    // index of its earliest event (unknownFirst: scan)
+    };
+
     System<K, P> sys_;
     DmdSettings settings_;
     NeighbourLists lists_; // before cells_: the cell width follows the skin
     CellList cells_;
     PairTerraces terraces_;
-    std::vector<double> clock_;
+    std::vector<BodyBook> book_;
     std::vector<FreeOrbit<K>> orbit_; // each body's free orbit from its state at its clock
-    std::vector<double> axisRate_;    // axisRateBound at its clock (rad per time unit)
     TerraceBandTable bands_;          // effective-distance bands of the terraces (hold screen)
-    std::vector<std::uint32_t> counter_;
     std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
     std::vector<int> scanned_; // rebuildList: scanned bodies, those within reach first
     std::vector<BodyPlan> plans_;
     std::uint64_t listStamp_ = 0;
     std::vector<std::vector<Event>> agenda_; // each body's pending events (e.i = the body)
     static constexpr std::uint16_t unknownFirst = std::numeric_limits<std::uint16_t>::max();
-    std::vector<std::uint16_t> agendaFirst_;    // index of its earliest event (unknownFirst: scan)
-    std::vector<double> agendaFirstTime_;       // its time (+∞: agenda empty, −∞: unknown)
-    std::vector<double> queuedAt_;              // time of its calendar entry (+∞: none)
-    std::vector<std::uint32_t> entryStamp_;     // stamp of its current calendar entry
-    std::vector<QueueHandle> entry_;            // eager: the handle of that entry
-    std::vector<int> entryPartner_;             // the partner of its entry (−1: a body event)
-    std::vector<std::vector<int>> about_;       // owners whose entry is about the body
-    std::vector<int> unsettled_;                // bodies whose entry settle() must renew
-    std::vector<std::uint64_t> unsettledRound_; // round in which a body was last marked
+    std::vector<QueueHandle> entry_;      // eager: the handle of each body's calendar entry
+    std::vector<std::vector<int>> about_; // owners whose entry is about the body
+    std::vector<int> unsettled_;          // bodies whose entry settle() must renew
     std::uint64_t settleRound_ = 1;
     Queue queue_;
     SearchSettings search_;
