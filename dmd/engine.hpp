@@ -963,13 +963,15 @@ private:
         double axisRate = 0.0; // axisRateBound at its clock (rad per time unit)
         // time of its earliest agenda event (+∞: agenda empty, −∞: unknown)
         double agendaFirstTime = std::numeric_limits<double>::infinity();
-        double queuedAt = std::numeric_limits<double>::infinity(); // its calendar entry's time
+        // time of its calendar entry (+∞: none)
+        double queuedAt = std::numeric_limits<double>::infinity();
         std::uint64_t unsettledRound = 0; // round in which it was last marked unsettled
         std::uint32_t counter = 0;        // bumped whenever its velocities change
         std::uint32_t entryStamp = 0;     // stamp of its current calendar entry
         std::int32_t entryPartner = -1;   // the partner of that entry (−1: a body event)
         std::uint16_t agendaFirst = 0;    // index of its earliest event (unknownFirst: scan)
     };
+    static_assert(sizeof(BodyBook) == 64, "a body's scalars fill one cache line");
 
     System<K, P> sys_;
     DmdSettings settings_;
