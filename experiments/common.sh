@@ -30,6 +30,7 @@ if [ "$SIZE" = quick ]; then
     EXTREME_EQUIL_PS=0.01
     EXTREME_PS=0.04
     EXTREME_SAMPLE_FS=2 # 21 samples: enough for the correlation files' 8 blocks
+    SKIN_TRIAL_PS=0.1   # each trial run of smd-skin.sh
 else
     REPLICAS=4
     DENSE_N=512
@@ -46,6 +47,7 @@ else
     EXTREME_EQUIL_PS=0.05 # ΔV = 0.05 kT in the dense liquid costs minutes per ps
     EXTREME_PS=0.2
     EXTREME_SAMPLE_FS=5
+    SKIN_TRIAL_PS=1
 fi
 
 # Sample interval of every run, fixed here rather than taken from the scenes: a whole number of
@@ -53,6 +55,30 @@ fi
 SAMPLE_FS=9
 
 log() { echo "[$(date +%H:%M:%S)] $*" >&2; }
+
+# state_point STATE : the scene and settings of a state of runset.sh, in STATE_SCENE, STATE_N,
+# STATE_PS (production ps) and the array STATE_SETS (--set options on top of the scene).
+state_point() {
+    case $1 in
+    dense) STATE_SCENE=$SCENES/dense-rods.json STATE_N=$DENSE_N STATE_PS=$DENSE_PS STATE_SETS=() ;;
+    gas) STATE_SCENE=$SCENES/gas-rods.json STATE_N=$GAS_N STATE_PS=$GAS_PS STATE_SETS=() ;;
+    rho*-T*)
+        local rho=${1#rho} temp=${1##*-T}
+        rho=${rho%%-T*}
+        STATE_SCENE=$SCENES/dense-rods.json STATE_N=$DENSE_N STATE_PS=$SCAN_PS
+        STATE_SETS=(--set state.density="$rho" --set state.temperature="$temp")
+        ;;
+    *) echo "unknown state '$1'" >&2; return 2 ;;
+    esac
+}
+
+# smd_skin STATE : SMD's Verlet skin for the state (σ), chosen once by smd-skin.sh; parallel run
+# sets of one state wait for the first to choose it.
+smd_skin() {
+    mkdir -p "$RUNS/$1"
+    flock "$RUNS/$1/smd-skin.lock" "$EXPERIMENTS/smd-skin.sh" "$1"
+    cat "$RUNS/$1/smd-skin"
+}
 
 # run_one DIR SCENE [--set key=value]... : one run, skipped when DIR already holds its summary.
 run_one() {

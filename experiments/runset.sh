@@ -3,7 +3,8 @@
 # `make -j` spreads the sets over the cores):
 #   runset.sh STATE/ENGINE-PARAM[-OPTION...]    e.g. dense/dmd-0.5, dense/dmd-0.5-heap, rho0.1-T10/smd-1.8
 #   STATE   dense | gas | rho<ρ*>-T<T*> (e.g. rho0.05-T1.4; rods as in dense-rods.json)
-#   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs)
+#   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs; Verlet skin tuned for the state by
+#           smd-skin.sh)
 #   OPTION  heap | eager (DMD queue and invalidation, default bpq + lazy)
 #           mayfail (a failed run marks the set FAILED instead of stopping make: unstable
 #                    settings are a result of the trade-off, not an error of the pipeline;
@@ -17,20 +18,12 @@ state=${id%%/*}
 IFS=- read -r engine param options_text <<<"${id#*/}"
 read -r -a options <<<"${options_text//-/ }"
 
-case $state in
-dense) scene=$SCENES/dense-rods.json n=$DENSE_N ps=$DENSE_PS sets=() ;;
-gas) scene=$SCENES/gas-rods.json n=$GAS_N ps=$GAS_PS sets=() ;;
-rho*-T*)
-    rho=${state#rho}; rho=${rho%%-T*}; temp=${state##*-T}
-    scene=$SCENES/dense-rods.json n=$DENSE_N ps=$SCAN_PS
-    sets=(--set state.density="$rho" --set state.temperature="$temp")
-    REPLICAS=$SCAN_REPLICAS
-    ;;
-*) echo "runset.sh: unknown state '$state'" >&2; exit 2 ;;
-esac
+state_point "$state"
+scene=$STATE_SCENE n=$STATE_N ps=$STATE_PS sets=("${STATE_SETS[@]}")
+case $state in rho*-T*) REPLICAS=$SCAN_REPLICAS ;; esac
 case $engine in
 dmd) sets+=(--set engine=dmd --set dmd.dV="$param") ;;
-smd) sets+=(--set engine=smd --set smd.dt_fs="$param") ;;
+smd) sets+=(--set engine=smd --set smd.dt_fs="$param" --set smd.skin="$(smd_skin "$state")") ;;
 *) echo "runset.sh: unknown engine '$engine'" >&2; exit 2 ;;
 esac
 mayfail=0
