@@ -23,7 +23,10 @@ scene=$STATE_SCENE n=$STATE_N ps=$STATE_PS sets=("${STATE_SETS[@]}")
 case $state in rho*-T*) REPLICAS=$SCAN_REPLICAS ;; esac
 case $engine in
 dmd) sets+=(--set engine=dmd --set dmd.dV="$param") ;;
-smd) sets+=(--set engine=smd --set smd.dt_fs="$param" --set smd.skin="$(smd_skin "$state")") ;;
+smd)
+    skin=$(smd_skin "$state")
+    sets+=(--set engine=smd --set smd.dt_fs="$param" --set smd.skin="$skin")
+    ;;
 *) echo "runset.sh: unknown engine '$engine'" >&2; exit 2 ;;
 esac
 mayfail=0
