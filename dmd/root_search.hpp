@@ -206,23 +206,55 @@ PairSample probeExtremum(Eval& eval, PairSample l, PairSample r, const Signed& g
 /// interpolant has it to round-off, and keeps the half that holds the sign change. Stops at an
 /// outside sample whose linear distance to the root, |g/ġ|, is within 2·tolerance, or when the
 /// bracket is that narrow; returns the time of the outer end, so that the event finds the pair
-/// past the level.
+/// past the level. `onLevel`: the distance from the level within which U counts as on it.
 template <class Eval>
 double refineRoot(Eval& eval, PairSample a, PairSample b, ExitSide side, double level,
-                  double tolerance, int& evaluations) {
+                  double tolerance, int& evaluations, double onLevel = 0.0) {
     // In the signed view g, the indicator (positive inside the terrace): g(a) ≥ 0, g(b) < 0.
-    const Signed g{side == ExitSide::Lower ? 1.0 : -1.0, level};
+    Signed g{side == ExitSide::Lower ? 1.0 : -1.0, level};
     if (g(a).U <= 0.0) {
         // a sits on the level (the start of a search): the root lies beyond the maximum of the
-        // indicator, i.e. the minimum of −g; none above the level means no crossing in between.
+        // indicator, i.e. the minimum of −g.
         const Signed flipped{-g.sign, level};
         const PairSample top = probeExtremum(eval, a, b, flipped, 0.0, tolerance, evaluations);
-        if (g(top).U <= 0.0) return top.t;
-        a = top;
+        if (g(top).U > onLevel) {
+            a = top;
+        } else {
+            // No excursion into the terrace beyond the level's tolerance: the pair meets the level
+            // at a grazing or zero rate, and whether it dips inside lies below what U resolves.
+            // Returning the start, or a sample in the round-off about it, leaves a rate that may
+            // still point inwards there: the collision rule then has nothing to reverse (S = 0),
+            // and the unchanged pair is found leaving at that instant again, a zero-time loop. Its
+            // exit is instead where it passes half the tolerance beyond the level, with its rate
+            // outwards and the event finding it on the level again. a, clamped onto the level, is
+            // sampled afresh: it can sit just past that mark, as after a reflection made there.
+            Signed beyond{g.sign, level - g.sign * (0.5 * onLevel)};
+            a = eval(a.t);
+            ++evaluations;
+            if (beyond(a).U <= 0.0) {
+                // Back inside the mark before leaving again, or, should it never come back (it
+                // was reflected at a zero rate), the same distance on from where it turns.
+                const Signed inside{-beyond.sign, beyond.level};
+                a = probeExtremum(eval, a, b, inside, 0.0, tolerance, evaluations);
+                if (beyond(a).U <= 0.0) beyond.level = a.U - g.sign * (0.5 * onLevel);
+            }
+            if (!(beyond(b).U < 0.0)) return b.t; // b is no farther out: the exit is there
+            g = beyond;
+            // Halve the bracket until its inner end moves outwards: from a sample still moving
+            // in, where the indicator rises to its hump, the cubics' crossing creeps (it steps
+            // by false position a round-off at a time).
+            for (int k = 0; k < 64 && g(a).dUdt > 0.0 && b.t - a.t > 2.0 * tolerance; ++k) {
+                const PairSample m = eval(0.5 * (a.t + b.t));
+                ++evaluations;
+                (g(m).U > 0.0 ? a : b) = m;
+            }
+        }
     }
     PairSample lo = g(a), hi = g(b);
     double outer = b.t;
-    for (int iteration = 0; iteration < 64 && hi.t - lo.t > 2.0 * tolerance; ++iteration) {
+    bool pinned = false;
+    for (int iteration = 0; iteration < 64 && !(pinned = hi.t - lo.t <= 2.0 * tolerance);
+         ++iteration) {
         double x = lo.t + HermiteCubic(lo, hi).crossing() + tolerance;
         if (!(x > lo.t && x < hi.t)) x = 0.5 * (lo.t + hi.t);
         const PairSample p = g(eval(x));
@@ -233,7 +265,20 @@ double refineRoot(Eval& eval, PairSample a, PairSample b, ExitSide side, double 
         }
         hi = p;
         outer = x;
-        if (-p.U <= 2.0 * tolerance * std::abs(p.dUdt)) break;
+        if ((pinned = -p.U <= 2.0 * tolerance * std::abs(p.dUdt))) break;
+    }
+    // Not pinned down: the cubics' crossings crept from an inner end still moving in, below a
+    // hump round-off hardly resolves (a pair leaving a level at a nearly grazing rate, turning back
+    // within a few 1e-10 of it). The outer end would be the window's end, long after the crossing,
+    // an event missed: bisection finishes the bracket instead.
+    for (int k = 0; k < 64 && !pinned; ++k) {
+        const double x = 0.5 * (lo.t + hi.t);
+        const PairSample p = g(eval(x));
+        ++evaluations;
+        (p.U > 0.0 ? lo : hi) = p;
+        if (p.U <= 0.0) outer = x;
+        pinned = hi.t - lo.t <= 2.0 * tolerance ||
+                 (p.U <= 0.0 && -p.U <= 2.0 * tolerance * std::abs(p.dUdt));
     }
     return outer;
 }
@@ -276,7 +321,8 @@ SearchResult findTerraceExit(Eval&& eval, PairSample a, double lower, double upp
     auto bracketed = [&](const PairSample& from, const PairSample& to, ExitSide side) {
         const double level = side == ExitSide::Lower ? lower : upper;
         result.side = side;
-        result.t = detail::refineRoot(eval, from, to, side, level, tolerance, result.evaluations);
+        result.t =
+            detail::refineRoot(eval, from, to, side, level, tolerance, result.evaluations, near);
         return result;
     };
 
@@ -290,7 +336,8 @@ SearchResult findTerraceExit(Eval&& eval, PairSample a, double lower, double upp
         if (!(tb > a.t)) break; // the window cannot be split any further
         PairSample b = eval(tb);
         ++result.evaluations;
-        if (!stillOnLevel(b)) onLevel = ExitSide::None;
+        // An extremum between a and b comes before b: it is judged by whether a was on the level.
+        const bool bOnLevel = stillOnLevel(b);
 
         const detail::HermiteCubic cubic(a, b);
         std::array<double, 2> ext{};
@@ -317,6 +364,7 @@ SearchResult findTerraceExit(Eval&& eval, PairSample a, double lower, double upp
                 if (m.U > upper && !stillOnLevel(m)) return bracketed(a, m, ExitSide::Upper);
             }
         }
+        if (!bOnLevel) onLevel = ExitSide::None;
         if (b.U < lower) return bracketed(a, b, ExitSide::Lower);
         if (b.U > upper) return bracketed(a, b, ExitSide::Upper);
         a = b;

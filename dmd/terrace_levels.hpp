@@ -105,7 +105,11 @@ public:
 
     /// Terrace holding U when U is not on a level. On a level, the terrace the pair is heading
     /// into (by the sign of dU/dt; upwards when dU/dt = 0), so that no zero-time event follows.
-    int terraceOf(double U, double dUdt = 0.0) const {
+    /// "On" a level means within `onLevel` of it: give the event search's level tolerance, for U
+    /// evaluated at a level's radius lands a round-off on either side of the level, and one on
+    /// the far side of the direction of motion would put the pair on the terrace it is leaving,
+    /// an event at once (a lattice start at a level's radius: a cascade of such events at t = 0).
+    int terraceOf(double U, double dUdt = 0.0, double onLevel = 0.0) const {
         int n;
         if (isUniform()) {
             n = static_cast<int>(std::floor(U / step_ + 0.5));
@@ -115,8 +119,8 @@ public:
                 zeroSlot_;
         }
         // Floor rounds a value exactly on a level into the upper terrace; correct for the sign.
-        if (U <= lower(n) && dUdt < 0.0) --n;
-        if (U >= upper(n) && dUdt >= 0.0) ++n;
+        if (U <= lower(n) + onLevel && dUdt < 0.0) --n;
+        if (U >= upper(n) - onLevel && dUdt >= 0.0) ++n;
         return n;
     }
 
