@@ -79,14 +79,17 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
             b.r = spec.r;
             b.v = spec.v * units::psPerTimeUnit; // Å/ps -> Å per time unit
             const Vec3 omega = spec.omega * units::psPerTimeUnit;
+            // The orientation, when given, decides: the axis is its image of the body z axis
+            // (q * ẑ, as in core/xyz.cpp); else the least rotation taking ẑ to the axis.
+            const Quat q = spec.orientation
+                               ? spec.orientation->normalized()
+                               : Quat::FromTwoVectors(Vec3::UnitZ(), spec.axis.normalized());
             if constexpr (requires { b.s; }) {
-                b.s = spec.axis.normalized();
+                b.s = spec.orientation ? Vec3(q * Vec3::UnitZ()) : spec.axis.normalized();
                 b.w = omega - omega.dot(b.s) * b.s;
             }
             if constexpr (requires { b.A; }) {
-                const Mat3 A = spec.orientation
-                                   ? Mat3(spec.orientation->toRotationMatrix().transpose())
-                                   : Mat3::Identity();
+                const Mat3 A = q.toRotationMatrix().transpose();
                 b.A = A;
                 b.L = A.transpose() * (A * omega).cwiseProduct(sys.body.inertia);
             }

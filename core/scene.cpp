@@ -2,7 +2,11 @@
 // found is reported as "<origin>: <dotted.key>: <problem>".
 #include "core/scene.hpp"
 #include "core/initial_state.hpp"
+#include "core/units.hpp"
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -12,6 +16,9 @@ namespace terrace {
 namespace {
 
 using nlohmann::json;
+
+/// An axis given beside an orientation must name the same axis, to well past round-off.
+constexpr double axisAgreement = 1e-9;
 
 class Reader {
 public:
@@ -86,6 +93,9 @@ public:
             x[a] = v[a].get<double>();
             if (!std::isfinite(x[a])) fail(name, "must be finite");
         }
+        // Finite elements are not enough: the length (and what is built from it) must be too.
+        if (!std::isfinite(x.norm()))
+            fail(name, "is too large: its length " + fmt(x.norm()) + " overflows a double");
         return x;
     }
 
@@ -131,8 +141,14 @@ void applyOverride(json& j, const std::string& assignment, const Reader& rd) {
     }
 }
 
-ParticleSpec readParticle(const json& p, const std::string& name, const Reader& rd) {
+ParticleSpec readParticle(const json& p, const std::string& name, const Reader& rd,
+                          const std::string& kind) {
     rd.onlyKeys(p, name, {"r", "v", "axis", "orientation", "omega"});
+    if (kind == "sphere")
+        for (const char* key : {"axis", "orientation", "omega"})
+            if (p.contains(key))
+                rd.fail(name + "." + key,
+                        "a sphere has no orientation or rotation (body.kind is sphere)");
     ParticleSpec s;
     if (!p.contains("r")) rd.fail(name + ".r", "missing");
     s.r = rd.vec3(p.at("r"), name + ".r");
@@ -149,13 +165,81 @@ ParticleSpec readParticle(const json& p, const std::string& name, const Reader& 
             !q[2].is_number() || !q[3].is_number())
             rd.fail(name + ".orientation", "must be a quaternion [w, x, y, z]");
         Quat quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+        if (!std::isfinite(quat.norm()))
+            rd.fail(name + ".orientation",
+                    "is too large: its norm " + Reader::fmt(quat.norm()) + " overflows a double");
         if (!(quat.norm() > 1e-12)) rd.fail(name + ".orientation", "must be non-zero");
         s.orientation = quat.normalized();
+    }
+    // One orientation per body: the axis is the image of the body z axis, q * ẑ (core/xyz.cpp).
+    if (s.orientation) {
+        const Vec3 image = *s.orientation * Vec3::UnitZ();
+        if (p.contains("axis") && !((image - s.axis).norm() <= axisAgreement)) {
+            auto show = [](double x) { return std::abs(x) < 1e-12 ? 0.0 : x; }; // no -2e-16
+            std::ostringstream o;
+            o << "disagrees with " << name << ".orientation, whose image of the body z axis is ["
+              << show(image.x()) << ", " << show(image.y()) << ", " << show(image.z())
+              << "]; give one of them, or both agreeing within " << axisAgreement;
+            rd.fail(name + ".axis", o.str());
+        }
+        s.axis = image;
+    } else if (p.contains("axis")) {
+        // The spin of an asymmetric top about its axis changes its motion: it must be given.
+        if (kind == "asymmetric")
+            rd.fail(name + ".axis",
+                    "an asymmetric top needs .orientation: an axis leaves its rotation about that "
+                    "axis undetermined");
+        // A symmetric top's turn about its unique axis is immaterial: take the least rotation.
+        if (kind == "symmetric") s.orientation = Quat::FromTwoVectors(Vec3::UnitZ(), s.axis);
     }
     return s;
 }
 
+/// Interval `value` (in `unit`, of fsPerUnit fs) must be a whole multiple k >= 1 of gridFs fs.
+void requireOnGrid(const Reader& rd, const std::string& key, double value, const char* unit,
+                   double fsPerUnit, const std::string& gridKey, double gridFs) {
+    const double ratio = value * fsPerUnit / gridFs;
+    const double k = std::round(ratio);
+    if (k >= 1.0 && std::abs(ratio - k) <= limits::gridTolerance * k) return;
+    const double below = std::floor(ratio), above = std::ceil(ratio);
+    std::string nearest;
+    if (below >= 1.0) nearest = Reader::fmt(below * gridFs / fsPerUnit) + " or ";
+    nearest += Reader::fmt(above * gridFs / fsPerUnit);
+    rd.fail(key, "must be a whole multiple of " + gridKey + " = " + Reader::fmt(gridFs) +
+                     " fs, got " + Reader::fmt(value) + " " + unit + "; nearest valid: " + nearest +
+                     " " + unit);
+}
+
+/// Refuse a body whose thermal motion is faster than the time grid resolves: `time` is the time
+/// to cross σ (or turn a radian) in fs at the scene's kT, `timeAtDefault` the same at the default
+/// temperature, which tells whether the temperature or the body is to blame.
+void requireResolvedMotion(const Reader& rd, const std::string& key, const std::string& what,
+                           double value, double time, double timeAtDefault, double temperature) {
+    if (time >= limits::minThermalTimeFs) return;
+    const bool hot = timeAtDefault >= limits::minThermalTimeFs;
+    rd.fail(hot ? "state.temperature" : key,
+            (hot ? Reader::fmt(temperature) + " with " + key + " = " + Reader::fmt(value)
+                 : Reader::fmt(value) + " at state.temperature " + Reader::fmt(temperature)) +
+                " makes a thermal body " + what + " in " + Reader::fmt(time) +
+                " fs, faster than the " + Reader::fmt(limits::minThermalTimeFs) +
+                " fs the time grid resolves");
+}
+
 } // namespace
+
+std::string limits::terraceCountProblem(double uMin, double dV, double kT) {
+    const double count = std::abs(uMin) / (dV * kT);
+    if (count <= maxTerracesInWell) return "";
+    // Blame the temperature when even one terrace per kT would be too fine.
+    const bool cold = !(std::abs(uMin) / kT <= maxTerracesInWell);
+    std::ostringstream o;
+    o << (cold ? "state.temperature" : "dmd.dV") << ": kT = " << kT
+      << " kJ/mol with dmd.dV = " << dV << " makes " << count << " terraces of " << dV * kT
+      << " kJ/mol in the well (U_min = " << uMin << " kJ/mol), more than the " << maxTerracesInWell
+      << " a run can represent (levels would crowd the minimum at round-off); raise "
+      << (cold ? "state.temperature" : "dmd.dV");
+    return o.str();
+}
 
 double Scene::boxLength() const {
     const int count = state.particles.empty() ? state.n : static_cast<int>(state.particles.size());
@@ -229,10 +313,52 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         if (list.size() < 2) rd.fail("state.particles", "needs at least 2 bodies");
         if (st.contains("n") && st["n"] != list.size())
             rd.fail("state.n", "disagrees with the length of state.particles");
+        if (st.contains("orientations"))
+            rd.fail("state.orientations",
+                    "applies to lattice starts only: state.particles gives each orientation");
         for (std::size_t i = 0; i < list.size(); ++i)
-            s.state.particles.push_back(
-                readParticle(list[i], "state.particles[" + std::to_string(i) + "]", rd));
+            s.state.particles.push_back(readParticle(
+                list[i], "state.particles[" + std::to_string(i) + "]", rd, s.body.kind));
         s.state.n = static_cast<int>(list.size());
+    }
+
+    // What a run can represent: kT itself, and thermal motion the time grid resolves.
+    const double kT = s.kT();
+    if (!(std::isfinite(kT) && kT > 0.0))
+        rd.fail("state.temperature",
+                "kT = T*·ε = " + Reader::fmt(kT) + " kJ/mol is not a positive finite number");
+    {
+        const double kTDefault = Scene{}.state.temperature * s.potential.epsilon;
+        auto crossing = [&](double m, double e) {
+            return units::toFs(s.potential.sigma * std::sqrt(m / e));
+        };
+        requireResolvedMotion(rd, "body.mass", "cross σ", s.body.mass, crossing(s.body.mass, kT),
+                              crossing(s.body.mass, kTDefault), s.state.temperature);
+        auto turning = [](double i, double e) { return units::toFs(std::sqrt(i / e)); };
+        for (int a = 0; a < 3; ++a) {
+            const bool used = s.body.kind == "symmetric" || s.body.kind == "asymmetric" ||
+                              (s.body.kind == "linear" && a == 0);
+            if (used)
+                requireResolvedMotion(rd, "body.inertia", "turn one radian", I[a],
+                                      turning(I[a], kT), turning(I[a], kTDefault),
+                                      s.state.temperature);
+        }
+    }
+    // Explicit bodies: positions that survive the wrap into the box, energies that are finite.
+    for (std::size_t i = 0; i < s.state.particles.size(); ++i) {
+        const auto& p = s.state.particles[i];
+        const std::string name = "state.particles[" + std::to_string(i) + "]";
+        const double reach = limits::maxPositionInBoxLengths * s.boxLength();
+        if (!(p.r.norm() <= reach))
+            rd.fail(name + ".r", "lies " + Reader::fmt(p.r.norm()) + " Å from the origin, beyond " +
+                                     Reader::fmt(limits::maxPositionInBoxLengths) +
+                                     " box lengths: the wrap into the box would lose its digits");
+        const double kinetic = 0.5 * s.body.mass * (p.v * units::psPerTimeUnit).squaredNorm();
+        if (!std::isfinite(kinetic))
+            rd.fail(name + ".v", "its kinetic energy ½mv² overflows a double");
+        const double spin = 0.5 * I.maxCoeff() * (p.omega * units::psPerTimeUnit).squaredNorm();
+        if (!std::isfinite(spin))
+            rd.fail(name + ".omega", "its rotational energy ½Iω² overflows a double");
     }
 
     if (j.contains("engine")) s.engine = rd.choice(j, "", "engine", s.engine, {"dmd", "smd"});
@@ -256,6 +382,18 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     s.dmd.invalidation =
         rd.choice(dmd, "dmd", "invalidation", s.dmd.invalidation, {"lazy", "eager"});
     s.dmd.horizon_fs = rd.number(dmd, "dmd", "horizon_fs", s.dmd.horizon_fs, 0.0, 1e6, true);
+    if (s.dmd.horizon_fs < limits::minHorizonFs)
+        rd.fail("dmd.horizon_fs",
+                "must be >= " + Reader::fmt(limits::minHorizonFs) + " fs, got " +
+                    Reader::fmt(s.dmd.horizon_fs) +
+                    ": a thermal pair moves ~1e-3 Å in 0.1 fs, so a shorter horizon only "
+                    "multiplies virtual events (the paper uses 4 fs)");
+    if (s.engine == "dmd" && s.dmd.levels.empty()) {
+        const double uMin = s.potential.kind == "lj" ? ljPotential(s).minimumEnergy()
+                                                     : rodPotential(s).minimumEnergy();
+        const std::string problem = limits::terraceCountProblem(uMin, s.dmd.dV, kT);
+        if (!problem.empty()) throw SceneError(origin + ": " + problem);
+    }
 
     const auto& smd = rd.section(j, "smd");
     rd.onlyKeys(smd, "smd", {"dt_fs", "skin", "r_l", "r_u"});
@@ -266,24 +404,151 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     if (!(s.smd.r_u > s.smd.r_l)) rd.fail("smd.r_u", "must be larger than smd.r_l");
 
     const auto& run = rd.section(j, "run");
-    rd.onlyKeys(run, "run", {"equilibrate_ps", "time_ps", "sample_fs"});
+    rd.onlyKeys(run, "run", {"equilibrate_ps", "time_ps", "sample_fs", "thermostat_fs"});
     s.run.equilibrate_ps = rd.number(run, "run", "equilibrate_ps", s.run.equilibrate_ps, 0, 1e9);
     s.run.time_ps = rd.number(run, "run", "time_ps", s.run.time_ps, 0, 1e9, true);
     s.run.sample_fs = rd.number(run, "run", "sample_fs", s.run.sample_fs, 0, 1e9, true);
-    if (s.run.sample_fs / 1000.0 > s.run.time_ps)
-        rd.fail("run.sample_fs", "is longer than run.time_ps: no sample would be taken");
+    s.run.thermostat_fs = rd.number(run, "run", "thermostat_fs", s.run.thermostat_fs, 0, 1e9, true);
+    const double runFs = s.run.time_ps * 1000.0;
+    const std::string runText =
+        " is longer than run.time_ps = " + Reader::fmt(s.run.time_ps) + " ps";
+    if (s.engine == "smd" && s.smd.dt_fs > runFs)
+        rd.fail("smd.dt_fs",
+                Reader::fmt(s.smd.dt_fs) + " fs" + runText + ": no step would be taken");
+    for (const auto& [key, value] :
+         {std::pair<std::string, double>{"run.sample_fs", s.run.sample_fs},
+          {"run.thermostat_fs", s.run.thermostat_fs}})
+        if (value < limits::minIntervalFs)
+            rd.fail(key, "must be >= " + Reader::fmt(limits::minIntervalFs) + " fs, got " +
+                             Reader::fmt(value) +
+                             ": thermal motion hardly changes in so short an interval (bodies "
+                             "take >= 0.1 fs to cross σ or turn a radian)");
+    if (s.run.sample_fs > runFs)
+        rd.fail("run.sample_fs",
+                Reader::fmt(s.run.sample_fs) + " fs" + runText + ": no sample would be taken");
+    if (s.run.equilibrate_ps > 0.0 && s.run.thermostat_fs > s.run.equilibrate_ps * 1000.0)
+        rd.fail("run.thermostat_fs",
+                Reader::fmt(s.run.thermostat_fs) + " fs is longer than run.equilibrate_ps = " +
+                    Reader::fmt(s.run.equilibrate_ps) + " ps: equilibration would never rescale");
+    if (s.engine == "smd") { // SMD advances in whole steps: no interval may fall between two
+        requireOnGrid(rd, "run.sample_fs", s.run.sample_fs, "fs", 1.0, "smd.dt_fs", s.smd.dt_fs);
+        requireOnGrid(rd, "run.thermostat_fs", s.run.thermostat_fs, "fs", 1.0, "smd.dt_fs",
+                      s.smd.dt_fs);
+    }
 
     const auto& out = rd.section(j, "output");
-    rd.onlyKeys(out, "output", {"trajectory_every_fs"});
+    rd.onlyKeys(out, "output", {"trajectory_every_fs", "restart_every_ps"});
     s.output.trajectory_every_fs =
         rd.number(out, "output", "trajectory_every_fs", s.output.trajectory_every_fs, 0, 1e9);
+    s.output.restart_every_ps =
+        rd.number(out, "output", "restart_every_ps", s.output.restart_every_ps, 0, 1e9);
+    // Output is written at samples: its intervals are whole numbers of them within the run.
+    if (s.output.trajectory_every_fs > 0.0) {
+        if (s.output.trajectory_every_fs > runFs)
+            rd.fail("output.trajectory_every_fs", Reader::fmt(s.output.trajectory_every_fs) +
+                                                      " fs" + runText +
+                                                      ": no frame would be written");
+        requireOnGrid(rd, "output.trajectory_every_fs", s.output.trajectory_every_fs, "fs", 1.0,
+                      "run.sample_fs", s.run.sample_fs);
+    }
+    if (s.output.restart_every_ps > 0.0) {
+        if (s.output.restart_every_ps > s.run.time_ps)
+            rd.fail("output.restart_every_ps", Reader::fmt(s.output.restart_every_ps) + " ps" +
+                                                   runText + ": no restart file would be written");
+        requireOnGrid(rd, "output.restart_every_ps", s.output.restart_every_ps, "ps", 1000.0,
+                      "run.sample_fs", s.run.sample_fs);
+    }
     return s;
 }
 
+namespace {
+
+/// SAX pass that finds the first repeated key of any object (json::parse keeps the last value
+/// silently) and names it by its dotted path, state.particles[3].r style.
+class DuplicateKeyFinder : public nlohmann::json_sax<json> {
+public:
+    std::string duplicate; // dotted path of the first repeated key, empty if none
+
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override {
+        value();
+        frames_.push_back({true, {}, {}, -1});
+        return true;
+    }
+    bool key(string_t& k) override {
+        auto& f = frames_.back();
+        f.key = k;
+        if (f.keys.insert(k).second) return true;
+        duplicate = path();
+        return false; // stop: the first duplicate is the one reported
+    }
+    bool end_object() override {
+        frames_.pop_back();
+        return true;
+    }
+    bool start_array(std::size_t) override {
+        value();
+        frames_.push_back({false, {}, {}, -1});
+        return true;
+    }
+    bool end_array() override {
+        frames_.pop_back();
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+
+private:
+    struct Frame {
+        bool object;
+        std::set<std::string> keys;
+        std::string key; // object: the key being read
+        long index;      // array: the element being read
+    };
+
+    bool value() {
+        if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+        return true;
+    }
+
+    std::string path() const {
+        std::string p;
+        for (const auto& f : frames_)
+            p += f.object ? (p.empty() ? "" : ".") + f.key : "[" + std::to_string(f.index) + "]";
+        return p;
+    }
+
+    std::vector<Frame> frames_;
+};
+
+} // namespace
+
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
-    std::ifstream in(path);
-    if (!in) throw SceneError(path + ": cannot open the scene file");
-    json j = json::parse(in, nullptr, false);
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw SceneError(path + ": is a directory, not a scene file");
+    errno = 0;
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw SceneError(
+            path + ": cannot open the scene file: " + std::strerror(errno != 0 ? errno : ENOENT));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad() || text.bad())
+        throw SceneError(path + ": cannot read the scene file: " + std::strerror(errno));
+    const std::string content = text.str();
+    DuplicateKeyFinder finder;
+    json::sax_parse(content, &finder);
+    if (!finder.duplicate.empty())
+        throw SceneError(path + ": " + finder.duplicate + ": duplicate key");
+    json j = json::parse(content, nullptr, false);
     if (j.is_discarded()) throw SceneError(path + ": not valid JSON");
     return sceneFromJson(j, path, overrides);
 }
@@ -297,14 +562,17 @@ json toJson(const Scene& s) {
     j["potential"] = {
         {"kind", s.potential.kind}, {"epsilon", s.potential.epsilon}, {"sigma", s.potential.sigma}};
     if (s.potential.kind == "rod-lj") j["potential"]["zeta"] = s.potential.zeta;
-    j["state"] = {{"n", s.state.n},
-                  {"density", s.state.density},
-                  {"temperature", s.state.temperature},
-                  {"orientations", s.state.orientations}};
+    j["state"] = {
+        {"n", s.state.n}, {"density", s.state.density}, {"temperature", s.state.temperature}};
+    if (s.state.particles.empty()) j["state"]["orientations"] = s.state.orientations;
     if (!s.state.particles.empty()) {
         json list = json::array();
         for (const auto& p : s.state.particles) {
-            json e = {{"r", v3(p.r)}, {"v", v3(p.v)}, {"omega", v3(p.omega)}, {"axis", v3(p.axis)}};
+            json e = {{"r", v3(p.r)}, {"v", v3(p.v)}};
+            if (s.body.kind != "sphere") { // a sphere has neither
+                e["omega"] = v3(p.omega);
+                e["axis"] = v3(p.axis);
+            }
             if (p.orientation) {
                 const auto& q = *p.orientation;
                 e["orientation"] = json::array({q.w(), q.x(), q.y(), q.z()});
@@ -323,9 +591,29 @@ json toJson(const Scene& s) {
         {"dt_fs", s.smd.dt_fs}, {"skin", s.smd.skin}, {"r_l", s.smd.r_l}, {"r_u", s.smd.r_u}};
     j["run"] = {{"equilibrate_ps", s.run.equilibrate_ps},
                 {"time_ps", s.run.time_ps},
-                {"sample_fs", s.run.sample_fs}};
-    j["output"] = {{"trajectory_every_fs", s.output.trajectory_every_fs}};
+                {"sample_fs", s.run.sample_fs},
+                {"thermostat_fs", s.run.thermostat_fs}};
+    j["output"] = {{"trajectory_every_fs", s.output.trajectory_every_fs},
+                   {"restart_every_ps", s.output.restart_every_ps}};
     return j;
+}
+
+std::vector<std::string> sceneWarnings(const Scene& s) {
+    std::vector<std::string> out;
+    if (!s.dmd.levels.empty()) {
+        const double uMin = s.potential.kind == "lj" ? ljPotential(s).minimumEnergy()
+                                                     : rodPotential(s).minimumEnergy();
+        bool inWell = false;
+        for (double level : s.dmd.levels)
+            inWell = inWell || (level > uMin && level < 0.0);
+        if (!inWell) {
+            std::ostringstream o;
+            o << "dmd.levels: no level lies between the potential minimum U_min = " << uMin
+              << " kJ/mol and 0, so the terraced potential has no attractive well";
+            out.push_back(o.str());
+        }
+    }
+    return out;
 }
 
 RodPotential rodPotential(const Scene& s) {

@@ -2,7 +2,9 @@
 // A scene: everything that defines a run, read from JSON with every key validated. An unknown key,
 // a wrong type or an out-of-range value is a SceneError naming the file and the dotted key; there
 // are no silent defaults for keys that are present. Absent keys take the documented defaults,
-// which are the paper's dense rods (DESIGN.md "The rod model").
+// which are the paper's dense rods (DESIGN.md "The rod model"). A key that the scene's body kind
+// has no use for is refused rather than ignored, a repeated key is refused (JSON would keep the
+// last), and every interval must fit in the run and lie on the engine's time grid.
 #include "core/vec.hpp"
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -18,12 +20,16 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-/// One body of an explicit initial configuration (state.particles).
+/// One body of an explicit initial configuration (state.particles). After validation `axis` and
+/// `orientation` agree: the axis is the image of the body z axis, axis = q * ẑ. Given only an
+/// orientation, any body with an axis takes it from q; a linear rotor or symmetric top given only
+/// an axis gets the rotation of least angle taking ẑ to it (the spin about the axis is then
+/// immaterial); an asymmetric top must be given its orientation; spheres take neither, nor omega.
 struct ParticleSpec {
     Vec3 r = Vec3::Zero();           // Å
     Vec3 v = Vec3::Zero();           // Å/ps
-    Vec3 axis = Vec3::UnitZ();       // unit long axis (linear rotors)
-    std::optional<Quat> orientation; // body -> lab, tops ([w, x, y, z])
+    Vec3 axis = Vec3::UnitZ();       // unit long axis
+    std::optional<Quat> orientation; // body -> lab ([w, x, y, z])
     Vec3 omega = Vec3::Zero();       // lab angular velocity, rad/ps
 };
 
@@ -59,7 +65,7 @@ struct Scene {
         std::vector<double> levels; // explicit levels U_k in kJ/mol (overrides dV when given)
         std::string queue = "bpq";  // heap | bpq
         std::string invalidation = "lazy"; // lazy | eager
-        double horizon_fs = 4.0;           // virtual-event horizon and largest search step
+        double horizon_fs = 4.0;           // virtual-event horizon and largest search step, >= 0.1
     } dmd;
 
     struct Smd {
@@ -69,14 +75,22 @@ struct Scene {
         double r_u = 3.0;  // end of the smoothed cutoff, σ
     } smd;
 
+    // Intervals must fit in the run and lie on the grid: under SMD, sample_fs and thermostat_fs are
+    // whole multiples of smd.dt_fs (relative tolerance 1e-9 on the ratio); both are >= 0.01 fs.
     struct Run {
         double equilibrate_ps = 2.0;
         double time_ps = 10.0;
         double sample_fs = 9.0; // a whole number of SMD steps at dt = 0.2, 0.5, 1, 1.8 and 3 fs
+        // Equilibration rescales v and ω to the scene temperature every thermostat_fs, over
+        // floor(equilibrate_ps / thermostat_fs) whole intervals; the default equals the default
+        // sample_fs, so that default runs are unchanged, but sample_fs no longer sets it.
+        double thermostat_fs = 9.0;
     } run;
 
+    // Output intervals are whole multiples of run.sample_fs, no longer than run.time_ps.
     struct Output {
         double trajectory_every_fs = 0.0; // 0 = no trajectory
+        double restart_every_ps = 0.0;    // 0 = no restart files
     } output;
 
     double kT() const { return state.temperature * potential.epsilon; } // kJ/mol
@@ -95,5 +109,35 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 
 /// The fully resolved scene, every key written out (recorded next to every run's output).
 nlohmann::json toJson(const Scene& s);
+
+/// One-line warnings for values that are legal but probably not meant (e.g. explicit dmd.levels
+/// that leave out the attractive well); empty when there is nothing to say.
+std::vector<std::string> sceneWarnings(const Scene& s);
+
+/// Limits of what a run can represent, each refused with its reason (core/scene.cpp).
+namespace limits {
+/// Below this the horizon buys nothing: a thermal pair moves ~1e-3 Å in it (~0.05 Å in the
+/// paper's 4 fs), far below any terrace's width, and virtual events alone would stall the run.
+inline constexpr double minHorizonFs = 0.1;
+/// Samples and thermostat intervals below this resolve nothing: the fastest thermal motion the
+/// time grid admits (minThermalTimeFs) changes by < 10 % between them.
+inline constexpr double minIntervalFs = 0.01;
+/// A thermal body must take at least this long to cross σ (σ·sqrt(m/kT)) or to turn one radian
+/// (sqrt(I/kT)); faster motion lies below the finest horizon, and kT/m overflows long before.
+inline constexpr double minThermalTimeFs = 0.1;
+/// Uniform terraces (dV·kT) in the well, |U_min| / (dV·kT): beyond this a pair's events would
+/// come at round-off spacing of U (terrace_levels' clearance is 1e-6 |U_min|).
+inline constexpr double maxTerracesInWell = 1e5;
+/// Explicit positions within this many box lengths of the origin: the wrap into the box keeps
+/// ~10 of the 16 digits at 1e6 box lengths, no more.
+inline constexpr double maxPositionInBoxLengths = 1e6;
+/// Relative tolerance on the ratio of an interval to the grid it must lie on (9/1.8 is not
+/// exact in binary).
+inline constexpr double gridTolerance = 1e-9;
+
+/// "" when uniform levels dV·kT leave at most maxTerracesInWell terraces in a well of depth
+/// |uMin|, else "<key>: <why>", blaming state.temperature when even dV = 1 would be too fine.
+std::string terraceCountProblem(double uMin, double dV, double kT);
+} // namespace limits
 
 } // namespace terrace

@@ -5,7 +5,7 @@
 //   levels        explicit levels in kJ/mol (override dV when non-empty)
 //   queue         heap | bpq
 //   invalidation  lazy | eager
-//   horizon_fs    virtual-event horizon and largest search step, fs, > 0
+//   horizon_fs    virtual-event horizon and largest search step, fs, >= limits::minHorizonFs
 #include "core/scene.hpp"
 #include "core/units.hpp"
 #include "dmd/terrace_levels.hpp"
@@ -35,6 +35,9 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
             throw SceneError("state.temperature: kT must be > 0 to set dmd.dV in units of kT");
         if (!(d.dV > 0.0) || !std::isfinite(d.dV))
             throw SceneError("dmd.dV: must be > 0, got " + std::to_string(d.dV));
+        const std::string crowded =
+            limits::terraceCountProblem(potential.minimumEnergy(), d.dV, kT);
+        if (!crowded.empty()) throw SceneError(crowded);
         s.levels = TerraceLevels::uniform(d.dV * kT);
         s.levels.checkMinimum(potential.minimumEnergy(), "dmd.dV");
     }
@@ -51,8 +54,10 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
     else
         throw SceneError("dmd.invalidation: must be \"lazy\" or \"eager\", got \"" +
                          d.invalidation + "\"");
-    if (!(d.horizon_fs > 0.0) || !std::isfinite(d.horizon_fs))
-        throw SceneError("dmd.horizon_fs: must be > 0, got " + std::to_string(d.horizon_fs));
+    if (!(d.horizon_fs >= limits::minHorizonFs) || !std::isfinite(d.horizon_fs))
+        throw SceneError("dmd.horizon_fs: must be >= " + std::to_string(limits::minHorizonFs) +
+                         " fs, got " + std::to_string(d.horizon_fs) +
+                         ": a shorter horizon only multiplies virtual events");
     s.horizon = units::fromFs(d.horizon_fs);
     s.rm = interactionRange(s.levels, potential);
     if (!(s.rm > 0.0))

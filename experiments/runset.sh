@@ -26,6 +26,11 @@ dmd) sets+=(--set engine=dmd --set dmd.dV="$param") ;;
 smd)
     skin=$(smd_skin "$state")
     sets+=(--set engine=smd --set smd.dt_fs="$param" --set smd.skin="$skin")
+    # Samples and thermostat on SMD's grid: the whole number of steps nearest SAMPLE_FS (9 fs at
+    # dt = 0.2 ... 3 fs; 8 fs at 4 fs), as the run itself once rounded them and now refuses to.
+    grid=$(awk -v s="$SAMPLE_FS" -v d="$param" \
+        'BEGIN { k = int(s / d + 0.5); if (k < 1) k = 1; printf "%.10g", k * d }')
+    sets+=(--set run.sample_fs="$grid" --set run.thermostat_fs="$grid")
     ;;
 *) echo "runset.sh: unknown engine '$engine'" >&2; exit 2 ;;
 esac

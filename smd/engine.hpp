@@ -45,7 +45,21 @@ public:
         gatherPositions();
         build(list_, sys_.box, position_);
         computeForces();
+        checkOverlap();
     }
+
+    /// Resumes from a checkpoint() with `initial` holding the bodies at that time: the step count
+    /// (and so the time grid) goes on; forces and the Verlet list are computed afresh, as at the
+    /// start, so a continued run and one that rebuilds its engine at the same step agree bit for
+    /// bit.
+    Engine(System<K, P> initial, const Scene& scene, const nlohmann::json& checkpoint)
+        : Engine(std::move(initial), scene) {
+        steps_ = checkpoint.at("steps").get<long>();
+        if (steps_ < 0) throw SceneError("restart: a negative SMD step count");
+    }
+
+    /// The step count: with the bodies, all a resumed engine needs.
+    nlohmann::json checkpoint() const { return {{"steps", steps_}}; }
 
     /// Whole dt steps up to the first grid point at or after t (time units).
     void advanceTo(double t) {
@@ -147,6 +161,34 @@ private:
     }
 
     static constexpr double gridTolerance = 1e-9; // in steps: far above round-off of t/dt
+
+    /// A start with a pair above this multiple of |U_min| is an overlap, not a state point (the
+    /// DMD engine's bound, so that both engines refuse the same starts with the same message).
+    static constexpr double overlapFactor = 1e4;
+
+    /// Names the first overlapping pair at the start, instead of letting its huge forces end the
+    /// run later as an "unstable time step".
+    void checkOverlap() const {
+        const double overlap = overlapFactor * std::abs(sys_.potential.minimumEnergy());
+        const double outer2 = par_.cutoff.outer() * par_.cutoff.outer();
+        const Vec3 noAxis = Vec3::UnitZ();
+        for (std::size_t a = 0; a + 1 < list_.start.size(); ++a)
+            for (std::size_t k = list_.start[a]; k < list_.start[a + 1]; ++k) {
+                const std::uint32_t e = list_.entry[k];
+                const std::size_t b = e >> NeighbourList::imageBits;
+                const Vec3 rij =
+                    local_[a] - local_[b] + list_.imageShift[e & NeighbourList::imageMask];
+                if (!(rij.squaredNorm() < outer2)) continue;
+                const double U = sys_.potential.energy(rij, P::orientational ? axis_[a] : noAxis,
+                                                       P::orientational ? axis_[b] : noAxis);
+                if (std::isfinite(U) && U <= overlap) continue;
+                const int i = std::min(list_.order[a], list_.order[b]);
+                const int j = std::max(list_.order[a], list_.order[b]);
+                throw SceneError("state: bodies " + std::to_string(i) + " and " +
+                                 std::to_string(j) + " overlap (U = " + std::to_string(U) +
+                                 " kJ/mol)");
+            }
+    }
 
     template <class T> static double seconds(T a, T b) {
         return std::chrono::duration<double>(b - a).count();

@@ -113,3 +113,20 @@ TEST(InitialState, ExplicitParticlesInPsUnits) {
     EXPECT_DOUBLE_EQ(sys.bodies[0].w.x(), 0.5);
     EXPECT_DOUBLE_EQ(sys.bodies[0].w.z(), 0.0);
 }
+
+TEST(InitialState, ExplicitOrientationsAreHonoured) {
+    Scene scene = defaultScene();
+    ParticleSpec a, b;
+    a.orientation = Quat(std::sqrt(0.5), std::sqrt(0.5), 0, 0); // 90° about x: ẑ -> -ŷ
+    b.r = Vec3(5, 0, 0);
+    b.axis = Vec3(1, 0, 0);
+    scene.state.particles = {a, b};
+    const auto rods = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    EXPECT_NEAR((rods.bodies[0].s - Vec3(0, -1, 0)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((rods.bodies[1].s - Vec3(1, 0, 0)).norm(), 0.0, 1e-15);
+    scene.body.kind = "symmetric";
+    scene.body.inertia = Vec3(1.0, 1.0, 0.5);
+    const auto tops = buildInitialState<SymmetricTop>(scene, rodPotential(scene));
+    EXPECT_NEAR((SymmetricTop::axis(tops.bodies[0]) - Vec3(0, -1, 0)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((SymmetricTop::axis(tops.bodies[1]) - Vec3(1, 0, 0)).norm(), 0.0, 1e-15);
+}

@@ -123,3 +123,270 @@ TEST(Scene, ExplicitParticles) {
         errorOf({{"state", {{"n", 3}, {"particles", j["state"]["particles"]}}}}).find("state.n"),
         std::string::npos);
 }
+
+// --- every value honoured or refused ------------------------------------------------------------
+
+namespace {
+
+json twoBodies(const json& first, const json& second = {{"r", {4, 0, 0}}}) {
+    return json::array({first, second});
+}
+
+std::string withBody(const std::string& kind, const json& inertia, const json& particles) {
+    return errorOf(
+        {{"body", {{"kind", kind}, {"inertia", inertia}}}, {"state", {{"particles", particles}}}});
+}
+
+/// Writes `text` to a temporary file and returns the message of loading it ("" if it loads).
+std::string loadError(const std::string& file, const std::string& text,
+                      const std::vector<std::string>& overrides = {}) {
+    const auto path = std::filesystem::temp_directory_path() / file;
+    std::ofstream(path) << text;
+    try {
+        loadScene(path.string(), overrides);
+    } catch (const SceneError& e) {
+        return std::string(e.what()).substr(path.string().size());
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(Scene, LinearRotorTakesItsAxisFromTheOrientation) {
+    // 90° about x takes the body z axis to -y.
+    const double h = std::sqrt(0.5);
+    const Scene s = sceneFromJson(
+        {{"state", {{"particles", twoBodies({{"r", {0, 0, 0}}, {"orientation", {h, h, 0, 0}}})}}}},
+        "t");
+    EXPECT_NEAR((s.state.particles[0].axis - Vec3(0, -1, 0)).norm(), 0.0, 1e-15);
+    EXPECT_EQ(toJson(sceneFromJson(toJson(s), "again")), toJson(s));
+    // Both given and agreeing is fine; disagreeing is refused.
+    EXPECT_EQ(errorOf({{"state",
+                        {{"particles", twoBodies({{"r", {0, 0, 0}},
+                                                  {"axis", {0, -1, 0}},
+                                                  {"orientation", {h, h, 0, 0}}})}}}}),
+              "");
+    EXPECT_EQ(errorOf({{"state",
+                        {{"particles", twoBodies({{"r", {0, 0, 0}},
+                                                  {"axis", {0, 0, 1}},
+                                                  {"orientation", {h, h, 0, 0}}})}}}}),
+              "test.json: state.particles[0].axis: disagrees with state.particles[0].orientation, "
+              "whose image of the body z axis is [0, -1, 0]; give one of them, or both agreeing "
+              "within 1e-09");
+}
+
+TEST(Scene, TopsTakeAnAxisOnlyWhenItFixesTheirMotion) {
+    const json axisOnly = twoBodies({{"r", {0, 0, 0}}, {"axis", {1, 0, 0}}});
+    const Scene sym = sceneFromJson({{"body", {{"kind", "symmetric"}, {"inertia", {1, 1, 0.5}}}},
+                                     {"state", {{"particles", axisOnly}}}},
+                                    "t");
+    ASSERT_TRUE(sym.state.particles[0].orientation.has_value());
+    EXPECT_NEAR((*sym.state.particles[0].orientation * Vec3::UnitZ() - Vec3::UnitX()).norm(), 0.0,
+                1e-15);
+    EXPECT_EQ(errorOf({{"state", {{"orientations", "aligned"}, {"particles", axisOnly}}}}),
+              "test.json: state.orientations: applies to lattice starts only: state.particles "
+              "gives each orientation");
+    EXPECT_EQ(withBody("asymmetric", {1, 2, 3}, axisOnly),
+              "test.json: state.particles[0].axis: an asymmetric top needs .orientation: an axis "
+              "leaves its rotation about that axis undetermined");
+    // An asymmetric top given an orientation gets the matching axis.
+    const Scene asym = sceneFromJson(
+        {{"body", {{"kind", "asymmetric"}, {"inertia", {1, 2, 3}}}},
+         {"state", {{"particles", twoBodies({{"r", {0, 0, 0}}, {"orientation", {0, 1, 0, 0}}})}}}},
+        "t");
+    EXPECT_NEAR((asym.state.particles[0].axis - Vec3(0, 0, -1)).norm(), 0.0, 1e-15);
+}
+
+TEST(Scene, SpheresRefuseAxisOrientationAndOmega) {
+    for (const char* key : {"axis", "orientation", "omega"}) {
+        const json value = std::string(key) == "orientation" ? json{1, 0, 0, 0} : json{0, 0, 1};
+        EXPECT_EQ(
+            errorOf({{"body", {{"kind", "sphere"}}},
+                     {"potential", {{"kind", "lj"}}},
+                     {"state", {{"particles", twoBodies({{"r", {0, 0, 0}}, {key, value}})}}}}),
+            "test.json: state.particles[0]." + std::string(key) +
+                ": a sphere has no orientation or rotation (body.kind is sphere)");
+    }
+    const Scene spheres = sceneFromJson({{"body", {{"kind", "sphere"}}},
+                                         {"potential", {{"kind", "lj"}}},
+                                         {"state", {{"particles", twoBodies({{"r", {0, 0, 0}}})}}}},
+                                        "t");
+    EXPECT_EQ(toJson(sceneFromJson(toJson(spheres), "again")), toJson(spheres));
+}
+
+TEST(Scene, OverflowingVectorsAreRefused) {
+    auto particle = [](const json& body) {
+        return errorOf({{"state", {{"particles", twoBodies(body)}}}});
+    };
+    EXPECT_EQ(
+        particle({{"r", {0, 0, 0}}, {"axis", {1e308, 1e308, 0}}}),
+        "test.json: state.particles[0].axis: is too large: its length inf overflows a double");
+    EXPECT_EQ(particle({{"r", {0, 0, 0}}, {"orientation", {1e308, 1e308, 0, 0}}}),
+              "test.json: state.particles[0].orientation: is too large: its norm inf overflows a "
+              "double");
+    EXPECT_EQ(particle({{"r", {0, 0, 0}}, {"v", {1e160, 0, 0}}}),
+              "test.json: state.particles[0].v: is too large: its length inf overflows a double");
+    EXPECT_EQ(particle({{"r", {1e100, 0, 0}}}),
+              "test.json: state.particles[0].r: lies 1e+100 Å from the origin, beyond 1e+06 box "
+              "lengths: the wrap into the box would lose its digits");
+    EXPECT_EQ(
+        errorOf({{"body", {{"mass", 1e10}}},
+                 {"state", {{"particles", twoBodies({{"r", {0, 0, 0}}, {"v", {1e153, 0, 0}}})}}}}),
+        "test.json: state.particles[0].v: its kinetic energy ½mv² overflows a double");
+    EXPECT_EQ(errorOf({{"body", {{"inertia", {1e150, 1e150, 0}}}}}), "");
+    EXPECT_EQ(errorOf({{"body", {{"inertia", {1e150, 1e150, 0}}}},
+                       {"state",
+                        {{"particles", twoBodies({{"r", {0, 0, 0}}, {"omega", {1e100, 0, 0}}})}}}}),
+              "test.json: state.particles[0].omega: its rotational energy ½Iω² overflows a double");
+    EXPECT_EQ(errorOf({{"body", {{"inertia", {1e200, 1e200, 0}}}}}),
+              "test.json: body.inertia: is too large: its length inf overflows a double");
+}
+
+TEST(Scene, DuplicateKeysAreRefusedAtAnyDepth) {
+    EXPECT_EQ(loadError("terrace-dup-1.json", R"({"dmd": {"dV": 0.5, "dV": 1}})"),
+              ": dmd.dV: duplicate key");
+    EXPECT_EQ(loadError("terrace-dup-2.json", R"({"seed": 1, "seed": 2})"),
+              ": seed: duplicate key");
+    EXPECT_EQ(
+        loadError(
+            "terrace-dup-3.json",
+            R"({"state": {"particles": [{"r": [0, 0, 0]}, {"r": [4, 0, 0], "r": [5, 0, 0]}]}})"),
+        ": state.particles[1].r: duplicate key");
+    EXPECT_EQ(loadError("terrace-dup-4.json", R"({"dmd": {"dV": 0.5}, "dmd": {"queue": "heap"}})"),
+              ": dmd: duplicate key");
+    // The same key in different objects, and an override of a key in the file, are not duplicates.
+    EXPECT_EQ(loadError("terrace-dup-5.json", R"({"dmd": {"dV": 0.5}, "run": {"time_ps": 1}})",
+                        {"dmd.dV=1"}),
+              "");
+}
+
+TEST(Scene, ADirectoryOrAnUnreadableFileIsNamed) {
+    const auto dir = std::filesystem::temp_directory_path();
+    try {
+        loadScene(dir.string());
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()), dir.string() + ": is a directory, not a scene file");
+    }
+    try {
+        loadScene("/nonexistent/scene.json");
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "/nonexistent/scene.json: cannot open the scene file: No such file or directory");
+    }
+}
+
+TEST(Scene, IntervalsLongerThanTheRunAreRefused) {
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"run", {{"time_ps", 0.001}, {"sample_fs", 1.8}}}}),
+              "test.json: smd.dt_fs: 1.8 fs is longer than run.time_ps = 0.001 ps: no step would "
+              "be taken");
+    EXPECT_EQ(errorOf({{"run", {{"time_ps", 0.005}}}}),
+              "test.json: run.sample_fs: 9 fs is longer than run.time_ps = 0.005 ps: no sample "
+              "would be taken");
+    EXPECT_EQ(errorOf({{"run", {{"equilibrate_ps", 0.005}}}}),
+              "test.json: run.thermostat_fs: 9 fs is longer than run.equilibrate_ps = 0.005 ps: "
+              "equilibration would never rescale");
+    EXPECT_EQ(errorOf({{"run", {{"equilibrate_ps", 0}}}}), ""); // no equilibration, no thermostat
+    EXPECT_EQ(errorOf({{"output", {{"trajectory_every_fs", 20000}}}}),
+              "test.json: output.trajectory_every_fs: 20000 fs is longer than run.time_ps = 10 ps: "
+              "no frame would be written");
+    EXPECT_EQ(errorOf({{"output", {{"restart_every_ps", 11}}}}),
+              "test.json: output.restart_every_ps: 11 ps is longer than run.time_ps = 10 ps: no "
+              "restart file would be written");
+}
+
+TEST(Scene, IntervalsLieOnTheGrid) {
+    // 9 / 1.8 is not exact in binary: the default SMD scene must pass.
+    EXPECT_EQ(errorOf({{"engine", "smd"}}), "");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"smd", {{"dt_fs", 0.2}}}}), "");
+    EXPECT_EQ(
+        errorOf({{"engine", "smd"}, {"run", {{"sample_fs", 10}}}}),
+        "test.json: run.sample_fs: must be a whole multiple of smd.dt_fs = 1.8 fs, got 10 fs; "
+        "nearest valid: 9 or 10.8 fs");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"smd", {{"dt_fs", 4}}}}),
+              "test.json: run.sample_fs: must be a whole multiple of smd.dt_fs = 4 fs, got 9 fs; "
+              "nearest valid: 8 or 12 fs");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"run", {{"thermostat_fs", 1}}}}),
+              "test.json: run.thermostat_fs: must be a whole multiple of smd.dt_fs = 1.8 fs, got 1 "
+              "fs; nearest valid: 1.8 fs");
+    EXPECT_EQ(errorOf({{"run", {{"sample_fs", 10}, {"thermostat_fs", 1}}}}), ""); // DMD: any time
+    EXPECT_EQ(
+        errorOf({{"output", {{"trajectory_every_fs", 0.001}}}}),
+        "test.json: output.trajectory_every_fs: must be a whole multiple of run.sample_fs = 9 "
+        "fs, got 0.001 fs; nearest valid: 9 fs");
+    EXPECT_EQ(errorOf({{"output", {{"trajectory_every_fs", 90}}}}), "");
+    EXPECT_EQ(errorOf({{"output", {{"restart_every_ps", 0.01}}}}),
+              "test.json: output.restart_every_ps: must be a whole multiple of run.sample_fs = 9 "
+              "fs, got 0.01 ps; nearest valid: 0.009 or 0.018 ps");
+    EXPECT_EQ(errorOf({{"output", {{"restart_every_ps", 0.9}}}}), "");
+}
+
+TEST(Scene, ThermostatAndRestartKeys) {
+    const Scene d = defaultScene();
+    EXPECT_DOUBLE_EQ(d.run.thermostat_fs, d.run.sample_fs); // default runs stay the same
+    EXPECT_DOUBLE_EQ(d.output.restart_every_ps, 0.0);
+    const Scene s =
+        sceneFromJson(json::object(), "t", {"run.thermostat_fs=18", "output.restart_every_ps=1.8"});
+    EXPECT_DOUBLE_EQ(s.run.thermostat_fs, 18.0);
+    EXPECT_DOUBLE_EQ(s.output.restart_every_ps, 1.8);
+    EXPECT_EQ(toJson(s)["run"]["thermostat_fs"], 18.0);
+    EXPECT_EQ(toJson(s)["output"]["restart_every_ps"], 1.8);
+    EXPECT_EQ(toJson(sceneFromJson(toJson(s), "again")), toJson(s));
+    EXPECT_EQ(errorOf({{"run", {{"thermostat_fs", 0}}}}),
+              "test.json: run.thermostat_fs: must be > 0, got 0");
+    EXPECT_EQ(errorOf({{"output", {{"restart_every_ps", -1}}}}),
+              "test.json: output.restart_every_ps: must be >= 0, got -1");
+}
+
+TEST(Scene, FloorsOfHorizonAndIntervals) {
+    EXPECT_EQ(errorOf({{"dmd", {{"horizon_fs", 1e-6}}}}),
+              "test.json: dmd.horizon_fs: must be >= 0.1 fs, got 1e-06: a thermal pair moves ~1e-3 "
+              "Å in 0.1 fs, so a shorter horizon only multiplies virtual events (the paper uses 4 "
+              "fs)");
+    EXPECT_EQ(errorOf({{"dmd", {{"horizon_fs", 0.1}}}}), "");
+    EXPECT_EQ(
+        errorOf({{"run", {{"sample_fs", 1e-6}}}}),
+        "test.json: run.sample_fs: must be >= 0.01 fs, got 1e-06: thermal motion hardly "
+        "changes in so short an interval (bodies take >= 0.1 fs to cross σ or turn a radian)");
+    EXPECT_EQ(
+        errorOf({{"run", {{"thermostat_fs", 1e-6}}}}),
+        "test.json: run.thermostat_fs: must be >= 0.01 fs, got 1e-06: thermal motion hardly "
+        "changes in so short an interval (bodies take >= 0.1 fs to cross σ or turn a radian)");
+}
+
+TEST(Scene, TemperaturesAndMassesARunCanRepresent) {
+    EXPECT_EQ(errorOf({{"state", {{"temperature", 1e-10}}}}),
+              "test.json: state.temperature: kT = 3e-10 kJ/mol with dmd.dV = 0.5 makes 2e+10 "
+              "terraces of 1.5e-10 kJ/mol in the well (U_min = -3 kJ/mol), more than the 100000 a "
+              "run can represent (levels would crowd the minimum at round-off); raise "
+              "state.temperature");
+    EXPECT_EQ(errorOf({{"dmd", {{"dV", 1e-6}}}}),
+              "test.json: dmd.dV: kT = 4.2 kJ/mol with dmd.dV = 1e-06 makes 714286 terraces of "
+              "4.2e-06 kJ/mol in the well (U_min = -3 kJ/mol), more than the 100000 a run can "
+              "represent (levels would crowd the minimum at round-off); raise dmd.dV");
+    // SMD has no terraces: a cold SMD run is legal.
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"state", {{"temperature", 1e-10}}}}), "");
+    EXPECT_EQ(errorOf({{"body", {{"mass", 1e-300}}}}),
+              "test.json: body.mass: 1e-300 at state.temperature 1.4 makes a thermal body cross σ "
+              "in 1.48093e-148 fs, faster than the 0.1 fs the time grid resolves");
+    EXPECT_EQ(errorOf({{"body", {{"inertia", {1e-12, 1e-12, 0}}}}}),
+              "test.json: body.inertia: 1e-12 at state.temperature 1.4 makes a thermal body turn "
+              "one radian in 4.8795e-05 fs, faster than the 0.1 fs the time grid resolves");
+    EXPECT_EQ(errorOf({{"state", {{"temperature", 1e12}}}}),
+              "test.json: state.temperature: 1e+12 with body.mass = 18 makes a thermal body cross "
+              "σ in 0.00074342 fs, faster than the 0.1 fs the time grid resolves");
+    EXPECT_EQ(errorOf({{"state", {{"temperature", 1e308}}}}),
+              "test.json: state.temperature: kT = T*·ε = inf kJ/mol is not a positive finite "
+              "number");
+}
+
+TEST(Scene, WarningsForLegalButSurprisingValues) {
+    EXPECT_TRUE(sceneWarnings(defaultScene()).empty());
+    const Scene repulsive = sceneFromJson({{"dmd", {{"levels", {0.5, 1.0, 2.0}}}}}, "t");
+    const auto w = sceneWarnings(repulsive);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_EQ(w[0], "dmd.levels: no level lies between the potential minimum U_min = -3 kJ/mol "
+                    "and 0, so the terraced potential has no attractive well");
+    EXPECT_TRUE(sceneWarnings(sceneFromJson({{"dmd", {{"levels", {-1.5, 1.0}}}}}, "t")).empty());
+}

@@ -3,6 +3,7 @@
 // reversibility of the splitting, and advanceTo's whole-step time grid.
 #include "core/asymmetric_top.hpp"
 #include "core/engine.hpp"
+#include "core/initial_state.hpp"
 #include "core/symmetric_top.hpp"
 #include "smd/engine.hpp"
 #include "systems.hpp"
@@ -210,4 +211,28 @@ TEST(Engine, RunsSymmetricTops) {
 
 TEST(Engine, RunsAsymmetricTops) {
     checkTops<AsymmetricTop>(Vec3(0.9, 1.154, 0.4));
+}
+
+TEST(Engine, OverlappingBodiesAreNamedNotBlamedOnTheTimeStep) {
+    // Bodies 1 and 2 on top of each other, placed through state.particles as a user would.
+    const nlohmann::json particles = nlohmann::json::array(
+        {{{"r", {0, 0, 0}}}, {{"r", {20, 20, 20}}}, {{"r", {20, 20, 20}}}, {{"r", {20, 0, 0}}}});
+    const Scene scene = sceneFromJson(
+        {{"engine", "smd"}, {"state", {{"density", 0.001}, {"particles", particles}}}}, "t");
+    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    try {
+        RodEngine e(sys, scene);
+        ADD_FAILURE() << "no error for an overlap";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "state: bodies 1 and 2 overlap (U = 30021808902.357002 kJ/mol)");
+    }
+    // Spheres too (LJ has no axis).
+    const Scene lj = sceneFromJson({{"engine", "smd"},
+                                    {"body", {{"kind", "sphere"}}},
+                                    {"potential", {{"kind", "lj"}}},
+                                    {"state", {{"density", 0.001}, {"particles", particles}}}},
+                                   "t");
+    expectSceneError([&] { LJEngine e(buildInitialState<Sphere>(lj, ljPotential(lj)), lj); },
+                     "state: bodies 1 and 2 overlap");
 }
