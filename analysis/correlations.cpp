@@ -2,6 +2,7 @@
 #include "analysis/csv.hpp"
 #include "analysis/dynamic_correlations.hpp"
 #include "analysis/rdf.hpp"
+#include "core/output_file.hpp"
 #include "core/units.hpp"
 #include <algorithm>
 #include <cmath>
@@ -75,15 +76,17 @@ nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
     const SampledCurve msd = meanSquaredDisplacement(samples, maxLag, msdBlocks);
     const Diffusion d = diffusionFromMsd(msd);
 
-    std::filesystem::create_directories(dir);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throwIoError("create the directory", dir, ec.value());
     writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
     writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
     if (rotating)
         writeCsv(dir / "oacf.csv",
                  {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
                   {oacf.c1.tPs, oacf.c1.value, oacf.c1.err, oacf.c2.value, oacf.c2.err}});
-    else
-        std::filesystem::remove(dir / "oacf.csv");
+    else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
+        throwIoError("remove", dir / "oacf.csv", ec.value());
     writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
 
     const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²

@@ -1,4 +1,5 @@
 #include "analysis/csv.hpp"
+#include "core/output_file.hpp"
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -47,29 +48,23 @@ void writeCsv(const std::filesystem::path& path, const CsvTable& table) {
             throw CsvError(path.string() + ": columns of unequal length");
     if (table.columns.size() != table.header.size())
         throw CsvError(path.string() + ": one header name per column");
-    const auto temporary = std::filesystem::path(path.string() + ".partial");
-    {
-        std::ofstream out(temporary);
-        if (!out) throw CsvError("cannot write " + temporary.string());
-        out.precision(17);
-        for (std::size_t c = 0; c < table.header.size(); ++c)
-            out << (c ? "," : "") << table.header[c];
-        out << '\n';
-        for (int r = 0; r < table.rows(); ++r) {
-            for (std::size_t c = 0; c < table.columns.size(); ++c) {
-                const double v = table.columns[c][r];
-                out << (c ? "," : "");
-                if (std::isfinite(v))
-                    out << v;
-                else
-                    out << "nan";
-            }
-            out << '\n';
+    std::ostringstream out;
+    out.precision(17);
+    for (std::size_t c = 0; c < table.header.size(); ++c)
+        out << (c ? "," : "") << table.header[c];
+    out << '\n';
+    for (int r = 0; r < table.rows(); ++r) {
+        for (std::size_t c = 0; c < table.columns.size(); ++c) {
+            const double v = table.columns[c][r];
+            out << (c ? "," : "");
+            if (std::isfinite(v))
+                out << v;
+            else
+                out << "nan";
         }
-        out.flush();
-        if (!out) throw CsvError("error writing " + temporary.string());
+        out << '\n';
     }
-    std::filesystem::rename(temporary, path);
+    writeFileAtomically(path, out.str()); // IoError naming the file and the cause
 }
 
 CsvTable readCsv(const std::filesystem::path& path) {

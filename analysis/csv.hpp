@@ -23,8 +23,8 @@ struct CsvTable {
     int find(const std::string& name) const;
 };
 
-/// Writes the table (17 significant digits: values survive a round trip exactly). Writes to a
-/// temporary file renamed into place, so that an interrupted write never leaves half a table.
+/// Writes the table (17 significant digits: values survive a round trip exactly), whole or not at
+/// all (core/output_file.hpp); a failed write is an IoError naming the file and the cause.
 void writeCsv(const std::filesystem::path& path, const CsvTable& table);
 
 /// Reads a table written as above; throws CsvError naming the file and line on anything else.

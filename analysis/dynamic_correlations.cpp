@@ -1,5 +1,6 @@
 #include "analysis/dynamic_correlations.hpp"
 #include "analysis/block_average.hpp"
+#include "analysis/cancellation.hpp"
 #include "analysis/time_correlation.hpp"
 #include "core/units.hpp"
 #include <algorithm>
@@ -70,6 +71,7 @@ void addSeries(BlockedAutocorrelation& acf, const std::vector<Snapshot>& samples
     const int n = samples.front().size(), t = static_cast<int>(samples.size());
     std::vector<double> x(t);
     for (int i = 0; i < n; ++i) {
+        if (i % 256 == 0) throwIfCancelled();
         for (int s = 0; s < t; ++s)
             x[s] = component(samples[s], i);
         acf.add(x, weight);
@@ -242,6 +244,7 @@ SampledCurve meanSquaredDisplacement(const std::vector<Snapshot>& samples, int m
         std::fill(prefix.begin(), prefix.end(), 0.0); // Σ_{t' < t} Σ_i |r_i(t') − r̄_i|²
         for (int i = first; i < last; ++i)
             for (int a = 0; a < 3; ++a) {
+                if (i % 256 == 0 && a == 0) throwIfCancelled();
                 for (int s = 0; s < t; ++s) {
                     series[s] = samples[s].position[i][a] - centre[i][a];
                     prefix[s + 1] += series[s] * series[s];

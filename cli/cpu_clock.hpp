@@ -8,8 +8,15 @@ namespace terrace::cli {
 
 class CpuClock {
 public:
-    void start() { started_ = now(); }
-    void stop() { total_ += now() - started_; }
+    void start() {
+        started_ = now();
+        running_ = true;
+    }
+    /// Ends the interval begun by start(); without one running, nothing happens.
+    void stop() {
+        if (running_) total_ += now() - started_;
+        running_ = false;
+    }
     void reset() { total_ = 0.0; }
     double seconds() const { return total_; }
 
@@ -22,6 +29,7 @@ public:
 private:
     double started_ = 0.0;
     double total_ = 0.0;
+    bool running_ = false;
 };
 
 } // namespace terrace::cli

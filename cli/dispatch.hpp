@@ -1,6 +1,8 @@
 #pragma once
 // Runtime scene choices -> compile-time (body kind, potential) pairs. This is the only place
 // where the body kind and the potential are chosen at run time; everything below is a template.
+#include "cli/restart.hpp"
+#include "cli/run_driver.hpp"
 #include "core/asymmetric_top.hpp"
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
@@ -16,6 +18,32 @@ template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
     if (scene.body.kind == "symmetric") return fn.template operator()<SymmetricTop>(rod);
     if (scene.body.kind == "asymmetric") return fn.template operator()<AsymmetricTop>(rod);
     return fn.template operator()<LinearRotor>(rod);
+}
+
+/// The bodies a run starts from: the scene's initial state, or those of the restart file.
+template <BodyKind K, PairPotential P>
+System<K, P> startingSystem(const Scene& scene, const P& potential, const RunTarget& target) {
+    if (!target.resume) return buildInitialState<K, P>(scene, potential);
+    System<K, P> sys;
+    sys.box.length = scene.boxLength();
+    sys.body = bodyParams(scene);
+    sys.potential = potential;
+    sys.kT = scene.kT();
+    sys.bodies = bodiesFromBinary<typename K::State>(target.resume->at("bodies"),
+                                                     target.resume->at("n_bodies").get<int>());
+    return sys;
+}
+
+/// Builds the engine (from the restart file's checkpoint when continuing) and drives the run.
+template <template <class, class> class Engine, BodyKind K, PairPotential P>
+RunOutcome buildAndDrive(const Scene& scene, const P& potential, const RunTarget& target) {
+    std::optional<Engine<K, P>> engine;
+    if (target.resume)
+        engine.emplace(startingSystem<K, P>(scene, potential, target), scene,
+                       target.resume->at("engine"));
+    else
+        engine.emplace(startingSystem<K, P>(scene, potential, target), scene);
+    return drive(engine, scene, target, K::rotationalDof);
 }
 
 } // namespace terrace::cli

@@ -4,27 +4,75 @@
 namespace terrace::cli {
 
 namespace {
-std::atomic<bool> stopRequested{false};
-void (*previousHandler)(int) = SIG_DFL;
 
-extern "C" void onInterrupt(int) {
-    if (stopRequested.exchange(true)) _exit(130);
-    static const char msg[] =
-        "\nterrace: interrupted; finishing the current sample and writing output"
-        " (Ctrl-C again to abort)\n";
-    [[maybe_unused]] auto n = write(2, msg, sizeof msg - 1);
+constexpr int handled[] = {SIGINT, SIGTERM, SIGHUP};
+std::atomic<int> received{0};
+std::atomic<int> firstSignal{0};
+struct sigaction previous[3];
+struct sigaction previousXfsz;
+
+void say(const char* text, std::size_t length) {
+    [[maybe_unused]] auto n = write(2, text, length);
 }
+
+extern "C" void onSignal(int sig) {
+    int expected = 0;
+    firstSignal.compare_exchange_strong(expected, sig);
+    const int n = ++received;
+    if (n >= 3) _exit(128 + firstSignal.load());
+    static const char first[] =
+        "\nterrace: signal received: stopping at the next sample and writing the output "
+        "(again: skip the analysis; a third time: exit at once)\n";
+    static const char second[] = "\nterrace: second signal: skipping the analysis\n";
+    if (n == 1)
+        say(first, sizeof first - 1);
+    else
+        say(second, sizeof second - 1);
+}
+
 } // namespace
 
 InterruptGuard::InterruptGuard() {
-    stopRequested = false;
-    previousHandler = std::signal(SIGINT, onInterrupt);
+    received = 0;
+    firstSignal = 0;
+    struct sigaction action {};
+    action.sa_handler = onSignal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART; // reads and writes in progress go on; the loop checks the flag
+    for (int k = 0; k < 3; ++k)
+        sigaction(handled[k], &action, &previous[k]);
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    sigaction(SIGXFSZ, &ignore, &previousXfsz);
 }
+
 InterruptGuard::~InterruptGuard() {
-    std::signal(SIGINT, previousHandler);
+    for (int k = 0; k < 3; ++k)
+        sigaction(handled[k], &previous[k], nullptr);
+    sigaction(SIGXFSZ, &previousXfsz, nullptr);
 }
-bool InterruptGuard::requested() const {
-    return stopRequested.load();
+
+int InterruptGuard::count() const {
+    return received.load();
+}
+
+int InterruptGuard::signal() const {
+    return firstSignal.load();
+}
+
+std::string InterruptGuard::signalName() const {
+    switch (signal()) {
+    case SIGINT:
+        return "SIGINT";
+    case SIGTERM:
+        return "SIGTERM";
+    case SIGHUP:
+        return "SIGHUP";
+    case 0:
+        return "";
+    }
+    return "signal " + std::to_string(signal());
 }
 
 } // namespace terrace::cli

@@ -1,5 +1,6 @@
 // terrace: event-driven (DMD) and standard (SMD) rigid-body dynamics on one scene, side by side.
-//   terrace run [SCENE] [--set key.path=value]... [--out DIR] [--quiet]
+//   terrace run [SCENE] [--set key.path=value]... [--out DIR] [--overwrite] [--quiet]
+//   terrace run --continue DIR
 //   terrace analyse DIR
 //   terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
 #include "analysis/compare.hpp"
@@ -8,6 +9,7 @@
 #include "core/xyz.hpp"
 #include <boost/program_options.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 namespace po = boost::program_options;
@@ -19,63 +21,109 @@ const char* usage = R"(terrace — event-driven dynamics of rigid bodies on terr
 and standard rigid-body MD on the continuous potential (SMD), compared on one scene.
 
 Usage:
-  terrace run [SCENE.json] [--set key.path=value]... [--out DIR] [--quiet]
+  terrace run [SCENE.json] [--set key.path=value]... [--out DIR] [--overwrite] [--quiet]
       Run a scene (default: the built-in dense rods, N 512, rho* 0.5, T* 1.4).
       --set overrides any scene key by its dotted path, e.g. --set engine=smd
       --set dmd.dV=0.5 --set run.time_ps=5. Writes DIR/summary.json, scene.json,
       initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv and, if asked for,
-      trajectory.xyz (default DIR: out/<scene name>-<engine>).
+      trajectory.xyz (default DIR: out/<scene name>-<engine>). A DIR that holds an
+      earlier run's results is refused unless --overwrite (which removes them first).
+      With output.restart_every_ps > 0 the run keeps DIR/restart.bin (and samples.bin).
+  terrace run --continue DIR [--quiet]
+      Continue the run in DIR from its restart file, extending its output as if it had
+      never stopped.
   terrace analyse DIR
-      Recompute the correlation CSVs of DIR from DIR/trajectory.xyz.
+      Recompute the correlation CSVs of DIR from DIR/trajectory.xyz (a last frame cut
+      short by a killed run is left out, with a warning).
   terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
       Regression check of two correlation curves; exit status 1 when they disagree.
   terrace --help
 
+SIGINT, SIGTERM and SIGHUP end a run at the next sample with its output written (exit
+status 128 + the signal's number); a second signal skips the analysis.
 Units: lengths in Angstrom, masses g/mol, energies kJ/mol, times fs/ps on input and output.
 )";
+
+void printRunSummary(const Scene& scene, const nlohmann::json& s,
+                     const std::filesystem::path& out) {
+    std::printf("%s: %s, N = %d, %.3f ps simulated in %.2f CPU s (%.3f CPU s/ps)\n",
+                scene.name.c_str(), scene.engine.c_str(), s["n_bodies"].get<int>(),
+                s["simulated_ps"].get<double>(), s["cpu_seconds"].get<double>(),
+                s["cpu_seconds_per_ps"].get<double>());
+    if (s.contains("energy"))
+        std::printf("  T = %.1f K (target %.1f K), <U> = %.4f kJ/mol, energy rel. fluctuation "
+                    "%.3g, drift %.3g kJ/mol/ps\n",
+                    s["temperature_K"].get<double>(), s["temperature_target_K"].get<double>(),
+                    s["potential_energy_mean"].get<double>(),
+                    s["energy"]["rel_fluct"].get<double>(),
+                    s["energy"]["drift_per_ps"].get<double>());
+    if (s.contains("collisions_per_ps"))
+        std::printf("  %.4g collisions/ps, %.4g events per CPU s\n",
+                    s["collisions_per_ps"].get<double>(), s.value("events_per_cpu_second", 0.0));
+    if (s.value("interrupted", false))
+        std::printf("  interrupted by %s during %s\n",
+                    s.value("interrupted_by", std::string("a signal")).c_str(),
+                    s.value("interrupted_in", std::string("the run")).c_str());
+    std::printf("  output in %s/\n", out.c_str());
+}
 
 int runMain(const std::vector<std::string>& args) {
     po::options_description opts("run options");
     opts.add_options()("set", po::value<std::vector<std::string>>()->composing(),
                        "key.path=value")("out", po::value<std::string>(), "output directory")(
-        "quiet", "no progress output")("scene", po::value<std::string>(), "scene file");
+        "overwrite", "replace the results of an earlier run in the output directory")(
+        "continue", po::value<std::string>(), "continue the run in DIR from its restart file")(
+        "quiet", "no progress output")("help,h", "this help")("scene", po::value<std::string>(),
+                                                              "scene file");
     po::positional_options_description pos;
     pos.add("scene", 1);
     po::variables_map vm;
     po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
     po::notify(vm);
+    if (vm.count("help")) {
+        std::fputs(usage, stdout);
+        return 0;
+    }
+    const bool quiet = vm.count("quiet") > 0;
+    if (vm.count("continue")) {
+        if (vm.count("scene") || vm.count("set") || vm.count("out") || vm.count("overwrite"))
+            throw po::error("--continue DIR takes no scene, --set, --out or --overwrite: the run "
+                            "goes on with the scene and directory it was started with");
+        const std::filesystem::path dir = vm["continue"].as<std::string>();
+        Scene scene;
+        const auto outcome = cli::continueRun(dir, quiet, scene);
+        printRunSummary(scene, outcome.summary, dir);
+        return outcome.exitStatus;
+    }
     cli::RunRequest req;
     if (vm.count("scene")) req.scenePath = vm["scene"].as<std::string>();
     if (vm.count("set")) req.overrides = vm["set"].as<std::vector<std::string>>();
-    req.quiet = vm.count("quiet") > 0;
+    req.quiet = quiet;
     const Scene scene = cli::resolveScene(req);
-    const std::filesystem::path out =
-        vm.count("out") ? std::filesystem::path(vm["out"].as<std::string>())
-                        : std::filesystem::path("out") / (scene.name + "-" + scene.engine);
-    const auto s = cli::runScene(scene, out, req.quiet);
-    std::printf("%s: %s, N = %d, %.3f ps simulated in %.2f CPU s (%.3f CPU s/ps)\n",
-                scene.name.c_str(), scene.engine.c_str(), s["n_bodies"].get<int>(),
-                s["simulated_ps"].get<double>(), s["cpu_seconds"].get<double>(),
-                s["cpu_seconds_per_ps"].get<double>());
-    std::printf("  T = %.1f K (target %.1f K), <U> = %.4f kJ/mol, energy rel. fluctuation %.3g, "
-                "drift %.3g kJ/mol/ps\n",
-                s["temperature_K"].get<double>(), s["temperature_target_K"].get<double>(),
-                s["potential_energy_mean"].get<double>(), s["energy"]["rel_fluct"].get<double>(),
-                s["energy"]["drift_per_ps"].get<double>());
-    if (s.contains("collisions_per_ps"))
-        std::printf("  %.4g collisions/ps, %.4g events per CPU s\n",
-                    s["collisions_per_ps"].get<double>(), s.value("events_per_cpu_second", 0.0));
-    std::printf("  output in %s/\n", out.c_str());
-    return s.value("interrupted", false) ? 130 : 0;
+    cli::RunTarget target;
+    target.dir = vm.count("out") ? std::filesystem::path(vm["out"].as<std::string>())
+                                 : cli::defaultOutput(scene);
+    target.mode = vm.count("overwrite") ? cli::OutputMode::Overwrite : cli::OutputMode::Fresh;
+    target.quiet = quiet;
+    const auto outcome = cli::runScene(scene, target);
+    printRunSummary(scene, outcome.summary, target.dir);
+    return outcome.exitStatus;
 }
 
 int analyseMain(const std::vector<std::string>& args) {
+    if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h")) {
+        std::fputs(usage, stdout);
+        return 0;
+    }
     if (args.size() != 1) throw po::error("analyse takes exactly one directory");
     const std::filesystem::path dir = args[0];
-    const auto frames = readTrajectory((dir / "trajectory.xyz").string());
+    std::string partial;
+    const auto frames = readTrajectory((dir / "trajectory.xyz").string(), &partial);
+    if (!partial.empty()) std::fprintf(stderr, "terrace: warning: %s\n", partial.c_str());
     if (frames.size() < 4)
-        throw TrajectoryError((dir / "trajectory.xyz").string() +
-                              ": fewer than 4 frames, too few to correlate");
+        throw TrajectoryError((dir / "trajectory.xyz").string() + ": " +
+                              std::to_string(frames.size()) +
+                              " whole frames, too few to correlate (at least 4)");
     const auto summary = analysis::writeCorrelations(frames, dir);
     std::printf("%zu frames analysed; wrote the correlation CSVs in %s/\n", frames.size(),
                 dir.c_str());
@@ -122,6 +170,17 @@ int main(int argc, char** argv) {
     } catch (const po::error& e) {
         std::fprintf(stderr, "terrace %s: %s (try terrace --help)\n", command.c_str(), e.what());
         return 2;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "terrace: out of memory (the system refused an allocation)\n");
+        return 1;
+    } catch (const std::filesystem::filesystem_error& e) {
+        // The library's text repeats the operation in its own words; name the path and cause.
+        std::fprintf(stderr, "terrace: cannot access %s: %s\n", e.path1().c_str(),
+                     e.code().message().c_str());
+        return 1;
+    } catch (const nlohmann::json::exception& e) {
+        std::fprintf(stderr, "terrace: a damaged or foreign file: %s\n", e.what());
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "terrace: %s\n", e.what());
         return 1;

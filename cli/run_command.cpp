@@ -1,7 +1,11 @@
 #include "cli/run_command.hpp"
-#include "cli/dispatch.hpp"
-#include "core/xyz.hpp"
+#include "cli/output_dir.hpp"
+#include "cli/restart.hpp"
+#include "core/output_file.hpp"
+#include <cstdio>
 #include <fstream>
+#include <sstream>
+#include <unistd.h>
 
 namespace terrace::cli {
 
@@ -11,13 +15,56 @@ Scene resolveScene(const RunRequest& request) {
     return loadScene(request.scenePath, request.overrides);
 }
 
-void prepareOutput(const std::filesystem::path& dir, const Scene& scene) {
-    std::filesystem::create_directories(dir);
-    std::ofstream(dir / "scene.json") << toJson(scene).dump(2) << '\n';
+std::filesystem::path defaultOutput(const Scene& scene) {
+    return std::filesystem::path("out") / sanitisedName(scene.name + "-" + scene.engine);
 }
 
-nlohmann::json runScene(const Scene& scene, const std::filesystem::path& outDir, bool quiet) {
-    return scene.engine == "smd" ? runSmd(scene, outDir, quiet) : runDmd(scene, outDir, quiet);
+namespace {
+
+/// Memory this machine can give a process now (MemAvailable), in bytes; 0 if unknown.
+double availableMemory() {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    double kib = 0.0;
+    std::string unit;
+    while (meminfo >> key >> kib >> unit)
+        if (key == "MemAvailable:") return kib * 1024.0;
+    const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    return pages > 0 && size > 0 ? double(pages) * double(size) : 0.0;
+}
+
+int rotationalDofOf(const Scene& scene) {
+    if (scene.body.kind == "sphere") return 0;
+    return scene.body.kind == "linear" ? 2 : 3;
+}
+
+} // namespace
+
+void checkSampleMemory(const Scene& scene) {
+    const double need = storedSampleBytes(scene, rotationalDofOf(scene));
+    const double have = availableMemory();
+    if (have > 0.0 && need > have) {
+        char text[512];
+        std::snprintf(text, sizeof text,
+                      "run: the %.0f samples of this run (run.time_ps / run.sample_fs) would "
+                      "take %.3g GiB of memory, more than the %.3g GiB available: use a longer "
+                      "run.sample_fs or a shorter run.time_ps",
+                      double(planRun(scene).productionSamples) + 1.0, need / (1 << 30),
+                      have / (1 << 30));
+        throw SceneError(text);
+    }
+}
+
+RunOutcome runScene(const Scene& scene, const RunTarget& target) {
+    checkSampleMemory(scene);
+    return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);
+}
+
+RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scene) {
+    const nlohmann::json restart = readRestart(dir);
+    scene = sceneFromJson(restart.at("scene"), (dir / "restart.bin").string());
+    RunTarget target{dir, OutputMode::Continue, quiet, &restart};
+    return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);
 }
 
 } // namespace terrace::cli

@@ -1,6 +1,8 @@
 #pragma once
 // `terrace run`: resolve the scene, build the initial state and the engine (all validation happens
-// here, before anything is written), then drive the run into the output directory.
+// here, before anything is written), then drive the run into the output directory. A continued
+// run takes its scene, bodies and engine checkpoint from the directory's restart file instead.
+#include "cli/run_driver.hpp"
 #include "core/scene.hpp"
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -12,21 +14,27 @@ namespace terrace::cli {
 struct RunRequest {
     std::string scenePath; // empty: the built-in default scene
     std::vector<std::string> overrides;
-    std::filesystem::path outDir; // empty: out/<scene name>-<engine>
     bool quiet = false;
 };
 
 Scene resolveScene(const RunRequest& request);
 
-/// Runs and returns summary.json's content.
-nlohmann::json runScene(const Scene& scene, const std::filesystem::path& outDir, bool quiet);
+/// The default output directory of a scene: out/<sanitised name>-<engine>.
+std::filesystem::path defaultOutput(const Scene& scene);
+
+/// Refuses a run whose stored samples would not fit in the memory this machine has available,
+/// before anything starts, with the estimate.
+void checkSampleMemory(const Scene& scene);
+
+/// Runs the scene into target.dir (fresh or overwrite).
+RunOutcome runScene(const Scene& scene, const RunTarget& target);
+/// Continues the run whose restart file is in dir; returns its scene too.
+RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scene);
 
 // One translation unit per engine keeps compile times down; each instantiates its engine for
-// every (body kind, potential) pair a scene may ask for.
-nlohmann::json runSmd(const Scene& scene, const std::filesystem::path& outDir, bool quiet);
-nlohmann::json runDmd(const Scene& scene, const std::filesystem::path& outDir, bool quiet);
-
-/// Creates the output directory and writes the resolved scene and the initial state into it.
-void prepareOutput(const std::filesystem::path& dir, const Scene& scene);
+// every (body kind, potential) pair a scene may ask for. `target.resume`, when set, is the
+// restart file the engine and its bodies come from.
+RunOutcome runSmd(const Scene& scene, const RunTarget& target);
+RunOutcome runDmd(const Scene& scene, const RunTarget& target);
 
 } // namespace terrace::cli

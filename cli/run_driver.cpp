@@ -1,6 +1,9 @@
 #include "cli/run_driver.hpp"
+#include "analysis/cancellation.hpp"
 #include "analysis/conservation.hpp"
 #include "analysis/correlations.hpp"
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 
@@ -8,21 +11,48 @@ namespace terrace::cli {
 
 RunPlan planRun(const Scene& scene) {
     RunPlan plan;
-    double interval = units::fromFs(scene.run.sample_fs);
-    if (scene.engine == "smd") {
+    // On SMD's grid an interval is a whole number of steps (the scene validation refuses any
+    // other); rounding the ratio only removes its binary round-off.
+    auto onGrid = [&](double fs) {
+        const double interval = units::fromFs(fs);
+        if (scene.engine != "smd") return interval;
         const double dt = units::fromFs(scene.smd.dt_fs);
-        interval = std::max(1.0, std::round(interval / dt)) * dt;
-    }
-    plan.sampleInterval = interval;
+        return std::max(1.0, std::round(interval / dt)) * dt;
+    };
+    plan.sampleInterval = onGrid(scene.run.sample_fs);
+    plan.thermostatInterval = onGrid(scene.run.thermostat_fs);
     // The small allowance keeps a run length that is an exact multiple of the interval in
-    // decimal from losing its last sample to binary round-off.
-    plan.equilibrationSamples =
-        long(std::floor(units::fromPs(scene.run.equilibrate_ps) / interval + 1e-9));
-    plan.productionSamples = long(std::floor(units::fromPs(scene.run.time_ps) / interval + 1e-9));
-    if (scene.output.trajectory_every_fs > 0.0)
-        plan.trajectoryEvery = std::max(
-            1L, long(std::llround(units::fromFs(scene.output.trajectory_every_fs) / interval)));
+    // decimal from losing its last interval to binary round-off.
+    plan.equilibrationTicks =
+        long(std::floor(units::fromPs(scene.run.equilibrate_ps) / plan.thermostatInterval + 1e-9));
+    plan.productionSamples =
+        long(std::floor(units::fromPs(scene.run.time_ps) / plan.sampleInterval + 1e-9));
+    auto inSamples = [&](double interval) {
+        return interval > 0.0 ? std::max(1L, long(std::llround(interval / plan.sampleInterval)))
+                              : 0L;
+    };
+    plan.trajectoryEvery = inSamples(units::fromFs(scene.output.trajectory_every_fs));
+    plan.restartEvery = inSamples(units::fromPs(scene.output.restart_every_ps));
+    if (plan.restartEvery > 0)
+        plan.restartEveryTicks =
+            std::max(1L, long(std::llround(units::fromPs(scene.output.restart_every_ps) /
+                                           plan.thermostatInterval)));
     return plan;
+}
+
+double RunPlan::productionTime(long s, double tStart) const {
+    if (thermostatInterval == sampleInterval)
+        return double(equilibrationTicks + s) * sampleInterval;
+    return tStart + double(s) * sampleInterval;
+}
+
+double storedSampleBytes(const Scene& scene, int rotationalDof) {
+    const RunPlan plan = planRun(scene);
+    const double n = scene.state.particles.empty() ? double(scene.state.n)
+                                                   : double(scene.state.particles.size());
+    // position, velocity, axis, ω and a top's quaternion per body, the snapshot and its energies
+    const double perBody = 4.0 * sizeof(Vec3) + (rotationalDof == 3 ? sizeof(Quat) : 0.0);
+    return (double(plan.productionSamples) + 1.0) * (n * perBody + sizeof(Snapshot) + 32.0);
 }
 
 nlohmann::json vec3Json(const Vec3& v) {
@@ -40,28 +70,35 @@ bool isCounter(const std::string& path) {
     return path.rfind("events.", 0) == 0 || counters.count(path) > 0;
 }
 
-nlohmann::json difference(const nlohmann::json& before, const nlohmann::json& after,
-                          const std::string& path = "") {
+void addStretch(nlohmann::json& acc, const nlohmann::json& before, const nlohmann::json& after,
+                const std::string& path) {
     if (after.is_object()) {
-        nlohmann::json out = nlohmann::json::object();
+        if (!acc.is_object()) acc = nlohmann::json::object();
+        static const nlohmann::json none;
         for (const auto& [key, value] : after.items()) {
             const std::string sub = path.empty() ? key : path + "." + key;
-            out[key] = before.is_object() && before.contains(key)
-                           ? difference(before[key], value, sub)
-                           : value;
+            addStretch(acc[key], before.is_object() && before.contains(key) ? before[key] : none,
+                       value, sub);
         }
-        return out;
+        return;
     }
-    if (isCounter(path) && after.is_number_integer() && before.is_number_integer())
-        return after.get<long long>() - before.get<long long>();
-    return after;
+    if (isCounter(path) && after.is_number_integer() && before.is_number_integer()) {
+        const long long increase = after.get<long long>() - before.get<long long>();
+        acc = (acc.is_number_integer() ? acc.get<long long>() : 0LL) + increase;
+        return;
+    }
+    acc = after;
 }
 
 } // namespace
 
-void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& before,
-                         const nlohmann::json& after, double simulatedPs) {
-    const nlohmann::json production = difference(before, after);
+void accumulateStatistics(nlohmann::json& production, const nlohmann::json& start,
+                          const nlohmann::json& end) {
+    addStretch(production, start, end, "");
+}
+
+void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& production,
+                         double simulatedPs) {
     for (const auto& [key, value] : production.items())
         summary[key] = value;
     if (simulatedPs <= 0.0) return;
@@ -129,15 +166,16 @@ void addEnergy(nlohmann::json& summary, const RunRecord& run) {
     }
 }
 
-} // namespace
-
-nlohmann::json writeSummary(const Scene& scene, const RunRecord& run,
-                            const std::filesystem::path& dir) {
+nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     nlohmann::json summary;
     summary["engine"] = scene.engine;
     summary["scene"] = scene.name;
     summary["n_bodies"] = run.bodies;
-    summary["interrupted"] = run.interrupted;
+    summary["interrupted"] = !run.interruptedBy.empty();
+    if (!run.interruptedBy.empty()) {
+        summary["interrupted_by"] = run.interruptedBy;
+        summary["interrupted_in"] = run.interruptedIn;
+    }
     if (!run.failure.empty()) summary["error"] = run.failure;
     summary["simulated_ps"] = run.simulatedPs;
     summary["sample_fs"] = units::toFs(run.sampleInterval);
@@ -146,22 +184,54 @@ nlohmann::json writeSummary(const Scene& scene, const RunRecord& run,
     summary["cpu_seconds_equilibration"] = run.cpuEquilibration;
     summary["cpu_seconds_per_ps"] = run.simulatedPs > 0 ? run.cpuSeconds / run.simulatedPs : 0.0;
     summary["temperature_target_K"] = units::kelvin(run.kT);
-    summary["warnings"] = nlohmann::json::array();
+    summary["warnings"] = run.warnings;
+    if (run.restartEveryPs > 0.0)
+        summary["restarts"] = {{"every_ps", run.restartEveryPs},
+                               {"written", run.restartsWritten},
+                               {"continued", run.continuations}};
     addEnergy(summary, run);
     summary["momentum"] = {{"initial", vec3Json(run.momentumInitial / units::psPerTimeUnit)},
                            {"final", vec3Json(run.momentumFinal / units::psPerTimeUnit)},
                            {"units", "g/mol A/ps"}};
-    addEngineStatistics(summary, run.statsBefore, run.statsAfter, run.simulatedPs);
+    addEngineStatistics(summary, run.production, run.simulatedPs);
+    return summary;
+}
+
+} // namespace
+
+nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
+                                       const std::filesystem::path& dir,
+                                       const InterruptGuard& interrupt) {
+    const int signalsBefore = interrupt.count();
+    nlohmann::json summary = summaryOf(scene, run);
     summary["provenance"] = provenance(scene);
-    if (run.samples.size() >= 4) {
-        try {
-            summary["analysis"] = analysis::writeCorrelations(run.samples, dir);
-        } catch (const std::exception& e) { // the run's own numbers stay worth keeping
-            summary["analysis"] = {{"error", e.what()}};
-            std::fprintf(stderr, "terrace: warning: analysis failed: %s\n", e.what());
+    const bool analyse = run.samples.size() >= 4;
+    // Written before the analysis, so that a run killed during a long analysis keeps it.
+    if (analyse) summary["analysis"] = "not finished: the process ended during the analysis";
+    writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
+    if (!analyse) return summary;
+    try {
+        // A signal during the analysis cancels it, and so does a second one at any time (the
+        // first only stopped the run).
+        const int tolerated = std::min(signalsBefore, 1);
+        const analysis::ScopedCancellation hook([&] { return interrupt.count() > tolerated; });
+        summary["analysis"] = analysis::writeCorrelations(run.samples, dir);
+    } catch (const analysis::Cancelled&) {
+        summary["analysis"] = {{"error", "cancelled by a signal before it finished"}};
+        if (run.interruptedBy.empty()) {
+            run.interruptedBy = interrupt.signalName();
+            run.interruptedIn = "analysis";
+            summary["interrupted"] = true;
+            summary["interrupted_by"] = run.interruptedBy;
+            summary["interrupted_in"] = run.interruptedIn;
         }
+    } catch (const IoError&) {
+        throw; // a failed write is an error of the run, not of the analysis
+    } catch (const std::exception& e) { // the run's own numbers stay worth keeping
+        summary["analysis"] = {{"error", e.what()}};
+        std::fprintf(stderr, "terrace: warning: analysis failed: %s\n", e.what());
     }
-    std::ofstream(dir / "summary.json") << summary.dump(2) << '\n';
+    writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
     return summary;
 }
 

@@ -1,23 +1,33 @@
 #pragma once
 // The run loop shared by both engines (STYLE.md items 8-9): sampling in physical time is decided
-// here, outside the engines, on one uniform grid:
-//   equilibration  advanceTo(t_k) and rescale v, ω to the scene temperature at every sample time
-//   production     advanceTo(t_k), record energies and a Snapshot, write trajectory frames
-// CPU time is measured around the engine calls only, so output and analysis do not count against
-// either engine. A SIGINT stops the loop at the next sample; everything gathered so far is still
-// written, and summary.json says "interrupted": true.
+// here, outside the engines:
+//   equilibration  advanceTo(k·Δt_thermostat), then rescale v, ω to the scene temperature
+//   production     advanceTo(t_s) on the sample grid, record energies and a Snapshot, append
+//                  trajectory frames (and, with restarts on, the sample to samples.bin)
+//   restart points every output.restart_every_ps (cli/restart.hpp): the engine is rebuilt from
+//                  its bodies and checkpoint and restart.bin is written
+// CPU time is measured around the engine's advanceTo and rescale calls only, so output, analysis
+// and restart points do not count against either engine.
+//
+// Nothing is lost when a run stops: every file is written whole (core/output_file.hpp); a signal
+// (cli/interrupt.hpp) ends the run at the next sample with restart.bin, summary.json (saying
+// "interrupted" and by which signal) and the analysis written; an engine failure or a failed
+// write ends it with what was gathered until then written and the first error raised again.
 #include "cli/cpu_clock.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/output_dir.hpp"
 #include "cli/provenance.hpp"
+#include "cli/restart.hpp"
 #include "core/engine.hpp"
+#include "core/output_file.hpp"
 #include "core/scene.hpp"
 #include "core/units.hpp"
 #include "core/xyz.hpp"
-#include <cmath>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,65 +35,208 @@
 namespace terrace::cli {
 
 struct RunPlan {
-    double sampleInterval = 0.0; // time units
-    long equilibrationSamples = 0;
-    long productionSamples = 0;
-    long trajectoryEvery = 0; // in samples; 0 = none
+    double sampleInterval = 0.0;     // time units
+    double thermostatInterval = 0.0; // time units
+    long equilibrationTicks = 0;     // whole thermostat intervals
+    long productionSamples = 0;      // samples after the one at the start of production
+    long trajectoryEvery = 0;        // in samples; 0 = none
+    long restartEvery = 0;           // in samples; 0 = none
+    long restartEveryTicks = 0;      // in thermostat intervals, during equilibration
+
+    /// The time of production sample s. When the thermostat and sample intervals agree this is
+    /// (ticks + s)·Δt, one grid from t = 0, as runs have always been sampled.
+    double productionTime(long s, double tStart) const;
 };
 
-/// Sample times must be reachable by the engine: SMD moves in whole steps, so its interval is the
-/// nearest whole number of steps (at least one).
+/// The scene's intervals on the engine's grid (the scene validation has checked that they are
+/// whole multiples: SMD moves in whole steps, outputs come at whole samples).
 RunPlan planRun(const Scene& scene);
+
+/// Bytes that the production samples kept for the analysis take in memory.
+double storedSampleBytes(const Scene& scene, int rotationalDof);
+
+/// Where and how a run writes.
+struct RunTarget {
+    std::filesystem::path dir;
+    OutputMode mode = OutputMode::Fresh;
+    bool quiet = false;
+    const nlohmann::json* resume = nullptr; // DIR/restart.bin when continuing
+};
+
+/// What a run returns: its summary, and the process's exit status (0, or 128 + a signal).
+struct RunOutcome {
+    nlohmann::json summary;
+    int exitStatus = 0;
+};
 
 nlohmann::json vec3Json(const Vec3& v);
 
-/// Merges the engine's statistics into the summary: counters (events.*, steps, ...) as their
-/// increase over production, everything else as its final value; adds
-/// collisions_per_ps (DMD: up + down + reflect) and steps_per_ps (SMD) where those counters exist.
-void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& before,
-                         const nlohmann::json& after, double simulatedPs);
+/// Adds one stretch of an engine's life (statistics at its start and end) to the production's
+/// statistics: counters (events.*, steps, ...) add their increase over the stretch, everything
+/// else takes its value at the end. Production is one stretch unless restart points rebuilt the
+/// engine.
+void accumulateStatistics(nlohmann::json& production, const nlohmann::json& start,
+                          const nlohmann::json& end);
+
+/// Merges the production's engine statistics into the summary and adds collisions_per_ps
+/// (DMD: up + down + reflect) and steps_per_ps (SMD) where those counters exist.
+void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& production,
+                         double simulatedPs);
 
 /// What a run gathered, handed from the engine loop to the summary.
 struct RunRecord {
     std::vector<double> tPs, total, potential, kinetic; // per production sample; kJ/mol
     std::vector<Snapshot> samples;
     Vec3 momentumInitial = Vec3::Zero(), momentumFinal = Vec3::Zero(); // internal units
-    nlohmann::json statsBefore, statsAfter; // engine statistics around production
+    nlohmann::json production = nlohmann::json::object(); // engine statistics over production
     double simulatedPs = 0.0, cpuSeconds = 0.0, cpuEquilibration = 0.0;
     double sampleInterval = 0.0, kT = 0.0;
     int bodies = 0, dof = 0;
-    bool interrupted = false;
-    std::string failure; // the engine's error, empty when the run went through
+    std::string interruptedBy;         // the signal that stopped the run ("" if none)
+    std::string interruptedIn;         // equilibration | production | analysis
+    std::string failure;               // the first error that ended the run ("" if none)
+    long restartsWritten = 0;          // restart files written over the whole run
+    int continuations = 0;             // times the run was continued from a restart file
+    double restartEveryPs = 0.0;       // 0: no restart files
+    std::vector<std::string> warnings; // from the scene (sceneWarnings)
+
+    void add(const SampleRecord& e, Snapshot s) {
+        tPs.push_back(e.tPs), total.push_back(e.total), potential.push_back(e.potential);
+        kinetic.push_back(e.kinetic), samples.push_back(std::move(s));
+    }
 };
 
-/// Builds summary.json from the record, runs the correlation analysis into dir and writes both.
-nlohmann::json writeSummary(const Scene& scene, const RunRecord& run,
-                            const std::filesystem::path& dir);
+/// Writes summary.json, then the correlation analysis (cancelled by a signal that arrives
+/// during it), then summary.json again with the analysis' results.
+nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
+                                       const std::filesystem::path& dir,
+                                       const InterruptGuard& interrupt);
 
-/// Drives `engine` through the scene's run and writes initial.xyz, trajectory.xyz (optional),
-/// summary.json and the correlation CSVs into `dir`. Returns the summary; an engine failure is
-/// raised again after everything gathered until then has been written.
-template <Engine E>
-nlohmann::json drive(E& engine, const Scene& scene, const std::filesystem::path& dir,
-                     int rotationalDof, bool quiet = false) {
+/// The bodies as they are now: DMD brings every clock to time(); SMD's are always there.
+template <class E> auto currentSystem(const E& engine) {
+    if constexpr (requires { engine.synchronisedCopy(); })
+        return engine.synchronisedCopy();
+    else
+        return engine.system();
+}
+
+/// Drives the engine through the scene's run into target.dir (claimed first: refused if it holds
+/// an earlier run, unless overwriting or continuing). `engine` holds the engine built from the
+/// scene's initial state, or from the restart file when continuing; it is rebuilt in place at
+/// every restart point.
+template <class E>
+RunOutcome drive(std::optional<E>& engine, const Scene& scene, const RunTarget& target,
+                 int rotationalDof) {
     const RunPlan plan = planRun(scene);
+    const OutputDirectory output(target.dir, target.mode); // locked until the run returns
+    const std::filesystem::path& dir = target.dir;
+    const bool restarts = plan.restartEvery > 0;
+    const TrajectoryLayout layout = layoutFor(rotationalDof);
     RunRecord run;
     run.kT = scene.kT();
     run.sampleInterval = plan.sampleInterval;
-    run.bodies = engine.snapshot().size();
+    run.bodies = engine->snapshot().size();
     run.dof = degreesOfFreedom(rotationalDof, run.bodies);
-    const TrajectoryLayout layout = layoutFor(rotationalDof);
-    ProgressReporter progress(quiet);
+    run.restartEveryPs = scene.output.restart_every_ps;
+    run.warnings = sceneWarnings(scene);
+    for (const auto& w : run.warnings)
+        std::fprintf(stderr, "terrace: warning: %s\n", w.c_str());
+    ProgressReporter progress(target.quiet);
     CpuClock cpu;
     InterruptGuard interrupt;
-    {
-        std::ofstream initial(dir / "initial.xyz");
-        writeXyzFrame(initial, engine.snapshot(), layout);
+
+    // Where the run stands: the phase, thermostat ticks and samples done, production's start.
+    bool inProduction = false;
+    long tick = 0, sample = 0;
+    double tStart = 0.0, cpuEquilibration = 0.0, cpuProduction = 0.0;
+    nlohmann::json stretchStart; // engine statistics where the current stretch began
+    AppendFile trajectory, samplesFile;
+    if (!target.resume) {
+        writeFileAtomically(dir / "scene.json", toJson(scene).dump(2) + "\n");
+        writeFileAtomically(dir / "initial.xyz", formatXyzFrame(engine->snapshot(), layout));
+    } else {
+        const nlohmann::json& r = *target.resume;
+        inProduction = r.at("phase") == "production";
+        tick = r.at("tick").get<long>();
+        sample = r.at("sample").get<long>();
+        tStart = r.at("t_start").get<double>();
+        cpuEquilibration = r.at("cpu_seconds_equilibration").get<double>();
+        cpuProduction = r.at("cpu_seconds").get<double>();
+        run.production = r.at("production_statistics");
+        const auto& p = r.at("momentum_initial");
+        run.momentumInitial = Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+        run.restartsWritten = r.at("restarts_written").get<long>();
+        run.continuations = r.at("continuations").get<int>() + 1;
+        if (inProduction) {
+            const auto& files = r.at("files");
+            if (plan.trajectoryEvery > 0)
+                trajectory = AppendFile(dir / "trajectory.xyz",
+                                        files.at("trajectory_bytes").get<std::int64_t>());
+            samplesFile =
+                AppendFile(dir / "samples.bin", files.at("samples_bytes").get<std::int64_t>());
+            std::vector<Snapshot> samples;
+            std::vector<SampleRecord> energies;
+            decodeSamples(readWholeFile(dir / "samples.bin"), run.bodies, rotationalDof == 3,
+                          engine->snapshot().boxLength, samples, energies);
+            if (long(samples.size()) != sample + 1)
+                throw IoError((dir / "samples.bin").string() + " holds " +
+                              std::to_string(samples.size()) + " samples, the restart file " +
+                              std::to_string(sample + 1));
+            for (std::size_t k = 0; k < samples.size(); ++k)
+                run.add(energies[k], std::move(samples[k]));
+        }
     }
-    // An engine that fails (an unstable time step, a stuck event cascade) ends the run; what was
-    // gathered until then is still written, with the error in summary.json.
+    run.samples.reserve(plan.productionSamples + 1);
+    if (inProduction) stretchStart = engine->statistics();
+
+    auto record = [&] {
+        Snapshot s = engine->snapshot();
+        const double u = engine->potentialEnergy(), kin = engine->kineticEnergy();
+        const SampleRecord e{units::toPs(engine->time() - tStart), u + kin, u, kin};
+        if (restarts) samplesFile.append(encodeSample(s, e));
+        if (plan.trajectoryEvery > 0 && sample % plan.trajectoryEvery == 0)
+            trajectory.append(formatXyzFrame(s, layout));
+        run.add(e, std::move(s));
+    };
+    // A restart point: the engine is rebuilt from its bodies and checkpoint, exactly as a run
+    // continued from the file written here builds it, then the file is written.
+    // At a signal's stop the engine is not rebuilt: the run ends there.
+    auto restartPoint = [&](const std::string& reason, bool rebuild) {
+        auto system = currentSystem(*engine);
+        const nlohmann::json checkpoint = engine->checkpoint();
+        nlohmann::json production = run.production;
+        if (inProduction) accumulateStatistics(production, stretchStart, engine->statistics());
+        if (rebuild) {
+            run.production = production;
+            engine.reset();
+            engine.emplace(system, scene, checkpoint);
+            stretchStart = engine->statistics();
+        }
+        ++run.restartsWritten;
+        writeRestart(dir, {{"format", restartFormat},
+                           {"reason", reason},
+                           {"scene", toJson(scene)},
+                           {"phase", inProduction ? "production" : "equilibration"},
+                           {"tick", tick},
+                           {"sample", sample},
+                           {"t_start", tStart},
+                           {"time_fs", units::toFs(engine->time())},
+                           {"n_bodies", run.bodies},
+                           {"bodies", bodiesToBinary(system.bodies)},
+                           {"engine", checkpoint},
+                           {"production_statistics", production},
+                           {"momentum_initial", vec3Json(run.momentumInitial)},
+                           {"cpu_seconds", cpuProduction + (inProduction ? cpu.seconds() : 0.0)},
+                           {"cpu_seconds_equilibration",
+                            cpuEquilibration + (inProduction ? 0.0 : cpu.seconds())},
+                           {"restarts_written", run.restartsWritten},
+                           {"continuations", run.continuations},
+                           {"files",
+                            {{"trajectory_bytes", trajectory.isOpen() ? trajectory.size() : 0},
+                             {"samples_bytes", samplesFile.isOpen() ? samplesFile.size() : 0}}}});
+    };
+    // The first error ends the run; what was gathered until then is still written.
     auto guarded = [&](auto&& work) {
-        if (!run.failure.empty()) return;
         try {
             work();
         } catch (const std::exception& e) {
@@ -91,57 +244,77 @@ nlohmann::json drive(E& engine, const Scene& scene, const std::filesystem::path&
             run.failure = e.what();
         }
     };
-    long k = 0; // sample index since the start of the run
     guarded([&] {
-        for (long e = 0; e < plan.equilibrationSamples && !interrupt.requested(); ++e) {
-            cpu.start();
-            engine.advanceTo(double(++k) * plan.sampleInterval);
-            engine.rescaleTemperature(run.kT);
-            cpu.stop();
-            progress.report("equilibration", e + 1, plan.equilibrationSamples, engine.time());
-        }
-    });
-    run.cpuEquilibration = cpu.seconds();
-    cpu.reset();
-
-    std::ofstream trajectory;
-    if (plan.trajectoryEvery > 0) trajectory.open(dir / "trajectory.xyz");
-    run.statsBefore = engine.statistics();
-    run.momentumInitial = engine.totalMomentum();
-    const double tStart = engine.time();
-    auto record = [&] {
-        const double u = engine.potentialEnergy(), kin = engine.kineticEnergy();
-        run.tPs.push_back(units::toPs(engine.time() - tStart));
-        run.total.push_back(u + kin);
-        run.potential.push_back(u);
-        run.kinetic.push_back(kin);
-        run.samples.push_back(engine.snapshot());
-        const long index = long(run.samples.size()) - 1;
-        if (plan.trajectoryEvery > 0 && index % plan.trajectoryEvery == 0) {
-            writeXyzFrame(trajectory, run.samples.back(), layout);
-            trajectory.flush();
-        }
-    };
-    run.samples.reserve(plan.productionSamples + 1);
-    guarded([&] {
-        record();
-        for (long s = 0; s < plan.productionSamples && !interrupt.requested(); ++s) {
-            cpu.start();
-            engine.advanceTo(double(++k) * plan.sampleInterval);
-            cpu.stop();
+        if (!inProduction) {
+            while (tick < plan.equilibrationTicks && !interrupt.requested()) {
+                cpu.start();
+                engine->advanceTo(double(tick + 1) * plan.thermostatInterval);
+                engine->rescaleTemperature(run.kT);
+                cpu.stop();
+                ++tick;
+                progress.report("equilibration", tick, plan.equilibrationTicks, engine->time());
+                if (restarts && tick % plan.restartEveryTicks == 0 &&
+                    tick < plan.equilibrationTicks && !interrupt.requested())
+                    restartPoint("interval", true);
+            }
+            if (interrupt.requested()) return;
+            cpuEquilibration += cpu.seconds();
+            cpu.reset();
+            inProduction = true;
+            tStart = engine->time();
+            stretchStart = engine->statistics();
+            run.momentumInitial = engine->totalMomentum();
+            if (plan.trajectoryEvery > 0) trajectory = AppendFile(dir / "trajectory.xyz", 0);
+            if (restarts) samplesFile = AppendFile(dir / "samples.bin", 0);
             record();
-            progress.report("production", s + 1, plan.productionSamples, engine.time());
+        }
+        while (sample < plan.productionSamples && !interrupt.requested()) {
+            cpu.start();
+            engine->advanceTo(plan.productionTime(sample + 1, tStart));
+            cpu.stop();
+            ++sample;
+            record();
+            progress.report("production", sample, plan.productionSamples, engine->time());
+            if (restarts && sample % plan.restartEvery == 0 && sample < plan.productionSamples &&
+                !interrupt.requested())
+                restartPoint("interval", true);
         }
     });
-    run.interrupted = interrupt.requested();
-    run.simulatedPs = units::toPs(engine.time() - tStart);
-    run.cpuSeconds = cpu.seconds();
-    run.momentumFinal = engine.totalMomentum();
-    run.statsAfter = engine.statistics();
-    auto summary = writeSummary(scene, run, dir);
+    if (interrupt.requested()) {
+        run.interruptedBy = interrupt.signalName();
+        run.interruptedIn = inProduction ? "production" : "equilibration";
+        // The stop is kept as a restart point too: nothing since the last one is lost.
+        if (restarts && run.failure.empty())
+            guarded([&] { restartPoint(interrupt.signalName(), false); });
+    }
+    if (inProduction) {
+        cpuProduction += cpu.seconds();
+        accumulateStatistics(run.production, stretchStart, engine->statistics());
+        run.simulatedPs = units::toPs(engine->time() - tStart);
+        run.momentumFinal = engine->totalMomentum();
+    } else {
+        cpuEquilibration += cpu.seconds();
+    }
+    run.cpuSeconds = cpuProduction;
+    run.cpuEquilibration = cpuEquilibration;
+
+    RunOutcome outcome;
+    try {
+        outcome.summary = writeSummaryAndAnalysis(scene, run, dir, interrupt);
+    } catch (const std::exception& e) {
+        if (run.failure.empty()) throw;
+        // The first error is the one to report; this one followed from it (e.g. a full disk).
+    }
     if (!run.failure.empty())
         throw std::runtime_error(run.failure + " (output so far in " + dir.string() + ")");
-    return summary;
+    if (interrupt.requested()) {
+        outcome.exitStatus = interrupt.exitStatus();
+    } else if (restarts) { // a finished run: nothing left to continue
+        std::error_code ec;
+        std::filesystem::remove(dir / "restart.bin", ec);
+        std::filesystem::remove(dir / "samples.bin", ec);
+    }
+    return outcome;
 }
 
 } // namespace terrace::cli

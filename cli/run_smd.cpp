@@ -1,15 +1,12 @@
 #include "cli/dispatch.hpp"
 #include "cli/run_command.hpp"
-#include "cli/run_driver.hpp"
 #include "smd/engine.hpp"
 
 namespace terrace::cli {
 
-nlohmann::json runSmd(const Scene& scene, const std::filesystem::path& outDir, bool quiet) {
+RunOutcome runSmd(const Scene& scene, const RunTarget& target) {
     return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) {
-        smd::Engine<K, P> engine(buildInitialState<K, P>(scene, potential), scene);
-        prepareOutput(outDir, scene);
-        return drive(engine, scene, outDir, K::rotationalDof, quiet);
+        return buildAndDrive<smd::Engine, K>(scene, potential, target);
     });
 }
 

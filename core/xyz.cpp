@@ -1,4 +1,5 @@
 #include "core/xyz.hpp"
+#include "core/output_file.hpp"
 #include "core/units.hpp"
 #include <fstream>
 #include <iomanip>
@@ -8,6 +9,8 @@
 namespace terrace {
 
 namespace {
+
+struct PartialFrame {}; // thrown inside readTrajectory only, to drop a cut-off last frame
 
 const char* columns(TrajectoryLayout layout) {
     switch (layout) {
@@ -69,70 +72,101 @@ void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout
     out.precision(precision);
 }
 
-std::vector<Snapshot> readTrajectory(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw TrajectoryError(path + ": cannot open the trajectory");
+std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout) {
+    std::ostringstream out;
+    writeXyzFrame(out, frame, layout);
+    return std::move(out).str();
+}
+
+std::vector<Snapshot> readTrajectory(const std::string& path, std::string* partialLastFrame) {
+    std::string content;
+    try {
+        content = readWholeFile(path);
+    } catch (const IoError& e) {
+        throw TrajectoryError(e.what());
+    }
+    std::istringstream in(std::move(content));
     std::vector<Snapshot> frames;
     std::string line;
     long lineNo = 0;
+    long frameLine = 0; // where the frame being read starts
+    if (partialLastFrame) partialLastFrame->clear();
     auto fail = [&](const std::string& what) {
+        // A problem in a frame that runs into the end of the file is a frame cut short.
+        const bool atEnd = in.eof() || in.peek() == std::char_traits<char>::eof();
+        if (partialLastFrame && atEnd) {
+            *partialLastFrame = path + ":" + std::to_string(frameLine) +
+                                ": the last frame is cut short (" + what + "); read the " +
+                                std::to_string(frames.size()) + " whole frames before it";
+            throw PartialFrame{};
+        }
         throw TrajectoryError(path + ":" + std::to_string(lineNo) + ": " + what);
     };
     const double perPs = 1.0 / units::psPerTimeUnit; // divide: ps^-1 -> per time unit
-    while (std::getline(in, line)) {
-        ++lineNo;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        long n = 0;
-        try {
-            n = std::stol(line);
-        } catch (...) {
-            fail("expected the number of bodies");
-        }
-        if (n < 0) fail("negative number of bodies");
-        if (!std::getline(in, line)) fail("missing comment line");
-        ++lineNo;
-        Snapshot f;
-        std::istringstream lattice(field(line, "Lattice"));
-        double a[9];
-        for (double& x : a)
-            if (!(lattice >> x)) fail("missing or malformed Lattice=");
-        f.boxLength = a[0];
-        const std::string time = field(line, "Time");
-        if (time.empty()) fail("missing Time=");
-        f.time = units::fromFs(std::stod(time));
-        const std::string props = field(line, "Properties");
-        TrajectoryLayout layout;
-        if (props == columns(TrajectoryLayout::Rod))
-            layout = TrajectoryLayout::Rod;
-        else if (props == columns(TrajectoryLayout::Top))
-            layout = TrajectoryLayout::Top;
-        else if (props == columns(TrajectoryLayout::Sphere))
-            layout = TrajectoryLayout::Sphere;
-        else
-            fail("unsupported Properties=" + props);
-        for (long i = 0; i < n; ++i) {
-            if (!std::getline(in, line)) fail("frame ends early");
+    try {
+        while (std::getline(in, line)) {
             ++lineNo;
-            std::istringstream row(line);
-            std::string species;
-            Vec3 r, v, s = Vec3::UnitZ(), w = Vec3::Zero();
-            row >> species >> r.x() >> r.y() >> r.z() >> v.x() >> v.y() >> v.z();
-            if (layout == TrajectoryLayout::Rod) row >> s.x() >> s.y() >> s.z();
-            if (layout == TrajectoryLayout::Top) {
-                double qw, qx, qy, qz;
-                row >> qw >> qx >> qy >> qz;
-                const Quat q(qw, qx, qy, qz);
-                f.orientation.push_back(q);
-                s = q * Vec3::UnitZ();
+            frameLine = lineNo;
+            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            long n = 0;
+            try {
+                n = std::stol(line);
+            } catch (...) {
+                fail("expected the number of bodies");
             }
-            if (layout != TrajectoryLayout::Sphere) row >> w.x() >> w.y() >> w.z();
-            if (!row) fail("malformed body line");
-            f.position.push_back(r);
-            f.velocity.push_back(v / perPs);
-            f.axis.push_back(s);
-            f.omega.push_back(w / perPs);
+            if (n < 0) fail("negative number of bodies");
+            if (!std::getline(in, line)) fail("missing comment line");
+            ++lineNo;
+            Snapshot f;
+            std::istringstream lattice(field(line, "Lattice"));
+            double a[9];
+            for (double& x : a)
+                if (!(lattice >> x)) fail("missing or malformed Lattice=");
+            f.boxLength = a[0];
+            const std::string time = field(line, "Time");
+            if (time.empty()) fail("missing Time=");
+            try {
+                f.time = units::fromFs(std::stod(time));
+            } catch (const std::logic_error&) {
+                fail("malformed Time=" + time);
+            }
+            const std::string props = field(line, "Properties");
+            TrajectoryLayout layout;
+            if (props == columns(TrajectoryLayout::Rod))
+                layout = TrajectoryLayout::Rod;
+            else if (props == columns(TrajectoryLayout::Top))
+                layout = TrajectoryLayout::Top;
+            else if (props == columns(TrajectoryLayout::Sphere))
+                layout = TrajectoryLayout::Sphere;
+            else
+                fail("unsupported Properties=" + props);
+            for (long i = 0; i < n; ++i) {
+                if (!std::getline(in, line)) fail("frame ends early");
+                ++lineNo;
+                std::istringstream row(line);
+                std::string species;
+                Vec3 r, v, s = Vec3::UnitZ(), w = Vec3::Zero();
+                row >> species >> r.x() >> r.y() >> r.z() >> v.x() >> v.y() >> v.z();
+                if (layout == TrajectoryLayout::Rod) row >> s.x() >> s.y() >> s.z();
+                if (layout == TrajectoryLayout::Top) {
+                    double qw, qx, qy, qz;
+                    row >> qw >> qx >> qy >> qz;
+                    const Quat q(qw, qx, qy, qz);
+                    f.orientation.push_back(q);
+                    s = q * Vec3::UnitZ();
+                }
+                if (layout != TrajectoryLayout::Sphere) row >> w.x() >> w.y() >> w.z();
+                if (!row) fail("malformed body line");
+                // A line the writer ended with a newline that lacks one was cut by the end of file.
+                if (in.eof()) fail("the body line has no end");
+                f.position.push_back(r);
+                f.velocity.push_back(v / perPs);
+                f.axis.push_back(s);
+                f.omega.push_back(w / perPs);
+            }
+            frames.push_back(std::move(f));
         }
-        frames.push_back(std::move(f));
+    } catch (const PartialFrame&) {
     }
     return frames;
 }

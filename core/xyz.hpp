@@ -33,9 +33,14 @@ constexpr TrajectoryLayout layoutFor(int rotationalDof) {
 }
 
 void writeXyzFrame(std::ostream& out, const Snapshot& frame, TrajectoryLayout layout);
+/// The frame as writeXyzFrame writes it, as one string: one record for an AppendFile.
+std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout);
 
 /// Every frame of an extended XYZ file written by writeXyzFrame. Throws TrajectoryError naming the
-/// file and line on anything malformed.
-std::vector<Snapshot> readTrajectory(const std::string& path);
+/// file and line on anything malformed. A last frame cut short by the end of the file (a run
+/// killed while writing it) is dropped when `partialLastFrame` is given, which then says so
+/// (empty when the file ends on a whole frame); without it, that too is an error.
+std::vector<Snapshot> readTrajectory(const std::string& path,
+                                     std::string* partialLastFrame = nullptr);
 
 } // namespace terrace

@@ -104,7 +104,35 @@ template <BodyKind K, PairPotential P> class Engine {
 public:
     using State = typename K::State;
 
-    Engine(System<K, P> initial, const Scene& scene)
+    Engine(System<K, P> initial, const Scene& scene) : Engine(std::move(initial), scene, nullptr) {}
+
+    /// Resumes from a checkpoint() taken with every clock at one time (right after advanceTo):
+    /// `initial` holds the bodies at that time. The pairs keep the terraces they had (never
+    /// re-derived from U, which may sit exactly on a level) and the horizon stream goes on where
+    /// it stood; calendars, lists and cells are built afresh, as at the start. A run that is
+    /// continued from a restart file and one that rebuilds its engine the same way at the same
+    /// instant then undergo the same events.
+    Engine(System<K, P> initial, const Scene& scene, const nlohmann::json& checkpoint)
+        : Engine(std::move(initial), scene, &checkpoint) {}
+
+    /// What a resumed engine needs beyond the bodies: the time, every pair off terrace 0, and the
+    /// horizon stream's position. Clocks must all be at time() (call right after advanceTo).
+    nlohmann::json checkpoint() const {
+        for (int i = 0; i < sys_.size(); ++i)
+            if (book_[i].clock != time_)
+                throw std::logic_error("dmd: checkpoint with clocks not at one time");
+        nlohmann::json pairs = nlohmann::json::array();
+        terraces_.forEachPair([&](int i, int j, int n) {
+            if (n != 0) pairs.push_back({i, j, n});
+        });
+        const auto stream = jitter_.position();
+        return {{"time", time_},
+                {"terraces", std::move(pairs)},
+                {"horizon_stream", {{"state", stream.state}, {"ready", stream.ready}}}};
+    }
+
+private:
+    Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume)
         : sys_(std::move(initial)),
           settings_(readDmdSettings(scene.dmd, sys_.potential, sys_.kT, sys_.box.length)),
           lists_(sys_.size(),
@@ -119,6 +147,7 @@ public:
         search_.grazeWindow = grazeFraction * terraceHeight();
         search_.levelTolerance = levelTolerance * terraceHeight();
         checkBodies();
+        if (resume) resumeClocks(*resume);
         orbit_.reserve(sys_.bodies.size());
         for (int i = 0; i < sys_.size(); ++i) {
             orbit_.emplace_back(sys_.bodies[i], sys_.body);
@@ -128,17 +157,21 @@ public:
             queue_.template emplace<BinaryHeapQueue<Event>>();
         else
             queue_.template emplace<BoundedPriorityQueue<Event>>(settings_.horizon / 16.0, 1024,
-                                                                 0.0);
+                                                                 time_);
         for (int i = 0; i < sys_.size(); ++i)
             cells_.insert(i, sys_.bodies[i].r);
         for (int i = 0; i < sys_.size(); ++i)
             rebuildList(i);
-        assignInitialTerraces();
+        if (resume)
+            resumeTerraces(*resume);
+        else
+            assignInitialTerraces();
         visitQueue([&](auto& q) { predictAll(q); });
         if (auto* bpq = std::get_if<BoundedPriorityQueue<Event>>(&queue_))
             tuning_.retune(*bpq, time_);
     }
 
+public:
     // ---- the Engine contract (core/engine.hpp) ----
 
     /// Process every event before t, then bring all clocks to t.
@@ -298,8 +331,9 @@ private:
         if (!(sys_.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
     }
 
-    /// Terrace of every pair from U at the start; a pair exactly on a level goes to the terrace
-    /// it is heading into, so that the start holds no zero-time event.
+    /// Terrace of every pair from U at the start; a pair on a level (within the search's level
+    /// tolerance) goes to the terrace it is heading into, so that the start holds no zero-time
+    /// event.
     void assignInitialTerraces() {
         const double overlap = overlapFactor * std::abs(sys_.potential.minimumEnergy());
         for (int i = 0; i < sys_.size(); ++i)
@@ -315,8 +349,35 @@ private:
                                      " kJ/mol)");
                 const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys_.body),
                                          K::angularVelocity(bj, sys_.body));
-                terraces_.set(i, j, settings_.levels.terraceOf(f.U, rate));
+                terraces_.set(i, j, settings_.levels.terraceOf(f.U, rate, search_.levelTolerance));
             });
+    }
+
+    void resumeClocks(const nlohmann::json& c) {
+        time_ = c.at("time").get<double>();
+        if (!std::isfinite(time_) || time_ < 0.0)
+            throw SceneError("restart: the DMD time is not a finite time >= 0");
+        for (auto& b : book_)
+            b.clock = time_;
+        const auto& stream = c.at("horizon_stream");
+        jitter_.resumeAt(
+            {stream.at("state").get<std::uint64_t>(), stream.at("ready").get<double>()});
+    }
+
+    /// The terraces of a checkpoint; pairs it does not list are on terrace 0. A pair listed
+    /// beyond r_m, or out of range, means the file does not belong to these bodies.
+    void resumeTerraces(const nlohmann::json& c) {
+        for (const auto& p : c.at("terraces")) {
+            const int i = p.at(0).get<int>(), j = p.at(1).get<int>(), n = p.at(2).get<int>();
+            if (i < 0 || j < 0 || i >= sys_.size() || j >= sys_.size() || i == j)
+                throw SceneError("restart: terrace of a pair of bodies that do not exist");
+            const Vec3 rij = sys_.box.minimumImage(sys_.bodies[i].r - sys_.bodies[j].r);
+            if (rij.norm() > settings_.rm)
+                throw SceneError("restart: bodies " + std::to_string(i) + " and " +
+                                 std::to_string(j) + " are held on terrace " + std::to_string(n) +
+                                 " beyond the interaction range");
+            terraces_.set(std::min(i, j), std::max(i, j), n);
+        }
     }
 
     /// Forgets every pending event and predicts all pairs from now (all clocks at now).

@@ -25,6 +25,17 @@ public:
         return h;
     }
 
+    /// Where the stream stands, to continue it exactly in a resumed run (cli restart files).
+    struct Position {
+        std::uint64_t state;
+        double ready;
+    };
+    Position position() const { return {state_, ready_}; }
+    void resumeAt(const Position& p) {
+        state_ = p.state;
+        ready_ = p.ready;
+    }
+
 private:
     double draw() {
         std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);

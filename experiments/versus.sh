@@ -16,8 +16,8 @@ ps=${VERSUS_PS:-2} dV=${VERSUS_DV:-0.5} dt=${VERSUS_DT_FS:-1.8}
 mkdir -p "$out"
 common=(--quiet --set run.equilibrate_ps=0.5 --set run.time_ps="$ps")
 echo "DMD (ΔV = $dV kT) and SMD (dt = $dt fs), default scene, $ps ps each ..." >&2
-"$TERRACE" run "${common[@]}" --set engine=dmd --set dmd.dV="$dV" --out "$out/dmd" >/dev/null
-"$TERRACE" run "${common[@]}" --set engine=smd --set smd.dt_fs="$dt" --out "$out/smd" >/dev/null
+"$TERRACE" run "${common[@]}" --set engine=dmd --set dmd.dV="$dV" --out "$out/dmd" --overwrite >/dev/null
+"$TERRACE" run "${common[@]}" --set engine=smd --set smd.dt_fs="$dt" --out "$out/smd" --overwrite >/dev/null
 
 keys=(cpu_seconds_per_ps collisions_per_ps energy.rel_fluct energy.drift_per_ps temperature_K)
 IFS=, read -r dcpu dcol dfl ddr dT < <("$TOOLS" get "$out/dmd/summary.json" "${keys[@]}")

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One command-line check per call: cli_checks.sh CHECK TERRACE_BINARY SOURCE_DIR
 set -u
-check=$1 terrace=$2 src=$3
+check=$1 terrace=$(realpath "$2") src=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL ($check): $*" >&2; exit 1; }
@@ -23,7 +23,7 @@ short_run() { # engine extra-args...
     shift
     "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/$engine" \
         --set engine="$engine" --set state.n=216 --set run.equilibrate_ps=0.1 \
-        --set run.time_ps=0.5 --set output.trajectory_every_fs=20 "$@" >"$work/$engine.log" ||
+        --set run.time_ps=0.5 --set output.trajectory_every_fs=18 "$@" >"$work/$engine.log" ||
         fail "run failed: $(cat "$work/$engine.log")"
     for f in summary.json scene.json initial.xyz trajectory.xyz rdf.csv vacf.csv oacf.csv msd.csv; do
         [ -s "$work/$engine/$f" ] || fail "$engine run did not write $f"
@@ -60,7 +60,7 @@ end_to_end_smd)
     grep -q '"neighbour_rebuilds"' "$work/smd/summary.json" || fail "SMD summary lacks neighbour_rebuilds"
     ;;
 analyse_compare)
-    short_run dmd --set output.trajectory_every_fs=10 # every sample: the same data both ways
+    short_run dmd --set output.trajectory_every_fs=9 # every sample: the same data both ways
     cp "$work/dmd/vacf.csv" "$work/vacf-run.csv"
     "$terrace" analyse "$work/dmd" >/dev/null || fail "analyse failed"
     "$terrace" compare "$work/vacf-run.csv" "$work/dmd/vacf.csv" >/dev/null ||
@@ -91,7 +91,7 @@ determinism)
 interrupt)
     # Ctrl-C ends a long run at the next sample with valid, flushed output and exit status 130.
     "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/int" \
-        --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=100000 \
+        --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=1000 \
         --set output.trajectory_every_fs=9 >/dev/null 2>&1 &
     pid=$!
     for _ in $(seq 1 100); do # wait until production has written a few frames
@@ -108,6 +108,192 @@ interrupt)
     lines=$(wc -l <"$work/int/trajectory.xyz")
     [ "$lines" -eq $((frames * 218)) ] || fail "trajectory not whole frames: $lines lines, $frames frames"
     "$terrace" analyse "$work/int" >/dev/null || fail "the interrupted run's trajectory does not analyse"
+    ;;
+overlap)
+    # Two bodies half an angstrom apart: both engines name the pair before any work.
+    printf '%s' '{"name": "two", "state": {"density": 0.005, "particles": [
+        {"r": [1, 1, 1], "axis": [0, 0, 1]}, {"r": [1.5, 1, 1], "axis": [0, 0, 1]}]}}' >"$work/s.json"
+    expect_error "$work/s.json" "state: bodies 0 and 1 overlap"
+    expect_error "$work/s.json" "state: bodies 0 and 1 overlap" --set engine=smd
+    ;;
+thermostat)
+    # Equilibration rescales every run.thermostat_fs whatever run.sample_fs is: runs sampled every
+    # 9 and every 18 fs start production from the same state (it once rescaled per sample).
+    for fs in 9 18; do
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/s$fs" \
+            --set state.n=216 --set run.equilibrate_ps=0.18 --set run.time_ps=0.36 \
+            --set run.sample_fs=$fs --set output.trajectory_every_fs=18 >/dev/null ||
+            fail "run with sample_fs $fs failed"
+    done
+    cmp -s <(head -n 218 "$work/s9/trajectory.xyz") <(head -n 218 "$work/s18/trajectory.xyz") ||
+        fail "the equilibrated state depends on run.sample_fs"
+    ;;
+run_help)
+    "$terrace" run --help | grep -q -- "--continue" || fail "terrace run --help does not describe run"
+    "$terrace" analyse --help | grep -q "terrace analyse" || fail "terrace analyse --help fails"
+    ;;
+existing_results)
+    # A directory holding an earlier run is refused; --overwrite removes the old files first,
+    # so a trajectory the new run does not write cannot survive from the old one.
+    short_run dmd
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/dmd" \
+        --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=0.1 2>&1 >/dev/null) &&
+        fail "exit status 0 into a directory with an earlier run's results"
+    [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "error is not one line: $err"
+    [[ $err == *"earlier run"*"--overwrite"* ]] || fail "error does not say what to do: $err"
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/dmd" --overwrite \
+        --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=0.1 >/dev/null ||
+        fail "--overwrite refused"
+    [ ! -e "$work/dmd/trajectory.xyz" ] || fail "a stale trajectory.xyz survived --overwrite"
+    grep -q '"simulated_ps": 0.09' "$work/dmd/summary.json" || fail "summary is not the new run's"
+    ;;
+lock)
+    # Two runs into one directory at once: the second is refused while the first runs.
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/busy" \
+        --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=1000 >/dev/null 2>&1 &
+    pid=$!
+    for _ in $(seq 1 100); do [ -e "$work/busy/scene.json" ] && break; sleep 0.05; done
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/busy" \
+        --overwrite --set state.n=216 --set run.time_ps=0.1 2>&1 >/dev/null)
+    status=$?
+    kill -TERM $pid
+    wait $pid
+    [ $status -ne 0 ] || fail "a second run into a busy directory went ahead"
+    [[ $err == *"another terrace run is writing into this directory"* ]] || fail "message: $err"
+    ;;
+default_name)
+    # A scene name cannot send the default output outside out/.
+    (cd "$work" && "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
+        --set name=../../escaped --set state.n=216 --set run.equilibrate_ps=0 \
+        --set run.time_ps=0.1 >/dev/null) || fail "run failed"
+    [ -s "$work/out/_.._escaped-dmd/summary.json" ] || fail "output not under out/: $(ls -R "$work")"
+    [ ! -e "$work/../escaped-dmd" ] || fail "output escaped the working directory"
+    ;;
+unwritable)
+    # An output directory that cannot be made or written: a one-line error naming it and the
+    # cause. A file in the way of the path fails for everyone; a read-only directory for users
+    # other than root (as root, the run is made as nobody when setpriv can).
+    : >"$work/file"
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/file/sub" \
+        --set state.n=216 --set run.time_ps=0.1 2>&1 >/dev/null) && fail "exit status 0"
+    [[ $err == "terrace: cannot create the output directory $work/file/sub: Not a directory" ]] ||
+        fail "message: $err"
+    mkdir "$work/ro" && chmod 555 "$work/ro" && chmod 755 "$work"
+    as=()
+    if [ "$(id -u)" -eq 0 ]; then
+        command -v setpriv >/dev/null || fail "running as root without setpriv"
+        as=(setpriv --reuid=nobody --regid=nogroup --clear-groups)
+    fi
+    err=$("${as[@]}" "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
+        --out "$work/ro" --set state.n=216 --set run.time_ps=0.1 2>&1 >/dev/null) &&
+        fail "exit status 0 into a read-only directory"
+    [[ $err == *"$work/ro"*"Permission denied"* ]] || fail "message: $err"
+    ;;
+file_size_limit)
+    # A write that does not fit (a file-size limit, as a full disk) ends the run with an error
+    # naming the file and the cause; the trajectory keeps only whole frames.
+    status=0
+    err=$(ulimit -f 400 && "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
+        --out "$work/full" --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=1 \
+        --set output.trajectory_every_fs=9 2>&1 >/dev/null) || status=$?
+    [ $status -ne 0 ] || fail "exit status 0 after a failed write"
+    [[ $err == *"cannot write $work/full/trajectory.xyz: File too large"* ]] || fail "message: $err"
+    lines=$(wc -l <"$work/full/trajectory.xyz")
+    [ $((lines % 218)) -eq 0 ] && [ "$lines" -gt 0 ] || fail "trajectory not whole frames: $lines lines"
+    grep -q '"error": "cannot write' "$work/full/summary.json" || fail "summary does not record the error"
+    ;;
+signals)
+    # SIGTERM and SIGHUP end a run like SIGINT: exit 128 + signal, summary naming the signal,
+    # whole frames, the analysis written.
+    for sig in TERM HUP; do
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/$sig" \
+            --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=1000 \
+            --set output.trajectory_every_fs=9 >/dev/null 2>&1 &
+        pid=$!
+        for _ in $(seq 1 100); do
+            written=$(grep -c '^216$' "$work/$sig/trajectory.xyz" 2>/dev/null || true)
+            [ "${written:-0}" -ge 5 ] && break
+            sleep 0.1
+        done
+        kill -$sig $pid
+        wait $pid
+        status=$?
+        expected=$((128 + $(kill -l $sig)))
+        [ $status -eq $expected ] || fail "exit status $status after SIG$sig, expected $expected"
+        grep -q "\"interrupted_by\": \"SIG$sig\"" "$work/$sig/summary.json" ||
+            fail "summary does not name SIG$sig"
+        [ -s "$work/$sig/vacf.csv" ] || fail "no analysis after SIG$sig"
+        frames=$(grep -c '^216$' "$work/$sig/trajectory.xyz")
+        lines=$(wc -l <"$work/$sig/trajectory.xyz")
+        [ "$lines" -eq $((frames * 218)) ] || fail "SIG$sig: trajectory not whole frames"
+    done
+    ;;
+second_signal)
+    # A second signal skips the analysis (here a slow one: 2744 bodies, O(N^2) g(r) per frame).
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/two" \
+        --set state.n=2744 --set run.equilibrate_ps=0 --set run.time_ps=50 >/dev/null 2>&1 &
+    pid=$!
+    sleep 3
+    kill -TERM $pid
+    sleep 0.5
+    kill -TERM $pid
+    start=$(date +%s)
+    wait $pid
+    status=$?
+    [ $status -eq 143 ] || fail "exit status $status, expected 143"
+    [ $(($(date +%s) - start)) -le 20 ] || fail "the analysis was not cancelled promptly"
+    grep -q '"interrupted_by": "SIGTERM"' "$work/two/summary.json" || fail "summary: not interrupted"
+    grep -q "cancelled by a signal" "$work/two/summary.json" ||
+        fail "summary does not say the analysis was cancelled: $(grep -A2 analysis "$work/two/summary.json")"
+    ;;
+kill_resume)
+    # A run killed with SIGKILL and continued from its restart file ends with the same
+    # trajectory and correlation files, byte for byte, as the same run left alone.
+    for engine in dmd smd; do
+        args=(--quiet --set engine=$engine --set state.n=216 --set run.equilibrate_ps=0.18
+            --set run.time_ps=10 --set output.trajectory_every_fs=18
+            --set output.restart_every_ps=0.9)
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$engine-a" \
+            "${args[@]}" >/dev/null || fail "$engine: the uninterrupted run failed"
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$engine-b" \
+            "${args[@]}" >/dev/null 2>&1 &
+        pid=$!
+        for _ in $(seq 1 1000); do
+            [ -e "$work/$engine-b/restart.bin" ] && break
+            sleep 0.01
+        done
+        kill -KILL $pid
+        wait $pid
+        [ -e "$work/$engine-b/restart.bin" ] || fail "$engine: no restart file before the kill"
+        [ ! -e "$work/$engine-b/summary.json" ] || fail "$engine: the run ended before the kill"
+        "$terrace" run --continue "$work/$engine-b" --quiet >/dev/null ||
+            fail "$engine: --continue failed"
+        for f in trajectory.xyz rdf.csv vacf.csv oacf.csv msd.csv; do
+            cmp -s "$work/$engine-a/$f" "$work/$engine-b/$f" ||
+                fail "$engine: $f of the continued run differs from the uninterrupted run's"
+        done
+        grep -q '"continued": 1' "$work/$engine-b/summary.json" || fail "$engine: not marked continued"
+        [ ! -e "$work/$engine-b/restart.bin" ] || fail "$engine: restart file left after the end"
+    done
+    "$terrace" run --continue "$work/dmd-b" --quiet 2>/dev/null && fail "a finished run continued"
+    err=$("$terrace" run --continue "$work/dmd-b" --set run.time_ps=1 2>&1)
+    [ $? -eq 2 ] && [[ $err == *"--continue DIR takes no scene, --set"* ]] ||
+        fail "--continue with --set: $err"
+    ;;
+partial_frame)
+    # A trajectory whose last frame was cut by a kill is analysed up to its last whole frame.
+    short_run dmd --set output.trajectory_every_fs=9
+    size=$(stat -c %s "$work/dmd/trajectory.xyz")
+    truncate -s $((size - 3000)) "$work/dmd/trajectory.xyz"
+    out=$("$terrace" analyse "$work/dmd" 2>&1) || fail "analyse rejects a cut-off last frame: $out"
+    [[ $out == *"warning"*"the last frame is cut short"* ]] || fail "no warning: $out"
+    ;;
+memory)
+    # A run whose samples cannot fit in memory is refused before it starts, with the estimate.
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/big" \
+        --set run.sample_fs=0.01 --set run.time_ps=10000 2>&1 >/dev/null) && fail "exit status 0"
+    [[ $err == *"GiB of memory"*"run.sample_fs"* ]] || fail "message: $err"
+    [ ! -e "$work/big" ] || fail "output written for a run refused"
     ;;
 *)
     fail "unknown check"

@@ -87,3 +87,51 @@ TEST(Xyz, MalformedFilesAreNamedErrors) {
     }
     EXPECT_THROW(readTrajectory("/nonexistent.xyz"), TrajectoryError);
 }
+
+namespace {
+
+/// Three frames of the default rods, as a run writes them, and where the third begins.
+std::pair<std::string, std::size_t> threeFrames() {
+    const Scene scene = defaultScene();
+    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    std::string text;
+    std::size_t third = 0;
+    for (double t : {0.1, 0.2, 0.3}) {
+        third = text.size();
+        text += formatXyzFrame(makeSnapshot(sys, t), TrajectoryLayout::Rod);
+    }
+    return {text, third};
+}
+
+} // namespace
+
+// A run killed while writing a frame leaves it cut short anywhere: in a body line, at a line's
+// end, right after the header. Each is dropped with a message, the whole frames before it kept.
+TEST(Xyz, ALastFrameCutShortIsDroppedWhenAskedFor) {
+    const auto [whole, third] = threeFrames();
+    const auto path = tempFile("cut.xyz");
+    for (const std::size_t cut :
+         {third + 4, third + 30, third + 5000, whole.size() - 1, whole.size() - 10}) {
+        std::ofstream(path) << whole.substr(0, cut);
+        std::string partial;
+        const auto frames = readTrajectory(path.string(), &partial);
+        EXPECT_EQ(frames.size(), 2u) << "cut at " << cut;
+        EXPECT_NE(partial.find("the last frame is cut short"), std::string::npos) << partial;
+        EXPECT_THROW(readTrajectory(path.string()), TrajectoryError) << "cut at " << cut;
+    }
+    std::ofstream(path) << whole;
+    std::string partial = "stale";
+    EXPECT_EQ(readTrajectory(path.string(), &partial).size(), 3u);
+    EXPECT_TRUE(partial.empty());
+}
+
+// Only the last frame may be cut: a broken frame followed by more lines is still an error.
+TEST(Xyz, ABrokenFrameInsideTheFileIsStillAnError) {
+    std::string text = threeFrames().first;
+    const std::size_t line = text.find("\nR ", 1000);
+    text.replace(line + 1, 1, "R x"); // a body line of the first frame no longer parses
+    const auto path = tempFile("broken.xyz");
+    std::ofstream(path) << text;
+    std::string partial;
+    EXPECT_THROW(readTrajectory(path.string(), &partial), TrajectoryError);
+}

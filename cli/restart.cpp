@@ -1,0 +1,99 @@
+#include "cli/restart.hpp"
+#include "core/output_file.hpp"
+
+namespace terrace::cli {
+
+namespace {
+
+void put(std::string& out, double x) {
+    char b[sizeof x];
+    std::memcpy(b, &x, sizeof x);
+    out.append(b, sizeof x);
+}
+
+void put(std::string& out, const Vec3& v) {
+    put(out, v.x()), put(out, v.y()), put(out, v.z());
+}
+
+std::size_t recordDoubles(int bodies, bool withOrientation) {
+    return 5 + std::size_t(bodies) * (withOrientation ? 16 : 12);
+}
+
+} // namespace
+
+std::string encodeSample(const Snapshot& s, const SampleRecord& e) {
+    std::string out;
+    const bool tops = !s.orientation.empty();
+    out.reserve(recordDoubles(s.size(), tops) * sizeof(double));
+    put(out, s.time), put(out, e.tPs), put(out, e.total), put(out, e.potential);
+    put(out, e.kinetic);
+    for (int i = 0; i < s.size(); ++i) {
+        put(out, s.position[i]), put(out, s.velocity[i]), put(out, s.axis[i]);
+        put(out, s.omega[i]);
+        if (tops) {
+            const Quat& q = s.orientation[i];
+            put(out, q.w()), put(out, q.x()), put(out, q.y()), put(out, q.z());
+        }
+    }
+    return out;
+}
+
+void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, double boxLength,
+                   std::vector<Snapshot>& samples, std::vector<SampleRecord>& energies) {
+    const std::size_t record = recordDoubles(bodies, withOrientation) * sizeof(double);
+    if (bytes.size() % record != 0)
+        throw std::runtime_error("samples.bin does not hold whole sample records");
+    const char* p = bytes.data();
+    auto get = [&p] {
+        double x;
+        std::memcpy(&x, p, sizeof x);
+        p += sizeof x;
+        return x;
+    };
+    auto vec = [&] {
+        const double x = get(), y = get(), z = get();
+        return Vec3(x, y, z);
+    };
+    for (std::size_t k = 0; k < bytes.size() / record; ++k) {
+        Snapshot s;
+        s.boxLength = boxLength;
+        s.time = get();
+        SampleRecord e;
+        e.tPs = get(), e.total = get(), e.potential = get(), e.kinetic = get();
+        for (int i = 0; i < bodies; ++i) {
+            s.position.push_back(vec());
+            s.velocity.push_back(vec());
+            s.axis.push_back(vec());
+            s.omega.push_back(vec());
+            if (withOrientation) {
+                const double w = get(), x = get(), y = get(), z = get();
+                s.orientation.emplace_back(w, x, y, z);
+            }
+        }
+        samples.push_back(std::move(s));
+        energies.push_back(e);
+    }
+}
+
+void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restart) {
+    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(restart);
+    writeFileAtomically(
+        dir / "restart.bin",
+        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+nlohmann::json readRestart(const std::filesystem::path& dir) {
+    const auto path = dir / "restart.bin";
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        throw IoError(dir.string() +
+                      ": no restart file (restart.bin): the run finished, or was not started with "
+                      "output.restart_every_ps > 0");
+    const std::string bytes = readWholeFile(path);
+    nlohmann::json j = nlohmann::json::from_cbor(bytes, true, false);
+    if (j.is_discarded() || !j.is_object() || j.value("format", "") != restartFormat)
+        throw IoError(path.string() + ": not a terrace restart file (or a damaged one)");
+    return j;
+}
+
+} // namespace terrace::cli

@@ -1,0 +1,88 @@
+#pragma once
+// Restart files: everything a run needs to go on from a point of its time grid as if it had never
+// stopped (DESIGN.md "Output a user can trust").
+//
+//   DIR/restart.bin   one CBOR document (RFC 8949; nlohmann::json::to_cbor), written atomically at
+//                     every output.restart_every_ps and when a signal stops the run:
+//                       format, scene (resolved), phase (equilibration | production), the number
+//                       of thermostat ticks or samples done, the bodies (every number of their
+//                       states as raw bytes: exact, and compact), the engine's checkpoint (DMD:
+//                       clock, pair terraces, horizon stream; SMD: step count), the run's
+//                       accumulators (production start, initial momentum, production statistics,
+//                       CPU seconds) and the lengths of trajectory.xyz and samples.bin at that
+//                       point;
+//   DIR/samples.bin   the production samples, one fixed-size record per sample, appended as they
+//                     are taken (kept only while restarts are on; removed when the run completes):
+//                       time, t_ps, E, U, K, then per body r, v, axis, ω (and a top's quaternion).
+//
+// A continued run cuts trajectory.xyz and samples.bin back to their lengths in the restart file,
+// reads the samples back, rebuilds the engine from the bodies and the checkpoint, and goes on.
+// At every restart point the running engine is rebuilt the same way, so that a run continued from
+// a restart file undergoes the same events and writes the same bytes as one that never stopped.
+#include "core/snapshot.hpp"
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace terrace::cli {
+
+inline constexpr const char* restartFormat = "terrace restart 1";
+
+/// One production sample and its energies (kJ/mol), as the run loop keeps them.
+struct SampleRecord {
+    double tPs = 0.0, total = 0.0, potential = 0.0, kinetic = 0.0;
+};
+
+/// The bytes of one samples.bin record.
+std::string encodeSample(const Snapshot& s, const SampleRecord& e);
+/// Every record of a samples.bin of `bytes` bytes (N bodies, tops when withOrientation).
+void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, double boxLength,
+                   std::vector<Snapshot>& samples, std::vector<SampleRecord>& energies);
+
+void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restart);
+/// Reads DIR/restart.bin; IoError when absent or unreadable, naming what to do.
+nlohmann::json readRestart(const std::filesystem::path& dir);
+
+/// Calls f on every vector and matrix of a body's state (all kinds: r, v; s, w; A, L).
+template <class State, class F> void forEachField(State& b, F&& f) {
+    f(b.r), f(b.v);
+    if constexpr (requires { b.s; }) f(b.s);
+    if constexpr (requires { b.w; }) f(b.w);
+    if constexpr (requires { b.A; }) f(b.A);
+    if constexpr (requires { b.L; }) f(b.L);
+}
+
+/// Every number of every body's state, in order, as raw bytes: exact, and compact in CBOR.
+template <class State> nlohmann::json bodiesToBinary(std::vector<State> bodies) {
+    std::vector<std::uint8_t> bytes;
+    for (auto& b : bodies)
+        forEachField(b, [&](const auto& m) {
+            const auto* p = reinterpret_cast<const std::uint8_t*>(m.data());
+            bytes.insert(bytes.end(), p, p + m.size() * sizeof(double));
+        });
+    return nlohmann::json::binary(std::move(bytes));
+}
+
+template <class State> std::vector<State> bodiesFromBinary(const nlohmann::json& j, int n) {
+    const auto& bytes = j.get_binary();
+    std::vector<State> bodies(n);
+    std::size_t at = 0;
+    for (auto& b : bodies)
+        forEachField(b, [&](auto& m) {
+            const std::size_t size = m.size() * sizeof(double);
+            if (at + size > bytes.size())
+                throw std::runtime_error("restart: too few body records for " + std::to_string(n) +
+                                         " bodies of this kind");
+            std::memcpy(m.data(), bytes.data() + at, size);
+            at += size;
+        });
+    if (at != bytes.size())
+        throw std::runtime_error("restart: more body records than " + std::to_string(n) +
+                                 " bodies of this kind");
+    return bodies;
+}
+
+} // namespace terrace::cli

@@ -1,0 +1,119 @@
+// Output whole or absent: the atomic write and the record-by-record append, against real faults
+// (/dev/full for a full device, a file-size limit, a directory that does not exist).
+#include "core/output_file.hpp"
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+using namespace terrace;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path freshDirectory(const std::string& name) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("terrace-output-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string messageOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const IoError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(OutputFile, AtomicWriteReplacesTheFileAndLeavesNoTemporary) {
+    const fs::path dir = freshDirectory("atomic");
+    writeFileAtomically(dir / "a.json", "old\n");
+    writeFileAtomically(dir / "a.json", "new content\n");
+    EXPECT_EQ(readWholeFile(dir / "a.json"), "new content\n");
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir))
+        ++entries;
+    EXPECT_EQ(entries, 1);
+}
+
+TEST(OutputFile, AFailedAtomicWriteNamesTheFileAndTheCause) {
+    const fs::path missing = freshDirectory("missing") / "no-such-dir" / "summary.json";
+    const std::string m = messageOf([&] { writeFileAtomically(missing, "x"); });
+    EXPECT_NE(m.find("cannot write " + missing.string()), std::string::npos) << m;
+    EXPECT_NE(m.find("No such file or directory"), std::string::npos) << m;
+    // The target is a directory: the rename fails, the old content stays, no temporary is left.
+    const fs::path dir = freshDirectory("isdir");
+    fs::create_directories(dir / "summary.json" / "inside");
+    EXPECT_THROW(writeFileAtomically(dir / "summary.json", "x"), IoError);
+    EXPECT_TRUE(fs::is_directory(dir / "summary.json"));
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir))
+        ++entries;
+    EXPECT_EQ(entries, 1);
+}
+
+TEST(OutputFile, AppendingToAFullDeviceIsAnError) {
+    ASSERT_TRUE(fs::exists("/dev/full")); // Linux has it: a device that is always full
+    AppendFile full("/dev/full", -1);
+    const std::string m = messageOf([&] { full.append("a frame\n"); });
+    EXPECT_NE(m.find("cannot write /dev/full: No space left on device"), std::string::npos) << m;
+}
+
+// A record that does not fit under the file-size limit is cut off again: the file ends on the
+// last whole record (SIGXFSZ ignored, as the run driver does, so the write fails with EFBIG).
+TEST(OutputFile, ARecordThatDoesNotFitIsCutOffAgain) {
+    const fs::path dir = freshDirectory("limit");
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) { // a child, so that the limit does not bind the test runner
+        std::signal(SIGXFSZ, SIG_IGN);
+        rlimit limit{4096, 4096};
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(3);
+        AppendFile file(dir / "trajectory.xyz", 0);
+        const std::string record(1000, 'x');
+        try {
+            for (int k = 0; k < 10; ++k)
+                file.append(record);
+        } catch (const IoError& e) {
+            const bool named = std::string(e.what()).find("File too large") != std::string::npos;
+            ::_exit(file.size() == 4000 && named ? 0 : 2);
+        }
+        ::_exit(1);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error; 2: wrong size or message; 3: no limit";
+    EXPECT_EQ(fs::file_size(dir / "trajectory.xyz"), 4000u);
+}
+
+TEST(OutputFile, AppendingContinuesAfterACutBackPoint) {
+    const fs::path dir = freshDirectory("append");
+    {
+        AppendFile file(dir / "t.xyz", 0);
+        file.append("one\n");
+        file.append("two\n");
+        EXPECT_EQ(file.size(), 8);
+    }
+    {
+        AppendFile file(dir / "t.xyz", 4); // a continued run drops what followed its restart
+        file.append("three\n");
+    }
+    EXPECT_EQ(readWholeFile(dir / "t.xyz"), "one\nthree\n");
+    EXPECT_THROW(AppendFile(dir / "t.xyz", 1000), IoError); // the file lost its restart point
+}
+
+TEST(OutputFile, ReadingADirectoryOrAMissingFileNamesTheCause) {
+    const fs::path dir = freshDirectory("read");
+    EXPECT_NE(messageOf([&] { readWholeFile(dir); }).find("Is a directory"), std::string::npos);
+    EXPECT_NE(messageOf([&] { readWholeFile(dir / "nothing"); }).find("No such file"),
+              std::string::npos);
+}
