@@ -8,6 +8,8 @@
 #include "core/linear_rotor.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
+#include <memory>
+#include <optional>
 
 namespace terrace::cli {
 
@@ -34,15 +36,21 @@ System<K, P> startingSystem(const Scene& scene, const P& potential, const RunTar
     return sys;
 }
 
-/// Builds the engine (from the restart file's checkpoint when continuing) and drives the run.
+/// Builds the engine (from the restart file's checkpoint when continuing), claims the output
+/// directory unless the caller holds it (a continued run claims it before reading the restart
+/// file), and drives the run. The directory is claimed only after the engine is built, so that a
+/// scene refused by the engine's own checks leaves nothing behind.
 template <template <class, class> class Engine, BodyKind K, PairPotential P>
 RunOutcome buildAndDrive(const Scene& scene, const P& potential, const RunTarget& target) {
-    std::optional<Engine<K, P>> engine;
+    std::unique_ptr<Engine<K, P>> engine;
     if (target.resume)
-        engine.emplace(startingSystem<K, P>(scene, potential, target), scene,
-                       target.resume->at("engine"));
+        engine = std::make_unique<Engine<K, P>>(startingSystem<K, P>(scene, potential, target),
+                                                scene, target.resume->at("engine"));
     else
-        engine.emplace(startingSystem<K, P>(scene, potential, target), scene);
+        engine =
+            std::make_unique<Engine<K, P>>(startingSystem<K, P>(scene, potential, target), scene);
+    std::optional<OutputDirectory> output;
+    if (target.mode != OutputMode::Continue) output.emplace(target.dir, target.mode);
     return drive(engine, scene, target, K::rotationalDof);
 }
 

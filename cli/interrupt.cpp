@@ -1,4 +1,5 @@
 #include "cli/interrupt.hpp"
+#include <cerrno>
 #include <unistd.h>
 
 namespace terrace::cli {
@@ -16,6 +17,7 @@ void say(const char* text, std::size_t length) {
 }
 
 extern "C" void onSignal(int sig) {
+    const int savedErrno = errno; // the code the signal interrupted may be about to read it
     int expected = 0;
     firstSignal.compare_exchange_strong(expected, sig);
     const int n = ++received;
@@ -28,6 +30,7 @@ extern "C" void onSignal(int sig) {
         say(first, sizeof first - 1);
     else
         say(second, sizeof second - 1);
+    errno = savedErrno;
 }
 
 } // namespace

@@ -5,10 +5,13 @@
 //   terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
 #include "analysis/compare.hpp"
 #include "analysis/correlations.hpp"
+#include "cli/output_dir.hpp"
 #include "cli/run_command.hpp"
 #include "core/xyz.hpp"
 #include <boost/program_options.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 
@@ -117,6 +120,8 @@ int analyseMain(const std::vector<std::string>& args) {
     }
     if (args.size() != 1) throw po::error("analyse takes exactly one directory");
     const std::filesystem::path dir = args[0];
+    // The CSVs go into DIR: not while a run is writing there.
+    const cli::OutputDirectory claimed(dir, cli::OutputMode::Continue);
     std::string partial;
     const auto frames = readTrajectory((dir / "trajectory.xyz").string(), &partial);
     if (!partial.empty()) std::fprintf(stderr, "terrace: warning: %s\n", partial.c_str());
@@ -152,6 +157,16 @@ int compareMain(const std::vector<std::string>& args) {
 
 } // namespace
 
+/// What reaches standard output is part of the result: a write that failed there is an error too.
+int checkedStdout(int status) {
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        std::fprintf(stderr, "terrace: cannot write to standard output: %s\n",
+                     std::strerror(errno));
+        return status == 0 ? 1 : status;
+    }
+    return status;
+}
+
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
@@ -161,9 +176,9 @@ int main(int argc, char** argv) {
     const std::string command = args[0];
     args.erase(args.begin());
     try {
-        if (command == "run") return runMain(args);
-        if (command == "analyse" || command == "analyze") return analyseMain(args);
-        if (command == "compare") return compareMain(args);
+        if (command == "run") return checkedStdout(runMain(args));
+        if (command == "analyse" || command == "analyze") return checkedStdout(analyseMain(args));
+        if (command == "compare") return checkedStdout(compareMain(args));
         std::fprintf(stderr, "terrace: unknown command '%s' (try terrace --help)\n",
                      command.c_str());
         return 2;
@@ -179,7 +194,8 @@ int main(int argc, char** argv) {
                      e.code().message().c_str());
         return 1;
     } catch (const nlohmann::json::exception& e) {
-        std::fprintf(stderr, "terrace: a damaged or foreign file: %s\n", e.what());
+        // Files are read and checked where they are named; this is a fault of terrace's own.
+        std::fprintf(stderr, "terrace: internal error (JSON): %s\n", e.what());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "terrace: %s\n", e.what());

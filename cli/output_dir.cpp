@@ -30,12 +30,20 @@ std::string sanitisedName(const std::string& name) {
 
 namespace {
 
+/// The run files in dir, and the temporaries of whole-file writes a killed run left behind
+/// (core/output_file.hpp names them ".<file>.partial-<pid>").
 std::vector<std::string> presentRunFiles(const fs::path& dir) {
     std::vector<std::string> present;
     for (const auto& name : runFileNames()) {
         std::error_code ec;
         if (fs::symlink_status(dir / name, ec).type() != fs::file_type::not_found && !ec)
             present.push_back(name);
+    }
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        for (const auto& file : runFileNames())
+            if (name.rfind("." + file + ".partial-", 0) == 0) present.push_back(name);
     }
     return present;
 }
@@ -52,7 +60,8 @@ std::string listed(const std::vector<std::string>& names) {
 OutputDirectory::OutputDirectory(const fs::path& dir, OutputMode mode) : dir_(dir) {
     std::error_code ec;
     if (mode == OutputMode::Continue) {
-        if (!fs::is_directory(dir, ec)) throwIoError("continue in", dir, ENOENT);
+        if (!fs::is_directory(dir, ec))
+            throwIoError("use", dir, fs::exists(dir, ec) ? ENOTDIR : ENOENT);
     } else {
         fs::create_directories(dir, ec);
         if (ec) throwIoError("create the output directory", dir, ec.value());
@@ -83,7 +92,11 @@ OutputDirectory::OutputDirectory(const fs::path& dir, OutputMode mode) : dir_(di
                       dir.string() + " to resume it");
     }
     for (const auto& name : present)
-        if (fs::remove(dir / name, ec); ec) throwIoError("remove", dir / name, ec.value());
+        if (fs::remove(dir / name, ec); ec) {
+            ::close(lock_);
+            lock_ = -1;
+            throwIoError("remove", dir / name, ec.value());
+        }
 }
 
 OutputDirectory::~OutputDirectory() {

@@ -85,10 +85,16 @@ void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restar
 nlohmann::json readRestart(const std::filesystem::path& dir) {
     const auto path = dir / "restart.bin";
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec))
-        throw IoError(dir.string() +
-                      ": no restart file (restart.bin): the run finished, or was not started with "
-                      "output.restart_every_ps > 0");
+    if (!std::filesystem::exists(path, ec)) {
+        const bool finished = std::filesystem::exists(dir / "summary.json", ec);
+        const bool started = std::filesystem::exists(dir / "scene.json", ec);
+        throw IoError(
+            dir.string() + ": no restart file (restart.bin): " +
+            (finished  ? "the run finished, or was not started with output.restart_every_ps > 0"
+             : started ? "the run stopped before its first restart point, or was not started "
+                         "with output.restart_every_ps > 0: start it again"
+                       : "no terrace run was started in this directory"));
+    }
     const std::string bytes = readWholeFile(path);
     nlohmann::json j = nlohmann::json::from_cbor(bytes, true, false);
     if (j.is_discarded() || !j.is_object() || j.value("format", "") != restartFormat)

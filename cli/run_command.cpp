@@ -61,10 +61,21 @@ RunOutcome runScene(const Scene& scene, const RunTarget& target) {
 }
 
 RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scene) {
+    // The lock first: the restart file read is the one no other run can change meanwhile.
+    const OutputDirectory output(dir, OutputMode::Continue);
     const nlohmann::json restart = readRestart(dir);
-    scene = sceneFromJson(restart.at("scene"), (dir / "restart.bin").string());
-    RunTarget target{dir, OutputMode::Continue, quiet, &restart};
-    return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);
+    try {
+        scene = sceneFromJson(restart.at("scene"), (dir / "restart.bin").string());
+        checkSampleMemory(scene);
+        RunTarget target{dir, OutputMode::Continue, quiet, &restart};
+        return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);
+    } catch (const nlohmann::json::exception& e) {
+        const std::string text = e.what();
+        const auto tag = text.find("] ");
+        throw IoError((dir / "restart.bin").string() +
+                      ": damaged, or written by another version of terrace (" +
+                      (tag == std::string::npos ? text : text.substr(tag + 2)) + ")");
+    }
 }
 
 } // namespace terrace::cli

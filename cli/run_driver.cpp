@@ -70,6 +70,16 @@ bool isCounter(const std::string& path) {
     return path.rfind("events.", 0) == 0 || counters.count(path) > 0;
 }
 
+/// Statistics that are maxima over the engine's life: the largest of the stretches'.
+bool isMaximum(const std::string& path) {
+    return path.rfind("max_", 0) == 0;
+}
+
+/// Time spent per phase since the engine was built (SMD's phase_seconds): added up.
+bool isDuration(const std::string& path) {
+    return path.rfind("phase_seconds.", 0) == 0;
+}
+
 void addStretch(nlohmann::json& acc, const nlohmann::json& before, const nlohmann::json& after,
                 const std::string& path) {
     if (after.is_object()) {
@@ -85,9 +95,14 @@ void addStretch(nlohmann::json& acc, const nlohmann::json& before, const nlohman
     if (isCounter(path) && after.is_number_integer() && before.is_number_integer()) {
         const long long increase = after.get<long long>() - before.get<long long>();
         acc = (acc.is_number_integer() ? acc.get<long long>() : 0LL) + increase;
-        return;
+    } else if (isDuration(path) && after.is_number() && before.is_number()) {
+        acc = (acc.is_number() ? acc.get<double>() : 0.0) + after.get<double>() -
+              before.get<double>();
+    } else if (isMaximum(path) && after.is_number() && acc.is_number()) {
+        if (after.get<double>() > acc.get<double>()) acc = after;
+    } else {
+        acc = after;
     }
-    acc = after;
 }
 
 } // namespace
@@ -201,21 +216,20 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
 
 nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
                                        const std::filesystem::path& dir,
-                                       const InterruptGuard& interrupt) {
-    const int signalsBefore = interrupt.count();
+                                       const InterruptGuard& interrupt, int tolerated,
+                                       bool& analysed) {
     nlohmann::json summary = summaryOf(scene, run);
     summary["provenance"] = provenance(scene);
-    const bool analyse = run.samples.size() >= 4;
+    analysed = run.samples.size() < 4; // too few to analyse: nothing is due
     // Written before the analysis, so that a run killed during a long analysis keeps it.
-    if (analyse) summary["analysis"] = "not finished: the process ended during the analysis";
+    if (!analysed) summary["analysis"] = "not finished: the process ended during the analysis";
     writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
-    if (!analyse) return summary;
+    if (analysed) return summary;
     try {
-        // A signal during the analysis cancels it, and so does a second one at any time (the
-        // first only stopped the run).
-        const int tolerated = std::min(signalsBefore, 1);
+        // A signal beyond those that stopped the run cancels the analysis.
         const analysis::ScopedCancellation hook([&] { return interrupt.count() > tolerated; });
         summary["analysis"] = analysis::writeCorrelations(run.samples, dir);
+        analysed = true;
     } catch (const analysis::Cancelled&) {
         summary["analysis"] = {{"error", "cancelled by a signal before it finished"}};
         if (run.interruptedBy.empty()) {
@@ -225,14 +239,89 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
             summary["interrupted_by"] = run.interruptedBy;
             summary["interrupted_in"] = run.interruptedIn;
         }
-    } catch (const IoError&) {
-        throw; // a failed write is an error of the run, not of the analysis
+    } catch (const IoError& e) {
+        // A failed write is an error of the run: recorded in the summary if it can still be.
+        summary["analysis"] = {{"error", e.what()}};
+        summary["error"] = e.what();
+        try {
+            writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
+        } catch (const IoError&) {
+        }
+        throw;
     } catch (const std::exception& e) { // the run's own numbers stay worth keeping
         summary["analysis"] = {{"error", e.what()}};
         std::fprintf(stderr, "terrace: warning: analysis failed: %s\n", e.what());
     }
     writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
     return summary;
+}
+
+namespace {
+
+/// nlohmann's message without its "[json.exception...] " tag.
+std::string jsonReason(const nlohmann::json::exception& e) {
+    const std::string text = e.what();
+    const auto close = text.find("] ");
+    return close == std::string::npos ? text : text.substr(close + 2);
+}
+
+std::int64_t sizeOf(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    return ec ? -1 : std::int64_t(size);
+}
+
+} // namespace
+
+Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::filesystem::path& dir,
+                  int bodies, bool withOrientation, double boxLength, RunRecord& run) {
+    Resumed at;
+    std::int64_t trajectoryBytes = 0, samplesBytes = 0;
+    try {
+        at.inProduction = r.at("phase") == "production";
+        at.tick = r.at("tick").get<long>();
+        at.sample = r.at("sample").get<long>();
+        at.tStart = r.at("t_start").get<double>();
+        at.cpuEquilibration = r.at("cpu_seconds_equilibration").get<double>();
+        at.cpuProduction = r.at("cpu_seconds").get<double>();
+        run.production = r.at("production_statistics");
+        const auto& p = r.at("momentum_initial");
+        run.momentumInitial =
+            Vec3(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
+        run.restartsWritten = r.at("restarts_written").get<long>();
+        run.continuations = r.at("continuations").get<int>() + 1;
+        trajectoryBytes = r.at("files").at("trajectory_bytes").get<std::int64_t>();
+        samplesBytes = r.at("files").at("samples_bytes").get<std::int64_t>();
+    } catch (const nlohmann::json::exception& e) {
+        throw IoError((dir / "restart.bin").string() +
+                      ": damaged, or written by another version of terrace (" + jsonReason(e) +
+                      ")");
+    }
+    if (!at.inProduction) return at;
+    // Both growing files are checked before either is cut back to its restart point.
+    const bool withTrajectory = plan.trajectoryEvery > 0;
+    for (const auto& [name, bytes] :
+         {std::pair<std::string, std::int64_t>{"samples.bin", samplesBytes},
+          {"trajectory.xyz", withTrajectory ? trajectoryBytes : 0}}) {
+        const std::int64_t size = sizeOf(dir / name);
+        if (bytes > 0 && size < bytes)
+            throw IoError((dir / name).string() + " holds " +
+                          std::to_string(std::max<std::int64_t>(size, 0)) +
+                          " bytes, fewer than the " + std::to_string(bytes) +
+                          " of its restart point: it was changed after restart.bin was written");
+    }
+    if (withTrajectory) at.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
+    at.samples = AppendFile(dir / "samples.bin", samplesBytes);
+    std::vector<Snapshot> samples;
+    std::vector<SampleRecord> energies;
+    decodeSamples(readWholeFile(dir / "samples.bin"), bodies, withOrientation, boxLength, samples,
+                  energies);
+    if (long(samples.size()) != at.sample + 1)
+        throw IoError((dir / "samples.bin").string() + " holds " + std::to_string(samples.size()) +
+                      " samples, its restart point " + std::to_string(at.sample + 1));
+    for (std::size_t k = 0; k < samples.size(); ++k)
+        run.add(energies[k], std::move(samples[k]));
+    return at;
 }
 
 } // namespace terrace::cli

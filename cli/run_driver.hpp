@@ -26,8 +26,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -107,10 +107,13 @@ struct RunRecord {
 };
 
 /// Writes summary.json, then the correlation analysis (cancelled by a signal that arrives
-/// during it), then summary.json again with the analysis' results.
+/// during it: more than `tolerated` signals in all), then summary.json again with the analysis'
+/// results.
+/// `analysed`: whether the analysis ran to its end (or was not due: fewer than 4 samples).
 nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
                                        const std::filesystem::path& dir,
-                                       const InterruptGuard& interrupt);
+                                       const InterruptGuard& interrupt, int tolerated,
+                                       bool& analysed);
 
 /// The bodies as they are now: DMD brings every clock to time(); SMD's are always there.
 template <class E> auto currentSystem(const E& engine) {
@@ -120,15 +123,27 @@ template <class E> auto currentSystem(const E& engine) {
         return engine.system();
 }
 
-/// Drives the engine through the scene's run into target.dir (claimed first: refused if it holds
-/// an earlier run, unless overwriting or continuing). `engine` holds the engine built from the
-/// scene's initial state, or from the restart file when continuing; it is rebuilt in place at
-/// every restart point.
+/// The run's position and accumulators from a restart file: the samples (read back from
+/// samples.bin, after checking that both growing files still hold what the file says they did),
+/// the phase, and what the file carries over. Fills `run`; returns the open growing files.
+struct Resumed {
+    bool inProduction = false;
+    long tick = 0, sample = 0;
+    double tStart = 0.0, cpuEquilibration = 0.0, cpuProduction = 0.0;
+    AppendFile trajectory, samples;
+};
+Resumed resumeRun(const nlohmann::json& restart, const RunPlan& plan,
+                  const std::filesystem::path& dir, int bodies, bool withOrientation,
+                  double boxLength, RunRecord& run);
+
+/// Drives the engine through the scene's run into target.dir, which the caller has claimed
+/// (cli/output_dir.hpp). `engine` holds the engine built from the scene's initial state, or from
+/// the restart file when continuing; every restart point replaces it by one rebuilt from its
+/// bodies and checkpoint (the old one stays should the rebuild fail).
 template <class E>
-RunOutcome drive(std::optional<E>& engine, const Scene& scene, const RunTarget& target,
+RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget& target,
                  int rotationalDof) {
     const RunPlan plan = planRun(scene);
-    const OutputDirectory output(target.dir, target.mode); // locked until the run returns
     const std::filesystem::path& dir = target.dir;
     const bool restarts = plan.restartEvery > 0;
     const TrajectoryLayout layout = layoutFor(rotationalDof);
@@ -146,94 +161,69 @@ RunOutcome drive(std::optional<E>& engine, const Scene& scene, const RunTarget& 
     InterruptGuard interrupt;
 
     // Where the run stands: the phase, thermostat ticks and samples done, production's start.
-    bool inProduction = false;
-    long tick = 0, sample = 0;
-    double tStart = 0.0, cpuEquilibration = 0.0, cpuProduction = 0.0;
-    nlohmann::json stretchStart; // engine statistics where the current stretch began
-    AppendFile trajectory, samplesFile;
+    Resumed at;
     if (!target.resume) {
         writeFileAtomically(dir / "scene.json", toJson(scene).dump(2) + "\n");
         writeFileAtomically(dir / "initial.xyz", formatXyzFrame(engine->snapshot(), layout));
     } else {
-        const nlohmann::json& r = *target.resume;
-        inProduction = r.at("phase") == "production";
-        tick = r.at("tick").get<long>();
-        sample = r.at("sample").get<long>();
-        tStart = r.at("t_start").get<double>();
-        cpuEquilibration = r.at("cpu_seconds_equilibration").get<double>();
-        cpuProduction = r.at("cpu_seconds").get<double>();
-        run.production = r.at("production_statistics");
-        const auto& p = r.at("momentum_initial");
-        run.momentumInitial = Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-        run.restartsWritten = r.at("restarts_written").get<long>();
-        run.continuations = r.at("continuations").get<int>() + 1;
-        if (inProduction) {
-            const auto& files = r.at("files");
-            if (plan.trajectoryEvery > 0)
-                trajectory = AppendFile(dir / "trajectory.xyz",
-                                        files.at("trajectory_bytes").get<std::int64_t>());
-            samplesFile =
-                AppendFile(dir / "samples.bin", files.at("samples_bytes").get<std::int64_t>());
-            std::vector<Snapshot> samples;
-            std::vector<SampleRecord> energies;
-            decodeSamples(readWholeFile(dir / "samples.bin"), run.bodies, rotationalDof == 3,
-                          engine->snapshot().boxLength, samples, energies);
-            if (long(samples.size()) != sample + 1)
-                throw IoError((dir / "samples.bin").string() + " holds " +
-                              std::to_string(samples.size()) + " samples, the restart file " +
-                              std::to_string(sample + 1));
-            for (std::size_t k = 0; k < samples.size(); ++k)
-                run.add(energies[k], std::move(samples[k]));
-        }
+        at = resumeRun(*target.resume, plan, dir, run.bodies, rotationalDof == 3,
+                       engine->snapshot().boxLength, run);
     }
+    bool& inProduction = at.inProduction;
+    long &tick = at.tick, &sample = at.sample;
+    AppendFile &trajectory = at.trajectory, &samplesFile = at.samples;
     run.samples.reserve(plan.productionSamples + 1);
+    nlohmann::json stretchStart; // engine statistics where the current stretch began
     if (inProduction) stretchStart = engine->statistics();
 
     auto record = [&] {
         Snapshot s = engine->snapshot();
         const double u = engine->potentialEnergy(), kin = engine->kineticEnergy();
-        const SampleRecord e{units::toPs(engine->time() - tStart), u + kin, u, kin};
+        const SampleRecord e{units::toPs(engine->time() - at.tStart), u + kin, u, kin};
         if (restarts) samplesFile.append(encodeSample(s, e));
         if (plan.trajectoryEvery > 0 && sample % plan.trajectoryEvery == 0)
             trajectory.append(formatXyzFrame(s, layout));
         run.add(e, std::move(s));
     };
     // A restart point: the engine is rebuilt from its bodies and checkpoint, exactly as a run
-    // continued from the file written here builds it, then the file is written.
-    // At a signal's stop the engine is not rebuilt: the run ends there.
+    // continued from the file written here builds it; the growing files reach the disk before the
+    // restart file that counts their bytes. At a signal's stop the engine is not rebuilt: the run
+    // ends there.
     auto restartPoint = [&](const std::string& reason, bool rebuild) {
         auto system = currentSystem(*engine);
         const nlohmann::json checkpoint = engine->checkpoint();
         nlohmann::json production = run.production;
         if (inProduction) accumulateStatistics(production, stretchStart, engine->statistics());
         if (rebuild) {
+            auto rebuilt = std::make_unique<E>(system, scene, checkpoint);
+            engine = std::move(rebuilt);
             run.production = production;
-            engine.reset();
-            engine.emplace(system, scene, checkpoint);
             stretchStart = engine->statistics();
         }
-        ++run.restartsWritten;
+        if (trajectory.isOpen()) trajectory.sync();
+        if (samplesFile.isOpen()) samplesFile.sync();
         writeRestart(dir, {{"format", restartFormat},
                            {"reason", reason},
                            {"scene", toJson(scene)},
                            {"phase", inProduction ? "production" : "equilibration"},
                            {"tick", tick},
                            {"sample", sample},
-                           {"t_start", tStart},
+                           {"t_start", at.tStart},
                            {"time_fs", units::toFs(engine->time())},
                            {"n_bodies", run.bodies},
                            {"bodies", bodiesToBinary(system.bodies)},
                            {"engine", checkpoint},
                            {"production_statistics", production},
                            {"momentum_initial", vec3Json(run.momentumInitial)},
-                           {"cpu_seconds", cpuProduction + (inProduction ? cpu.seconds() : 0.0)},
+                           {"cpu_seconds", at.cpuProduction + (inProduction ? cpu.seconds() : 0.0)},
                            {"cpu_seconds_equilibration",
-                            cpuEquilibration + (inProduction ? 0.0 : cpu.seconds())},
-                           {"restarts_written", run.restartsWritten},
+                            at.cpuEquilibration + (inProduction ? 0.0 : cpu.seconds())},
+                           {"restarts_written", run.restartsWritten + 1},
                            {"continuations", run.continuations},
                            {"files",
                             {{"trajectory_bytes", trajectory.isOpen() ? trajectory.size() : 0},
                              {"samples_bytes", samplesFile.isOpen() ? samplesFile.size() : 0}}}});
+        ++run.restartsWritten;
     };
     // The first error ends the run; what was gathered until then is still written.
     auto guarded = [&](auto&& work) {
@@ -258,19 +248,22 @@ RunOutcome drive(std::optional<E>& engine, const Scene& scene, const RunTarget& 
                     restartPoint("interval", true);
             }
             if (interrupt.requested()) return;
-            cpuEquilibration += cpu.seconds();
+            at.cpuEquilibration += cpu.seconds();
             cpu.reset();
             inProduction = true;
-            tStart = engine->time();
+            at.tStart = engine->time();
             stretchStart = engine->statistics();
             run.momentumInitial = engine->totalMomentum();
             if (plan.trajectoryEvery > 0) trajectory = AppendFile(dir / "trajectory.xyz", 0);
             if (restarts) samplesFile = AppendFile(dir / "samples.bin", 0);
             record();
+            // Production's start is a restart point: a kill then costs at most one interval
+            // of production, never the equilibration.
+            if (restarts) restartPoint("production", true);
         }
         while (sample < plan.productionSamples && !interrupt.requested()) {
             cpu.start();
-            engine->advanceTo(plan.productionTime(sample + 1, tStart));
+            engine->advanceTo(plan.productionTime(sample + 1, at.tStart));
             cpu.stop();
             ++sample;
             record();
@@ -280,7 +273,8 @@ RunOutcome drive(std::optional<E>& engine, const Scene& scene, const RunTarget& 
                 restartPoint("interval", true);
         }
     });
-    if (interrupt.requested()) {
+    const bool stopped = interrupt.requested(); // by a signal, before the run's end
+    if (stopped) {
         run.interruptedBy = interrupt.signalName();
         run.interruptedIn = inProduction ? "production" : "equilibration";
         // The stop is kept as a restart point too: nothing since the last one is lost.
@@ -288,28 +282,32 @@ RunOutcome drive(std::optional<E>& engine, const Scene& scene, const RunTarget& 
             guarded([&] { restartPoint(interrupt.signalName(), false); });
     }
     if (inProduction) {
-        cpuProduction += cpu.seconds();
+        at.cpuProduction += cpu.seconds();
         accumulateStatistics(run.production, stretchStart, engine->statistics());
-        run.simulatedPs = units::toPs(engine->time() - tStart);
+        run.simulatedPs = units::toPs(engine->time() - at.tStart);
         run.momentumFinal = engine->totalMomentum();
     } else {
-        cpuEquilibration += cpu.seconds();
+        at.cpuEquilibration += cpu.seconds();
     }
-    run.cpuSeconds = cpuProduction;
-    run.cpuEquilibration = cpuEquilibration;
+    run.cpuSeconds = at.cpuProduction;
+    run.cpuEquilibration = at.cpuEquilibration;
 
     RunOutcome outcome;
+    bool analysed = false;
     try {
-        outcome.summary = writeSummaryAndAnalysis(scene, run, dir, interrupt);
+        outcome.summary =
+            writeSummaryAndAnalysis(scene, run, dir, interrupt, stopped ? 1 : 0, analysed);
     } catch (const std::exception& e) {
         if (run.failure.empty()) throw;
         // The first error is the one to report; this one followed from it (e.g. a full disk).
     }
     if (!run.failure.empty())
         throw std::runtime_error(run.failure + " (output so far in " + dir.string() + ")");
-    if (interrupt.requested()) {
-        outcome.exitStatus = interrupt.exitStatus();
-    } else if (restarts) { // a finished run: nothing left to continue
+    if (!run.interruptedBy.empty()) outcome.exitStatus = interrupt.exitStatus();
+    // A run that went to its end and was analysed leaves nothing to continue. One whose analysis
+    // a signal cancelled keeps its restart files: continuing redoes the last interval and the
+    // analysis.
+    if (restarts && !stopped && analysed) {
         std::error_code ec;
         std::filesystem::remove(dir / "restart.bin", ec);
         std::filesystem::remove(dir / "samples.bin", ec);

@@ -131,6 +131,12 @@ void AppendFile::close() noexcept {
     fd_ = -1;
 }
 
+void AppendFile::sync() {
+    // A device without a disk behind it (/dev/full, a pipe) has nothing to flush.
+    if (fd_ >= 0 && ::fdatasync(fd_) != 0 && errno != EINVAL && errno != EROFS)
+        throwIoError("write", path_, errno);
+}
+
 void AppendFile::append(std::string_view record) {
     if (fd_ < 0) throw IoError("cannot write " + path_.string() + ": the file is not open");
     if (writeAll(fd_, record)) {

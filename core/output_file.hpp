@@ -46,6 +46,9 @@ public:
     bool isOpen() const { return fd_ >= 0; }
     /// Appends the record whole, or throws IoError with the file cut back to where it was.
     void append(std::string_view record);
+    /// Flushes what was appended to the disk (fdatasync): done before a restart file that counts
+    /// these bytes is written, so that it never points past data the disk does not hold.
+    void sync();
     /// Bytes in the file: where the next record starts.
     std::int64_t size() const { return size_; }
     const std::filesystem::path& path() const { return path_; }

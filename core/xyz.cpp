@@ -1,6 +1,8 @@
 #include "core/xyz.hpp"
-#include "core/output_file.hpp"
 #include "core/units.hpp"
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <ostream>
@@ -79,22 +81,20 @@ std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout) {
 }
 
 std::vector<Snapshot> readTrajectory(const std::string& path, std::string* partialLastFrame) {
-    std::string content;
-    try {
-        content = readWholeFile(path);
-    } catch (const IoError& e) {
-        throw TrajectoryError(e.what());
-    }
-    std::istringstream in(std::move(content));
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw TrajectoryError(path + ": is a directory, not a trajectory");
+    std::ifstream in(path);
+    if (!in) throw TrajectoryError(path + ": cannot open the trajectory: " + std::strerror(errno));
     std::vector<Snapshot> frames;
     std::string line;
     long lineNo = 0;
     long frameLine = 0; // where the frame being read starts
     if (partialLastFrame) partialLastFrame->clear();
-    auto fail = [&](const std::string& what) {
-        // A problem in a frame that runs into the end of the file is a frame cut short.
-        const bool atEnd = in.eof() || in.peek() == std::char_traits<char>::eof();
-        if (partialLastFrame && atEnd) {
+    // A frame is cut short when the file ends inside it: a line missing, or its last line
+    // without the newline every written line ends with. Anything else malformed is an error.
+    auto fail = [&](const std::string& what, bool cutShort) {
+        if (partialLastFrame && cutShort) {
             *partialLastFrame = path + ":" + std::to_string(frameLine) +
                                 ": the last frame is cut short (" + what + "); read the " +
                                 std::to_string(frames.size()) + " whole frames before it";
@@ -102,33 +102,41 @@ std::vector<Snapshot> readTrajectory(const std::string& path, std::string* parti
         }
         throw TrajectoryError(path + ":" + std::to_string(lineNo) + ": " + what);
     };
+    // getline sets eof when the file ended before a newline: the line read was cut.
+    auto next = [&](const char* missing) {
+        if (!std::getline(in, line)) fail(missing, true);
+        ++lineNo;
+        return !in.eof();
+    };
     const double perPs = 1.0 / units::psPerTimeUnit; // divide: ps^-1 -> per time unit
     try {
         while (std::getline(in, line)) {
             ++lineNo;
             frameLine = lineNo;
             if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            const bool countWhole = !in.eof();
             long n = 0;
             try {
-                n = std::stol(line);
+                std::size_t used = 0;
+                n = std::stol(line, &used);
+                if (line.find_first_not_of(" \t\r", used) != std::string::npos) throw 0;
             } catch (...) {
-                fail("expected the number of bodies");
+                fail("expected the number of bodies", !countWhole);
             }
-            if (n < 0) fail("negative number of bodies");
-            if (!std::getline(in, line)) fail("missing comment line");
-            ++lineNo;
+            if (n < 0) fail("negative number of bodies", false);
+            const bool headerWhole = next("missing comment line");
             Snapshot f;
             std::istringstream lattice(field(line, "Lattice"));
             double a[9];
             for (double& x : a)
-                if (!(lattice >> x)) fail("missing or malformed Lattice=");
+                if (!(lattice >> x)) fail("missing or malformed Lattice=", !headerWhole);
             f.boxLength = a[0];
             const std::string time = field(line, "Time");
-            if (time.empty()) fail("missing Time=");
+            if (time.empty()) fail("missing Time=", !headerWhole);
             try {
                 f.time = units::fromFs(std::stod(time));
             } catch (const std::logic_error&) {
-                fail("malformed Time=" + time);
+                fail("malformed Time=" + time, !headerWhole);
             }
             const std::string props = field(line, "Properties");
             TrajectoryLayout layout;
@@ -139,10 +147,9 @@ std::vector<Snapshot> readTrajectory(const std::string& path, std::string* parti
             else if (props == columns(TrajectoryLayout::Sphere))
                 layout = TrajectoryLayout::Sphere;
             else
-                fail("unsupported Properties=" + props);
+                fail("unsupported Properties=" + props, !headerWhole);
             for (long i = 0; i < n; ++i) {
-                if (!std::getline(in, line)) fail("frame ends early");
-                ++lineNo;
+                const bool whole = next("frame ends early");
                 std::istringstream row(line);
                 std::string species;
                 Vec3 r, v, s = Vec3::UnitZ(), w = Vec3::Zero();
@@ -156,9 +163,8 @@ std::vector<Snapshot> readTrajectory(const std::string& path, std::string* parti
                     s = q * Vec3::UnitZ();
                 }
                 if (layout != TrajectoryLayout::Sphere) row >> w.x() >> w.y() >> w.z();
-                if (!row) fail("malformed body line");
-                // A line the writer ended with a newline that lacks one was cut by the end of file.
-                if (in.eof()) fail("the body line has no end");
+                if (!row) fail("malformed body line", !whole);
+                if (!whole) fail("the body line has no end", true);
                 f.position.push_back(r);
                 f.velocity.push_back(v / perPs);
                 f.axis.push_back(s);

@@ -88,6 +88,9 @@ inline constexpr double cleanupGrowth = 3.0;
 inline constexpr double cleanupMinimumPerBody = 16.0;
 /// A body's list of the owners of calendar entries about it is pruned from this size on.
 inline constexpr std::size_t aboutPruneSize = 32;
+/// A restart file's pair off terrace 0 may sit this fraction beyond r_m (round-off of r at the
+/// instant it reached r_m); farther out, the file does not belong to the bodies.
+inline constexpr double resumeRangeTolerance = 1e-9;
 /// A list is rebuilt a hair before the body has moved its relist distance (skin/3), so that
 /// round-off in the rebuild time can never let an unlisted pair inside r_m.
 inline constexpr double relistMargin = 1e-6;
@@ -371,8 +374,10 @@ private:
             const int i = p.at(0).get<int>(), j = p.at(1).get<int>(), n = p.at(2).get<int>();
             if (i < 0 || j < 0 || i >= sys_.size() || j >= sys_.size() || i == j)
                 throw SceneError("restart: terrace of a pair of bodies that do not exist");
+            // A pair leaves terrace 0 at r_m exactly: a sample there may read r a round-off
+            // beyond it.
             const Vec3 rij = sys_.box.minimumImage(sys_.bodies[i].r - sys_.bodies[j].r);
-            if (rij.norm() > settings_.rm)
+            if (rij.norm() > settings_.rm * (1.0 + resumeRangeTolerance))
                 throw SceneError("restart: bodies " + std::to_string(i) + " and " +
                                  std::to_string(j) + " are held on terrace " + std::to_string(n) +
                                  " beyond the interaction range");

@@ -27,7 +27,10 @@ namespace terrace::smd {
 
 template <BodyKind K, PairPotential P> class Engine {
 public:
-    Engine(System<K, P> initial, const Scene& scene)
+    Engine(System<K, P> initial, const Scene& scene) : Engine(std::move(initial), scene, true) {}
+
+private:
+    Engine(System<K, P> initial, const Scene& scene, bool isStart)
         : sys_(std::move(initial)), par_(smd::parameters(scene, sys_.box.length)),
           sigmaUnit_(scene.potential.sigma) {
         for (const auto& b : sys_.bodies)
@@ -45,15 +48,18 @@ public:
         gatherPositions();
         build(list_, sys_.box, position_);
         computeForces();
-        checkOverlap();
+        if (isStart) checkOverlap();
     }
 
+public:
     /// Resumes from a checkpoint() with `initial` holding the bodies at that time: the step count
     /// (and so the time grid) goes on; forces and the Verlet list are computed afresh, as at the
     /// start, so a continued run and one that rebuilds its engine at the same step agree bit for
     /// bit.
+    /// The bodies came from a running engine: the start's overlap check is not repeated (a hot
+    /// run may hold pairs far up the wall that no start would be allowed).
     Engine(System<K, P> initial, const Scene& scene, const nlohmann::json& checkpoint)
-        : Engine(std::move(initial), scene) {
+        : Engine(std::move(initial), scene, false) {
         steps_ = checkpoint.at("steps").get<long>();
         if (steps_ < 0) throw SceneError("restart: a negative SMD step count");
     }

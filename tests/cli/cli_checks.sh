@@ -18,6 +18,16 @@ expect_error() {
     [ ! -e "$work/out" ] || fail "output written for a bad scene"
 }
 
+# wait_frames FILE BODIES COUNT [TRIES]: until FILE holds COUNT frames of BODIES (0.01 s a try).
+wait_frames() {
+    local written
+    for _ in $(seq 1 "${4:-1000}"); do
+        written=$(grep -c "^$2\$" "$1" 2>/dev/null || true)
+        [ "${written:-0}" -ge "$3" ] && return 0
+        sleep 0.01
+    done
+}
+
 short_run() { # engine extra-args...
     local engine=$1
     shift
@@ -94,11 +104,7 @@ interrupt)
         --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=1000 \
         --set output.trajectory_every_fs=9 >/dev/null 2>&1 &
     pid=$!
-    for _ in $(seq 1 100); do # wait until production has written a few frames
-        written=$(grep -c '^216$' "$work/int/trajectory.xyz" 2>/dev/null || true)
-        [ "${written:-0}" -ge 3 ] && break
-        sleep 0.1
-    done
+    wait_frames "$work/int/trajectory.xyz" 216 3 # production has written a few frames
     kill -INT $pid
     wait $pid
     status=$?
@@ -156,10 +162,18 @@ lock)
     err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/busy" \
         --overwrite --set state.n=216 --set run.time_ps=0.1 2>&1 >/dev/null)
     status=$?
+    err2=$("$terrace" run --continue "$work/busy" 2>&1 >/dev/null)
+    status2=$?
+    err3=$("$terrace" analyse "$work/busy" 2>&1 >/dev/null)
+    status3=$?
     kill -TERM $pid
     wait $pid
     [ $status -ne 0 ] || fail "a second run into a busy directory went ahead"
     [[ $err == *"another terrace run is writing into this directory"* ]] || fail "message: $err"
+    [ $status2 -ne 0 ] && [[ $err2 == *"another terrace run is writing"* ]] ||
+        fail "--continue into a busy directory: $err2"
+    [ $status3 -ne 0 ] && [[ $err3 == *"another terrace run is writing"* ]] ||
+        fail "analyse of a busy directory: $err3"
     ;;
 default_name)
     # A scene name cannot send the default output outside out/.
@@ -210,11 +224,7 @@ signals)
             --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=1000 \
             --set output.trajectory_every_fs=9 >/dev/null 2>&1 &
         pid=$!
-        for _ in $(seq 1 100); do
-            written=$(grep -c '^216$' "$work/$sig/trajectory.xyz" 2>/dev/null || true)
-            [ "${written:-0}" -ge 5 ] && break
-            sleep 0.1
-        done
+        wait_frames "$work/$sig/trajectory.xyz" 216 5
         kill -$sig $pid
         wait $pid
         status=$?
@@ -231,9 +241,10 @@ signals)
 second_signal)
     # A second signal skips the analysis (here a slow one: 2744 bodies, O(N^2) g(r) per frame).
     "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/two" \
-        --set state.n=2744 --set run.equilibrate_ps=0 --set run.time_ps=50 >/dev/null 2>&1 &
+        --set state.n=2744 --set run.equilibrate_ps=0 --set run.time_ps=50 \
+        --set output.trajectory_every_fs=9 >/dev/null 2>&1 &
     pid=$!
-    sleep 3
+    wait_frames "$work/two/trajectory.xyz" 2744 200 6000 # seconds of g(r) to analyse
     kill -TERM $pid
     sleep 0.5
     kill -TERM $pid
@@ -248,37 +259,80 @@ second_signal)
     ;;
 kill_resume)
     # A run killed with SIGKILL and continued from its restart file ends with the same
-    # trajectory and correlation files, byte for byte, as the same run left alone.
-    for engine in dmd smd; do
-        args=(--quiet --set engine=$engine --set state.n=216 --set run.equilibrate_ps=0.18
-            --set run.time_ps=10 --set output.trajectory_every_fs=18
+    # trajectory and correlation files, byte for byte, as the same run left alone: DMD and SMD
+    # killed in production, DMD killed during a long equilibration.
+    for case in dmd:0.18:10 smd:0.18:10 dmd:10:1; do
+        IFS=: read -r engine equilibrate ps <<<"$case"
+        name=$engine-$equilibrate
+        args=(--quiet --set engine=$engine --set state.n=216 --set run.equilibrate_ps=$equilibrate
+            --set run.time_ps=$ps --set output.trajectory_every_fs=18
             --set output.restart_every_ps=0.9)
-        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$engine-a" \
-            "${args[@]}" >/dev/null || fail "$engine: the uninterrupted run failed"
-        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$engine-b" \
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$name-a" \
+            "${args[@]}" >/dev/null || fail "$name: the uninterrupted run failed"
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$name-b" \
             "${args[@]}" >/dev/null 2>&1 &
         pid=$!
         for _ in $(seq 1 1000); do
-            [ -e "$work/$engine-b/restart.bin" ] && break
+            [ -e "$work/$name-b/restart.bin" ] && break
             sleep 0.01
         done
+        sleep 0.15 # past the first restart point, so that the continued run cuts files back
         kill -KILL $pid
         wait $pid
-        [ -e "$work/$engine-b/restart.bin" ] || fail "$engine: no restart file before the kill"
-        [ ! -e "$work/$engine-b/summary.json" ] || fail "$engine: the run ended before the kill"
-        "$terrace" run --continue "$work/$engine-b" --quiet >/dev/null ||
-            fail "$engine: --continue failed"
+        [ -e "$work/$name-b/restart.bin" ] || fail "$name: no restart file before the kill"
+        [ ! -e "$work/$name-b/summary.json" ] || fail "$name: the run ended before the kill"
+        if [ "$equilibrate" = 10 ]; then
+            grep -qa equilibration "$work/$name-b/restart.bin" || fail "$name: not killed in equilibration"
+            [ ! -e "$work/$name-b/trajectory.xyz" ] || fail "$name: production had begun"
+        fi
+        "$terrace" run --continue "$work/$name-b" --quiet >/dev/null ||
+            fail "$name: --continue failed"
         for f in trajectory.xyz rdf.csv vacf.csv oacf.csv msd.csv; do
-            cmp -s "$work/$engine-a/$f" "$work/$engine-b/$f" ||
-                fail "$engine: $f of the continued run differs from the uninterrupted run's"
+            cmp -s "$work/$name-a/$f" "$work/$name-b/$f" ||
+                fail "$name: $f of the continued run differs from the uninterrupted run's"
         done
-        grep -q '"continued": 1' "$work/$engine-b/summary.json" || fail "$engine: not marked continued"
-        [ ! -e "$work/$engine-b/restart.bin" ] || fail "$engine: restart file left after the end"
+        grep -q '"continued": 1' "$work/$name-b/summary.json" || fail "$name: not marked continued"
+        [ ! -e "$work/$name-b/restart.bin" ] || fail "$name: restart file left after the end"
     done
-    "$terrace" run --continue "$work/dmd-b" --quiet 2>/dev/null && fail "a finished run continued"
-    err=$("$terrace" run --continue "$work/dmd-b" --set run.time_ps=1 2>&1)
+    "$terrace" run --continue "$work/dmd-0.18-b" --quiet 2>/dev/null && fail "a finished run continued"
+    err=$("$terrace" run --continue "$work/dmd-0.18-b" --set run.time_ps=1 2>&1)
     [ $? -eq 2 ] && [[ $err == *"--continue DIR takes no scene, --set"* ]] ||
         fail "--continue with --set: $err"
+    ;;
+term_continue)
+    # A run stopped by SIGTERM keeps its stop as a restart point: continued, it loses nothing and
+    # ends as long as the run left alone, the same up to the stop (after it, the continued run's
+    # engine was rebuilt at another instant: the same dynamics, other round-off).
+    args=(--quiet --set state.n=216 --set run.equilibrate_ps=0.18 --set run.time_ps=10
+        --set output.trajectory_every_fs=18 --set output.restart_every_ps=0.9)
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/a" "${args[@]}" \
+        >/dev/null || fail "the uninterrupted run failed"
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/b" "${args[@]}" \
+        >/dev/null 2>&1 &
+    pid=$!
+    wait_frames "$work/b/trajectory.xyz" 216 60
+    kill -TERM $pid
+    wait $pid
+    status=$?
+    [ $status -eq 143 ] || fail "exit status $status after SIGTERM"
+    stopped=$(grep -c '^216$' "$work/b/trajectory.xyz")
+    [ "$stopped" -lt 556 ] || fail "the run ended before the signal"
+    "$terrace" run --continue "$work/b" --quiet >/dev/null || fail "--continue failed"
+    [ "$(grep -c '^216$' "$work/b/trajectory.xyz")" -eq "$(grep -c '^216$' "$work/a/trajectory.xyz")" ] ||
+        fail "the continued trajectory has another length"
+    cmp -s <(head -n $((stopped * 218)) "$work/a/trajectory.xyz") \
+        <(head -n $((stopped * 218)) "$work/b/trajectory.xyz") || fail "differs before the stop"
+    grep -q '"continued": 1' "$work/b/summary.json" || fail "not marked continued"
+    grep -q '"interrupted": false' "$work/b/summary.json" || fail "the finished run says interrupted"
+    ;;
+hot_restarts)
+    # A restart point rebuilds the engine from a running state: checks meant for a start (overlap)
+    # are not repeated there, or a hot SMD run with restarts would fail where one without runs.
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/hot" \
+        --set engine=smd --set state.n=216 --set state.temperature=3000 --set smd.dt_fs=0.05 \
+        --set run.sample_fs=0.5 --set run.thermostat_fs=0.5 --set run.equilibrate_ps=0 \
+        --set run.time_ps=0.1 --set output.restart_every_ps=0.0005 >/dev/null ||
+        fail "a hot SMD run with restarts failed"
     ;;
 partial_frame)
     # A trajectory whose last frame was cut by a kill is analysed up to its last whole frame.

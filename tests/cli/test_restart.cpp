@@ -5,11 +5,14 @@
 #include "core/asymmetric_top.hpp"
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
+#include "core/output_file.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "dmd/engine.hpp"
 #include "smd/engine.hpp"
+#include <filesystem>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 using namespace terrace;
 
@@ -168,12 +171,28 @@ TEST(Restart, ADmdCheckpointThatDoesNotFitTheBodiesIsRefused) {
 
 TEST(Restart, StatisticsAddUpOverRebuiltStretches) {
     nlohmann::json production = nlohmann::json::object();
-    cli::accumulateStatistics(production, {{"events", {{"up", 10}}}, {"max_queue_size", 5}},
-                              {{"events", {{"up", 25}}}, {"max_queue_size", 7}});
-    cli::accumulateStatistics(production, {{"events", {{"up", 0}}}, {"max_queue_size", 1}},
-                              {{"events", {{"up", 4}}}, {"max_queue_size", 3}});
-    EXPECT_EQ(production["events"]["up"], 19);
-    EXPECT_EQ(production["max_queue_size"], 3); // not a counter: its value at the end
+    cli::accumulateStatistics(production,
+                              {{"events", {{"up", 10}}},
+                               {"max_queue_size", 5},
+                               {"phase_seconds", {{"force", 1.0}}},
+                               {"r_m_angstrom", 9.0}},
+                              {{"events", {{"up", 25}}},
+                               {"max_queue_size", 7},
+                               {"phase_seconds", {{"force", 1.5}}},
+                               {"r_m_angstrom", 9.0}});
+    cli::accumulateStatistics(production,
+                              {{"events", {{"up", 0}}},
+                               {"max_queue_size", 1},
+                               {"phase_seconds", {{"force", 0.0}}},
+                               {"r_m_angstrom", 9.5}},
+                              {{"events", {{"up", 4}}},
+                               {"max_queue_size", 3},
+                               {"phase_seconds", {{"force", 0.25}}},
+                               {"r_m_angstrom", 9.5}});
+    EXPECT_EQ(production["events"]["up"], 19);             // counters: increases add up
+    EXPECT_EQ(production["max_queue_size"], 7);            // maxima: the largest
+    EXPECT_EQ(production["phase_seconds"]["force"], 0.75); // durations: add up
+    EXPECT_EQ(production["r_m_angstrom"], 9.5);            // settings: the value at the end
 }
 
 // The horizon stream goes on where it stood, rather than starting over at every restart point:
@@ -187,4 +206,70 @@ TEST(Restart, ADmdEngineContinuesItsHorizonStream) {
     a.advanceTo(1.0);
     b.advanceTo(1.0);
     EXPECT_NE(a.statistics()["events"]["virtual"], b.statistics()["events"]["virtual"]);
+}
+
+// A restart file without one of its keys is named as damaged, with the key, before anything is
+// cut back.
+TEST(Restart, ADamagedRestartFileIsNamed) {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terrace-damaged-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    nlohmann::json restart = {{"phase", "production"},
+                              {"tick", 0},
+                              {"sample", 3},
+                              {"t_start", 0.0},
+                              {"cpu_seconds", 1.0},
+                              {"cpu_seconds_equilibration", 0.0},
+                              {"production_statistics", nlohmann::json::object()},
+                              {"momentum_initial", {0.0, 0.0, 0.0}},
+                              {"restarts_written", 1},
+                              {"continuations", 0},
+                              {"files", {{"trajectory_bytes", 0}, {"samples_bytes", 100}}}};
+    restart.erase("tick");
+    cli::RunRecord run;
+    const cli::RunPlan plan = cli::planRun(defaultScene());
+    try {
+        cli::resumeRun(restart, plan, dir, 8, false, 10.0, run);
+        FAIL() << "expected an IoError";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()), (dir / "restart.bin").string() +
+                                             ": damaged, or written by another version of "
+                                             "terrace (key 'tick' not found)");
+    }
+    // Whole, but samples.bin shorter than its restart point: refused, nothing created or cut.
+    restart["tick"] = 0;
+    EXPECT_THROW(cli::resumeRun(restart, plan, dir, 8, false, 10.0, run), IoError);
+    EXPECT_FALSE(std::filesystem::exists(dir / "samples.bin"));
+    std::filesystem::remove_all(dir);
+}
+
+// A write that fails during the analysis is an error of the run, and summary.json says so.
+TEST(Restart, AWriteThatFailsInTheAnalysisIsRecorded) {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terrace-analysis-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(
+        dir / ("." + std::string("rdf.csv") + ".partial-" + std::to_string(::getpid())) /
+        "in-the-way");
+    Scene scene = smallScene("linear");
+    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    cli::RunRecord run;
+    run.bodies = sys.size();
+    run.dof = degreesOfFreedom<LinearRotor>(sys.size());
+    run.kT = scene.kT();
+    for (int k = 0; k < 8; ++k) {
+        auto moved = sys;
+        for (auto& b : moved.bodies)
+            b.r += b.v * (0.01 * k);
+        run.add({0.001 * k, 1.0, -1.0, 2.0}, makeSnapshot(moved, 0.01 * k));
+    }
+    const cli::InterruptGuard interrupt;
+    bool analysed = true;
+    EXPECT_THROW(cli::writeSummaryAndAnalysis(scene, run, dir, interrupt, 0, analysed), IoError);
+    EXPECT_FALSE(analysed);
+    const auto summary = nlohmann::json::parse(readWholeFile(dir / "summary.json"));
+    EXPECT_NE(summary.value("error", "").find("cannot write " + (dir / "rdf.csv").string()),
+              std::string::npos)
+        << summary.dump();
+    std::filesystem::remove_all(dir);
 }

@@ -390,3 +390,16 @@ TEST(Scene, WarningsForLegalButSurprisingValues) {
                     "and 0, so the terraced potential has no attractive well");
     EXPECT_TRUE(sceneWarnings(sceneFromJson({{"dmd", {{"levels", {-1.5, 1.0}}}}}, "t")).empty());
 }
+
+// The name goes into scene.json and summary.json: bytes that are not UTF-8 would stop them.
+TEST(Scene, ANameThatIsNotUtf8IsRefused) {
+    try {
+        sceneFromJson(nlohmann::json::object(), "test.json",
+                      {"name=ab\xff"
+                       "c"});
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()), "test.json: name: must be valid UTF-8 text");
+    }
+    EXPECT_NO_THROW(sceneFromJson(nlohmann::json::object(), "test.json", {"name=dense-rods-ρ0.5"}));
+}
