@@ -82,6 +82,14 @@ void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restar
         std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
+IoError damagedRestart(const std::filesystem::path& dir, const nlohmann::json::exception& e) {
+    const std::string text = e.what();
+    const auto tag = text.find("] "); // nlohmann's "[json.exception.…] " prefix
+    return IoError((dir / "restart.bin").string() +
+                   ": damaged, or written by another version of terrace (" +
+                   (tag == std::string::npos ? text : text.substr(tag + 2)) + ")");
+}
+
 nlohmann::json readRestart(const std::filesystem::path& dir) {
     const auto path = dir / "restart.bin";
     std::error_code ec;

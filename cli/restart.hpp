@@ -19,6 +19,7 @@
 // reads the samples back, rebuilds the engine from the bodies and the checkpoint, and goes on.
 // At every restart point the running engine is rebuilt the same way, so that a run continued from
 // a restart file undergoes the same events and writes the same bytes as one that never stopped.
+#include "core/output_file.hpp"
 #include "core/snapshot.hpp"
 #include <cstdint>
 #include <cstring>
@@ -43,6 +44,10 @@ void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, d
                    std::vector<Snapshot>& samples, std::vector<SampleRecord>& energies);
 
 void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restart);
+/// "DIR/restart.bin: damaged, or written by another version of terrace (<what is missing>)" for
+/// a restart file whose content does not read (a key missing, a value of the wrong type).
+IoError damagedRestart(const std::filesystem::path& dir, const nlohmann::json::exception& e);
+
 /// Reads DIR/restart.bin; IoError when absent or unreadable, naming what to do.
 nlohmann::json readRestart(const std::filesystem::path& dir);
 

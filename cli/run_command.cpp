@@ -1,4 +1,5 @@
 #include "cli/run_command.hpp"
+#include "cli/dispatch.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/restart.hpp"
 #include "core/output_file.hpp"
@@ -34,8 +35,7 @@ double availableMemory() {
 }
 
 int rotationalDofOf(const Scene& scene) {
-    if (scene.body.kind == "sphere") return 0;
-    return scene.body.kind == "linear" ? 2 : 3;
+    return withBodyAndPotential(scene, []<class K, class P>(const P&) { return K::rotationalDof; });
 }
 
 } // namespace
@@ -70,11 +70,7 @@ RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scen
         RunTarget target{dir, OutputMode::Continue, quiet, &restart};
         return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);
     } catch (const nlohmann::json::exception& e) {
-        const std::string text = e.what();
-        const auto tag = text.find("] ");
-        throw IoError((dir / "restart.bin").string() +
-                      ": damaged, or written by another version of terrace (" +
-                      (tag == std::string::npos ? text : text.substr(tag + 2)) + ")");
+        throw damagedRestart(dir, e);
     }
 }
 

@@ -258,13 +258,6 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
 
 namespace {
 
-/// nlohmann's message without its "[json.exception...] " tag.
-std::string jsonReason(const nlohmann::json::exception& e) {
-    const std::string text = e.what();
-    const auto close = text.find("] ");
-    return close == std::string::npos ? text : text.substr(close + 2);
-}
-
 std::int64_t sizeOf(const std::filesystem::path& path) {
     std::error_code ec;
     const auto size = std::filesystem::file_size(path, ec);
@@ -293,9 +286,7 @@ Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::files
         trajectoryBytes = r.at("files").at("trajectory_bytes").get<std::int64_t>();
         samplesBytes = r.at("files").at("samples_bytes").get<std::int64_t>();
     } catch (const nlohmann::json::exception& e) {
-        throw IoError((dir / "restart.bin").string() +
-                      ": damaged, or written by another version of terrace (" + jsonReason(e) +
-                      ")");
+        throw damagedRestart(dir, e);
     }
     if (!at.inProduction) return at;
     // Both growing files are checked before either is cut back to its restart point.

@@ -267,9 +267,11 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         if (!j["name"].is_string()) rd.fail("name", "must be a string");
         s.name = j["name"].get<std::string>();
         // The name is written into scene.json and summary.json, which hold UTF-8 only.
-        if (j["name"].dump(-1, ' ', false, json::error_handler_t::ignore) !=
-            j["name"].dump(-1, ' ', false, json::error_handler_t::replace))
+        try {
+            (void)j["name"].dump();
+        } catch (const json::type_error&) { // nlohmann refuses to write bytes that are not UTF-8
             rd.fail("name", "must be valid UTF-8 text");
+        }
     }
     s.seed = static_cast<std::uint64_t>(rd.integer(j, "", "seed", 1, 0, (1LL << 62)));
 

@@ -30,6 +30,7 @@
 #include "core/branch_free.hpp"
 #include "core/engine.hpp"
 #include "core/free_orbit.hpp"
+#include "core/overlap.hpp"
 #include "core/scene.hpp"
 #include "core/snapshot.hpp"
 #include "core/system.hpp"
@@ -338,7 +339,7 @@ private:
     /// tolerance) goes to the terrace it is heading into, so that the start holds no zero-time
     /// event.
     void assignInitialTerraces() {
-        const double overlap = overlapFactor * std::abs(sys_.potential.minimumEnergy());
+        const double uMin = sys_.potential.minimumEnergy();
         for (int i = 0; i < sys_.size(); ++i)
             cells_.forEachNeighbour(i, [&](int j) {
                 if (j < i) return;
@@ -346,10 +347,7 @@ private:
                 const Vec3 rij = sys_.box.minimumImage(bi.r - bj.r);
                 if (rij.norm() > settings_.rm) return;
                 const PairForce f = sys_.potential.evaluate(rij, K::axis(bi), K::axis(bj));
-                if (!std::isfinite(f.U) || f.U > overlap)
-                    throw SceneError("state: bodies " + std::to_string(i) + " and " +
-                                     std::to_string(j) + " overlap (U = " + std::to_string(f.U) +
-                                     " kJ/mol)");
+                if (overlapsAtStart(f.U, uMin)) throwOverlap(i, j, f.U);
                 const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys_.body),
                                          K::angularVelocity(bj, sys_.body));
                 terraces_.set(i, j, settings_.levels.terraceOf(f.U, rate, search_.levelTolerance));
@@ -1009,9 +1007,6 @@ private:
         for (int i = 0; i < sys_.size(); ++i)
             bringToNow(i);
     }
-
-    /// A start with a pair above this multiple of |U_min| is an overlap, not a state point.
-    static constexpr double overlapFactor = 1e4;
 
     /// A body's own events, planned (absolute times, +∞: none); only the earliest is scheduled.
     struct BodyPlan {

@@ -11,6 +11,7 @@
 // so every step is the same symplectic map (the run driver samples on multiples of dt).
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
 #include "core/engine.hpp"
+#include "core/overlap.hpp"
 #include "core/snapshot.hpp"
 #include "core/system.hpp"
 #include "smd/neighbour_list.hpp"
@@ -168,14 +169,10 @@ private:
 
     static constexpr double gridTolerance = 1e-9; // in steps: far above round-off of t/dt
 
-    /// A start with a pair above this multiple of |U_min| is an overlap, not a state point (the
-    /// DMD engine's bound, so that both engines refuse the same starts with the same message).
-    static constexpr double overlapFactor = 1e4;
-
     /// Names the first overlapping pair at the start, instead of letting its huge forces end the
     /// run later as an "unstable time step".
     void checkOverlap() const {
-        const double overlap = overlapFactor * std::abs(sys_.potential.minimumEnergy());
+        const double uMin = sys_.potential.minimumEnergy();
         const double outer2 = par_.cutoff.outer() * par_.cutoff.outer();
         const Vec3 noAxis = Vec3::UnitZ();
         for (std::size_t a = 0; a + 1 < list_.start.size(); ++a)
@@ -187,12 +184,7 @@ private:
                 if (!(rij.squaredNorm() < outer2)) continue;
                 const double U = sys_.potential.energy(rij, P::orientational ? axis_[a] : noAxis,
                                                        P::orientational ? axis_[b] : noAxis);
-                if (std::isfinite(U) && U <= overlap) continue;
-                const int i = std::min(list_.order[a], list_.order[b]);
-                const int j = std::max(list_.order[a], list_.order[b]);
-                throw SceneError("state: bodies " + std::to_string(i) + " and " +
-                                 std::to_string(j) + " overlap (U = " + std::to_string(U) +
-                                 " kJ/mol)");
+                if (overlapsAtStart(U, uMin)) throwOverlap(list_.order[a], list_.order[b], U);
             }
     }
 
