@@ -33,13 +33,14 @@ Scene ljScene(int n, double density, double temperature, double rl, double ru) {
                   "potential.kind=lj", "potential.epsilon=1", "potential.sigma=1",
                   "state.n=" + std::to_string(n), "state.density=" + std::to_string(density),
                   "state.temperature=" + std::to_string(temperature), "smd.dt_fs=0.5",
-                  "smd.skin=0.3", "smd.r_l=" + std::to_string(rl),
-                  "smd.r_u=" + std::to_string(ru)});
+                  "smd.skin=0.3",
+                  "potential.cutoff=[" + std::to_string(rl) + "," + std::to_string(ru) + "]"});
 }
 
 template <BodyKind K, PairPotential P>
-void runSteps(benchmark::State& state, const Scene& sc, const P& potential, int warmup) {
-    smd::Engine<K, P> engine(buildInitialState<K, P>(sc, potential), sc);
+void runSteps(benchmark::State& state, const Scene& sc, const P& bare, int warmup) {
+    const Smoothed<P> model{bare, sceneCutoff(sc)};
+    smd::Engine<K, Smoothed<P>> engine(buildInitialState<K, Smoothed<P>>(sc, model), sc);
     for (int k = 0; k < warmup; ++k)
         engine.step();
     const long steps0 = engine.steps(), pairs0 = engine.pairEvaluations();

@@ -6,6 +6,7 @@
 #include "core/asymmetric_top.hpp"
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
+#include "core/smoothed_potential.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include <memory>
@@ -20,6 +21,13 @@ template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
     if (scene.body.kind == "symmetric") return fn.template operator()<SymmetricTop>(rod);
     if (scene.body.kind == "asymmetric") return fn.template operator()<AsymmetricTop>(rod);
     return fn.template operator()<LinearRotor>(rod);
+}
+
+/// The model both engines simulate: the scene's potential with its smoothed cutoff
+/// (core/smoothed_potential.hpp); for DMD with dmd.model = bare, the paper's setting, none.
+template <PairPotential P> Smoothed<P> sceneModel(const Scene& scene, const P& bare, bool dmd) {
+    const bool cut = !(dmd && scene.dmd.model == "bare");
+    return Smoothed<P>{bare, cut ? sceneCutoff(scene) : SmoothedCutoff::none()};
 }
 
 /// The bodies a run starts from: the scene's initial state, or those of the restart file.

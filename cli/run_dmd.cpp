@@ -6,7 +6,7 @@ namespace terrace::cli {
 
 RunOutcome runDmd(const Scene& scene, const RunTarget& target) {
     return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) {
-        return buildAndDrive<dmd::Engine, K>(scene, potential, target);
+        return buildAndDrive<dmd::Engine, K>(scene, sceneModel(scene, potential, true), target);
     });
 }
 

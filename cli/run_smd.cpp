@@ -6,7 +6,7 @@ namespace terrace::cli {
 
 RunOutcome runSmd(const Scene& scene, const RunTarget& target) {
     return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) {
-        return buildAndDrive<smd::Engine, K>(scene, potential, target);
+        return buildAndDrive<smd::Engine, K>(scene, sceneModel(scene, potential, false), target);
     });
 }
 

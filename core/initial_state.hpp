@@ -8,6 +8,7 @@
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
 #include "core/scene.hpp"
+#include "core/smoothed_cutoff.hpp"
 #include "core/system.hpp"
 #include "core/units.hpp"
 #include <cmath>
@@ -19,6 +20,8 @@ namespace terrace {
 RodPotential rodPotential(const Scene& scene);
 LJPotential ljPotential(const Scene& scene);
 BodyParams bodyParams(const Scene& scene);
+/// potential.cutoff in Å: the smoothed cutoff of the model both engines simulate.
+SmoothedCutoff sceneCutoff(const Scene& scene);
 
 /// A random stream named by its purpose, derived from the one scene seed, so that e.g. adding a
 /// draw to the velocities never changes the orientations.

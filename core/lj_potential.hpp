@@ -37,6 +37,8 @@ struct LJPotential {
         return detail::lennardJones(rij.norm(), epsilon, sigma).U;
     }
     double minimumEnergy() const { return -epsilon; }
+    /// U at centre distance r (no orientations to range over).
+    double lowestEnergyAt(double r) const { return detail::lennardJones(r, epsilon, sigma).U; }
     double reachDistance(double u) const { return detail::lennardJonesRoot(u, epsilon, sigma); }
 };
 

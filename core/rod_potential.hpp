@@ -6,6 +6,8 @@
 // at close contact, on the repulsive wall, perpendicular neighbours have the lower energy (the
 // paper's remark); in the attractive tail parallel ones do.
 #include "core/pair_potential.hpp"
+#include <algorithm>
+#include <cmath>
 
 namespace terrace {
 
@@ -53,6 +55,13 @@ struct RodPotential {
         return detail::lennardJones(effectiveDistance(rij.norm(), c), epsilon, sigma).U;
     }
     double minimumEnergy() const { return -epsilon; }
+    /// The lowest U over all alignments at centre distance r: r_e runs over [r − ζ/2, r + ζ/2], and
+    /// the LJ curve of r_e is lowest at its minimum 2^(1/6)σ, else at the end nearer to it.
+    double lowestEnergyAt(double r) const {
+        const double bottom = sigma * std::pow(2.0, 1.0 / 6.0);
+        const double x = std::clamp(bottom, r - 0.5 * zeta, r + 0.5 * zeta);
+        return detail::lennardJones(x, epsilon, sigma).U;
+    }
     /// r_e ≥ r - ζ/2, so U can equal u only while r ≤ x(u) + ζ/2 (paper's r_m formula).
     double reachDistance(double u) const {
         const double x = detail::lennardJonesRoot(u, epsilon, sigma);

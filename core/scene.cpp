@@ -293,11 +293,24 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         rd.fail("body.inertia", "an asymmetric top needs three positive moments");
 
     const auto& pot = rd.section(j, "potential");
-    rd.onlyKeys(pot, "potential", {"kind", "epsilon", "sigma", "zeta"});
+    rd.onlyKeys(pot, "potential", {"kind", "epsilon", "sigma", "zeta", "cutoff"});
     s.potential.kind = rd.choice(pot, "potential", "kind", s.potential.kind, {"rod-lj", "lj"});
     s.potential.epsilon = rd.number(pot, "potential", "epsilon", s.potential.epsilon, 0, inf, true);
     s.potential.sigma = rd.number(pot, "potential", "sigma", s.potential.sigma, 0, inf, true);
     s.potential.zeta = rd.number(pot, "potential", "zeta", s.potential.zeta, 0, inf);
+    if (pot.contains("cutoff")) {
+        const auto& c = pot.at("cutoff");
+        if (!c.is_array() || c.size() != 2 || !c[0].is_number() || !c[1].is_number())
+            rd.fail("potential.cutoff", "must be [r_l, r_u], two numbers in σ, got " + c.dump());
+        s.potential.r_l = c[0].get<double>();
+        s.potential.r_u = c[1].get<double>();
+    }
+    if (!(std::isfinite(s.potential.r_l) && s.potential.r_l > 0.0 &&
+          std::isfinite(s.potential.r_u) && s.potential.r_u > s.potential.r_l &&
+          s.potential.r_u <= 100.0))
+        rd.fail("potential.cutoff", "must be [r_l, r_u] with 0 < r_l < r_u <= 100 (σ), got [" +
+                                        Reader::fmt(s.potential.r_l) + ", " +
+                                        Reader::fmt(s.potential.r_u) + "]");
     if (s.potential.kind == "lj" && pot.contains("zeta"))
         rd.fail("potential.zeta", "only meaningful for rod-lj");
     if (s.potential.kind == "lj" && s.body.kind != "sphere")
@@ -370,7 +383,8 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     if (j.contains("engine")) s.engine = rd.choice(j, "", "engine", s.engine, {"dmd", "smd"});
 
     const auto& dmd = rd.section(j, "dmd");
-    rd.onlyKeys(dmd, "dmd", {"dV", "levels", "queue", "invalidation", "horizon_fs"});
+    rd.onlyKeys(dmd, "dmd", {"dV", "levels", "queue", "invalidation", "horizon_fs", "model"});
+    s.dmd.model = rd.choice(dmd, "dmd", "model", s.dmd.model, {"smoothed", "bare"});
     s.dmd.dV = rd.number(dmd, "dmd", "dV", s.dmd.dV, 0.0, 1e6, true);
     if (dmd.contains("levels")) {
         const auto& lv = dmd["levels"];
@@ -402,12 +416,15 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     }
 
     const auto& smd = rd.section(j, "smd");
-    rd.onlyKeys(smd, "smd", {"dt_fs", "skin", "r_l", "r_u"});
+    // The cutoff belongs to the model both engines simulate, no longer to SMD alone.
+    for (const char* moved : {"r_l", "r_u"})
+        if (smd.contains(moved))
+            rd.fail(std::string("smd.") + moved,
+                    "has moved to potential.cutoff = [r_l, r_u] (σ), the cutoff of the model both "
+                    "engines simulate");
+    rd.onlyKeys(smd, "smd", {"dt_fs", "skin"});
     s.smd.dt_fs = rd.number(smd, "smd", "dt_fs", s.smd.dt_fs, 0.0, 1e3, true);
     s.smd.skin = rd.number(smd, "smd", "skin", s.smd.skin, 0.0, 10.0);
-    s.smd.r_l = rd.number(smd, "smd", "r_l", s.smd.r_l, 0.0, 100.0, true);
-    s.smd.r_u = rd.number(smd, "smd", "r_u", s.smd.r_u, 0.0, 100.0, true);
-    if (!(s.smd.r_u > s.smd.r_l)) rd.fail("smd.r_u", "must be larger than smd.r_l");
 
     const auto& run = rd.section(j, "run");
     rd.onlyKeys(run, "run", {"equilibrate_ps", "time_ps", "sample_fs", "thermostat_fs"});
@@ -568,6 +585,7 @@ json toJson(const Scene& s) {
     j["potential"] = {
         {"kind", s.potential.kind}, {"epsilon", s.potential.epsilon}, {"sigma", s.potential.sigma}};
     if (s.potential.kind == "rod-lj") j["potential"]["zeta"] = s.potential.zeta;
+    j["potential"]["cutoff"] = json::array({s.potential.r_l, s.potential.r_u});
     j["state"] = {
         {"n", s.state.n}, {"density", s.state.density}, {"temperature", s.state.temperature}};
     if (s.state.particles.empty()) j["state"]["orientations"] = s.state.orientations;
@@ -591,10 +609,10 @@ json toJson(const Scene& s) {
     j["dmd"] = {{"dV", s.dmd.dV},
                 {"queue", s.dmd.queue},
                 {"invalidation", s.dmd.invalidation},
-                {"horizon_fs", s.dmd.horizon_fs}};
+                {"horizon_fs", s.dmd.horizon_fs},
+                {"model", s.dmd.model}};
     if (!s.dmd.levels.empty()) j["dmd"]["levels"] = s.dmd.levels;
-    j["smd"] = {
-        {"dt_fs", s.smd.dt_fs}, {"skin", s.smd.skin}, {"r_l", s.smd.r_l}, {"r_u", s.smd.r_u}};
+    j["smd"] = {{"dt_fs", s.smd.dt_fs}, {"skin", s.smd.skin}};
     j["run"] = {{"equilibrate_ps", s.run.equilibrate_ps},
                 {"time_ps", s.run.time_ps},
                 {"sample_fs", s.run.sample_fs},
@@ -627,6 +645,9 @@ RodPotential rodPotential(const Scene& s) {
 }
 LJPotential ljPotential(const Scene& s) {
     return LJPotential{s.potential.epsilon, s.potential.sigma};
+}
+SmoothedCutoff sceneCutoff(const Scene& s) {
+    return {s.potential.r_l * s.potential.sigma, s.potential.r_u * s.potential.sigma};
 }
 BodyParams bodyParams(const Scene& s) {
     return BodyParams{s.body.mass, s.body.inertia};

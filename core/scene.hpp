@@ -48,6 +48,10 @@ struct Scene {
         double epsilon = 3.0;        // kJ/mol
         double sigma = 3.035;        // Å
         double zeta = 1.0;           // Å (rod-lj only)
+        // Smoothed cutoff [r_l, r_u] in σ (paper eqs. 22-23): the model is g(r)·U, which SMD
+        // integrates and DMD terraces (core/smoothed_potential.hpp). Key: "cutoff": [r_l, r_u].
+        double r_l = 2.5;
+        double r_u = 3.0;
     } potential;
 
     struct State {
@@ -66,13 +70,14 @@ struct Scene {
         std::string queue = "bpq";  // heap | bpq
         std::string invalidation = "lazy"; // lazy | eager
         double horizon_fs = 4.0;           // virtual-event horizon and largest search step, >= 0.1
+        // smoothed: terrace g(r)·U, the model SMD integrates (ΔV → 0 converges to SMD's model);
+        // bare: the paper's setting, U itself terraced out to r_m whatever potential.cutoff says.
+        std::string model = "smoothed";
     } dmd;
 
     struct Smd {
         double dt_fs = 1.8;
         double skin = 0.3; // Verlet skin, σ
-        double r_l = 2.5;  // start of the smoothed cutoff, σ
-        double r_u = 3.0;  // end of the smoothed cutoff, σ
     } smd;
 
     // Intervals must fit in the run and lie on the grid: under SMD, sample_fs and thermostat_fs are

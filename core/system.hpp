@@ -36,6 +36,14 @@ template <BodyKind K, PairPotential P> double totalKinetic(const System<K, P>& s
     return e;
 }
 
+/// ½ m Σ v², kJ/mol: the kinetic energy of the centres, which alone enters the pressure.
+template <BodyKind K, PairPotential P> double translationalKinetic(const System<K, P>& sys) {
+    double e = 0.0;
+    for (const auto& b : sys.bodies)
+        e += b.v.squaredNorm();
+    return 0.5 * sys.body.mass * e;
+}
+
 template <BodyKind K, PairPotential P> Vec3 totalMomentum(const System<K, P>& sys) {
     Vec3 p = Vec3::Zero();
     for (const auto& b : sys.bodies)

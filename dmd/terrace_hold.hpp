@@ -24,6 +24,12 @@
 // while both stay inside the band. In the paper's dense liquid at ΔV = kT/2 this holds about four
 // in five of the pairs a collision would have the search examine for the whole horizon, often
 // for several.
+//
+// The smoothed model g(r)·φ(r_e) (core/smoothed_potential.hpp) equals φ wherever r ≤ r_l, so the
+// bands of φ serve it as long as the centre distance stays below r_l too: its upper envelope is
+// held under a ceiling r_l. When r_m ≤ r_l no ceiling is needed: a pair off terrace 0 inside its
+// band has r < r_e + ζ/2 ≤ r_m (the band's edge is a root of a level no farther out than those of
+// terrace 0), and a pair on terrace 0 can meet a level of the model only inside r_m, where g = 1.
 // Units: Å, time unit 100 fs (rates per time unit, angles in rad).
 #include "core/branch_free.hpp"
 #include "dmd/terrace_levels.hpp"
@@ -36,6 +42,8 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace terrace::dmd {
@@ -100,14 +108,17 @@ struct PairMotion {
 /// at several times T (time units).
 class BandHold {
 public:
-    BandHold(const DistanceBand& band, const PairMotion& m, double zeta)
+    /// ceiling: the centre distance must stay below it too (Å; +∞ for none).
+    BandHold(const DistanceBand& band, const PairMotion& m, double zeta,
+             double ceiling = std::numeric_limits<double>::infinity())
         : r_(m.r), rRate_(m.rRate), rBend_(0.5 * m.speedSquared / m.r), c_(m.c), cRate_(m.cRate),
           turn_(m.turn),
           // Finite even without a curvature bound (∞), so that T = 0 gives 0·finite, not 0·∞.
           cBend_(lesser(0.5 * m.turnCurvature, std::numeric_limits<double>::max())), zeta_(zeta),
           // An edge is kept a relative 1e-9 closer than it is, far above the round-off of r_e and
           // of the band's roots, so that the answer holds for the computed U as well.
-          lo_(band.lo + edgeMargin * m.r), hi_(band.hi - edgeMargin * m.r) {}
+          lo_(band.lo + edgeMargin * m.r), hi_(band.hi - edgeMargin * m.r),
+          ceiling_(ceiling - edgeMargin * m.r) {}
 
     /// Whether r_e is sure to stay inside the band throughout [0, T]. (Inlined: the few flops
     /// cost less than the call the compiler would otherwise make for each of the ladder's rungs.)
@@ -124,7 +135,7 @@ public:
         const double cLeast = greater(0.0, greater(cLow, -cHigh));
         // & rather than &&: both sides are cheap, and a branch between them would mispredict.
         return (rLow + zeta_ * (0.5 - cMost * cMost) > lo_) &
-               (rHigh + zeta_ * (0.5 - cLeast * cLeast) < hi_);
+               (rHigh + zeta_ * (0.5 - cLeast * cLeast) < hi_) & (rHigh < ceiling_);
     }
 
     /// through(T0) + through(T1): the same operations on both times at once, lane by lane in one
@@ -153,8 +164,9 @@ public:
             _mm_add_pd(rLow, _mm_mul_pd(zeta, _mm_sub_pd(half, _mm_mul_pd(cMost, cMost))));
         const __m128d high =
             _mm_add_pd(rHigh, _mm_mul_pd(zeta, _mm_sub_pd(half, _mm_mul_pd(cLeast, cLeast))));
-        const int inside = _mm_movemask_pd(
-            _mm_and_pd(_mm_cmpgt_pd(low, _mm_set1_pd(lo_)), _mm_cmplt_pd(high, _mm_set1_pd(hi_))));
+        const int inside = _mm_movemask_pd(_mm_and_pd(
+            _mm_and_pd(_mm_cmpgt_pd(low, _mm_set1_pd(lo_)), _mm_cmplt_pd(high, _mm_set1_pd(hi_))),
+            _mm_cmplt_pd(rHigh, _mm_set1_pd(ceiling_))));
         return (inside & 1) + (inside >> 1);
 #else
         return int(through(T0)) + int(through(T1));
@@ -163,8 +175,36 @@ public:
 
 private:
     static constexpr double edgeMargin = 1e-9;
-    double r_, rRate_, rBend_, c_, cRate_, turn_, cBend_, zeta_, lo_, hi_;
+    double r_, rRate_, rBend_, c_, cRate_, turn_, cBend_, zeta_, lo_, hi_, ceiling_;
 };
+
+/// The potential whose bands the hold screen uses: P itself, or the bare potential of a smoothed
+/// model (core/smoothed_potential.hpp).
+template <class P> const auto& bandPotential(const P& p) {
+    if constexpr (requires {
+                      p.bare;
+                      p.cut;
+                  })
+        return p.bare;
+    else
+        return p;
+}
+
+/// Whether the hold screen applies to P: its bands' potential has the effective-distance form.
+template <class P>
+concept HoldScreenable =
+    EffectiveDistanceForm<std::decay_t<decltype(bandPotential(std::declval<const P&>()))>>;
+
+/// The ceiling on the centre distance under which the bands of bandPotential(p) describe p, for an
+/// interaction range rm (Å): none for a bare potential, or when rm ≤ r_l (see above); else r_l.
+template <class P> double bandCeiling(const P& p, double rm) {
+    if constexpr (requires {
+                      p.bare;
+                      p.cut;
+                  })
+        if (rm > p.cut.inner()) return p.cut.inner();
+    return std::numeric_limits<double>::infinity();
+}
 
 /// The longest of first, 2·first, 4·first, … (none beyond last; first > 0, last finite) through
 /// which the pair is sure to stay in its band; 0 when not even through first (right after an

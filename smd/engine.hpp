@@ -1,5 +1,6 @@
 #pragma once
-// SMD engine: rigid-body molecular dynamics on the continuous (smoothed) pair potential with the
+// SMD engine: rigid-body molecular dynamics on the continuous smoothed pair potential g(r)·U
+// (core/smoothed_potential.hpp: the model DMD terraces) with the
 // symplectic, time-reversible splitting of van Zon & Schofield, Phys. Rev. E 75, 056701 (2007),
 // the integrator of the paper's SMD runs ("Comparison between standard molecular dynamics and
 // event-driven simulations"; DESIGN.md "SMD engine"). One step of length dt:
@@ -26,13 +27,23 @@
 
 namespace terrace::smd {
 
+/// P: the smoothed model (Smoothed<bare potential>), with a finite range r_u.
 template <BodyKind K, PairPotential P> class Engine {
+    static_assert(
+        requires(const P p) {
+            p.range();
+            p.bare;
+            p.cut;
+        },
+        "SMD integrates a smoothed potential (core/smoothed_potential.hpp)");
+
 public:
     Engine(System<K, P> initial, const Scene& scene) : Engine(std::move(initial), scene, true) {}
 
 private:
     Engine(System<K, P> initial, const Scene& scene, bool isStart)
-        : sys_(std::move(initial)), par_(smd::parameters(scene, sys_.box.length)),
+        : sys_(std::move(initial)),
+          par_(smd::parameters(scene, sys_.box.length, sys_.potential.range())),
           sigmaUnit_(scene.potential.sigma) {
         for (const auto& b : sys_.bodies)
             if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
@@ -40,7 +51,7 @@ private:
                 throw SceneError("state: a body has a non-finite position, velocity, orientation "
                                  "or angular velocity");
         if (!(sys_.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
-        list_.reach = par_.cutoff.outer() + par_.skin;
+        list_.reach = sys_.potential.range() + par_.skin;
         list_.skin = par_.skin;
         const std::size_t n = sys_.bodies.size();
         position_.resize(n);
@@ -111,6 +122,10 @@ public:
     double kineticEnergy() const { return totalKinetic(sys_); }
     /// The smoothed continuous potential energy at time().
     double potentialEnergy() const { return forces_.potential; }
+    /// The molecular virial W = Σ_pairs r_ij·F_ij at time() (kJ/mol): P = (2 K_trans + W)/(3V).
+    double virial() const { return forces_.virial; }
+    /// ½ m Σ v² at time() (kJ/mol): the kinetic term of the pressure.
+    double translationalKineticEnergy() const { return translationalKinetic(sys_); }
     Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }
 
     /// Scale v and ω so that the kinetic energy is ½ degreesOfFreedom<K>(N) kT.
@@ -134,8 +149,8 @@ public:
                 {"pair_evaluations", evaluations_},
                 {"dt_fs", units::toFs(par_.dt)},
                 {"skin_sigma", par_.skin / sigma},
-                {"r_l_sigma", par_.cutoff.inner() / sigma},
-                {"r_u_sigma", par_.cutoff.outer() / sigma},
+                {"r_l_sigma", sys_.potential.cut.inner() / sigma},
+                {"r_u_sigma", sys_.potential.range() / sigma},
                 // A double, not a count: the run driver reports integers as production increases.
                 {"listed_pairs_per_body", double(list_.pairCount()) / std::max(1, sys_.size())},
                 {"phase_seconds",
@@ -173,7 +188,7 @@ private:
     /// run later as an "unstable time step".
     void checkOverlap() const {
         const double uMin = sys_.potential.minimumEnergy();
-        const double outer2 = par_.cutoff.outer() * par_.cutoff.outer();
+        const double outer2 = sys_.potential.range() * sys_.potential.range();
         const Vec3 noAxis = Vec3::UnitZ();
         for (std::size_t a = 0; a + 1 < list_.start.size(); ++a)
             for (std::size_t k = list_.start[a]; k < list_.start[a + 1]; ++k) {
@@ -215,7 +230,7 @@ private:
             if constexpr (P::orientational) axis_[a] = K::axis(sys_.bodies[i]);
         }
         forces_.reset(n);
-        accumulateListedPairs(forces_, sys_.potential, par_.cutoff, list_, local_, axis_);
+        accumulateListedPairs(forces_, sys_.potential, list_, local_, axis_);
         evaluations_ += forces_.evaluations;
     }
 

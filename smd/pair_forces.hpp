@@ -1,13 +1,16 @@
 #pragma once
-// Total force, torque and potential energy of the smoothed continuous potential (smoothed_cutoff
-// .hpp) by a loop over the Verlet list, each pair once with Newton's third law: F_j -= F_ij,
-// τ_i += τ_ij, τ_j += τ_ji. Units: kJ/mol/Å, kJ/mol, kJ/mol.
+// Total force, torque, potential energy and virial of the smoothed continuous potential
+// (core/smoothed_potential.hpp) by a loop over the Verlet list, each pair once with Newton's third
+// law: F_j -= F_ij, τ_i += τ_ij, τ_j += τ_ji. The molecular virial W = Σ_pairs r_ij·F_ij takes the
+// centre-of-mass separations (switch term included, as it is part of F_ij): the pressure of a
+// rigid-body fluid is P = (2 K_trans + W)/(3V) (Allen & Tildesley, 2nd ed., sec. 2.4), torques do
+// no work on the volume. Units: kJ/mol/Å, kJ/mol, kJ/mol, kJ/mol.
 // allPairsForces() is the slow, obviously correct O(N²) minimum-image path the list is tested
 // against.
+#include "core/smoothed_potential.hpp"
 #include "core/system.hpp"
 #include "smd/neighbour_list.hpp"
 #include "smd/pair_kernels.hpp"
-#include "smd/smoothed_cutoff.hpp"
 #include <array>
 #include <span>
 #include <vector>
@@ -19,12 +22,14 @@ struct Forces {
     std::vector<Vec3> force;
     std::vector<Vec3> torque;
     double potential = 0.0;
+    double virial = 0.0;  // Σ r_ij·F_ij, kJ/mol
     long evaluations = 0; // pairs found within r_u
 
     void reset(std::size_t n) {
         force.assign(n, Vec3::Zero());
         torque.assign(n, Vec3::Zero());
         potential = 0.0;
+        virial = 0.0;
         evaluations = 0;
     }
 };
@@ -32,16 +37,15 @@ struct Forces {
 /// Accumulates every listed pair within r_u into out, per list slot. x[a] = r - list.offset[a]
 /// for the body in slot a; axis is read only for orientational potentials.
 template <PairPotential P>
-[[gnu::flatten]] void accumulateListedPairs(Forces& out, const P& potentialIn,
-                                            const SmoothedCutoff& cutIn, const NeighbourList& list,
-                                            std::span<const Vec3> x, std::span<const Vec3> axis) {
-    using Kernel = PairKernel<P>;
+[[gnu::flatten]] void accumulateListedPairs(Forces& out, const Smoothed<P>& potentialIn,
+                                            const NeighbourList& list, std::span<const Vec3> x,
+                                            std::span<const Vec3> axis) {
+    using Kernel = PairKernel<Smoothed<P>>;
     // Local copies and raw pointers: the force stores below could otherwise alias the parameters
     // and the vectors' bookkeeping, forcing reloads in every iteration.
-    const P potential = potentialIn;
-    const SmoothedCutoff cut = cutIn;
+    const Smoothed<P> potential = potentialIn;
     const std::array<Vec3, 27> shift = list.imageShift;
-    const double outer2 = cut.outer() * cut.outer();
+    const double outer2 = potential.range() * potential.range();
     const Vec3 noAxis(0.0, 0.0, 1.0);
     const std::size_t* start = list.start.data();
     const std::uint32_t* entry = list.entry.data();
@@ -49,7 +53,7 @@ template <PairPotential P>
     const Vec3* axes = axis.data();
     Vec3* force = out.force.data();
     Vec3* torque = out.torque.data();
-    double u = 0.0;
+    double u = 0.0, w = 0.0;
     long evaluations = 0;
     const std::size_t n = x.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -69,8 +73,9 @@ template <PairPotential P>
                 ++evaluations;
             }
             const Vec3 sj = P::orientational ? axes[j] : noAxis;
-            const auto f = Kernel::evaluate(potential, cut, rij, r2, si, sj);
+            const auto f = Kernel::evaluate(potential, rij, r2, si, sj);
             u += f.U;
+            w += rij.dot(f.F);
             fi += f.F;
             force[j] -= f.F;
             if constexpr (P::orientational) {
@@ -82,12 +87,12 @@ template <PairPotential P>
         if constexpr (P::orientational) torque[i] += ti;
     }
     out.potential += u;
+    out.virial += w;
     out.evaluations += evaluations;
 }
 
 /// Reference: every pair, minimum image by PeriodicBox, same smoothed interaction.
-template <BodyKind K, PairPotential P>
-Forces allPairsForces(const System<K, P>& sys, const SmoothedCutoff& cut) {
+template <BodyKind K, PairPotential P> Forces allPairsForces(const System<K, Smoothed<P>>& sys) {
     Forces out;
     out.reset(sys.bodies.size());
     for (int i = 0; i < sys.size(); ++i)
@@ -95,11 +100,11 @@ Forces allPairsForces(const System<K, P>& sys, const SmoothedCutoff& cut) {
             const auto &bi = sys.bodies[i], &bj = sys.bodies[j];
             const Vec3 rij = sys.box.minimumImage(bi.r - bj.r);
             const double r = rij.norm();
-            if (r >= cut.outer()) continue;
-            const PairForce f =
-                smoothed(sys.potential.evaluate(rij, K::axis(bi), K::axis(bj)), rij, r, cut);
+            if (r >= sys.potential.range()) continue;
+            const PairForce f = sys.potential.evaluate(rij, K::axis(bi), K::axis(bj));
             ++out.evaluations;
             out.potential += f.U;
+            out.virial += rij.dot(f.F);
             out.force[i] += f.F;
             out.force[j] -= f.F;
             out.torque[i] += f.tauI;

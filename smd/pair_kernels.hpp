@@ -1,25 +1,28 @@
 #pragma once
-// The smoothed pair interaction as the SMD pair loop evaluates it, from the squared separation
-// r² (Å²) that the loop already has for its cutoff test. The general kernel calls the potential's
-// own evaluate() and smoothed() (smoothed_cutoff.hpp). Plain Lennard-Jones has a cheaper exact
+// The smoothed pair interaction (core/smoothed_potential.hpp) as the SMD pair loop evaluates it,
+// from the squared separation r² (Å²) that the loop already has for its cutoff test. The general
+// kernel calls the bare potential's evaluate() and smoothed() (core/smoothed_cutoff.hpp), with the
+// square root only in the switch. Plain Lennard-Jones has a cheaper exact
 // form with one division per pair and a square root only between r_l and r_u:
 //     s6 = (σ²/r²)³,   U = 4ε(s6² - s6),   F_ij = 24ε(2 s6² - s6)/r² · r_ij,
 // the formulas of core/lj_potential.hpp rearranged (test_pair_kernels.cpp checks that both agree
 // to round-off), with the switch g(r) and the -U g'(r) r̂ term of smoothed().
 // Units: Å, kJ/mol, kJ/mol/Å.
 #include "core/lj_potential.hpp"
-#include "smd/smoothed_cutoff.hpp"
+#include "core/smoothed_potential.hpp"
 #include <cmath>
 
 namespace terrace::smd {
 
-/// General kernel: any PairPotential.
-template <PairPotential P> struct PairKernel {
+/// General kernel: any smoothed PairPotential, within r_u.
+template <class S> struct PairKernel {
     static constexpr bool evaluatesBeyondCutoff = false; // the loop skips pairs beyond r_u
 
-    static PairForce evaluate(const P& potential, const SmoothedCutoff& cut, const Vec3& rij,
-                              double r2, const Vec3& si, const Vec3& sj) {
-        return smoothed(potential.evaluate(rij, si, sj), rij, std::sqrt(r2), cut);
+    static PairForce evaluate(const S& potential, const Vec3& rij, double r2, const Vec3& si,
+                              const Vec3& sj) {
+        const PairForce f = potential.bare.evaluate(rij, si, sj);
+        const SmoothedCutoff& cut = potential.cut;
+        return r2 <= cut.inner() * cut.inner() ? f : smoothed(f, rij, std::sqrt(r2), cut);
     }
 };
 
@@ -31,11 +34,13 @@ struct CentralForce {
 };
 
 /// Lennard-Jones spheres: energy and force from r² directly; the square root only in the switch.
-template <> struct PairKernel<LJPotential> {
+template <> struct PairKernel<Smoothed<LJPotential>> {
     static constexpr bool evaluatesBeyondCutoff = false;
 
-    static CentralForce evaluate(const LJPotential& lj, const SmoothedCutoff& cut, const Vec3& rij,
-                                 double r2, const Vec3&, const Vec3&) {
+    static CentralForce evaluate(const Smoothed<LJPotential>& model, const Vec3& rij, double r2,
+                                 const Vec3&, const Vec3&) {
+        const LJPotential& lj = model.bare;
+        const SmoothedCutoff& cut = model.cut;
         const double inv2 = 1.0 / r2;
         const double s2 = lj.sigma * lj.sigma * inv2;
         const double s6 = s2 * s2 * s2;

@@ -1,11 +1,11 @@
 #pragma once
 // SMD run parameters read from a scene's "smd" block and checked before any work (DESIGN.md "Bad
-// input"): time step dt (fs in the scene, time units here), Verlet skin and the smoothed cutoff
-// r_l < r_u (units of σ in the scene, Å here). The box must hold two cutoffs plus skins,
-// L >= 2 (r_u + skin), so that a pair within reach has exactly one periodic image within reach.
+// input"): time step dt (fs in the scene, time units here) and Verlet skin (σ in the scene, Å
+// here). The cutoff r_u is the model's (potential.cutoff, core/smoothed_potential.hpp). The box
+// must hold two cutoffs plus skins, L >= 2 (r_u + skin), so that a pair within reach has exactly
+// one periodic image within reach.
 #include "core/scene.hpp"
 #include "core/units.hpp"
-#include "smd/smoothed_cutoff.hpp"
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -15,7 +15,6 @@ namespace terrace::smd {
 struct Parameters {
     double dt = 0.0;   // time units (100 fs)
     double skin = 0.0; // Å
-    SmoothedCutoff cutoff;
 };
 
 namespace detail {
@@ -28,8 +27,9 @@ inline std::string show(double x) {
 
 } // namespace detail
 
-/// Validated SMD parameters for a box of edge boxLength (Å); throws SceneError naming the key.
-inline Parameters parameters(const Scene& scene, double boxLength) {
+/// Validated SMD parameters for a box of edge boxLength (Å) and a model of range r_u (Å); throws
+/// SceneError naming the key.
+inline Parameters parameters(const Scene& scene, double boxLength, double range) {
     const Scene::Smd& s = scene.smd;
     const double sigma = scene.potential.sigma;
     using detail::show;
@@ -37,22 +37,18 @@ inline Parameters parameters(const Scene& scene, double boxLength) {
         throw SceneError("smd.dt_fs: must be > 0 (got " + show(s.dt_fs) + ")");
     if (!(std::isfinite(s.skin) && s.skin >= 0.0))
         throw SceneError("smd.skin: must be >= 0 (got " + show(s.skin) + ")");
-    if (!(std::isfinite(s.r_l) && s.r_l > 0.0))
-        throw SceneError("smd.r_l: must be > 0 (got " + show(s.r_l) + ")");
-    if (!(std::isfinite(s.r_u) && s.r_u > s.r_l))
-        throw SceneError("smd.r_u: must be > smd.r_l = " + show(s.r_l) + " (got " + show(s.r_u) +
-                         ")");
+    if (!std::isfinite(range))
+        throw SceneError("potential.cutoff: SMD needs a finite cutoff (the model has none)");
     if (!(std::isfinite(sigma) && sigma > 0.0))
         throw SceneError("potential.sigma: must be > 0 (got " + show(sigma) + ")");
     Parameters p;
     p.dt = units::fromFs(s.dt_fs);
     p.skin = s.skin * sigma;
-    p.cutoff = {s.r_l * sigma, s.r_u * sigma};
-    const double needed = 2.0 * (p.cutoff.outer() + p.skin);
+    const double needed = 2.0 * (range + p.skin);
     if (!(boxLength >= needed))
-        throw SceneError("smd.r_u: the box edge " + show(boxLength) +
+        throw SceneError("potential.cutoff: the box edge " + show(boxLength) +
                          " Å is shorter than 2·(r_u + skin) = " + show(needed) +
-                         " Å; use more bodies, a lower density, or a smaller smd.r_u/smd.skin");
+                         " Å; use more bodies, a lower density, or a smaller r_u or smd.skin");
     return p;
 }
 

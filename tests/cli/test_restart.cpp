@@ -6,6 +6,7 @@
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/output_file.hpp"
+#include "core/smoothed_potential.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "dmd/engine.hpp"
@@ -123,14 +124,16 @@ void rebuiltEnginesAgree(const Scene& scene, const P& potential, double t1, doub
 TEST(Restart, RebuiltDmdEnginesAgreeBitForBit) {
     Scene scene = smallScene("linear");
     scene.state.n = 216;
-    rebuiltEnginesAgree<dmd::Engine, LinearRotor>(scene, rodPotential(scene), 0.5, 2.0);
+    rebuiltEnginesAgree<dmd::Engine, LinearRotor>(
+        scene, Smoothed<RodPotential>{rodPotential(scene), sceneCutoff(scene)}, 0.5, 2.0);
 }
 
 TEST(Restart, RebuiltSmdEnginesAgreeBitForBit) {
     Scene scene = smallScene("linear");
     scene.state.n = 216;
     scene.engine = "smd";
-    rebuiltEnginesAgree<smd::Engine, LinearRotor>(scene, rodPotential(scene), 0.09, 0.9);
+    rebuiltEnginesAgree<smd::Engine, LinearRotor>(
+        scene, Smoothed<RodPotential>{rodPotential(scene), sceneCutoff(scene)}, 0.09, 0.9);
 }
 
 namespace {

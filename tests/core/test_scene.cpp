@@ -40,8 +40,14 @@ TEST(Scene, DefaultIsThePapersDenseRods) {
 }
 
 TEST(Scene, ShippedDenseRodsEqualsTheBuiltInDefault) {
+    // But for the model: the paper's figures terrace the bare potential (dmd.model = bare), the
+    // built-in default the smoothed one that SMD integrates.
     const Scene file = loadScene((sourceDir() / "experiments/scenes/dense-rods.json").string());
-    EXPECT_EQ(toJson(file), toJson(defaultScene()));
+    EXPECT_EQ(file.dmd.model, "bare");
+    EXPECT_EQ(defaultScene().dmd.model, "smoothed");
+    Scene smoothed = file;
+    smoothed.dmd.model = "smoothed";
+    EXPECT_EQ(toJson(smoothed), toJson(defaultScene()));
 }
 
 TEST(Scene, ShippedGasRodsIsThePapersGas) {
@@ -76,7 +82,18 @@ TEST(Scene, BadValuesAreNamed) {
     EXPECT_NE(errorOf({{"engine", "lammps"}}).find("engine: must be one of dmd | smd"),
               std::string::npos);
     EXPECT_NE(errorOf({{"dmd", {{"queue", "tree"}}}}).find("dmd.queue"), std::string::npos);
-    EXPECT_NE(errorOf({{"smd", {{"r_l", 3.0}, {"r_u", 2.5}}}}).find("smd.r_u"), std::string::npos);
+    EXPECT_NE(errorOf({{"potential", {{"cutoff", {3.0, 2.5}}}}}).find("potential.cutoff: must be"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"potential", {{"cutoff", {0.0, 2.5}}}}}).find("potential.cutoff"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"potential", {{"cutoff", 2.5}}}}).find("potential.cutoff: must be [r_l"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"model", "exact"}}}}).find("dmd.model"), std::string::npos);
+    // The old SMD keys name their new home.
+    EXPECT_NE(errorOf({{"smd", {{"r_l", 2.5}}}}).find("smd.r_l: has moved to potential.cutoff"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"smd", {{"r_u", 3.0}}}}).find("smd.r_u: has moved to potential.cutoff"),
+              std::string::npos);
     EXPECT_NE(errorOf({{"dmd", {{"levels", {1.0, 0.5}}}}}).find("strictly increasing"),
               std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"kind", "lj"}}}}).find("potential.kind"), std::string::npos);

@@ -6,12 +6,20 @@
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
 #include "core/scene.hpp"
+#include "core/smoothed_potential.hpp"
 #include "core/sphere.hpp"
 #include "core/system.hpp"
 #include <cmath>
 #include <random>
 
 namespace terrace::smd::fixtures {
+
+/// The models the SMD tests integrate: the paper's cutoff, r_l = 2.5σ, r_u = 3σ.
+using RodModel = Smoothed<RodPotential>;
+using LJModel = Smoothed<LJPotential>;
+template <class P> Smoothed<P> paperModel(const P& bare) {
+    return {bare, SmoothedCutoff{2.5 * bare.sigma, 3.0 * bare.sigma}};
+}
 
 inline Vec3 randomUnit(std::mt19937_64& rng) {
     std::normal_distribution<double> gauss;
@@ -20,16 +28,16 @@ inline Vec3 randomUnit(std::mt19937_64& rng) {
 }
 
 /// The paper's rods ("Model System"): ε 3 kJ/mol, σ 3.035 Å, ζ 1 Å, m 18 g/mol, I 1.154 g/mol Å².
-inline System<LinearRotor, RodPotential> rods(int perEdge, double density, double reducedT,
-                                              std::uint64_t seed) {
-    System<LinearRotor, RodPotential> sys;
-    sys.potential = RodPotential{};
+inline System<LinearRotor, RodModel> rods(int perEdge, double density, double reducedT,
+                                          std::uint64_t seed) {
+    System<LinearRotor, RodModel> sys;
+    sys.potential = paperModel(RodPotential{});
     sys.body.mass = 18.0;
     sys.body.inertia = Vec3(1.154, 1.154, 0.0);
     const int n = perEdge * perEdge * perEdge;
-    const double sigma = sys.potential.sigma;
+    const double sigma = sys.potential.bare.sigma;
     sys.box.length = std::cbrt(n / density) * sigma;
-    sys.kT = reducedT * sys.potential.epsilon;
+    sys.kT = reducedT * sys.potential.bare.epsilon;
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> gauss;
     const double a = sys.box.length / perEdge;
@@ -51,10 +59,10 @@ inline System<LinearRotor, RodPotential> rods(int perEdge, double density, doubl
 }
 
 /// Lennard-Jones spheres in reduced units (ε = 1 kJ/mol, σ = 1 Å, m = 1 g/mol: τ = 1 time unit).
-inline System<Sphere, LJPotential> ljSpheres(int perEdge, double density, double reducedT,
-                                             std::uint64_t seed) {
-    System<Sphere, LJPotential> sys;
-    sys.potential = LJPotential{};
+inline System<Sphere, LJModel> ljSpheres(int perEdge, double density, double reducedT,
+                                         std::uint64_t seed) {
+    System<Sphere, LJModel> sys;
+    sys.potential = paperModel(LJPotential{});
     sys.body.mass = 1.0;
     const int n = perEdge * perEdge * perEdge;
     sys.box.length = std::cbrt(n / density);

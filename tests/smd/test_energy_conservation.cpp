@@ -7,7 +7,7 @@
 #include <numeric>
 
 using namespace terrace;
-using RodEngine = smd::Engine<LinearRotor, RodPotential>;
+using RodEngine = smd::Engine<LinearRotor, smd::fixtures::RodModel>;
 
 namespace {
 
@@ -38,7 +38,7 @@ struct Series {
 };
 
 /// Rods melted from the lattice and brought to T* = 1.4 by rescaling every 10 fs for 2 ps.
-System<LinearRotor, RodPotential> equilibratedRods(int perEdge, std::uint64_t seed) {
+System<LinearRotor, smd::fixtures::RodModel> equilibratedRods(int perEdge, std::uint64_t seed) {
     auto sys = smd::fixtures::rods(perEdge, 0.5, 1.4, seed);
     RodEngine e(sys, smd::fixtures::smdScene(sigmaRod, 1.0));
     for (int k = 1; k <= 200; ++k) {
@@ -49,8 +49,8 @@ System<LinearRotor, RodPotential> equilibratedRods(int perEdge, std::uint64_t se
 }
 
 /// NVE run of `durationFs` sampled every `sampleFs` (both multiples of dt).
-Series run(const System<LinearRotor, RodPotential>& start, double dtFs, double durationFs,
-           double sampleFs) {
+Series run(const System<LinearRotor, smd::fixtures::RodModel>& start, double dtFs,
+           double durationFs, double sampleFs) {
     RodEngine e(start, smd::fixtures::smdScene(sigmaRod, dtFs));
     Series s;
     const long samples = std::lround(durationFs / sampleFs);

@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 using namespace terrace;
-using RodEngine = smd::Engine<LinearRotor, RodPotential>;
-using LJEngine = smd::Engine<Sphere, LJPotential>;
+using RodEngine = smd::Engine<LinearRotor, smd::fixtures::RodModel>;
+using LJEngine = smd::Engine<Sphere, smd::fixtures::LJModel>;
 
 static_assert(terrace::Engine<RodEngine>);
 static_assert(terrace::Engine<LJEngine>);
@@ -43,14 +43,17 @@ TEST(Engine, RejectsBadParameters) {
     expectSceneError(with([](Scene& s) { s.smd.dt_fs = -1.0; }), "smd.dt_fs");
     expectSceneError(with([](Scene& s) { s.smd.dt_fs = std::nan(""); }), "smd.dt_fs");
     expectSceneError(with([](Scene& s) { s.smd.skin = -0.1; }), "smd.skin");
-    expectSceneError(with([](Scene& s) { s.smd.r_l = 0.0; }), "smd.r_l");
-    expectSceneError(with([](Scene& s) { s.smd.r_u = 2.5; }), "smd.r_u");
-    expectSceneError(with([](Scene& s) { s.smd.r_u = 2.0; }), "smd.r_u");
     // 6³ rods at ρ* = 0.5: L ≈ 7.56σ < 2(4 + 0.3)σ.
-    expectSceneError(with([](Scene& s) { s.smd.r_u = 4.0; }), "smd.r_u");
+    auto wide = sys;
+    wide.potential.cut = SmoothedCutoff{2.5 * sigmaRod, 4.0 * sigmaRod};
+    const Scene ok = smd::fixtures::smdScene(sigmaRod, 1.8);
+    expectSceneError([&] { RodEngine e(wide, ok); }, "potential.cutoff: the box edge");
+    // SMD needs a cutoff: the bare model (DMD's dmd.model = bare) has none.
+    auto bare = sys;
+    bare.potential.cut = SmoothedCutoff::none();
+    expectSceneError([&] { RodEngine e(bare, ok); }, "potential.cutoff: SMD needs a finite");
     auto broken = sys;
     broken.bodies[3].v.x() = std::nan("");
-    const Scene ok = smd::fixtures::smdScene(sigmaRod, 1.8);
     expectSceneError([&] { RodEngine e(broken, ok); }, "state");
 }
 
@@ -87,9 +90,10 @@ TEST(Engine, RescalesToTemperature) {
 TEST(Engine, PotentialEnergyIsTheSmoothedAllPairsSum) {
     RodEngine e(smd::fixtures::rods(6, 0.5, 1.4, 4), smd::fixtures::smdScene(sigmaRod, 1.8));
     e.advanceTo(units::fromFs(180.0));
-    const auto& p = e.parameters();
     // Same terms summed in a different order.
-    EXPECT_NEAR(e.potentialEnergy(), smd::allPairsForces(e.system(), p.cutoff).potential, 1e-9);
+    const smd::Forces all = smd::allPairsForces(e.system());
+    EXPECT_NEAR(e.potentialEnergy(), all.potential, 1e-9);
+    EXPECT_NEAR(e.virial(), all.virial, 1e-9 * std::abs(all.virial));
 }
 
 TEST(Engine, ConservesLinearMomentumToRoundOff) {
@@ -107,7 +111,7 @@ TEST(Engine, ConservesLinearMomentumToRoundOff) {
 
 TEST(Engine, IsolatedClusterConservesAngularMomentum) {
     // Three rods close together in a box so large that no periodic image is ever in reach.
-    System<LinearRotor, RodPotential> sys = smd::fixtures::rods(1, 0.5, 1.4, 7);
+    System<LinearRotor, smd::fixtures::RodModel> sys = smd::fixtures::rods(1, 0.5, 1.4, 7);
     sys.box.length = 1000.0;
     std::mt19937_64 rng(8);
     sys.bodies.clear();
@@ -162,9 +166,9 @@ namespace {
 /// The rods' lattice start turned into tops: attitude with the rod axis as body axis 3, L from
 /// the rod's ω plus a spin about the axis, principal moments `inertia`.
 template <BodyKind Top>
-System<Top, RodPotential> topsFromRods(const System<LinearRotor, RodPotential>& rods,
-                                       const Vec3& inertia) {
-    System<Top, RodPotential> sys;
+System<Top, smd::fixtures::RodModel>
+topsFromRods(const System<LinearRotor, smd::fixtures::RodModel>& rods, const Vec3& inertia) {
+    System<Top, smd::fixtures::RodModel> sys;
     sys.box = rods.box;
     sys.potential = rods.potential;
     sys.kT = rods.kT;
@@ -190,8 +194,8 @@ System<Top, RodPotential> topsFromRods(const System<LinearRotor, RodPotential>& 
 
 template <BodyKind Top> void checkTops(const Vec3& inertia) {
     const auto rods = smd::fixtures::rods(6, 0.5, 1.4, 22);
-    smd::Engine<Top, RodPotential> e(topsFromRods<Top>(rods, inertia),
-                                     smd::fixtures::smdScene(sigmaRod, 1.0));
+    smd::Engine<Top, smd::fixtures::RodModel> e(topsFromRods<Top>(rods, inertia),
+                                                smd::fixtures::smdScene(sigmaRod, 1.0));
     const Vec3 p0 = e.totalMomentum();
     const double e0 = e.kineticEnergy() + e.potentialEnergy();
     e.advanceTo(units::fromFs(200.0));
@@ -219,7 +223,8 @@ TEST(Engine, OverlappingBodiesAreNamedNotBlamedOnTheTimeStep) {
         {{{"r", {0, 0, 0}}}, {{"r", {20, 20, 20}}}, {{"r", {20, 20, 20}}}, {{"r", {20, 0, 0}}}});
     const Scene scene = sceneFromJson(
         {{"engine", "smd"}, {"state", {{"density", 0.001}, {"particles", particles}}}}, "t");
-    const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    const auto sys = buildInitialState<LinearRotor>(
+        scene, smd::fixtures::RodModel{rodPotential(scene), sceneCutoff(scene)});
     try {
         RodEngine e(sys, scene);
         ADD_FAILURE() << "no error for an overlap";
@@ -233,6 +238,11 @@ TEST(Engine, OverlappingBodiesAreNamedNotBlamedOnTheTimeStep) {
                                     {"potential", {{"kind", "lj"}}},
                                     {"state", {{"density", 0.001}, {"particles", particles}}}},
                                    "t");
-    expectSceneError([&] { LJEngine e(buildInitialState<Sphere>(lj, ljPotential(lj)), lj); },
-                     "state: bodies 1 and 2 overlap");
+    expectSceneError(
+        [&] {
+            LJEngine e(buildInitialState<Sphere>(
+                           lj, smd::fixtures::LJModel{ljPotential(lj), sceneCutoff(lj)}),
+                       lj);
+        },
+        "state: bodies 1 and 2 overlap");
 }

@@ -32,7 +32,7 @@ TEST(PairKernels, LennardJonesSquaredDistanceFormEqualsEvaluate) {
     for (double r = 0.8; r < cut.outer(); r += 0.013) {
         const Vec3 rij = r * dir;
         const CentralForce f =
-            PairKernel<LJPotential>::evaluate(lj, cut, rij, rij.squaredNorm(), z, z);
+            PairKernel<Smoothed<LJPotential>>::evaluate({lj, cut}, rij, rij.squaredNorm(), z, z);
         PairForce asPair;
         asPair.U = f.U;
         asPair.F = f.F;
@@ -46,7 +46,8 @@ TEST(PairKernels, RodKernelIsEvaluateThenSmoothed) {
     const Vec3 si = Vec3(1, 0.2, 0.1).normalized(), sj = Vec3(-0.3, 1, 0.5).normalized();
     for (double r = 2.8; r < cut.outer(); r += 0.05) {
         const Vec3 rij = r * Vec3(0, 0.6, 0.8);
-        expectSame(PairKernel<RodPotential>::evaluate(rod, cut, rij, rij.squaredNorm(), si, sj),
+        expectSame(PairKernel<Smoothed<RodPotential>>::evaluate({rod, cut}, rij, rij.squaredNorm(),
+                                                                si, sj),
                    smoothed(rod.evaluate(rij, si, sj), rij, r, cut));
     }
 }

@@ -10,8 +10,8 @@ TEST(Stability, TooLongTimeStepIsAClearError) {
     // Dense rods at T* = 10 with a 6 fs step: bodies run deep into the repulsive wall, the next
     // kick flings them across the box within a few steps.
     auto sys = smd::fixtures::rods(6, 0.5, 10.0, 7);
-    smd::Engine<LinearRotor, RodPotential> engine(std::move(sys),
-                                                  smd::fixtures::smdScene(3.035, 6.0));
+    smd::Engine<LinearRotor, smd::fixtures::RodModel> engine(std::move(sys),
+                                                             smd::fixtures::smdScene(3.035, 6.0));
     try {
         engine.advanceTo(units::fromPs(5.0));
         FAIL() << "a 6 fs step at T* = 10 ran 5 ps without an error";
@@ -24,7 +24,7 @@ TEST(Stability, TooLongTimeStepIsAClearError) {
 
 TEST(Stability, PaperTimeStepAtThePaperStatePointRunsQuietly) {
     auto sys = smd::fixtures::rods(6, 0.5, 1.4, 7);
-    smd::Engine<LinearRotor, RodPotential> engine(std::move(sys),
-                                                  smd::fixtures::smdScene(3.035, 1.8));
+    smd::Engine<LinearRotor, smd::fixtures::RodModel> engine(std::move(sys),
+                                                             smd::fixtures::smdScene(3.035, 1.8));
     EXPECT_NO_THROW(engine.advanceTo(units::fromPs(1.0)));
 }

@@ -8,16 +8,26 @@
 // g and g' are continuous at both ends, so force and torque are continuous everywhere. Because g
 // depends on the centre distance only, the torques are g τ and the force gains one term:
 //     F_smooth = g F - U g'(r) r̂_ij,   τ_smooth = g τ   (force on i, r̂_ij = r_ij / r).
+// r_l = r_u = +∞ is no cutoff at all (g = 1 everywhere): the bare potential, which the paper's DMD
+// terraces out to r_m (core/smoothed_potential.hpp).
 // Units: distances Å, energies kJ/mol (those of the wrapped potential).
 #include "core/pair_potential.hpp"
+#include <cmath>
+#include <limits>
 
-namespace terrace::smd {
+namespace terrace {
 
 class SmoothedCutoff {
 public:
     SmoothedCutoff() = default;
     SmoothedCutoff(double rl, double ru)
-        : rl_(rl), ru_(ru), invWidthCubed_(1.0 / ((ru - rl) * (ru - rl) * (ru - rl))) {}
+        : rl_(rl), ru_(ru),
+          invWidthCubed_(std::isfinite(rl) ? 1.0 / ((ru - rl) * (ru - rl) * (ru - rl)) : 0.0) {}
+    /// No cutoff: g = 1 at every distance.
+    static SmoothedCutoff none() {
+        return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    }
+    bool isFinite() const { return std::isfinite(ru_); }
 
     double inner() const { return rl_; } // r_l, Å: the potential is untouched inside
     double outer() const { return ru_; } // r_u, Å: zero beyond
@@ -54,4 +64,4 @@ inline PairForce smoothed(PairForce f, const Vec3& rij, double r, const Smoothed
     return f;
 }
 
-} // namespace terrace::smd
+} // namespace terrace

@@ -3,12 +3,10 @@
 #include "core/body_kind.hpp"
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
-#include "smd/smoothed_cutoff.hpp"
+#include "core/smoothed_cutoff.hpp"
 #include <gtest/gtest.h>
 
 using namespace terrace;
-using terrace::smd::smoothed;
-using terrace::smd::SmoothedCutoff;
 
 namespace {
 

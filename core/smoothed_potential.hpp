@@ -1,0 +1,82 @@
+#pragma once
+// The model both engines simulate: a pair potential U times the switch g(r) of its smoothed cutoff
+// (core/smoothed_cutoff.hpp, paper eqs. 22-23),
+//     U_s(r_ij, s_i, s_j) = g(|r_ij|) U(r_ij, s_i, s_j).
+// SMD integrates U_s; DMD terraces it, so that as the terrace height ΔV → 0 the two converge to the
+// same model and every difference left between them is the terracing's. The paper's own DMD, the
+// bare U terraced out to r_m, is the same wrapper with no cutoff (SmoothedCutoff::none(), g = 1).
+//
+// What the engines ask of U_s beyond U's own answers:
+//   dU_s/dt = g dU/dt + U g'(r) ṙ,   ṙ = r̂_ij·v_ij  (the chain rule; g depends on r alone);
+//   the lowest value: that of U (g ≤ 1 only scales a negative U towards 0; exact when the minimum
+//   lies inside r_l, as for every cutoff a scene accepts);
+//   the reach of a value u (largest r at which U_s = u for some orientation): U's reach where that
+//   is inside r_l; beyond r_l, for u < 0, the root of g(r)·Ulow(r) = u with Ulow(r) the lowest U
+//   over orientations at centre distance r, which rises monotonically through the switch (g falls,
+//   U is negative and rises towards 0 along the tail), found by bisection and rounded outwards.
+// Units: Å, kJ/mol (those of the wrapped potential).
+#include "core/pair_potential.hpp"
+#include "core/smoothed_cutoff.hpp"
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+
+namespace terrace {
+
+template <PairPotential P> struct Smoothed {
+    using Bare = P;
+    static constexpr std::string_view name = P::name;
+    static constexpr bool orientational = P::orientational;
+
+    P bare;
+    SmoothedCutoff cut = SmoothedCutoff::none();
+
+    /// The distance beyond which U_s is 0 (Å; +∞ without a cutoff).
+    double range() const { return cut.outer(); }
+
+    PairForce evaluate(const Vec3& rij, const Vec3& si, const Vec3& sj) const {
+        const double r2 = rij.squaredNorm();
+        if (r2 <= cut.inner() * cut.inner()) return bare.evaluate(rij, si, sj);
+        if (r2 >= cut.outer() * cut.outer()) return PairForce{};
+        return smoothed(bare.evaluate(rij, si, sj), rij, std::sqrt(r2), cut);
+    }
+
+    double energy(const Vec3& rij, const Vec3& si, const Vec3& sj) const {
+        const double r2 = rij.squaredNorm();
+        if (r2 <= cut.inner() * cut.inner()) return bare.energy(rij, si, sj);
+        if (r2 >= cut.outer() * cut.outer()) return 0.0;
+        return cut.switching(std::sqrt(r2)) * bare.energy(rij, si, sj);
+    }
+
+    EnergyRate energyRate(const Vec3& rij, const Vec3& vij, const Vec3& si, const Vec3& wi,
+                          const Vec3& sj, const Vec3& wj) const {
+        const double r2 = rij.squaredNorm();
+        if (r2 <= cut.inner() * cut.inner()) return energyAndRate(bare, rij, vij, si, wi, sj, wj);
+        if (r2 >= cut.outer() * cut.outer()) return {};
+        const EnergyRate e = energyAndRate(bare, rij, vij, si, wi, sj, wj);
+        const double r = std::sqrt(r2), g = cut.switching(r);
+        return {g * e.U, g * e.dUdt + e.U * cut.switchingSlope(r) * rij.dot(vij) / r};
+    }
+
+    double minimumEnergy() const { return bare.minimumEnergy(); }
+
+    double reachDistance(double u) const {
+        const double bareReach = bare.reachDistance(u);
+        if (bareReach <= cut.inner()) return bareReach;
+        const double outer = std::min(bareReach, cut.outer());
+        if constexpr (requires { bare.lowestEnergyAt(1.0); }) {
+            // Ulow(r_l) ≤ u < 0 = g(r_u)·Ulow(r_u): the root lies in [r_l, outer].
+            if (u < 0.0) {
+                double lo = cut.inner(), hi = outer;
+                for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
+                    const double mid = 0.5 * (lo + hi);
+                    (cut.switching(mid) * bare.lowestEnergyAt(mid) <= u ? lo : hi) = mid;
+                }
+                return hi; // g·Ulow(hi) > u or hi = outer: no r beyond hi reaches u
+            }
+        }
+        return outer; // a bound: no closer estimate without Ulow
+    }
+};
+
+} // namespace terrace
