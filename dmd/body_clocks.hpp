@@ -1,0 +1,99 @@
+#pragma once
+// The local clocks of the DMD engine's bodies (dmd/engine.hpp) and the free orbits cached at them.
+//
+// Between events every body moves freely (core freeMove: straight line + exact rotation), so a
+// body's stored state is kept at its own clock and brought to the current time only when it
+// takes part in an event (or at a sample, for all). Its free orbit from that state
+// (core/free_orbit.hpp) is cached beside it: the searches (dmd/pair_prediction.hpp) evaluate U(t)
+// from it without copying states, and a linear rotor is turned on by its orbit alone. With the
+// orbit the clock keeps a bound on how fast the body's axis turns, for the search steps and the
+// hold screen. The clock and that bound sit in the body's book (dmd/schedule.hpp BodyBook), in
+// the cache line its event bookkeeping reads anyway.
+//
+// Apart from the engine so that its event loop reads as the algorithm: every event starts by
+// bringing its bodies to now. A mixin (CRTP), as dmd/pair_prediction.hpp: BodyClocks is a base of
+// the engine, owns the orbits and moves the engine's bodies. Units: Å, time unit 100 fs.
+#include "core/free_orbit.hpp"
+#include "core/system.hpp"
+#include "core/vec.hpp"
+#include <cmath>
+#include <type_traits>
+#include <vector>
+
+namespace terrace::dmd {
+
+/// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
+template <BodyKind K, PairPotential P, class Engine> class BodyClocks {
+protected:
+    using State = typename K::State;
+
+    /// Each body's orbit from its state at its clock (all clocks set).
+    void cacheOrbits() {
+        Engine& engine = self();
+        orbit_.reserve(engine.sys_.bodies.size());
+        for (int i = 0; i < engine.sys_.size(); ++i) {
+            orbit_.emplace_back(engine.sys_.bodies[i], engine.sys_.body);
+            engine.schedule_.book(i).axisRate = axisRateBound(engine.sys_.bodies[i]);
+        }
+    }
+
+    Vec3 positionNow(int i) const {
+        const Engine& engine = self();
+        const State& b = engine.sys_.bodies[i];
+        return translated(b.r, b.v, engine.time_ - engine.schedule_.book(i).clock);
+    }
+
+    void bringToNow(int i) {
+        Engine& engine = self();
+        const double dt = engine.time_ - engine.schedule_.book(i).clock;
+        engine.schedule_.book(i).clock = engine.time_;
+        if constexpr (std::is_same_v<K, LinearRotor>) {
+            // A rotor's ω is constant in free flight: its cached orbit, turned on by dt, gives
+            // its new axis and stays its orbit (FreeOrbit::advancedBy).
+            State& b = engine.sys_.bodies[i];
+            b.r = translated(b.r, b.v, dt);
+            orbit_[i] = orbit_[i].advancedBy(dt);
+            b.s = orbit_[i].axis();
+        } else {
+            freeMove<K>(engine.sys_.bodies[i], engine.sys_.body, dt);
+            refreshOrbit(i);
+        }
+    }
+    /// The cached orbit is rebuilt after every change of a stored state other than a rotor's free
+    /// flight, which bringToNow follows by turning the orbit itself (impulse, rescale, free motion
+    /// of other kinds).
+    void refreshOrbit(int i) {
+        Engine& engine = self();
+        orbit_[i] = FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body);
+        engine.schedule_.book(i).axisRate = axisRateBound(engine.sys_.bodies[i]);
+    }
+
+    /// A bound on how fast the body's long axis turns in free flight, |ṡ| = |ω × s| ≤ |ω| (rad per
+    /// time unit): |ω| itself for a linear rotor, whose ω is constant; for a top, whose |ω| varies,
+    /// the largest |ω| its rotational energy allows, 2T = Σ I_k ω_k² ≥ I_min |ω|².
+    double axisRateBound(const State& b) const {
+        const BodyParams& body = self().sys_.body;
+        if constexpr (K::rotationalDof == 0) {
+            return 0.0;
+        } else if constexpr (std::is_same_v<K, LinearRotor>) {
+            return b.w.norm();
+        } else {
+            return std::sqrt(2.0 * K::rotationalKinetic(b, body) / body.inertia.minCoeff());
+        }
+    }
+
+    void synchronise(double t) {
+        Engine& engine = self();
+        engine.time_ = t;
+        for (int i = 0; i < engine.sys_.size(); ++i)
+            bringToNow(i);
+    }
+
+    std::vector<FreeOrbit<K>> orbit_; // each body's free orbit from its state at its clock
+
+private:
+    const Engine& self() const { return static_cast<const Engine&>(*this); }
+    Engine& self() { return static_cast<Engine&>(*this); }
+};
+
+} // namespace terrace::dmd

@@ -1,0 +1,129 @@
+#pragma once
+// How the DMD engine (dmd/engine.hpp) starts: from a scene, or from a checkpoint of a run.
+//
+// A fresh start checks the bodies and gives every pair the terrace of its U, a pair on a level
+// going to the terrace it is heading into (so that the start holds no zero-time event). A resumed
+// start takes the time, the impulse virial, the pair terraces (never re-derived from U, which may
+// sit exactly on a level) and the horizon stream's position from a checkpoint(), which is written
+// here too: the writer and the reader of the restart format side by side (cli/restart.hpp keeps
+// the file). Calendars, lists and cells are built afresh either way, by the engine.
+//
+// Apart from the engine because it runs once, before the first event: the event loop reads better
+// without it. A mixin (CRTP), as dmd/pair_prediction.hpp: EngineStart is a base of the engine,
+// with no state of its own, and sets the engine's members. Units: Å, kJ/mol, time unit 100 fs.
+#include "core/overlap.hpp"
+#include "core/pair_potential.hpp"
+#include "core/scene.hpp"
+#include "core/system.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+namespace terrace::dmd {
+
+/// A restart file's pair off terrace 0 may sit this fraction beyond r_m (round-off of r at the
+/// instant it reached r_m); farther out, the file does not belong to the bodies.
+inline constexpr double resumeRangeTolerance = 1e-9;
+
+/// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
+template <BodyKind K, PairPotential P, class Engine> class EngineStart {
+public:
+    /// What a resumed engine needs beyond the bodies: the time, every pair off terrace 0, and the
+    /// horizon stream's position. Clocks must all be at time() (call right after advanceTo).
+    nlohmann::json checkpoint() const {
+        const Engine& engine = self();
+        for (int i = 0; i < engine.sys_.size(); ++i)
+            if (engine.schedule_.book(i).clock != engine.time_)
+                throw std::logic_error("dmd: checkpoint with clocks not at one time");
+        nlohmann::json pairs = nlohmann::json::array();
+        engine.terraces_.forEachPair([&](int i, int j, int n) {
+            if (n != 0) pairs.push_back({i, j, n});
+        });
+        const auto stream = engine.jitter_.position();
+        return {{"time", engine.time_},
+                {"impulse_virial", engine.impulseVirial_},
+                {"terraces", std::move(pairs)},
+                {"horizon_stream", {{"state", stream.state}, {"ready", stream.ready}}}};
+    }
+
+protected:
+    using State = typename K::State;
+
+    void checkBodies() const {
+        const System<K, P>& sys = self().sys_;
+        for (int i = 0; i < sys.size(); ++i) {
+            const State& b = sys.bodies[i];
+            if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
+                !K::angularVelocity(b, sys.body).allFinite())
+                throw SceneError("state: body " + std::to_string(i) + " has a non-finite value");
+        }
+        if (!(sys.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
+    }
+
+    /// Terrace of every pair from U at the start; a pair on a level (within the search's level
+    /// tolerance) goes to the terrace it is heading into, so that the start holds no zero-time
+    /// event.
+    void assignInitialTerraces() {
+        Engine& engine = self();
+        const System<K, P>& sys = engine.sys_;
+        const double uMin = sys.potential.minimumEnergy();
+        for (int i = 0; i < sys.size(); ++i)
+            engine.cells_.forEachNeighbour(i, [&](int j) {
+                if (j < i) return;
+                const State &bi = sys.bodies[i], &bj = sys.bodies[j];
+                const Vec3 rij = sys.box.minimumImage(bi.r - bj.r);
+                if (rij.norm() > engine.settings_.rm) return;
+                const PairForce f = sys.potential.evaluate(rij, K::axis(bi), K::axis(bj));
+                if (overlapsAtStart(f.U, uMin)) throwOverlap(i, j, f.U);
+                const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys.body),
+                                         K::angularVelocity(bj, sys.body));
+                engine.terraces_.set(
+                    i, j,
+                    engine.settings_.levels.terraceOf(f.U, rate, engine.search_.levelTolerance));
+            });
+    }
+
+    void resumeClocks(const nlohmann::json& c) {
+        Engine& engine = self();
+        engine.time_ = c.at("time").get<double>();
+        if (!std::isfinite(engine.time_) || engine.time_ < 0.0)
+            throw SceneError("restart: the DMD time is not a finite time >= 0");
+        engine.impulseVirial_ = c.at("impulse_virial").get<double>();
+        if (!std::isfinite(engine.impulseVirial_))
+            throw SceneError("restart: the DMD impulse virial is not finite");
+        for (int i = 0; i < engine.sys_.size(); ++i)
+            engine.schedule_.book(i).clock = engine.time_;
+        const auto& stream = c.at("horizon_stream");
+        engine.jitter_.resumeAt(
+            {stream.at("state").get<std::uint64_t>(), stream.at("ready").get<double>()});
+    }
+
+    /// The terraces of a checkpoint; pairs it does not list are on terrace 0. A pair listed
+    /// beyond r_m, or out of range, means the file does not belong to these bodies.
+    void resumeTerraces(const nlohmann::json& c) {
+        Engine& engine = self();
+        const System<K, P>& sys = engine.sys_;
+        for (const auto& p : c.at("terraces")) {
+            const int i = p.at(0).get<int>(), j = p.at(1).get<int>(), n = p.at(2).get<int>();
+            if (i < 0 || j < 0 || i >= sys.size() || j >= sys.size() || i == j)
+                throw SceneError("restart: terrace of a pair of bodies that do not exist");
+            // A pair leaves terrace 0 at r_m exactly: a sample there may read r a round-off
+            // beyond it.
+            const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
+            if (rij.norm() > engine.settings_.rm * (1.0 + resumeRangeTolerance))
+                throw SceneError("restart: bodies " + std::to_string(i) + " and " +
+                                 std::to_string(j) + " are held on terrace " + std::to_string(n) +
+                                 " beyond the interaction range");
+            engine.terraces_.set(std::min(i, j), std::max(i, j), n);
+        }
+    }
+
+private:
+    const Engine& self() const { return static_cast<const Engine&>(*this); }
+    Engine& self() { return static_cast<Engine&>(*this); }
+};
+
+} // namespace terrace::dmd

@@ -1,0 +1,404 @@
+#pragma once
+// Prediction of the DMD engine's events (paper, "Implementation of the event-driven simulation";
+// DESIGN.md "DMD engine"): when a pair's continuous U next reaches a level bounding its terrace,
+// and when a body next crosses a cell face, needs its list rebuilt, or sees a pair enter r_m.
+//
+// A pair is predicted from now: screened with r_m (dmd/shell_screening.hpp); screened by its hold
+// time (dmd/terrace_hold.hpp) — a pair sure to stay on its terrace past the horizon, by bounds on
+// its free motion, gets a sample-less virtual event at the end of that hold instead; otherwise
+// searched adaptively (dmd/root_search.hpp) up to a jittered horizon (dmd/horizon_jitter.hpp),
+// a truncated search leaving a virtual event that holds its end point. Bodies are seen through
+// the free orbits cached at their clocks (dmd/body_clocks.hpp), brought to now without touching
+// their stored states. Of a body's own events — cell crossing, relist, entry — only the earliest
+// is planned in its agenda. Every event found is filed in the schedule (dmd/schedule.hpp).
+//
+// Apart from the engine (dmd/engine.hpp), whose event loop calls it after every event, as a
+// mixin: PairPrediction is the engine's base (CRTP), so that it reads the engine's bodies, orbits,
+// clocks, lists, cells and terraces as members of one object — no reference to follow, no call
+// through a pointer, in the pair loop. It owns what only prediction uses: the search settings, the
+// horizon stream, the bands and ceiling of the hold screen, the bodies' plans and the search
+// counters; it reads the engine's own members by name (engine.sys_, engine.time_, …), as a
+// friend. Units: Å, kJ/mol, time unit 100 fs.
+#include "core/free_orbit.hpp"
+#include "core/system.hpp"
+#include "core/units.hpp"
+#include "dmd/cell_list.hpp"
+#include "dmd/event.hpp"
+#include "dmd/horizon_jitter.hpp"
+#include "dmd/neighbour_lists.hpp"
+#include "dmd/pair_terraces.hpp"
+#include "dmd/root_search.hpp"
+#include "dmd/schedule.hpp"
+#include "dmd/settings.hpp"
+#include "dmd/shell_screening.hpp"
+#include "dmd/terrace_hold.hpp"
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace terrace::dmd {
+
+/// Relative jitter of the virtual-event horizon, so that virtual events do not coincide (paper).
+inline constexpr double horizonJitter = 0.1;
+/// The search's nudge δt as a fraction of its largest step.
+inline constexpr double nudgeFraction = 1.0 / 32.0;
+/// A search step never moves the pair farther than these, so that its cubic interpolants follow
+/// U however hot the system: the relative displacement of the centres, as a fraction of r_m, and
+/// the sum of the two bodies' turns (rad). On the paper's rods at T* = 1.4 they hardly bind below
+/// the 4 fs step (a thermal pair shifts ~0.05 Å and turns ~0.2 rad in 4 fs; the evaluations per
+/// collision stay within 0.2 %); at T* = 50 they cut it two- to three-fold, where a 4 fs cubic
+/// missed whole excursions over a level on the repulsive wall (Conservation.HotPairsOnTheWall...).
+inline constexpr double stepShiftFraction = 0.03;
+inline constexpr double stepTurn = 0.5;
+/// A pair screened by its hold time (dmd/terrace_hold.hpp) is looked at again after at most this
+/// many horizons: by then one of its bodies has usually collided (every ~5 fs in the dense liquid).
+inline constexpr double maxHoldHorizons = 8.0;
+/// Extrema of the interpolant within this fraction of a terrace height of a level are examined.
+inline constexpr double grazeFraction = 0.25;
+/// Distance from a level, as a fraction of the terrace height, below which U counts as on it:
+/// far above the round-off of U (~1e-15 kJ/mol), far below any physical energy.
+inline constexpr double levelTolerance = 1e-10;
+/// A pair found farther than this fraction of the terrace height beyond a level of its terrace
+/// has missed an event (checkOnTerrace).
+inline constexpr double missedEventMargin = 1e-6;
+/// A list is rebuilt a hair before the body has moved its relist distance (skin/3), so that
+/// round-off in the rebuild time can never let an unlisted pair inside r_m.
+inline constexpr double relistMargin = 1e-6;
+
+/// A body's own events, planned (absolute times, +∞: none); only the earliest is scheduled.
+struct BodyPlan {
+    double cell = std::numeric_limits<double>::infinity();
+    double relist = std::numeric_limits<double>::infinity();
+    double entry = std::numeric_limits<double>::infinity(); // virtual: a pair enters r_m
+    std::int8_t cellSide = 0;                               // as Event::side
+};
+
+/// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
+template <BodyKind K, PairPotential P, class Engine> class PairPrediction {
+protected:
+    using State = typename K::State;
+
+    /// The search's settings from the engine's: its largest step the horizon, its tolerances
+    /// fractions of the terrace height.
+    PairPrediction(const DmdSettings& settings, const P& potential, std::uint64_t seed, int bodies)
+        : jitter_(settings.horizon, horizonJitter, seed), plans_(bodies),
+          ceiling_(bandCeiling(potential, settings.rm)) {
+        const double terraceHeight = settings.levels.smallestStep();
+        search_.maxStep = settings.horizon;
+        search_.nudge = nudgeFraction * settings.horizon;
+        search_.grazeWindow = grazeFraction * terraceHeight;
+        search_.levelTolerance = levelTolerance * terraceHeight;
+    }
+
+    /// A body brought to now without touching its stored state: the search's view of it, with
+    /// its orbit re-based to now so that the search's samples turn it by small angles only.
+    struct Moving {
+        Vec3 r, v;
+        FreeOrbit<K> orbit;                  // from now on
+        typename FreeOrbit<K>::Attitude now; // orbit.at(0)
+    };
+
+    /// Predicts every pair of every body from now and gives each body its calendar entry.
+    template <class Q> void predictAll(Q& q) {
+        Engine& engine = self();
+        for (int i = 0; i < engine.sys_.size(); ++i) {
+            double entry = std::numeric_limits<double>::infinity();
+            const Moving mi = movingNow(i);
+            for (const int j : engine.lists_.partners(i))
+                if (j > i) entry = std::min(entry, predictPair(mi, i, j, nullptr));
+            scheduleBodyEvents(i, entry);
+        }
+        engine.schedule_.settle(q, engine.time_);
+        engine.schedule_.resetCleanupThreshold(q.size());
+    }
+
+    /// Forgets every pending event and predicts all pairs from now (all clocks at now).
+    void repredictAll() {
+        Engine& engine = self();
+        engine.schedule_.visitQueue([&](auto& q) {
+            engine.schedule_.forgetAll(q);
+            predictAll(q);
+        });
+    }
+
+    /// Predicts every pair of i except (i, exclude); (i, partner) has just been resolved.
+    /// partnerStart: the sample of (i, partner) now, when the caller has it.
+    void predictBody(int i, int exclude, int partner = -1,
+                     const PairSample* partnerStart = nullptr) {
+        const Engine& engine = self();
+        double entry = std::numeric_limits<double>::infinity();
+        const Moving mi = movingNow(i);
+        const std::vector<int>& partners = engine.lists_.partners(i);
+        for (std::size_t k = 0; k < partners.size(); ++k) {
+            // The next partner's state is fetched while this one is predicted: the partners are
+            // scattered in memory, and each prediction starts by reading its partner.
+            if (k + 1 < partners.size()) prefetchBody(partners[k + 1]);
+            const int j = partners[k];
+            if (j != exclude)
+                entry = std::min(entry, j == partner ? predictPair(mi, i, j, partnerStart, true)
+                                                     : predictPair(mi, i, j, nullptr));
+        }
+        scheduleBodyEvents(i, entry);
+    }
+
+    /// Asks the caches for what predictPair reads of body j first.
+    void prefetchBody(int j) const {
+        const Engine& engine = self();
+        const char* state = reinterpret_cast<const char*>(&engine.sys_.bodies[j]);
+        const char* orbit = reinterpret_cast<const char*>(&engine.orbit_[j]);
+        __builtin_prefetch(state);
+        __builtin_prefetch(state + sizeof(State) - 1);
+        __builtin_prefetch(orbit);
+        __builtin_prefetch(orbit + sizeof(FreeOrbit<K>) - 1);
+        __builtin_prefetch(&engine.schedule_.book(j));
+    }
+
+    /// Body i's own events: its next cell crossing, its next list rebuild and, when some pair of i
+    /// enters r_m only beyond the horizon, a virtual event at the earliest such entry (one per
+    /// body instead of one per approaching pair; should i have no event before then, it
+    /// re-predicts all its pairs). Only the earliest of the three is scheduled: most are overtaken
+    /// by a collision of i, and the others are planned again when it is processed.
+    void scheduleBodyEvents(int i, double entry) {
+        plans_[i].entry = entry;
+        planCellCrossing(i);
+        planRelist(i);
+        scheduleBodyEvent(i);
+    }
+
+    /// Queues the earliest of i's planned body events (ties: cell, relist, entry).
+    void scheduleBodyEvent(int i) {
+        const BodyPlan& p = plans_[i];
+        if (p.cell <= p.relist && p.cell <= p.entry) {
+            if (!std::isfinite(p.cell)) return;
+            Event e = bodyEvent(EventKind::CellCrossing, i, p.cell);
+            e.side = p.cellSide;
+            schedule(e);
+        } else if (p.relist <= p.entry) {
+            schedule(bodyEvent(EventKind::Relist, i, p.relist));
+        } else {
+            schedule(bodyEvent(EventKind::Virtual, i, p.entry));
+        }
+    }
+
+    /// When i will have moved (1 − relistMargin) of the relist distance from its list's anchor.
+    void planRelist(int i) {
+        const Engine& engine = self();
+        const double radius = engine.lists_.relistDistance() * (1.0 - relistMargin);
+        const Vec3 moved = engine.positionNow(i) - engine.lists_.anchor(i);
+        // Already out (an event tied with the rebuild came first): rebuild now.
+        const double dt = moved.squaredNorm() >= radius * radius
+                              ? 0.0
+                              : shellWindow(moved, engine.sys_.bodies[i].v, radius).exit;
+        plans_[i].relist = engine.time_ + dt;
+    }
+
+    void planCellCrossing(int i) {
+        const Engine& engine = self();
+        const State& b = engine.sys_.bodies[i];
+        int axis = 0, dir = 0;
+        const double dt = engine.cells_.crossingTime(
+            i, b.r + b.v * (engine.time_ - engine.schedule_.book(i).clock), b.v, axis, dir);
+        plans_[i].cell = engine.time_ + dt;
+        plans_[i].cellSide = static_cast<std::int8_t>(2 * axis + (dir > 0 ? 1 : 0));
+    }
+
+    /// Next event of the pair (i, j) from now: screening with r_m, then the adaptive search up to
+    /// the jittered horizon; a truncated search leaves a virtual event holding its end point.
+    /// A pair entering r_m only beyond the horizon is not searched: its entry time (absolute) is
+    /// returned for the caller to schedule; +∞ otherwise.
+    /// mi is body i brought to now (movingNow(i)), prepared once for all pairs of i.
+    double predictPair(const Moving& mi, int i, int j, const PairSample* resumeFrom,
+                       bool afterEvent = false) {
+        Engine& engine = self();
+        constexpr double none = std::numeric_limits<double>::infinity();
+        const State& bj0 = engine.sys_.bodies[j];
+        const double dtj = engine.time_ - engine.schedule_.book(j).clock;
+        const Vec3 r0 =
+            engine.sys_.box.minimumImage(mi.r - translated(bj0.r, bj0.v, dtj), engine.inverseBox_);
+        const Vec3 w = mi.v - bj0.v;
+        // Only a pair inside r_m (up to round-off) can be bound; skip the lookup for the rest.
+        constexpr double boundSlack = 1.0 + 1e-6;
+        const bool maybeBound =
+            r0.squaredNorm() <= engine.settings_.rm * engine.settings_.rm * boundSlack;
+        const int n = maybeBound ? engine.terraces_.get(i, j) : 0;
+        // A bound pair must reach a level before |r_ij| = r_m; in the worst orientation it does
+        // so exactly there, so the shell must not cut its search short.
+        const ShellWindow win = n != 0 ? ShellWindow{0.0, std::numeric_limits<double>::infinity()}
+                                       : shellWindow(r0, w, engine.settings_.rm);
+        if (win.empty()) return none;
+        const double horizon = jitter_.next();
+        if (win.enter > horizon) return engine.time_ + win.enter;
+        // Body j's attitude now serves the hold screen; its orbit is built only for a search.
+        const auto ajNow = engine.orbit_[j].startOf(dtj);
+        const auto sampleWith = [&](double tau, const auto& attitudes) {
+            const auto& [ai, aj] = attitudes;
+            const EnergyRate e = energyAndRate(engine.sys_.potential, translated(r0, w, tau), w,
+                                               ai.axis, ai.w, aj.axis, aj.w);
+            return PairSample{tau, e.U, e.dUdt};
+        };
+        const std::array now{mi.now, ajNow};
+        if constexpr (HoldScreenable<P>)
+            // Not for the pair just resolved: it sits on a level, where the screen answers 0 (it
+            // could hold only a root found farther from the level than the screen's edge margin;
+            // a search is right either way).
+            if (holdScreen_ && !afterEvent) {
+                // No level within reach for a while: no samples now, a fresh search then.
+                const double hold = holdOnTerrace(now, i, j, r0, w, n, horizon, win.exit);
+                if (hold == none) return none; // out of r_m before it could change terrace
+                if (hold > 0.0) {
+                    schedule(pairEvent(EventKind::Virtual, i, j, engine.time_ + hold));
+                    ++screened_;
+                    return none;
+                }
+            }
+        const FreeOrbit<K> orbitJ = engine.orbit_[j].from(dtj);
+        auto eval = [&](double tau) { return sampleWith(tau, attitudesAt(mi.orbit, orbitJ, tau)); };
+        PairSample start;
+        if (resumeFrom && win.enter == 0.0) {
+            start = *resumeFrom;
+        } else {
+            start = win.enter == 0.0 ? sampleWith(0.0, now) : eval(win.enter);
+            ++evaluations_;
+            if (!afterEvent) checkOnTerrace(start.U, i, j, n);
+        }
+        const double tEnd = std::min(win.exit, horizon);
+        const SearchResult r = findTerraceExit(
+            eval, start, engine.settings_.levels.lower(n), engine.settings_.levels.upper(n), tEnd,
+            pairSearch(w, engine.schedule_.book(i).axisRate + engine.schedule_.book(j).axisRate),
+            afterEvent);
+        evaluations_ += r.evaluations;
+        if (r.side != ExitSide::None) {
+            Event e = pairEvent(EventKind::Collision, i, j, engine.time_ + r.t);
+            e.side = static_cast<std::int8_t>(r.side);
+            schedule(e);
+        } else if (win.exit > horizon) {
+            Event e = pairEvent(EventKind::Virtual, i, j, engine.time_ + r.end.t);
+            e.U = r.end.U;
+            e.dUdt = r.end.dUdt;
+            schedule(e);
+        }
+        return none;
+    }
+
+    /// A pair sampled beyond a level of its own terrace has crossed it unseen: the bookkeeping no
+    /// longer describes the system (a defect, never a property of the dynamics). Reported at
+    /// once, rather than left to loop on a reflection at one instant until the stall detector
+    /// fires. A pair can sit past a level by round-off only (an event due now), far below the
+    /// margin.
+    void checkOnTerrace(double U, int i, int j, int n) const {
+        const Engine& engine = self();
+        const double margin = missedEventMargin * engine.terraceHeight();
+        if (U >= engine.settings_.levels.lower(n) - margin &&
+            U <= engine.settings_.levels.upper(n) + margin)
+            return;
+        throw std::logic_error("dmd: bodies " + std::to_string(i) + " and " + std::to_string(j) +
+                               " have U = " + std::to_string(U) +
+                               " kJ/mol at t = " + std::to_string(units::toFs(engine.time_)) +
+                               " fs, beyond the levels of " + "their terrace " + std::to_string(n) +
+                               ": an event was missed");
+    }
+
+    /// How long from now the pair (i, j) on terrace n, at separation r0 and relative velocity w,
+    /// with attitudes `now`, is sure to stay on it (dmd/terrace_hold.hpp): +∞ when until it leaves
+    /// r_m at windowExit; otherwise the longest of horizon, 2·horizon, … up to maxHoldHorizons
+    /// horizons, or 0 when not even through the horizon (then the search must look).
+    template <class Attitudes>
+    double holdOnTerrace(const Attitudes& now, int i, int j, const Vec3& r0, const Vec3& w, int n,
+                         double horizon, double windowExit) {
+        const Engine& engine = self();
+        const auto& [ai, aj] = now;
+        PairMotion m;
+        m.speedSquared = w.x() * w.x() + w.y() * w.y() + w.z() * w.z();
+        m.r = std::sqrt(r0.x() * r0.x() + r0.y() * r0.y() + r0.z() * r0.z());
+        m.rRate = (r0.x() * w.x() + r0.y() * w.y() + r0.z() * w.z()) / m.r;
+        if constexpr (P::orientational) {
+            const Vec3 &si = ai.axis, &sj = aj.axis;
+            m.c = si.x() * sj.x() + si.y() * sj.y() + si.z() * sj.z();
+            const Vec3 spin = ai.w - aj.w;
+            m.cRate = spin.x() * (si.y() * sj.z() - si.z() * sj.y()) +
+                      spin.y() * (si.z() * sj.x() - si.x() * sj.z()) +
+                      spin.z() * (si.x() * sj.y() - si.y() * sj.x());
+            m.turn = engine.schedule_.book(i).axisRate + engine.schedule_.book(j).axisRate;
+            // |s̈| = |ω|² for a linear rotor (uniform rotation), so |c̈| ≤ Ω²; a top's ω wanders.
+            if constexpr (std::is_same_v<K, LinearRotor>) m.turnCurvature = m.turn * m.turn;
+        }
+        const auto& form = bandPotential(engine.sys_.potential);
+        const double x = form.effectiveDistance(m.r, m.c);
+        const TerraceBands& b = bands_.of(n, form, engine.settings_.levels);
+        const BandHold hold(x <= b.bottom ? b.wall : b.tail, m, form.alignmentLength(), ceiling_);
+        const double longest = maxHoldHorizons * horizon;
+        if (windowExit <= longest && hold.through(windowExit))
+            return std::numeric_limits<double>::infinity();
+        return holdTime(hold, horizon, longest);
+    }
+
+    /// The search settings for a pair with relative velocity w and summed angular speed turn: the
+    /// step shortened where the pair would move more than stepShiftFraction r_m or turn more
+    /// than stepTurn in one.
+    SearchSettings pairSearch(const Vec3& w, double turn) const {
+        const Engine& engine = self();
+        SearchSettings s = search_;
+        const double shift = stepShiftFraction * engine.settings_.rm;
+        const double w2 = w.squaredNorm();
+        if (w2 * s.maxStep * s.maxStep > shift * shift) s.maxStep = shift / std::sqrt(w2);
+        if (turn * s.maxStep > stepTurn) s.maxStep = stepTurn / turn;
+        return s;
+    }
+
+    /// Body i as the search sees it now, from its orbit cached at its clock: the stored state is
+    /// not touched.
+    Moving movingNow(int i) const {
+        const Engine& engine = self();
+        const State& b = engine.sys_.bodies[i];
+        const double dt = engine.time_ - engine.schedule_.book(i).clock;
+        Moving m{translated(b.r, b.v, dt), b.v, engine.orbit_[i].from(dt), {}};
+        m.now = m.orbit.at(0.0);
+        return m;
+    }
+
+    Event bodyEvent(EventKind kind, int i, double t) const {
+        Event e;
+        e.time = t;
+        e.kind = kind;
+        e.i = i;
+        return e;
+    }
+
+    Event pairEvent(EventKind kind, int i, int j, double t) const {
+        const Engine& engine = self();
+        Event e = bodyEvent(kind, i, t);
+        e.j = j;
+        e.countJ = engine.schedule_.book(j).counter;
+        return e;
+    }
+
+    /// Files e in its owner's agenda (dmd/schedule.hpp).
+    void schedule(const Event& e) { self().schedule_.schedule(e); }
+
+    std::size_t predictionBytes() const {
+        return plans_.capacity() * sizeof(BodyPlan) + bands_.bytesReserved();
+    }
+
+    SearchSettings search_;
+    HorizonJitter jitter_;
+    std::uint64_t evaluations_ = 0, screened_ = 0;
+    bool holdScreen_ = true;
+
+private:
+    std::vector<BodyPlan> plans_;
+    TerraceBandTable bands_; // effective-distance bands of the terraces (hold screen)
+    // The hold screen's ceiling on r (dmd/terrace_hold.hpp bandCeiling), Å.
+    double ceiling_;
+
+    // The engine, which this object is (its members are what prediction reads, as a friend).
+    const Engine& self() const { return static_cast<const Engine&>(*this); }
+    Engine& self() { return static_cast<Engine&>(*this); }
+};
+
+} // namespace terrace::dmd
