@@ -8,9 +8,10 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
+# python3-ase: the test suite reads our trajectories with ASE (tests/cli/cli_checks.sh ase_read).
 packages=(build-essential cmake pkg-config git libeigen3-dev libfftw3-dev
           libboost-program-options-dev libboost-math-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox)
+          libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox python3-ase)
 
 install_missing() {
     local missing=()

@@ -56,4 +56,18 @@ inline Estimate blockRatio(std::span<const double> sums, std::span<const double>
     return {pooled, blockError(values, weights, pooled)};
 }
 
+/// Mean of a time series with its error from `blocks` contiguous blocks of about equal numbers of
+/// samples (a block holds samples ⌊bn/B⌋ … ⌊(b+1)n/B⌋ − 1; with fewer samples than blocks, some
+/// blocks are empty and do not count). The series must not be empty.
+inline Estimate blockMean(std::span<const double> series, int blocks) {
+    if (series.empty() || blocks < 1)
+        throw std::invalid_argument("blockMean: need samples and at least one block");
+    const std::size_t n = series.size(), b = std::size_t(blocks);
+    std::vector<double> sums(b, 0.0), weights(b, 0.0);
+    for (std::size_t k = 0; k < b; ++k)
+        for (std::size_t i = k * n / b; i < (k + 1) * n / b; ++i)
+            sums[k] += series[i], weights[k] += 1.0;
+    return blockRatio(sums, weights);
+}
+
 } // namespace terrace::analysis

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 
 namespace po = boost::program_options;
 using namespace terrace;
@@ -27,9 +28,11 @@ Usage:
   terrace run [SCENE.json] [--set key.path=value]... [--out DIR] [--overwrite] [--quiet]
       Run a scene (default: the built-in dense rods, N 512, rho* 0.5, T* 1.4).
       --set overrides any scene key by its dotted path, e.g. --set engine=smd
-      --set dmd.dV=0.5 --set run.time_ps=5. Writes DIR/summary.json, scene.json,
-      initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv and, if asked for,
-      trajectory.xyz (default DIR: out/<scene name>-<engine>). A DIR that holds an
+      --set dmd.dV=0.5 --set run.time_ps=4.5 (run lengths and output intervals are
+      whole multiples of their intervals, or refused). Writes DIR/summary.json,
+      scene.json, initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv and, if asked for,
+      thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE; default DIR:
+      out/<scene name>-<engine>). A DIR that holds an
       earlier run's results is refused unless --overwrite (which removes them first).
       With output.restart_every_ps > 0 the run keeps DIR/restart.bin (and samples.bin).
   terrace run --continue DIR [--quiet]
@@ -60,6 +63,14 @@ void printRunSummary(const Scene& scene, const nlohmann::json& s,
                     s["potential_energy_mean"].get<double>(),
                     s["energy"]["rel_fluct"].get<double>(),
                     s["energy"]["drift_per_ps"].get<double>());
+    if (s.contains("pressure") && s["pressure"].contains("mean_bar")) {
+        const auto& p = s["pressure"];
+        auto number = [](const nlohmann::json& x) { // a null error (one block) prints as nan
+            return x.is_number() ? x.get<double>() : std::numeric_limits<double>::quiet_NaN();
+        };
+        std::printf("  P = %.4g ± %.2g bar (P* = %.4g ± %.2g)\n", number(p["mean_bar"]),
+                    number(p["error_bar"]), number(p["mean_reduced"]), number(p["error_reduced"]));
+    }
     if (s.contains("collisions_per_ps"))
         std::printf("  %.4g collisions/ps, %.4g events per CPU s\n",
                     s["collisions_per_ps"].get<double>(), s.value("events_per_cpu_second", 0.0));

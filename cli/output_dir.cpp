@@ -11,7 +11,7 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string>& runFileNames() {
     static const std::vector<std::string> names = {
-        "summary.json", "scene.json", "initial.xyz", "trajectory.xyz", "rdf.csv",
+        "summary.json", "scene.json", "initial.xyz", "trajectory.xyz", "thermo.csv", "rdf.csv",
         "vacf.csv",     "oacf.csv",   "msd.csv",     "restart.bin",    "samples.bin"};
     return names;
 }

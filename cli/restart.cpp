@@ -16,7 +16,7 @@ void put(std::string& out, const Vec3& v) {
 }
 
 std::size_t recordDoubles(int bodies, bool withOrientation) {
-    return 5 + std::size_t(bodies) * (withOrientation ? 16 : 12);
+    return 8 + std::size_t(bodies) * (withOrientation ? 16 : 12);
 }
 
 } // namespace
@@ -26,7 +26,8 @@ std::string encodeSample(const Snapshot& s, const SampleRecord& e) {
     const bool tops = !s.orientation.empty();
     out.reserve(recordDoubles(s.size(), tops) * sizeof(double));
     put(out, s.time), put(out, e.tPs), put(out, e.total), put(out, e.potential);
-    put(out, e.kinetic);
+    put(out, e.kinetic), put(out, e.kineticTranslational), put(out, e.virial);
+    put(out, e.collisions);
     for (int i = 0; i < s.size(); ++i) {
         put(out, s.position[i]), put(out, s.velocity[i]), put(out, s.axis[i]);
         put(out, s.omega[i]);
@@ -59,7 +60,9 @@ void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, d
         s.boxLength = boxLength;
         s.time = get();
         SampleRecord e;
+        e.time = s.time;
         e.tPs = get(), e.total = get(), e.potential = get(), e.kinetic = get();
+        e.kineticTranslational = get(), e.virial = get(), e.collisions = get();
         for (int i = 0; i < bodies; ++i) {
             s.position.push_back(vec());
             s.velocity.push_back(vec());
@@ -105,7 +108,13 @@ nlohmann::json readRestart(const std::filesystem::path& dir) {
     }
     const std::string bytes = readWholeFile(path);
     nlohmann::json j = nlohmann::json::from_cbor(bytes, true, false);
-    if (j.is_discarded() || !j.is_object() || j.value("format", "") != restartFormat)
+    const auto format = j.is_object() && j.contains("format") && j["format"].is_string()
+                            ? j["format"].get<std::string>()
+                            : std::string();
+    if (format != restartFormat && format.rfind("terrace restart ", 0) == 0)
+        throw IoError(path.string() + ": written by another version of terrace ('" + format +
+                      "'; this one reads '" + restartFormat + "'): start the run again");
+    if (j.is_discarded() || !j.is_object() || format != restartFormat)
         throw IoError(path.string() + ": not a terrace restart file (or a damaged one)");
     return j;
 }

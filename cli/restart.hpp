@@ -9,14 +9,17 @@
 //                       states as raw bytes: exact, and compact), the engine's checkpoint (DMD:
 //                       clock, pair terraces, horizon stream; SMD: step count), the run's
 //                       accumulators (production start, initial momentum, production statistics,
-//                       CPU seconds) and the lengths of trajectory.xyz and samples.bin at that
-//                       point;
+//                       CPU seconds) and the lengths of trajectory.xyz, thermo.csv and
+//                       samples.bin at that point;
 //   DIR/samples.bin   the production samples, one fixed-size record per sample, appended as they
 //                     are taken (kept only while restarts are on; removed when the run completes):
-//                       time, t_ps, E, U, K, then per body r, v, axis, ω (and a top's quaternion).
+//                       time, t_ps, E, U, K, K_trans, W (SMD: the virial at the sample; DMD:
+//                       the running impulse virial), the collisions since production began, then
+//                       per body r, v, axis, ω (and a top's quaternion).
 //
-// A continued run cuts trajectory.xyz and samples.bin back to their lengths in the restart file,
-// reads the samples back, rebuilds the engine from the bodies and the checkpoint, and goes on.
+// A continued run cuts trajectory.xyz, thermo.csv and samples.bin back to their lengths in the
+// restart file, reads the samples back, rebuilds the engine from the bodies and the checkpoint,
+// and goes on.
 // At every restart point the running engine is rebuilt the same way, so that a run continued from
 // a restart file undergoes the same events and writes the same bytes as one that never stopped.
 #include "core/output_file.hpp"
@@ -30,11 +33,17 @@
 
 namespace terrace::cli {
 
-inline constexpr const char* restartFormat = "terrace restart 1";
+/// Version 2: samples.bin records carry K_trans, W and the collision count, and restart.bin the
+/// length of thermo.csv (version 1 files are refused as another version's).
+inline constexpr const char* restartFormat = "terrace restart 2";
 
 /// One production sample and its energies (kJ/mol), as the run loop keeps them.
 struct SampleRecord {
     double tPs = 0.0, total = 0.0, potential = 0.0, kinetic = 0.0;
+    double kineticTranslational = 0.0; // ½ m Σ v²: the kinetic term of the pressure
+    double virial = 0.0;     // SMD: Σ r_ij·F_ij at the sample; DMD: the running Σ r_ij·Δp_i
+    double collisions = 0.0; // DMD: collisions since production began (exact below 2⁵³); SMD: 0
+    double time = 0.0;       // engine time units (the snapshot's time)
 };
 
 /// The bytes of one samples.bin record.

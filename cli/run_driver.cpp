@@ -21,17 +21,19 @@ RunPlan planRun(const Scene& scene) {
     };
     plan.sampleInterval = onGrid(scene.run.sample_fs);
     plan.thermostatInterval = onGrid(scene.run.thermostat_fs);
-    // The small allowance keeps a run length that is an exact multiple of the interval in
-    // decimal from losing its last interval to binary round-off.
+    // Run lengths are whole multiples of their intervals (the scene validation refuses any
+    // other): rounding the ratio gives the exact count, whatever the binary round-off of a
+    // decimal length.
     plan.equilibrationTicks =
-        long(std::floor(units::fromPs(scene.run.equilibrate_ps) / plan.thermostatInterval + 1e-9));
+        long(std::llround(units::fromPs(scene.run.equilibrate_ps) / plan.thermostatInterval));
     plan.productionSamples =
-        long(std::floor(units::fromPs(scene.run.time_ps) / plan.sampleInterval + 1e-9));
+        long(std::llround(units::fromPs(scene.run.time_ps) / plan.sampleInterval));
     auto inSamples = [&](double interval) {
         return interval > 0.0 ? std::max(1L, long(std::llround(interval / plan.sampleInterval)))
                               : 0L;
     };
     plan.trajectoryEvery = inSamples(units::fromFs(scene.output.trajectory_every_fs));
+    plan.thermoEvery = inSamples(units::fromFs(scene.output.thermo_every_fs));
     plan.restartEvery = inSamples(units::fromPs(scene.output.restart_every_ps));
     if (plan.restartEvery > 0)
         plan.restartEveryTicks =
@@ -50,9 +52,10 @@ double storedSampleBytes(const Scene& scene, int rotationalDof) {
     const RunPlan plan = planRun(scene);
     const double n = scene.state.particles.empty() ? double(scene.state.n)
                                                    : double(scene.state.particles.size());
-    // position, velocity, axis, ω and a top's quaternion per body, the snapshot and its energies
+    // position, velocity, axis, ω and a top's quaternion per body, the snapshot and its record
     const double perBody = 4.0 * sizeof(Vec3) + (rotationalDof == 3 ? sizeof(Quat) : 0.0);
-    return (double(plan.productionSamples) + 1.0) * (n * perBody + sizeof(Snapshot) + 32.0);
+    return (double(plan.productionSamples) + 1.0) *
+           (n * perBody + sizeof(Snapshot) + sizeof(SampleRecord));
 }
 
 nlohmann::json vec3Json(const Vec3& v) {
@@ -112,6 +115,12 @@ void accumulateStatistics(nlohmann::json& production, const nlohmann::json& star
     addStretch(production, start, end, "");
 }
 
+double collisionCount(const nlohmann::json& statistics) {
+    if (!statistics.is_object() || !statistics.contains("events")) return 0.0;
+    const auto& ev = statistics["events"];
+    return ev.value("up", 0.0) + ev.value("down", 0.0) + ev.value("reflect", 0.0);
+}
+
 void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& production,
                          double simulatedPs) {
     for (const auto& [key, value] : production.items())
@@ -119,9 +128,7 @@ void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& producti
     if (simulatedPs <= 0.0) return;
     if (production.contains("events")) {
         const auto& ev = production["events"];
-        const double collisions =
-            ev.value("up", 0.0) + ev.value("down", 0.0) + ev.value("reflect", 0.0);
-        summary["collisions_per_ps"] = collisions / simulatedPs;
+        summary["collisions_per_ps"] = collisionCount(production) / simulatedPs;
         summary["events_per_ps"] = ev.value("total", 0.0) / simulatedPs;
         const double cpu = summary.value("cpu_seconds", 0.0);
         if (cpu > 0.0) summary["events_per_cpu_second"] = ev.value("total", 0.0) / cpu;
@@ -152,11 +159,19 @@ double standardDeviation(const std::vector<double>& x) {
 constexpr double energyWanderWarning = 0.01;
 
 void addEnergy(nlohmann::json& summary, const RunRecord& run) {
-    if (run.tPs.empty()) return;
-    const double keMean = mean(run.kinetic);
+    if (run.records.empty()) return;
+    auto column = [&](double SampleRecord::*field) {
+        std::vector<double> x;
+        for (const auto& r : run.records)
+            x.push_back(r.*field);
+        return x;
+    };
+    const std::vector<double> potential = column(&SampleRecord::potential);
+    const double keMean = mean(column(&SampleRecord::kinetic));
     summary["temperature_K"] = units::kelvin(2.0 * keMean / run.dof);
-    const auto es = analysis::energyStats(run.tPs, run.total, run.potential);
-    const double uStd = standardDeviation(run.potential);
+    const auto es =
+        analysis::energyStats(column(&SampleRecord::tPs), column(&SampleRecord::total), potential);
+    const double uStd = standardDeviation(potential);
     summary["energy"] = {{"initial", es.initial},
                          {"final", es.final},
                          {"mean", es.mean},
@@ -168,7 +183,7 @@ void addEnergy(nlohmann::json& summary, const RunRecord& run) {
                          {"fluct_ratio_to_U", uStd > 0.0 ? es.std / uStd : 0.0},
                          {"drift_per_ps", es.driftPerPs},
                          {"units", "kJ/mol"}};
-    summary["potential_energy_mean"] = mean(run.potential);
+    summary["potential_energy_mean"] = mean(potential);
     summary["potential_energy_std"] = uStd;
     if (es.maxAbsDev > energyWanderWarning * keMean) {
         char text[256];
@@ -205,6 +220,10 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
                                {"written", run.restartsWritten},
                                {"continued", run.continuations}};
     addEnergy(summary, run);
+    if (!run.records.empty())
+        summary["pressure"] =
+            pressureSummary(pressureSeries(run.records, run.virialKind, run.volume), run.virialKind,
+                            scene.potential.sigma, scene.potential.epsilon);
     summary["momentum"] = {{"initial", vec3Json(run.momentumInitial / units::psPerTimeUnit)},
                            {"final", vec3Json(run.momentumFinal / units::psPerTimeUnit)},
                            {"units", "g/mol A/ps"}};
@@ -269,7 +288,7 @@ std::int64_t sizeOf(const std::filesystem::path& path) {
 Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::filesystem::path& dir,
                   int bodies, bool withOrientation, double boxLength, RunRecord& run) {
     Resumed at;
-    std::int64_t trajectoryBytes = 0, samplesBytes = 0;
+    std::int64_t trajectoryBytes = 0, thermoBytes = 0, samplesBytes = 0;
     try {
         at.inProduction = r.at("phase") == "production";
         at.tick = r.at("tick").get<long>();
@@ -284,16 +303,18 @@ Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::files
         run.restartsWritten = r.at("restarts_written").get<long>();
         run.continuations = r.at("continuations").get<int>() + 1;
         trajectoryBytes = r.at("files").at("trajectory_bytes").get<std::int64_t>();
+        thermoBytes = r.at("files").at("thermo_bytes").get<std::int64_t>();
         samplesBytes = r.at("files").at("samples_bytes").get<std::int64_t>();
     } catch (const nlohmann::json::exception& e) {
         throw damagedRestart(dir, e);
     }
     if (!at.inProduction) return at;
-    // Both growing files are checked before either is cut back to its restart point.
-    const bool withTrajectory = plan.trajectoryEvery > 0;
+    // Every growing file is checked before any is cut back to its restart point.
+    const bool withTrajectory = plan.trajectoryEvery > 0, withThermo = plan.thermoEvery > 0;
     for (const auto& [name, bytes] :
          {std::pair<std::string, std::int64_t>{"samples.bin", samplesBytes},
-          {"trajectory.xyz", withTrajectory ? trajectoryBytes : 0}}) {
+          {"trajectory.xyz", withTrajectory ? trajectoryBytes : 0},
+          {"thermo.csv", withThermo ? thermoBytes : 0}}) {
         const std::int64_t size = sizeOf(dir / name);
         if (bytes > 0 && size < bytes)
             throw IoError((dir / name).string() + " holds " +
@@ -302,6 +323,7 @@ Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::files
                           " of its restart point: it was changed after restart.bin was written");
     }
     if (withTrajectory) at.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
+    if (withThermo) at.thermo = AppendFile(dir / "thermo.csv", thermoBytes);
     at.samples = AppendFile(dir / "samples.bin", samplesBytes);
     std::vector<Snapshot> samples;
     std::vector<SampleRecord> energies;

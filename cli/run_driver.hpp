@@ -2,8 +2,9 @@
 // The run loop shared by both engines (STYLE.md items 8-9): sampling in physical time is decided
 // here, outside the engines:
 //   equilibration  advanceTo(k·Δt_thermostat), then rescale v, ω to the scene temperature
-//   production     advanceTo(t_s) on the sample grid, record energies and a Snapshot, append
-//                  trajectory frames (and, with restarts on, the sample to samples.bin)
+//   production     advanceTo(t_s) on the sample grid, record energies, K_trans, the virial and a
+//                  Snapshot, append trajectory frames and thermo.csv rows (cli/thermo.hpp) and,
+//                  with restarts on, the sample to samples.bin
 //   restart points every output.restart_every_ps (cli/restart.hpp): the engine is rebuilt from
 //                  its bodies and checkpoint and restart.bin is written
 // CPU time is measured around the engine's advanceTo and rescale calls only, so output, analysis
@@ -18,11 +19,13 @@
 #include "cli/output_dir.hpp"
 #include "cli/provenance.hpp"
 #include "cli/restart.hpp"
+#include "cli/thermo.hpp"
 #include "core/engine.hpp"
 #include "core/output_file.hpp"
 #include "core/scene.hpp"
 #include "core/units.hpp"
 #include "core/xyz.hpp"
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -40,6 +43,7 @@ struct RunPlan {
     long equilibrationTicks = 0;     // whole thermostat intervals
     long productionSamples = 0;      // samples after the one at the start of production
     long trajectoryEvery = 0;        // in samples; 0 = none
+    long thermoEvery = 0;            // in samples; 0 = none
     long restartEvery = 0;           // in samples; 0 = none
     long restartEveryTicks = 0;      // in thermostat intervals, during equilibration
 
@@ -78,6 +82,9 @@ nlohmann::json vec3Json(const Vec3& v);
 void accumulateStatistics(nlohmann::json& production, const nlohmann::json& start,
                           const nlohmann::json& end);
 
+/// Collisions (DMD's events up + down + reflect) in engine statistics; 0 for SMD's.
+double collisionCount(const nlohmann::json& statistics);
+
 /// Merges the production's engine statistics into the summary and adds collisions_per_ps
 /// (DMD: up + down + reflect) and steps_per_ps (SMD) where those counters exist.
 void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& production,
@@ -85,12 +92,14 @@ void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& producti
 
 /// What a run gathered, handed from the engine loop to the summary.
 struct RunRecord {
-    std::vector<double> tPs, total, potential, kinetic; // per production sample; kJ/mol
+    std::vector<SampleRecord> records; // per production sample: energies, K_trans, virial, …
     std::vector<Snapshot> samples;
     Vec3 momentumInitial = Vec3::Zero(), momentumFinal = Vec3::Zero(); // internal units
     nlohmann::json production = nlohmann::json::object(); // engine statistics over production
     double simulatedPs = 0.0, cpuSeconds = 0.0, cpuEquilibration = 0.0;
     double sampleInterval = 0.0, kT = 0.0;
+    double volume = 0.0;                               // Å³
+    VirialKind virialKind = VirialKind::Instantaneous; // what records[k].virial holds
     int bodies = 0, dof = 0;
     std::string interruptedBy;         // the signal that stopped the run ("" if none)
     std::string interruptedIn;         // equilibration | production | analysis
@@ -101,8 +110,7 @@ struct RunRecord {
     std::vector<std::string> warnings; // from the scene (sceneWarnings)
 
     void add(const SampleRecord& e, Snapshot s) {
-        tPs.push_back(e.tPs), total.push_back(e.total), potential.push_back(e.potential);
-        kinetic.push_back(e.kinetic), samples.push_back(std::move(s));
+        records.push_back(e), samples.push_back(std::move(s));
     }
 };
 
@@ -123,14 +131,36 @@ template <class E> auto currentSystem(const E& engine) {
         return engine.system();
 }
 
+/// DMD keeps a running impulse virial (its forces are impulses), SMD the virial at the instant.
+template <class E> constexpr VirialKind virialKindOf() {
+    if constexpr (requires(const E& e) { e.impulseVirial(); })
+        return VirialKind::Impulse;
+    else
+        return VirialKind::Instantaneous;
+}
+template <class E> double virialOf(const E& engine) {
+    if constexpr (virialKindOf<E>() == VirialKind::Impulse)
+        return engine.impulseVirial();
+    else
+        return engine.virial();
+}
+
+/// The model's continuous U: DMD computes it apart from its terraced one; SMD's is its own.
+template <class E> double continuousPotentialOf(const E& engine) {
+    if constexpr (requires { engine.continuousPotentialEnergy(); })
+        return engine.continuousPotentialEnergy();
+    else
+        return engine.potentialEnergy();
+}
+
 /// The run's position and accumulators from a restart file: the samples (read back from
-/// samples.bin, after checking that both growing files still hold what the file says they did),
+/// samples.bin, after checking that the growing files still hold what the file says they did),
 /// the phase, and what the file carries over. Fills `run`; returns the open growing files.
 struct Resumed {
     bool inProduction = false;
     long tick = 0, sample = 0;
     double tStart = 0.0, cpuEquilibration = 0.0, cpuProduction = 0.0;
-    AppendFile trajectory, samples;
+    AppendFile trajectory, thermo, samples;
 };
 Resumed resumeRun(const nlohmann::json& restart, const RunPlan& plan,
                   const std::filesystem::path& dir, int bodies, bool withOrientation,
@@ -152,6 +182,9 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     run.sampleInterval = plan.sampleInterval;
     run.bodies = engine->snapshot().size();
     run.dof = degreesOfFreedom(rotationalDof, run.bodies);
+    run.volume = std::pow(engine->snapshot().boxLength, 3);
+    run.virialKind = virialKindOf<E>();
+    const ThermoLayout thermoLayout{run.virialKind, run.volume, run.dof, run.bodies};
     run.restartEveryPs = scene.output.restart_every_ps;
     run.warnings = sceneWarnings(scene);
     for (const auto& w : run.warnings)
@@ -171,18 +204,35 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     }
     bool& inProduction = at.inProduction;
     long &tick = at.tick, &sample = at.sample;
-    AppendFile &trajectory = at.trajectory, &samplesFile = at.samples;
+    AppendFile &trajectory = at.trajectory, &thermo = at.thermo, &samplesFile = at.samples;
     run.samples.reserve(plan.productionSamples + 1);
     nlohmann::json stretchStart; // engine statistics where the current stretch began
     if (inProduction) stretchStart = engine->statistics();
 
+    // Collisions since production began: the stretches before the current engine's, and its own.
+    auto productionCollisions = [&] {
+        if constexpr (virialKindOf<E>() == VirialKind::Impulse)
+            return collisionCount(run.production) + collisionCount(engine->statistics()) -
+                   collisionCount(stretchStart);
+        else
+            return 0.0;
+    };
     auto record = [&] {
         Snapshot s = engine->snapshot();
         const double u = engine->potentialEnergy(), kin = engine->kineticEnergy();
-        const SampleRecord e{units::toPs(engine->time() - at.tStart), u + kin, u, kin};
+        SampleRecord e{units::toPs(engine->time() - at.tStart), u + kin, u, kin};
+        e.kineticTranslational = engine->translationalKineticEnergy();
+        e.virial = virialOf(*engine);
+        e.collisions = productionCollisions();
+        e.time = engine->time();
         if (restarts) samplesFile.append(encodeSample(s, e));
         if (plan.trajectoryEvery > 0 && sample % plan.trajectoryEvery == 0)
             trajectory.append(formatXyzFrame(s, layout));
+        if (plan.thermoEvery > 0 && sample % plan.thermoEvery == 0) {
+            const SampleRecord* before =
+                sample > 0 ? &run.records[sample - plan.thermoEvery] : nullptr;
+            thermo.append(thermoRow(e, before, continuousPotentialOf(*engine), thermoLayout));
+        }
         run.add(e, std::move(s));
     };
     // A restart point: the engine is rebuilt from its bodies and checkpoint, exactly as a run
@@ -201,6 +251,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
             stretchStart = engine->statistics();
         }
         if (trajectory.isOpen()) trajectory.sync();
+        if (thermo.isOpen()) thermo.sync();
         if (samplesFile.isOpen()) samplesFile.sync();
         writeRestart(dir, {{"format", restartFormat},
                            {"reason", reason},
@@ -222,6 +273,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                            {"continuations", run.continuations},
                            {"files",
                             {{"trajectory_bytes", trajectory.isOpen() ? trajectory.size() : 0},
+                             {"thermo_bytes", thermo.isOpen() ? thermo.size() : 0},
                              {"samples_bytes", samplesFile.isOpen() ? samplesFile.size() : 0}}}});
         ++run.restartsWritten;
     };
@@ -255,6 +307,10 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
             stretchStart = engine->statistics();
             run.momentumInitial = engine->totalMomentum();
             if (plan.trajectoryEvery > 0) trajectory = AppendFile(dir / "trajectory.xyz", 0);
+            if (plan.thermoEvery > 0) {
+                thermo = AppendFile(dir / "thermo.csv", 0);
+                thermo.append(thermoHeader(thermoLayout));
+            }
             if (restarts) samplesFile = AppendFile(dir / "samples.bin", 0);
             record();
             // Production's start is a restart point: a kill then costs at most one interval

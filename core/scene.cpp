@@ -202,9 +202,16 @@ void requireOnGrid(const Reader& rd, const std::string& key, double value, const
     const double k = std::round(ratio);
     if (k >= 1.0 && std::abs(ratio - k) <= limits::gridTolerance * k) return;
     const double below = std::floor(ratio), above = std::ceil(ratio);
+    // Enough digits that the values named are valid (six would make 1000.008 ps "1000.01 ps").
+    auto valid = [&](double k) {
+        std::ostringstream o;
+        o.precision(15);
+        o << k * gridFs / fsPerUnit;
+        return o.str();
+    };
     std::string nearest;
-    if (below >= 1.0) nearest = Reader::fmt(below * gridFs / fsPerUnit) + " or ";
-    nearest += Reader::fmt(above * gridFs / fsPerUnit);
+    if (below >= 1.0) nearest = valid(below) + " or ";
+    nearest += valid(above);
     rd.fail(key, "must be a whole multiple of " + gridKey + " = " + Reader::fmt(gridFs) +
                      " fs, got " + Reader::fmt(value) + " " + unit + "; nearest valid: " + nearest +
                      " " + unit);
@@ -458,13 +465,21 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         requireOnGrid(rd, "run.thermostat_fs", s.run.thermostat_fs, "fs", 1.0, "smd.dt_fs",
                       s.smd.dt_fs);
     }
+    // Run lengths are whole numbers of their intervals: equilibration (if any) ends on a rescale
+    // and production on a sample, at the times asked for, not the last whole interval before.
+    if (s.run.equilibrate_ps > 0.0)
+        requireOnGrid(rd, "run.equilibrate_ps", s.run.equilibrate_ps, "ps", 1000.0,
+                      "run.thermostat_fs", s.run.thermostat_fs);
+    requireOnGrid(rd, "run.time_ps", s.run.time_ps, "ps", 1000.0, "run.sample_fs", s.run.sample_fs);
 
     const auto& out = rd.section(j, "output");
-    rd.onlyKeys(out, "output", {"trajectory_every_fs", "restart_every_ps"});
+    rd.onlyKeys(out, "output", {"trajectory_every_fs", "restart_every_ps", "thermo_every_fs"});
     s.output.trajectory_every_fs =
         rd.number(out, "output", "trajectory_every_fs", s.output.trajectory_every_fs, 0, 1e9);
     s.output.restart_every_ps =
         rd.number(out, "output", "restart_every_ps", s.output.restart_every_ps, 0, 1e9);
+    s.output.thermo_every_fs =
+        rd.number(out, "output", "thermo_every_fs", s.output.thermo_every_fs, 0, 1e9);
     // Output is written at samples: its intervals are whole numbers of them within the run.
     if (s.output.trajectory_every_fs > 0.0) {
         if (s.output.trajectory_every_fs > runFs)
@@ -472,6 +487,13 @@ Scene sceneFromJson(const json& input, const std::string& origin,
                                                       " fs" + runText +
                                                       ": no frame would be written");
         requireOnGrid(rd, "output.trajectory_every_fs", s.output.trajectory_every_fs, "fs", 1.0,
+                      "run.sample_fs", s.run.sample_fs);
+    }
+    if (s.output.thermo_every_fs > 0.0) {
+        if (s.output.thermo_every_fs > runFs)
+            rd.fail("output.thermo_every_fs", Reader::fmt(s.output.thermo_every_fs) + " fs" +
+                                                  runText + ": no thermo row would be written");
+        requireOnGrid(rd, "output.thermo_every_fs", s.output.thermo_every_fs, "fs", 1.0,
                       "run.sample_fs", s.run.sample_fs);
     }
     if (s.output.restart_every_ps > 0.0) {
@@ -618,7 +640,8 @@ json toJson(const Scene& s) {
                 {"sample_fs", s.run.sample_fs},
                 {"thermostat_fs", s.run.thermostat_fs}};
     j["output"] = {{"trajectory_every_fs", s.output.trajectory_every_fs},
-                   {"restart_every_ps", s.output.restart_every_ps}};
+                   {"restart_every_ps", s.output.restart_every_ps},
+                   {"thermo_every_fs", s.output.thermo_every_fs}};
     return j;
 }
 

@@ -80,14 +80,18 @@ struct Scene {
         double skin = 0.3; // Verlet skin, σ
     } smd;
 
-    // Intervals must fit in the run and lie on the grid: under SMD, sample_fs and thermostat_fs are
-    // whole multiples of smd.dt_fs (relative tolerance 1e-9 on the ratio); both are >= 0.01 fs.
+    // Every interval is honoured exactly or refused. Intervals must fit in the run and lie on the
+    // grid: under SMD, sample_fs and thermostat_fs are whole multiples of smd.dt_fs; time_ps is a
+    // whole multiple of sample_fs, and equilibrate_ps of thermostat_fs or 0 (relative tolerance
+    // limits::gridTolerance on each ratio); sample_fs and thermostat_fs are >= 0.01 fs. The
+    // defaults are whole multiples of 9 fs, so whole numbers of SMD steps at dt = 0.2, 0.5, 1, 1.8
+    // and 3 fs.
     struct Run {
-        double equilibrate_ps = 2.0;
-        double time_ps = 10.0;
-        double sample_fs = 9.0; // a whole number of SMD steps at dt = 0.2, 0.5, 1, 1.8 and 3 fs
+        double equilibrate_ps = 1.8; // 200 thermostat intervals
+        double time_ps = 9.0;        // 1000 samples
+        double sample_fs = 9.0;
         // Equilibration rescales v and ω to the scene temperature every thermostat_fs, over
-        // floor(equilibrate_ps / thermostat_fs) whole intervals; the default equals the default
+        // equilibrate_ps / thermostat_fs whole intervals; the default equals the default
         // sample_fs, so that default runs are unchanged, but sample_fs no longer sets it.
         double thermostat_fs = 9.0;
     } run;
@@ -96,6 +100,8 @@ struct Scene {
     struct Output {
         double trajectory_every_fs = 0.0; // 0 = no trajectory
         double restart_every_ps = 0.0;    // 0 = no restart files
+        // Rows of thermo.csv (energies, temperature, pressure; production only), 0 = none.
+        double thermo_every_fs = 0.0;
     } output;
 
     double kT() const { return state.temperature * potential.epsilon; } // kJ/mol

@@ -30,4 +30,13 @@ inline constexpr double kelvin(double kT) {
     return kT / kB;
 }
 
+/// The pressure unit, kJ/mol/Å³, in bar: 1e3 J / N_A / 1e-30 m³ / 1e5 Pa, with the exact
+/// Avogadro constant N_A = 6.02214076e23 /mol (SI 2019): 1e28 / N_A = 16605.39067173847 bar.
+inline constexpr double barPerKjPerMolPerA3 = 1e28 / 6.02214076e23;
+
+/// Pressure in bar of one in kJ/mol/Å³.
+inline constexpr double bar(double p) {
+    return p * barPerKjPerMolPerA3;
+}
+
 } // namespace terrace::units

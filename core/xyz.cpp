@@ -14,7 +14,11 @@ namespace {
 
 struct PartialFrame {}; // thrown inside readTrajectory only, to drop a cut-off last frame
 
-const char* columns(TrajectoryLayout layout) {
+constexpr TrajectoryLayout layouts[] = {TrajectoryLayout::Sphere, TrajectoryLayout::Rod,
+                                        TrajectoryLayout::Top};
+
+/// The columns of a layout before the body column, as files before it had them (species S, R, T).
+const char* legacyColumns(TrajectoryLayout layout) {
     switch (layout) {
     case TrajectoryLayout::Sphere:
         return "species:S:1:pos:R:3:velo:R:3";
@@ -24,6 +28,15 @@ const char* columns(TrajectoryLayout layout) {
         return "species:S:1:pos:R:3:velo:R:3:orientation:R:4:omega:R:3";
     }
     return "";
+}
+
+std::string columns(TrajectoryLayout layout) {
+    return std::string(legacyColumns(layout)) + ":body:I:1";
+}
+
+/// The body column's value: the rotational degrees of freedom, which name the kind.
+int bodyCode(TrajectoryLayout layout) {
+    return layout == TrajectoryLayout::Sphere ? 0 : (layout == TrajectoryLayout::Rod ? 2 : 3);
 }
 
 void put(std::ostream& out, const Vec3& v) {
@@ -58,9 +71,7 @@ void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout
         << " pbc=\"T T T\" units=\"pos:A velo:A/ps omega:rad/ps Time:fs\"\n";
     const double perPs = 1.0 / units::psPerTimeUnit; // time units -> ps
     for (int i = 0; i < f.size(); ++i) {
-        out << (layout == TrajectoryLayout::Sphere ? "S"
-                : layout == TrajectoryLayout::Rod  ? "R"
-                                                   : "T");
+        out << 'X'; // ASE's dummy element (readers take species for elements); kind: body
         put(out, f.position[i]);
         put(out, f.velocity[i] * perPs);
         if (layout == TrajectoryLayout::Rod) put(out, f.axis[i]);
@@ -69,7 +80,7 @@ void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout
             out << ' ' << q.w() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z();
         }
         if (layout != TrajectoryLayout::Sphere) put(out, f.omega[i] * perPs);
-        out << '\n';
+        out << ' ' << bodyCode(layout) << '\n';
     }
     out.precision(precision);
 }
@@ -138,16 +149,17 @@ std::vector<Snapshot> readTrajectory(const std::string& path, std::string* parti
             } catch (const std::logic_error&) {
                 fail("malformed Time=" + time, !headerWhole);
             }
+            // Files written before the body column (species S, R, T) are read as well.
             const std::string props = field(line, "Properties");
-            TrajectoryLayout layout;
-            if (props == columns(TrajectoryLayout::Rod))
-                layout = TrajectoryLayout::Rod;
-            else if (props == columns(TrajectoryLayout::Top))
-                layout = TrajectoryLayout::Top;
-            else if (props == columns(TrajectoryLayout::Sphere))
-                layout = TrajectoryLayout::Sphere;
-            else
-                fail("unsupported Properties=" + props, !headerWhole);
+            TrajectoryLayout layout = TrajectoryLayout::Sphere;
+            bool known = false, bodyColumn = false;
+            for (const TrajectoryLayout l : layouts)
+                if (props == columns(l) || props == legacyColumns(l)) {
+                    layout = l;
+                    known = true;
+                    bodyColumn = props == columns(l);
+                }
+            if (!known) fail("unsupported Properties=" + props, !headerWhole);
             for (long i = 0; i < n; ++i) {
                 const bool whole = next("frame ends early");
                 std::istringstream row(line);
@@ -163,7 +175,9 @@ std::vector<Snapshot> readTrajectory(const std::string& path, std::string* parti
                     s = q * Vec3::UnitZ();
                 }
                 if (layout != TrajectoryLayout::Sphere) row >> w.x() >> w.y() >> w.z();
-                if (!row) fail("malformed body line", !whole);
+                int body = bodyCode(layout);
+                if (bodyColumn) row >> body;
+                if (!row || body != bodyCode(layout)) fail("malformed body line", !whole);
                 if (!whole) fail("the body line has no end", true);
                 f.position.push_back(r);
                 f.velocity.push_back(v / perPs);

@@ -1,15 +1,24 @@
 #pragma once
-// Trajectories as extended XYZ, readable by OVITO: one frame per block of N+2 lines,
+// Trajectories as extended XYZ, readable by OVITO and ASE: one frame per block of N+2 lines,
 //     N
 //     Lattice="L 0 0 0 L 0 0 0 L" Properties=<columns> Time=<fs> pbc="T T T" units="..."
-//     <species> <columns...>
-// Columns: rods        species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3
-//          tops        species:S:1:pos:R:3:velo:R:3:orientation:R:4:omega:R:3 (quaternion w x y z,
-//                      body -> lab)
-//          spheres     species:S:1:pos:R:3:velo:R:3
+//     X <columns...> <body>
+// Columns: rods        species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3:body:I:1
+//          tops        species:S:1:pos:R:3:velo:R:3:orientation:R:4:omega:R:3:body:I:1
+//                      (quaternion w x y z, body -> lab)
+//          spheres     species:S:1:pos:R:3:velo:R:3:body:I:1
 // pos in Å (unwrapped centres of mass, so that displacements survive the round trip), velo in
 // Å/ps, omega in rad/ps, Time in fs. Numbers are written with 17 significant digits: positions and
 // axes read back bit for bit, velocities and times to within the round-off of the unit conversion.
+// Readers take the species column for chemical elements (ASE fails on an unknown one), so every
+// body is X, ASE's dummy element (atomic number 0; to OVITO a type name like any other), and its
+// kind is the integer body column: its rotational degrees of freedom, 0 sphere, 2 rod (linear
+// rotor), 3 top. An integer, because OVITO skips
+// string columns other than the species; not "type", which OVITO takes for the species. ASE
+// renames only species, pos, Z and charge; velo, axis, orientation, omega and body stay arrays of
+// those names (OVITO maps velo, omega and orientation to Velocity, Angular Velocity and
+// Orientation, whose quaternion it orders x y z w). readTrajectory also reads the files written
+// before the body column (species S, R or T and no body column).
 #include "core/snapshot.hpp"
 #include <iosfwd>
 #include <stdexcept>

@@ -103,3 +103,17 @@ TEST(BlockAverage, EmptyBlocksDoNotCountAndOneBlockGivesNoError) {
     const std::vector<double> one{1.0, 0.0};
     EXPECT_TRUE(std::isnan(blockError(std::vector<double>{5.0, 7.0}, one, 5.0)));
 }
+
+TEST(BlockAverage, ATimeSeriesIsCutIntoContiguousBlocks) {
+    // 8 samples in 4 blocks of 2: block means 1.5, 3.5, 5.5, 7.5; mean 4.5, err² = 20 / (4·3)
+    const std::vector<double> x{1, 2, 3, 4, 5, 6, 7, 8};
+    const Estimate e = blockMean(x, 4);
+    EXPECT_DOUBLE_EQ(e.mean, 4.5);
+    EXPECT_DOUBLE_EQ(e.err, std::sqrt(20.0 / 12.0));
+    // 3 samples in 8 blocks: 5 blocks empty, each sample its own block.
+    const Estimate few = blockMean(std::vector<double>{1.0, 2.0, 6.0}, 8);
+    EXPECT_DOUBLE_EQ(few.mean, 3.0);
+    EXPECT_DOUBLE_EQ(few.err, std::sqrt(14.0 / 6.0)); // Σ(x − 3)² / (3·2)
+    EXPECT_TRUE(std::isnan(blockMean(std::vector<double>{2.0}, 8).err));
+    EXPECT_THROW(blockMean(std::vector<double>{}, 8), std::invalid_argument);
+}

@@ -69,7 +69,7 @@ TEST(Restart, SamplesComeBackBitForBit) {
     const Scene scene = smallScene("asymmetric");
     const auto sys = buildInitialState<AsymmetricTop>(scene, rodPotential(scene));
     const Snapshot a = makeSnapshot(sys, 0.25);
-    const cli::SampleRecord e{0.125, -3.5, -10.25, 6.75};
+    const cli::SampleRecord e{0.125, -3.5, -10.25, 6.75, 4.5, -31.25, 1234.0, a.time};
     const std::string bytes = cli::encodeSample(a, e) + cli::encodeSample(a, e);
     std::vector<Snapshot> samples;
     std::vector<cli::SampleRecord> energies;
@@ -77,6 +77,10 @@ TEST(Restart, SamplesComeBackBitForBit) {
     ASSERT_EQ(samples.size(), 2u);
     EXPECT_EQ(samples[1].time, a.time);
     EXPECT_EQ(energies[1].potential, e.potential);
+    EXPECT_EQ(energies[1].kineticTranslational, e.kineticTranslational); // the pressure's terms
+    EXPECT_EQ(energies[1].virial, e.virial);
+    EXPECT_EQ(energies[1].collisions, e.collisions);
+    EXPECT_EQ(energies[1].time, a.time);
     for (int i = 0; i < a.size(); ++i) {
         EXPECT_EQ(samples[1].position[i], a.position[i]);
         EXPECT_EQ(samples[1].omega[i], a.omega[i]);
@@ -211,23 +215,46 @@ TEST(Restart, ADmdEngineContinuesItsHorizonStream) {
     EXPECT_NE(a.statistics()["events"]["virtual"], b.statistics()["events"]["virtual"]);
 }
 
+// A restart file of another format (version 1's samples lack the pressure's terms) is named as
+// such, not read as damaged or misread.
+TEST(Restart, ARestartFileOfAnotherFormatIsNamed) {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terrace-format-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    cli::writeRestart(dir, {{"format", "terrace restart 1"}, {"phase", "production"}});
+    try {
+        cli::readRestart(dir);
+        FAIL() << "expected an IoError";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  (dir / "restart.bin").string() +
+                      ": written by another version of terrace ('terrace restart 1'; this one "
+                      "reads '" +
+                      cli::restartFormat + "'): start the run again");
+    }
+    cli::writeRestart(dir, {{"format", cli::restartFormat}});
+    EXPECT_EQ(cli::readRestart(dir).at("format"), cli::restartFormat);
+    std::filesystem::remove_all(dir);
+}
+
 // A restart file without one of its keys is named as damaged, with the key, before anything is
 // cut back.
 TEST(Restart, ADamagedRestartFileIsNamed) {
     const auto dir =
         std::filesystem::temp_directory_path() / ("terrace-damaged-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
-    nlohmann::json restart = {{"phase", "production"},
-                              {"tick", 0},
-                              {"sample", 3},
-                              {"t_start", 0.0},
-                              {"cpu_seconds", 1.0},
-                              {"cpu_seconds_equilibration", 0.0},
-                              {"production_statistics", nlohmann::json::object()},
-                              {"momentum_initial", {0.0, 0.0, 0.0}},
-                              {"restarts_written", 1},
-                              {"continuations", 0},
-                              {"files", {{"trajectory_bytes", 0}, {"samples_bytes", 100}}}};
+    nlohmann::json restart = {
+        {"phase", "production"},
+        {"tick", 0},
+        {"sample", 3},
+        {"t_start", 0.0},
+        {"cpu_seconds", 1.0},
+        {"cpu_seconds_equilibration", 0.0},
+        {"production_statistics", nlohmann::json::object()},
+        {"momentum_initial", {0.0, 0.0, 0.0}},
+        {"restarts_written", 1},
+        {"continuations", 0},
+        {"files", {{"trajectory_bytes", 0}, {"thermo_bytes", 0}, {"samples_bytes", 100}}}};
     restart.erase("tick");
     cli::RunRecord run;
     const cli::RunPlan plan = cli::planRun(defaultScene());

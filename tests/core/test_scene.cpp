@@ -272,7 +272,7 @@ TEST(Scene, DuplicateKeysAreRefusedAtAnyDepth) {
     EXPECT_EQ(loadError("terrace-dup-4.json", R"({"dmd": {"dV": 0.5}, "dmd": {"queue": "heap"}})"),
               ": dmd: duplicate key");
     // The same key in different objects, and an override of a key in the file, are not duplicates.
-    EXPECT_EQ(loadError("terrace-dup-5.json", R"({"dmd": {"dV": 0.5}, "run": {"time_ps": 1}})",
+    EXPECT_EQ(loadError("terrace-dup-5.json", R"({"dmd": {"dV": 0.5}, "run": {"time_ps": 0.9}})",
                         {"dmd.dV=1"}),
               "");
 }
@@ -306,11 +306,15 @@ TEST(Scene, IntervalsLongerThanTheRunAreRefused) {
               "equilibration would never rescale");
     EXPECT_EQ(errorOf({{"run", {{"equilibrate_ps", 0}}}}), ""); // no equilibration, no thermostat
     EXPECT_EQ(errorOf({{"output", {{"trajectory_every_fs", 20000}}}}),
-              "test.json: output.trajectory_every_fs: 20000 fs is longer than run.time_ps = 10 ps: "
+              "test.json: output.trajectory_every_fs: 20000 fs is longer than run.time_ps = 9 ps: "
               "no frame would be written");
     EXPECT_EQ(errorOf({{"output", {{"restart_every_ps", 11}}}}),
-              "test.json: output.restart_every_ps: 11 ps is longer than run.time_ps = 10 ps: no "
+              "test.json: output.restart_every_ps: 11 ps is longer than run.time_ps = 9 ps: no "
               "restart file would be written");
+    EXPECT_EQ(errorOf({{"output", {{"thermo_every_fs", 9009}}}}),
+              "test.json: output.thermo_every_fs: 9009 fs is longer than run.time_ps = 9 ps: "
+              "no thermo row would be written");
+    EXPECT_EQ(errorOf({{"output", {{"thermo_every_fs", 9000}}}}), ""); // 1000 samples
 }
 
 TEST(Scene, IntervalsLieOnTheGrid) {
@@ -337,6 +341,56 @@ TEST(Scene, IntervalsLieOnTheGrid) {
               "test.json: output.restart_every_ps: must be a whole multiple of run.sample_fs = 9 "
               "fs, got 0.01 ps; nearest valid: 0.009 or 0.018 ps");
     EXPECT_EQ(errorOf({{"output", {{"restart_every_ps", 0.9}}}}), "");
+    EXPECT_EQ(errorOf({{"output", {{"thermo_every_fs", 20}}}}),
+              "test.json: output.thermo_every_fs: must be a whole multiple of run.sample_fs = 9 "
+              "fs, got 20 fs; nearest valid: 18 or 27 fs");
+    EXPECT_EQ(errorOf({{"output", {{"thermo_every_fs", 1e-9}}}}),
+              "test.json: output.thermo_every_fs: must be a whole multiple of run.sample_fs = 9 "
+              "fs, got 1e-09 fs; nearest valid: 9 fs");
+    EXPECT_EQ(errorOf({{"output", {{"thermo_every_fs", 90}}}}), "");
+}
+
+// What the user asks for is what they get: a run length that is not a whole number of its
+// intervals is refused with the nearest valid lengths, not cut to the last whole interval.
+TEST(Scene, RunLengthsAreWholeNumbersOfTheirIntervals) {
+    const Scene d = defaultScene();
+    EXPECT_DOUBLE_EQ(d.run.equilibrate_ps, 1.8);
+    EXPECT_DOUBLE_EQ(d.run.time_ps, 9.0);
+    EXPECT_EQ(errorOf(json::object()), "");
+    EXPECT_EQ(errorOf({{"engine", "smd"}}), ""); // 9 fs = 5 steps of 1.8 fs
+    EXPECT_EQ(errorOf({{"run", {{"time_ps", 10}}}}),
+              "test.json: run.time_ps: must be a whole multiple of run.sample_fs = 9 fs, got 10 "
+              "ps; nearest valid: 9.999 or 10.008 ps");
+    EXPECT_EQ(errorOf({{"run", {{"equilibrate_ps", 1}}}}),
+              "test.json: run.equilibrate_ps: must be a whole multiple of run.thermostat_fs = 9 "
+              "fs, got 1 ps; nearest valid: 0.999 or 1.008 ps");
+    EXPECT_EQ(errorOf({{"run", {{"equilibrate_ps", 0.5}, {"thermostat_fs", 18}}}}),
+              "test.json: run.equilibrate_ps: must be a whole multiple of run.thermostat_fs = 18 "
+              "fs, got 0.5 ps; nearest valid: 0.486 or 0.504 ps");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"run", {{"time_ps", 2}}}}),
+              "test.json: run.time_ps: must be a whole multiple of run.sample_fs = 9 fs, got 2 "
+              "ps; nearest valid: 1.998 or 2.007 ps");
+    EXPECT_EQ(errorOf({{"run", {{"time_ps", 1000}}}}), // the values named are valid ones
+              "test.json: run.time_ps: must be a whole multiple of run.sample_fs = 9 fs, got 1000 "
+              "ps; nearest valid: 999.999 or 1000.008 ps");
+    // Exact multiples pass, though 9 / 0.009 and 1.8 / 0.009 are not exact in binary.
+    EXPECT_EQ(errorOf({{"run", {{"time_ps", 9}, {"sample_fs", 9}}}}), "");
+    EXPECT_EQ(errorOf({{"run", {{"equilibrate_ps", 1.8}, {"thermostat_fs", 9}}}}), "");
+    EXPECT_EQ(errorOf({{"run", {{"time_ps", 9.999}, {"equilibrate_ps", 0.999}}}}), "");
+    EXPECT_EQ(errorOf({{"run", {{"time_ps", 0.1}, {"sample_fs", 0.5}}}}), "");
+    // No equilibration is no interval at all; the thermostat interval then constrains nothing.
+    EXPECT_EQ(errorOf({{"run", {{"equilibrate_ps", 0}}}}), "");
+    EXPECT_EQ(errorOf({{"run", {{"equilibrate_ps", 0}, {"thermostat_fs", 7}}}}), "");
+    // The other keys say why first: an interval longer than the run, one off SMD's grid.
+    EXPECT_NE(errorOf({{"run", {{"time_ps", 0.005}}}}).find("run.sample_fs: 9 fs is longer"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"engine", "smd"}, {"run", {{"sample_fs", 10}, {"time_ps", 1}}}})
+                  .find("run.sample_fs: must be a whole multiple of smd.dt_fs"),
+              std::string::npos);
+    // Overrides are validated the same way.
+    EXPECT_EQ(errorOf(json::object(), {"run.time_ps=0.5"}),
+              "test.json: run.time_ps: must be a whole multiple of run.sample_fs = 9 fs, got 0.5 "
+              "ps; nearest valid: 0.495 or 0.504 ps");
 }
 
 TEST(Scene, ThermostatAndRestartKeys) {
@@ -354,6 +408,12 @@ TEST(Scene, ThermostatAndRestartKeys) {
               "test.json: run.thermostat_fs: must be > 0, got 0");
     EXPECT_EQ(errorOf({{"output", {{"restart_every_ps", -1}}}}),
               "test.json: output.restart_every_ps: must be >= 0, got -1");
+    EXPECT_DOUBLE_EQ(d.output.thermo_every_fs, 0.0); // no thermo.csv unless asked for
+    const Scene t = sceneFromJson(json::object(), "t", {"output.thermo_every_fs=90"});
+    EXPECT_EQ(toJson(t)["output"]["thermo_every_fs"], 90.0);
+    EXPECT_EQ(toJson(sceneFromJson(toJson(t), "again")), toJson(t));
+    EXPECT_EQ(errorOf({{"output", {{"thermo_every_fs", -9}}}}),
+              "test.json: output.thermo_every_fs: must be >= 0, got -9");
 }
 
 TEST(Scene, FloorsOfHorizonAndIntervals) {

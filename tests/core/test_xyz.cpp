@@ -64,14 +64,75 @@ TEST(Xyz, HeaderIsOvitoExtendedXyz) {
     std::ostringstream out;
     writeXyzFrame(out, makeSnapshot(sys, 0.1), TrajectoryLayout::Rod);
     std::istringstream in(out.str());
-    std::string count, header;
+    std::string count, header, body;
     std::getline(in, count);
     std::getline(in, header);
+    std::getline(in, body);
     EXPECT_EQ(count, "512");
     EXPECT_NE(header.find("Lattice=\""), std::string::npos);
-    EXPECT_NE(header.find("Properties=species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3"),
+    EXPECT_NE(header.find("Properties=species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3:body:I:1 "),
               std::string::npos);
     EXPECT_NE(header.find("Time=10 "), std::string::npos); // 0.1 time units = 10 fs
+    // Species X (a dummy element to ASE, which takes the column for elements), the kind in the
+    // body column at the end: its rotational degrees of freedom.
+    EXPECT_EQ(body.substr(0, 2), "X ");
+    EXPECT_EQ(body.substr(body.size() - 2), " 2");
+}
+
+// The species is X for every kind and the body column names the kind.
+TEST(Xyz, EveryKindIsSpeciesXWithItsBodyColumn) {
+    Snapshot f;
+    f.boxLength = 10.0;
+    f.position = {Vec3(1, 2, 3)};
+    f.velocity = {Vec3(0.01, 0.02, 0.03)};
+    f.axis = {Vec3::UnitZ()};
+    f.omega = {Vec3(0.1, 0.0, 0.0)};
+    f.orientation = {Quat::Identity()};
+    const std::pair<TrajectoryLayout, std::string> kinds[] = {
+        {TrajectoryLayout::Sphere, "Properties=species:S:1:pos:R:3:velo:R:3:body:I:1 "},
+        {TrajectoryLayout::Rod,
+         "Properties=species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3:body:I:1 "},
+        {TrajectoryLayout::Top,
+         "Properties=species:S:1:pos:R:3:velo:R:3:orientation:R:4:omega:R:3:body:I:1 "}};
+    const std::string codes[] = {"0", "2", "3"};
+    for (int k = 0; k < 3; ++k) {
+        const std::string text = formatXyzFrame(f, kinds[k].first);
+        EXPECT_NE(text.find(kinds[k].second), std::string::npos) << text;
+        const std::string line = text.substr(text.rfind('\n', text.size() - 2) + 1);
+        EXPECT_EQ(line.substr(0, 2), "X ") << line;
+        EXPECT_EQ(line.substr(line.size() - 3), " " + codes[k] + "\n") << line;
+    }
+}
+
+// Files written before the body column (species S, R, T) still read, `terrace analyse` on old
+// output included; a body column that disagrees with the layout is an error.
+TEST(Xyz, FilesWithoutTheBodyColumnStillRead) {
+    const auto path = tempFile("legacy.xyz");
+    std::ofstream(path)
+        << "2\nLattice=\"10 0 0 0 10 0 0 0 10\" "
+           "Properties=species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3 Time=9 pbc=\"T T T\"\n"
+           "R 1 2 3 10 0 0 0 0 1 0 0 0\nR 4 5 6 0 10 0 1 0 0 0 0 0\n"
+           "1\nLattice=\"10 0 0 0 10 0 0 0 10\" "
+           "Properties=species:S:1:pos:R:3:velo:R:3:orientation:R:4:omega:R:3 Time=18\n"
+           "T 1 2 3 0 0 0 1 0 0 0 0 0 0\n"
+           "1\nLattice=\"10 0 0 0 10 0 0 0 10\" Properties=species:S:1:pos:R:3:velo:R:3 Time=27\n"
+           "S 7 8 9 0 0 0\n";
+    const auto frames = readTrajectory(path.string());
+    ASSERT_EQ(frames.size(), 3u);
+    EXPECT_EQ(frames[0].position[1], Vec3(4, 5, 6));
+    EXPECT_EQ(frames[0].axis[1], Vec3::UnitX());
+    EXPECT_EQ(frames[1].axis[0], Vec3::UnitZ());
+    EXPECT_EQ(frames[2].position[0], Vec3(7, 8, 9));
+    std::ofstream(path) << "1\nLattice=\"10 0 0 0 10 0 0 0 10\" "
+                           "Properties=species:S:1:pos:R:3:velo:R:3:body:I:1 Time=0\n"
+                           "X 1 2 3 0 0 0 2\n";
+    try {
+        readTrajectory(path.string());
+        FAIL() << "expected a TrajectoryError";
+    } catch (const TrajectoryError& e) {
+        EXPECT_NE(std::string(e.what()).find(":3: malformed body line"), std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(Xyz, MalformedFilesAreNamedErrors) {
@@ -128,8 +189,8 @@ TEST(Xyz, ALastFrameCutShortIsDroppedWhenAskedFor) {
 // Only the last frame may be cut: a broken frame followed by more lines is still an error.
 TEST(Xyz, ABrokenFrameInsideTheFileIsStillAnError) {
     std::string text = threeFrames().first;
-    const std::size_t line = text.find("\nR ", 1000);
-    text.replace(line + 1, 1, "R x"); // a body line of the first frame no longer parses
+    const std::size_t line = text.find("\nX ", 1000);
+    text.replace(line + 1, 1, "X x"); // a body line of the first frame no longer parses
     const auto path = tempFile("broken.xyz");
     std::ofstream(path) << text;
     std::string partial;

@@ -18,7 +18,8 @@ echo "make quick: $(($(date +%s) - start)) s"
 for f in fig1/fig1.png fig2/fig2.png fig3/fig3.png fig4/fig4.png fig5/fig5.png \
     table/efficiency.csv table/queues.csv tradeoff/tradeoff-dense.png tradeoff/tradeoff-gas.png \
     density/density.png extremes/extremes.csv versus/versus.png versus/versus.txt machine.txt \
-    runs.csv; do
+    runs.csv convergence/convergence.png convergence/convergence-rods.csv \
+    convergence/convergence-lj.csv convergence/orders.csv; do
     [ -s "$out/$f" ] || fail "missing or empty $f"
 done
 # PNG files start with the PNG signature.
@@ -40,6 +41,12 @@ awk -F, -v lim=$dmd_energy_limit 'NR > 1 {
 for s in dense gas; do
     [ "$(tail -n +2 "$out/tradeoff/tradeoff-$s.csv" | wc -l)" -eq 11 ] || fail "tradeoff-$s rows"
 done
+# Convergence: the reference and five ΔV per system, one order per quantity and system.
+for s in rods lj; do
+    [ "$(tail -n +2 "$out/convergence/convergence-$s.csv" | wc -l)" -eq 6 ] ||
+        fail "convergence-$s rows"
+done
+[ "$(tail -n +2 "$out/convergence/orders.csv" | wc -l)" -eq 14 ] || fail "orders rows"
 # Every extreme combination is listed (finished or with its reason).
 [ "$(tail -n +2 "$out/extremes/extremes.csv" | wc -l)" -eq 8 ] || fail "extremes rows"
 

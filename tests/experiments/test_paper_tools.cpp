@@ -1,5 +1,11 @@
 // The numeric helpers behind Makefile.paper: replica statistics, error norms, summary rows, the
-// fig1 potential map and the fig2 root-search trace.
+// fig1 potential map, the fig2 root-search trace, the orders of convergence and the continuous
+// model's energy and pressure on a trajectory.
+#include "core/lj_potential.hpp"
+#include "core/scene.hpp"
+#include "core/xyz.hpp"
+#include "experiments/tools/configurational.hpp"
+#include "experiments/tools/convergence.hpp"
 #include "experiments/tools/potential_map.hpp"
 #include "experiments/tools/replicas.hpp"
 #include "experiments/tools/search_trace.hpp"
@@ -156,5 +162,169 @@ TEST(SearchTrace, TheRootLiesOnTheLevelAfterTheGridPoints) {
     EXPECT_NEAR(uRoot, level, levelTolerance);
     EXPECT_GT(tRoot, grid.columns[0][grid.rows() - 2]);
     EXPECT_LE(tRoot, grid.columns[0][grid.rows() - 1]);
+    fs::remove_all(d);
+}
+
+TEST(ReplicaStatistics, MeanAndStandardError) {
+    const auto m = ex::replicaStatistics({1.0, 2.0, 3.0});
+    EXPECT_NEAR(m.mean, 2.0, roundOff);
+    EXPECT_NEAR(m.error, std::sqrt(1.0 / 3.0), roundOff); // sample variance 1, R = 3
+    EXPECT_TRUE(std::isnan(ex::replicaStatistics({4.0}).error)) << "one run: error unknown";
+    EXPECT_THROW(ex::replicaStatistics({}), std::invalid_argument);
+    EXPECT_THROW(ex::replicaStatistics({1.0, NAN}), std::invalid_argument);
+}
+
+namespace {
+/// e = 0.3 ΔV^p at ΔV = 2 … ⅛ with a relative uncertainty rel (σ_ln e = rel).
+std::vector<ex::ConvergencePoint> powerLaw(double p, double rel) {
+    std::vector<ex::ConvergencePoint> points;
+    for (double dV : {2.0, 1.0, 0.5, 0.25, 0.125}) {
+        const double e = 0.3 * std::pow(dV, p);
+        points.push_back({dV, e, rel * e});
+    }
+    return points;
+}
+double spreadOfLogs(const std::vector<ex::ConvergencePoint>& points) {
+    double mean = 0.0, ss = 0.0;
+    for (const auto& q : points)
+        mean += std::log(q.dV) / points.size();
+    for (const auto& q : points)
+        ss += (std::log(q.dV) - mean) * (std::log(q.dV) - mean);
+    return ss;
+}
+} // namespace
+
+TEST(OrderFit, AnExactPowerLawGivesItsExponentAndTheWeightedError) {
+    const auto points = powerLaw(1.5, 0.05);
+    const ex::OrderFit f = ex::fitOrder(points);
+    EXPECT_EQ(f.points, 5);
+    EXPECT_NEAR(f.order, 1.5, 1e-12);
+    EXPECT_NEAR(f.logPrefactor, std::log(0.3), 1e-12);
+    EXPECT_NEAR(f.chi2PerDof, 0.0, 1e-20);
+    // Equal weights 1/0.05²: σ_p² = S/Δ = σ_y² / Σ(x − x̄)² (Numerical Recipes eq. 15.2.9).
+    EXPECT_NEAR(f.orderError, 0.05 / std::sqrt(spreadOfLogs(points)), 1e-12);
+}
+
+TEST(OrderFit, PointsWithinTheFloorAreLeftOut) {
+    auto points = powerLaw(2.0, 0.1);
+    points.push_back({0.0625, 1e-3, 0.6e-3}); // e < 2σ: noise, and far off the line
+    points.push_back({0.0, 5.0, 0.1});        // the reference's row takes no part
+    EXPECT_FALSE(ex::isResolved(points[5]));
+    EXPECT_TRUE(ex::isResolved(points[0]));
+    EXPECT_FALSE(ex::isResolved({1.0, NAN, 0.1}));
+    const ex::OrderFit f = ex::fitOrder(points);
+    EXPECT_EQ(f.points, 5);
+    EXPECT_NEAR(f.order, 2.0, 1e-12);
+    const ex::OrderFit none = ex::fitOrder({points[0], points[5]});
+    EXPECT_EQ(none.points, 1);
+    EXPECT_TRUE(std::isnan(none.order) && std::isnan(none.orderError));
+}
+
+TEST(OrderFit, ScatterBeyondTheErrorsWidensTheOrderByTheBirgeRatio) {
+    // ln e alternately ±0.2 off a line of slope 1, with σ_ln e = 0.02: χ²/(n − 2) ≫ 1.
+    std::vector<ex::ConvergencePoint> points;
+    double sign = 1.0;
+    for (double dV : {2.0, 1.0, 0.5, 0.25}) {
+        const double e = dV * std::exp(0.2 * sign);
+        points.push_back({dV, e, 0.02 * e});
+        sign = -sign;
+    }
+    const ex::OrderFit f = ex::fitOrder(points);
+    ASSERT_EQ(f.points, 4);
+    EXPECT_GT(f.chi2PerDof, 1.0);
+    const double unscaled = 0.02 / std::sqrt(spreadOfLogs(points));
+    EXPECT_NEAR(f.orderError, unscaled * std::sqrt(f.chi2PerDof), 1e-12);
+    // The residuals, refitted by hand: χ² = Σ ((y − a − p x)/σ)².
+    double chi2 = 0.0;
+    for (const auto& q : points) {
+        const double r = (std::log(q.error) - f.logPrefactor - f.order * std::log(q.dV)) / 0.02;
+        chi2 += r * r;
+    }
+    EXPECT_NEAR(f.chi2PerDof, chi2 / 2.0, 1e-9);
+}
+
+TEST(OrderFit, TablesGetFitColumnsAndOneRowPerQuantity) {
+    const fs::path d = scratch("orders");
+    const auto law = powerLaw(1.0, 0.05);
+    CsvTable t{{"dV_kT", "U", "err_U", "sigma_U", "err_g", "sigma_g"}, {}};
+    t.columns.assign(6, {});
+    auto row = [&](double dV, double u, double e, double s, double eg, double sg) {
+        const double values[] = {dV, u, e, s, eg, sg};
+        for (int c = 0; c < 6; ++c)
+            t.columns[c].push_back(values[c]);
+    };
+    row(0.0, -9.0, NAN, NAN, NAN, NAN); // the reference
+    for (const auto& q : law)
+        row(q.dV, -9.0 + q.error, q.error, q.sigma, 0.01, 0.02); // g: all within the floor
+    const auto rows = ex::fitOrders(t, (d / "out.csv").string());
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].substr(0, rows[0].find(',', 2)), "U,1");
+    EXPECT_EQ(rows[1], "g,nan,nan,nan,nan,0");
+    const CsvTable out = terrace::analysis::readCsv(d / "out.csv");
+    const std::vector<std::string> header{"dV_kT",   "U",       "err_U",       "sigma_U",
+                                          "fit_U",   "order_U", "order_U_err", "err_g",
+                                          "sigma_g", "fit_g",   "order_g",     "order_g_err"};
+    EXPECT_EQ(out.header, header);
+    EXPECT_TRUE(std::isnan(out.columns[4][0])) << "the reference is neither fitted nor left out";
+    for (int i = 1; i < out.rows(); ++i) {
+        EXPECT_EQ(out.columns[4][i], 1.0);
+        EXPECT_EQ(out.columns[9][i], 0.0);
+        EXPECT_TRUE(std::isnan(out.columns[10][i])) << "no local order within the floor";
+        if (i + 1 < out.rows()) {
+            // e ∝ ΔV: halving ΔV halves e, p = 1, σ_p = sqrt(2) · 0.05 / ln 2.
+            EXPECT_NEAR(out.columns[5][i], 1.0, 1e-12);
+            EXPECT_NEAR(out.columns[6][i], std::sqrt(2.0) * 0.05 / std::log(2.0), 1e-12);
+        } else {
+            EXPECT_TRUE(std::isnan(out.columns[5][i])) << "the finest ΔV has no ΔV/2";
+        }
+    }
+    fs::remove_all(d);
+}
+
+TEST(Configurational, TwoSpheresGiveTheirPairEnergyAndVirial) {
+    const fs::path d = scratch("configurational");
+    terrace::Scene scene = terrace::defaultScene();
+    scene.body.kind = "sphere";
+    scene.body.mass = 2.0;
+    scene.body.inertia = terrace::Vec3::Zero();
+    scene.potential.kind = "lj";
+    scene.potential.epsilon = 1.5;
+    scene.potential.sigma = 1.0;
+    scene.state.n = 2;
+    scene.state.density = 0.01;
+    std::ofstream(d / "scene.json") << terrace::toJson(scene).dump(2);
+    // Two frames: a pair 1.2σ apart (inside r_l = 2.5σ: the bare LJ) moving apart at 0.5 Å per
+    // time unit each, then 2.0σ apart at rest, across the box's periodic boundary.
+    const double L = 10.0;
+    terrace::Snapshot a, b;
+    a.boxLength = b.boxLength = L;
+    a.position = {{1.0, 1.0, 1.0}, {2.2, 1.0, 1.0}};
+    a.velocity = {{-0.5, 0.0, 0.0}, {0.5, 0.0, 0.0}};
+    b.position = {{0.5, 3.0, 3.0}, {8.5, 3.0, 3.0}};
+    b.velocity = {terrace::Vec3::Zero(), terrace::Vec3::Zero()};
+    for (auto* f : {&a, &b}) {
+        f->axis.assign(2, terrace::Vec3::UnitZ());
+        f->omega.assign(2, terrace::Vec3::Zero());
+    }
+    {
+        std::ofstream out(d / "trajectory.xyz");
+        terrace::writeXyzFrame(out, a, terrace::TrajectoryLayout::Sphere);
+        terrace::writeXyzFrame(out, b, terrace::TrajectoryLayout::Sphere);
+    }
+    const terrace::LJPotential lj{1.5, 1.0};
+    const terrace::Vec3 s = terrace::Vec3::UnitZ();
+    auto pairVirial = [&](double r) {
+        const terrace::Vec3 rij(-r, 0.0, 0.0); // r_1 − r_2
+        return rij.dot(lj.evaluate(rij, s, s).F);
+    };
+    const double uA = lj.energy({1.2, 0, 0}, s, s), uB = lj.energy({2.0, 0, 0}, s, s);
+    const double pA = (2.0 * 0.5 * 2.0 * 0.5 + pairVirial(1.2)) / (3.0 * L * L * L);
+    const double pB = pairVirial(2.0) / (3.0 * L * L * L);
+    const ex::Configurational c = ex::configurational(d);
+    EXPECT_EQ(c.frames, 2);
+    // Positions and velocities survive the file to ~1e-16 relative (17 digits; v via Å/ps).
+    EXPECT_NEAR(c.potentialPerBody, 0.5 * (uA + uB) / 2.0, 1e-12);
+    EXPECT_NEAR(c.pressureReduced, 0.5 * (pA + pB) * 1.0 / 1.5, 1e-12);
+    EXPECT_THROW(ex::configurational(d / "none"), std::exception);
     fs::remove_all(d);
 }

@@ -1,0 +1,110 @@
+#include "cli/thermo.hpp"
+#include "analysis/block_average.hpp"
+#include "core/pressure.hpp"
+#include "core/units.hpp"
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace terrace::cli {
+
+std::vector<double> PressureSeries::total() const {
+    std::vector<double> p(kinetic.size());
+    for (std::size_t k = 0; k < p.size(); ++k)
+        p[k] = kinetic[k] + virial[k];
+    return p;
+}
+
+namespace {
+
+/// The virial (kJ/mol) of sample `now`: SMD's at its instant, DMD's over [before, now].
+double virialAt(const SampleRecord& now, const SampleRecord& before, VirialKind kind) {
+    if (kind == VirialKind::Instantaneous) return now.virial;
+    return impulseVirialOver(before.virial, now.virial, before.time, now.time);
+}
+
+double mean(const std::vector<double>& x) {
+    double sum = 0.0;
+    for (double v : x)
+        sum += v;
+    return sum / double(x.size());
+}
+
+} // namespace
+
+PressureSeries pressureSeries(std::span<const SampleRecord> samples, VirialKind kind,
+                              double volume) {
+    PressureSeries p;
+    for (std::size_t k = kind == VirialKind::Impulse ? 1 : 0; k < samples.size(); ++k) {
+        const SampleRecord& now = samples[k];
+        p.kinetic.push_back(virialPressure(now.kineticTranslational, 0.0, volume));
+        p.virial.push_back(
+            virialPressure(0.0, virialAt(now, samples[k ? k - 1 : 0], kind), volume));
+    }
+    return p;
+}
+
+nlohmann::json pressureSummary(const PressureSeries& p, VirialKind kind, double sigma,
+                               double epsilon) {
+    if (p.kinetic.empty()) return {{"samples", 0}};
+    const analysis::Estimate all = analysis::blockMean(p.total(), pressureBlocks);
+    const double kinetic = mean(p.kinetic), virial = mean(p.virial);
+    auto reduced = [&](double x) { return reducedPressure(x, sigma, epsilon); };
+    return {{"mean_bar", units::bar(all.mean)},
+            {"error_bar", units::bar(all.err)},
+            {"mean_reduced", reduced(all.mean)},
+            {"error_reduced", reduced(all.err)},
+            {"kinetic_term_reduced", reduced(kinetic)},
+            {"virial_term_reduced", reduced(virial)},
+            {"samples", p.kinetic.size()},
+            {"blocks", pressureBlocks},
+            {"method", kind == VirialKind::Impulse
+                           ? "impulse virial over each sample interval, K_trans at its end"
+                           : "virial and K_trans at each sample"}};
+}
+
+std::string thermoHeader(const ThermoLayout& layout) {
+    const bool dmd = layout.kind == VirialKind::Impulse;
+    std::string text = "time_ps,kinetic_translational,kinetic_rotational,potential,"
+                       "potential_continuous,total,temperature_K,pressure_bar";
+    text += dmd ? ",collisions\n" : "\n";
+    text += "# ps,kJ/mol,kJ/mol,kJ/mol,kJ/mol,kJ/mol,K,bar";
+    text += dmd ? ",count\n" : "\n";
+    text += "# energies of the whole system of " + std::to_string(layout.bodies) + " bodies; ";
+    text += dmd ? "potential terraced, potential_continuous the model's continuous U; "
+                  "pressure_bar and collisions over the interval since the previous row\n"
+                : "potential and potential_continuous the model's continuous U; pressure_bar "
+                  "at the row's instant\n";
+    return text;
+}
+
+std::string thermoRow(const SampleRecord& now, const SampleRecord* before,
+                      double potentialContinuous, const ThermoLayout& layout) {
+    const bool dmd = layout.kind == VirialKind::Impulse;
+    const double pressure =
+        dmd && !before
+            ? std::numeric_limits<double>::quiet_NaN()
+            : units::bar(virialPressure(now.kineticTranslational,
+                                        virialAt(now, before ? *before : now, layout.kind),
+                                        layout.volume));
+    const double temperature = units::kelvin(2.0 * now.kinetic / layout.dof);
+    std::string row;
+    char field[32];
+    for (const double x :
+         {now.tPs, now.kineticTranslational, now.kinetic - now.kineticTranslational, now.potential,
+          potentialContinuous, now.total, temperature, pressure}) {
+        if (std::isfinite(x))
+            std::snprintf(field, sizeof field, "%.17g", x);
+        else
+            std::snprintf(field, sizeof field, "nan");
+        row += (row.empty() ? "" : ",") + std::string(field);
+    }
+    if (dmd) {
+        std::snprintf(field, sizeof field, ",%.0f",
+                      before ? now.collisions - before->collisions : 0.0);
+        row += field;
+    }
+    return row + "\n";
+}
+
+} // namespace terrace::cli
