@@ -14,41 +14,64 @@ RUNS=$OUT/runs
 
 # Run sizes. "full" is sized so that `make -f Makefile.paper all` stays within an hour on two
 # cores (results/README.md lists the measured costs); "quick" only exercises the pipeline.
+# Every length is a whole number of the intervals of its runs, as terrace requires: of SAMPLE_FS
+# (9 fs: samples and thermostat) for the run sets and the skin trials (runset.sh moves them onto
+# SMD's own grid where that is another, 8 fs at dt = 4 fs), of EXTREME_SAMPLE_FS for the
+# extremes' production and of the scene's 9 fs thermostat for their equilibration. They are the
+# lengths that the round numbers once asked for (1, 6, 20, 3 ps; quick 0.1, 0.4, 0.3 ps) were cut
+# to, to the last whole interval, before lengths were checked: the runs results/ was made with.
 if [ "$SIZE" = quick ]; then
     REPLICAS=2          # the least that gives an error bar
     DENSE_N=216         # the smallest cube whose box holds two SMD cutoffs at rho* = 0.5
     GAS_N=64
-    EQUIL_PS=0.1
-    DENSE_PS=0.4
-    GAS_PS=0.4
-    TRADE_PS=0.4        # the trade-off's extra settings
+    EQUIL_PS=0.099      # 11 thermostat intervals of 9 fs
+    DENSE_PS=0.396      # 44 samples
+    GAS_PS=0.396
+    TRADE_PS=0.396      # the trade-off's extra settings
     REF_DT_FS=${REF_DT_FS:-0.5} # converged reference of the trade-off (Makefile.paper sets it)
     REF_PS_FACTOR=1
-    SCAN_PS=0.3         # density scan
+    SCAN_PS=0.297       # density scan
     SCAN_REPLICAS=2
     EXTREME_N=216       # a box that holds two interaction ranges at ΔV = 0.05 kT, ρ* = 0.8
-    EXTREME_EQUIL_PS=0.01
+    EXTREME_EQUIL_PS=0.009 # one thermostat interval (the scene's 9 fs)
     EXTREME_PS=0.04
     EXTREME_SAMPLE_FS=2 # 21 samples: enough for the correlation files' 8 blocks
-    SKIN_TRIAL_PS=0.1   # each trial run of smd-skin.sh
+    SKIN_TRIAL_PS=0.099 # each trial run of smd-skin.sh
+    CONV_REPLICAS=2     # convergence.sh (states conv-rods, conv-lj)
+    CONV_RODS_N=216
+    CONV_LJ_N=256       # the least whose box (ρ* = 0.8) holds two SMD cutoffs and a skin
+    CONV_EQUIL_PS=0.099
+    CONV_RODS_PS=0.198
+    CONV_LJ_PS=0.198
 else
     REPLICAS=4
     DENSE_N=512
     GAS_N=512
-    EQUIL_PS=1
-    DENSE_PS=6
-    GAS_PS=20
-    TRADE_PS=3          # the trade-off's extra settings (ΔV = ⅛ kT alone costs ~14 CPU s/ps)
+    EQUIL_PS=0.999      # 111 thermostat intervals of 9 fs
+    DENSE_PS=5.994      # 666 samples
+    GAS_PS=19.998       # 2222 samples
+    TRADE_PS=2.997      # the trade-off's extra settings (ΔV = ⅛ kT alone costs ~14 CPU s/ps)
     REF_DT_FS=${REF_DT_FS:-0.2}
     REF_PS_FACTOR=2
-    SCAN_PS=3
+    SCAN_PS=2.997
     SCAN_REPLICAS=2     # the scan compares costs; two runs bound their spread
     EXTREME_N=216
-    EXTREME_EQUIL_PS=0.05 # ΔV = 0.05 kT in the dense liquid costs minutes per ps
+    EXTREME_EQUIL_PS=0.045 # 5 thermostat intervals; ΔV = 0.05 kT (dense) costs minutes per ps
     EXTREME_PS=0.2
     EXTREME_SAMPLE_FS=5
-    SKIN_TRIAL_PS=1
+    SKIN_TRIAL_PS=0.999
+    # convergence.sh: DMD at ΔV = ⅛ kT is the dearest set (~3 CPU s/ps for the rods, ~12 for
+    # the LJ liquid), then the SMD reference at 0.2 fs (~2 and ~1 CPU s/ps), REF_PS_FACTOR longer.
+    CONV_REPLICAS=4
+    CONV_RODS_N=512     # the paper's dense state as the other figures run it
+    CONV_LJ_N=256
+    CONV_EQUIL_PS=0.9   # 100 thermostat intervals
+    CONV_RODS_PS=5.4    # 600 samples
+    CONV_LJ_PS=2.7      # 300 samples, 27 LJ time units (τ = σ sqrt(m/ε) = 100 fs there)
 fi
+# convergence.sh's sets write a trajectory frame this often (fs), for the continuous model's U
+# and P on their configurations (paper_tools configurational).
+CONV_TRAJECTORY_FS=45
 
 # Sample interval of every run, fixed here rather than taken from the scenes: a whole number of
 # SMD steps at dt = 0.2, 0.5, 1, 1.8 and 3 fs, so that all curves of one figure share one grid.
@@ -57,8 +80,10 @@ SAMPLE_FS=9
 log() { echo "[$(date +%H:%M:%S)] $*" >&2; }
 
 # state_point STATE : the scene and settings of a state of runset.sh, in STATE_SCENE, STATE_N,
-# STATE_PS (production ps) and the array STATE_SETS (--set options on top of the scene).
+# STATE_PS (production ps), STATE_EQUIL_PS and the array STATE_SETS (--set options on top of the
+# scene).
 state_point() {
+    STATE_EQUIL_PS=$EQUIL_PS
     case $1 in
     dense) STATE_SCENE=$SCENES/dense-rods.json STATE_N=$DENSE_N STATE_PS=$DENSE_PS STATE_SETS=() ;;
     gas) STATE_SCENE=$SCENES/gas-rods.json STATE_N=$GAS_N STATE_PS=$GAS_PS STATE_SETS=() ;;
@@ -67,6 +92,18 @@ state_point() {
         rho=${rho%%-T*}
         STATE_SCENE=$SCENES/dense-rods.json STATE_N=$DENSE_N STATE_PS=$SCAN_PS
         STATE_SETS=(--set state.density="$rho" --set state.temperature="$temp")
+        ;;
+    # convergence.sh: one model for both engines (DMD terraces g(r)·U, dmd.model = smoothed);
+    # a trajectory for the continuous model's U and P on the configurations.
+    conv-rods | conv-lj)
+        STATE_SETS=(--set dmd.model=smoothed
+            --set output.trajectory_every_fs="$CONV_TRAJECTORY_FS")
+        STATE_EQUIL_PS=$CONV_EQUIL_PS
+        if [ "$1" = conv-rods ]; then
+            STATE_SCENE=$SCENES/dense-rods.json STATE_N=$CONV_RODS_N STATE_PS=$CONV_RODS_PS
+        else
+            STATE_SCENE=$SCENES/lj-liquid.json STATE_N=$CONV_LJ_N STATE_PS=$CONV_LJ_PS
+        fi
         ;;
     *) echo "unknown state '$1'" >&2; return 2 ;;
     esac

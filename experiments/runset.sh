@@ -3,6 +3,7 @@
 # `make -j` spreads the sets over the cores):
 #   runset.sh STATE/ENGINE-PARAM[-OPTION...]    e.g. dense/dmd-0.5, dense/dmd-0.5-heap, rho0.1-T10/smd-1.8
 #   STATE   dense | gas | rho<ρ*>-T<T*> (e.g. rho0.05-T1.4; rods as in dense-rods.json)
+#           | conv-rods | conv-lj (convergence.sh: dense rods, LJ liquid; smoothed DMD model)
 #   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs; Verlet skin tuned for the state by
 #           smd-skin.sh)
 #   OPTION  heap | eager (DMD queue and invalidation, default bpq + lazy)
@@ -11,7 +12,8 @@
 #                    in the dense and gas states such sets run TRADE_PS)
 #           ref (the trade-off's converged reference: REF_PS_FACTOR times longer, seeds 101…)
 # Runs land in $RUNS/STATE/ENGINE-PARAM[-OPTION...]/seed-K; the set's replica means of rdf.csv,
-# vacf.csv and oacf.csv go beside them (mean-rdf.csv, ...).
+# vacf.csv and oacf.csv go beside them (mean-rdf.csv, ...), and a run that wrote a trajectory gets
+# its configurational.json (paper_tools configurational).
 source "$(dirname "$0")/common.sh"
 id=$1
 state=${id%%/*}
@@ -20,7 +22,8 @@ read -r -a options <<<"${options_text//-/ }"
 
 state_point "$state"
 scene=$STATE_SCENE n=$STATE_N ps=$STATE_PS sets=("${STATE_SETS[@]}")
-case $state in rho*-T*) REPLICAS=$SCAN_REPLICAS ;; esac
+case $state in rho*-T*) REPLICAS=$SCAN_REPLICAS ;; conv-*) REPLICAS=$CONV_REPLICAS ;; esac
+grid=$SAMPLE_FS # the run's sample and thermostat interval, fs
 case $engine in
 dmd) sets+=(--set engine=dmd --set dmd.dV="$param") ;;
 smd)
@@ -53,9 +56,20 @@ done
 # The trade-off's extra settings are shorter: their errors carry their own statistical floor.
 if [ "$mayfail" = 1 ] && { [ "$state" = dense ] || [ "$state" = gas ]; }; then ps=$TRADE_PS; fi
 
+# on_grid PS: the whole number of grid intervals nearest PS, in ps. terrace runs exactly the
+# lengths asked for and refuses any that is not a whole number of samples (of thermostat
+# intervals, for the equilibration). common.sh's lengths are whole numbers of SAMPLE_FS and so
+# pass unchanged on that grid; SMD at dt = 4 fs samples every 8 fs, where they move by < 4 fs.
+on_grid() {
+    awk -v p="$1" -v g="$grid" 'BEGIN { k = int(p * 1000 / g + 0.5); if (k < 1) k = 1
+        printf "%.10g", k * g / 1000 }'
+}
+ps=$(on_grid "$ps")
+equilibrate=$(on_grid "$STATE_EQUIL_PS")
+
 dir=$RUNS/$id
 rm -f "$dir/FAILED"
-if ! run_replicas "$dir" "$scene" --set state.n="$n" --set run.equilibrate_ps="$EQUIL_PS" \
+if ! run_replicas "$dir" "$scene" --set state.n="$n" --set run.equilibrate_ps="$equilibrate" \
     --set run.time_ps="$ps" "${sets[@]}"; then
     [ "$mayfail" = 1 ] || exit 1
     # The reason is the failed run's own message, kept for the tables.
@@ -63,5 +77,18 @@ if ! run_replicas "$dir" "$scene" --set state.n="$n" --set run.equilibrate_ps="$
     log "runset $id FAILED (recorded)"
     exit 0
 fi
-for f in rdf vacf oacf; do mean_curve "$dir" $f.csv "$dir/mean-$f.csv"; done
+# Spheres have no OACF: a curve the runs did not write has no mean.
+for f in rdf vacf oacf; do
+    if [ -s "$(replica_dirs "$dir" | head -n 1)/$f.csv" ]; then
+        mean_curve "$dir" $f.csv "$dir/mean-$f.csv"
+    fi
+done
+# Sets that wrote a trajectory (convergence.sh's): the continuous model's U and P on each run's
+# configurations.
+for d in $(replica_dirs "$dir"); do
+    if [ -s "$d/trajectory.xyz" ] && [ ! -s "$d/configurational.json" ]; then
+        "$TOOLS" configurational "$d" >"$d/configurational.json.partial"
+        mv "$d/configurational.json.partial" "$d/configurational.json"
+    fi
+done
 log "runset $id done"

@@ -11,7 +11,8 @@ terrace=$1 work=$2
 rm -rf "$work"
 mkdir -p "$work"
 scenes=$root/experiments/scenes
-short=(--quiet --set run.equilibrate_ps=0.2 --set run.sample_fs=9)
+# Lengths in whole 9 fs samples and thermostat intervals, as terrace requires.
+short=(--quiet --set run.equilibrate_ps=0.198 --set run.sample_fs=9)
 k=0
 piece() { # scene, production ps, then --set options
     local scene=$1 ps=$2
@@ -21,8 +22,8 @@ piece() { # scene, production ps, then --set options
         --out "$work/piece-$k" >/dev/null
 }
 for dV in 0.25 0.5 1 2; do
-    piece dense-rods 0.5 --set engine=dmd --set dmd.dV="$dV"
+    piece dense-rods 0.495 --set engine=dmd --set dmd.dV="$dV"
 done
-piece dense-rods 0.5 --set engine=smd
-piece gas-rods 5 --set engine=dmd
-piece gas-rods 1 --set engine=smd
+piece dense-rods 0.495 --set engine=smd
+piece gas-rods 4.995 --set engine=dmd
+piece gas-rods 0.999 --set engine=smd

@@ -5,16 +5,17 @@
 # statistical floor from both runs' block error bars) — and a figure of the three curves.
 #   experiments/versus.sh [OUTDIR]          (default out/versus)
 # Environment: TERRACE (default build/terrace), TOOLS (default build/paper_tools),
-#   VERSUS_PS production ps per run (default 2), VERSUS_DV ΔV in kT (default 0.5),
-#   VERSUS_DT_FS SMD time step (default 1.8).
+#   VERSUS_PS production ps per run (default 1.998: 222 samples of 9 fs; terrace refuses a length
+#   that is not a whole number of samples), VERSUS_DV ΔV in kT (default 0.5), VERSUS_DT_FS SMD
+#   time step (default 1.8). Equilibration: 0.495 ps, 55 thermostat intervals of 9 fs.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 TERRACE=${TERRACE:-$root/build/terrace}
 TOOLS=${TOOLS:-$root/build/paper_tools}
 out=${1:-out/versus}
-ps=${VERSUS_PS:-2} dV=${VERSUS_DV:-0.5} dt=${VERSUS_DT_FS:-1.8}
+ps=${VERSUS_PS:-1.998} dV=${VERSUS_DV:-0.5} dt=${VERSUS_DT_FS:-1.8}
 mkdir -p "$out"
-common=(--quiet --set run.equilibrate_ps=0.5 --set run.time_ps="$ps")
+common=(--quiet --set run.equilibrate_ps=0.495 --set run.time_ps="$ps")
 echo "DMD (ΔV = $dV kT) and SMD (dt = $dt fs), default scene, $ps ps each ..." >&2
 "$TERRACE" run "${common[@]}" --set engine=dmd --set dmd.dV="$dV" --out "$out/dmd" --overwrite >/dev/null
 "$TERRACE" run "${common[@]}" --set engine=smd --set smd.dt_fs="$dt" --out "$out/smd" --overwrite >/dev/null

@@ -7,7 +7,13 @@
 //   summary-header                        header of summary rows
 //   summary LABEL DIR...                  one table row over replica runs (summaries.hpp)
 //   get FILE.json KEY...                  values of dotted keys, comma separated
+//   stats X...                            replica mean and standard error (convergence.hpp)
+//   configurational DIR                   the continuous model's U and P on DIR's trajectory
+//                                         (configurational.hpp), as JSON
+//   order IN.csv OUT.csv                  orders of convergence of a table (convergence.hpp)
 #include "analysis/csv.hpp"
+#include "experiments/tools/configurational.hpp"
+#include "experiments/tools/convergence.hpp"
 #include "experiments/tools/potential_map.hpp"
 #include "experiments/tools/replicas.hpp"
 #include "experiments/tools/search_trace.hpp"
@@ -27,7 +33,10 @@ int usage() {
                  "       paper_tools error REF.csv CURVE.csv COLUMN [XMAX]\n"
                  "       paper_tools summary-header\n"
                  "       paper_tools summary LABEL DIR...\n"
-                 "       paper_tools get FILE.json KEY...\n";
+                 "       paper_tools get FILE.json KEY...\n"
+                 "       paper_tools stats X...\n"
+                 "       paper_tools configurational DIR\n"
+                 "       paper_tools order IN.csv OUT.csv\n";
     return 2;
 }
 
@@ -54,6 +63,21 @@ int run(const std::vector<std::string>& a) {
         std::cout << experiments::summaryRow(a[1], {a.begin() + 2, a.end()}) << '\n';
     } else if (cmd == "get" && a.size() >= 3) {
         std::cout << experiments::jsonValues(a[1], {a.begin() + 2, a.end()}) << '\n';
+    } else if (cmd == "stats" && a.size() >= 2) {
+        std::vector<double> x;
+        for (std::size_t k = 1; k < a.size(); ++k)
+            x.push_back(std::stod(a[k]));
+        const auto m = experiments::replicaStatistics(x);
+        std::printf("%.10g %.6g\n", m.mean, m.error);
+    } else if (cmd == "configurational" && a.size() == 2) {
+        const auto c = experiments::configurational(a[1]);
+        std::printf("{\"frames\": %d, \"potential_energy_per_body\": %.12g, "
+                    "\"pressure_reduced\": %.12g}\n",
+                    c.frames, c.potentialPerBody, c.pressureReduced);
+    } else if (cmd == "order" && a.size() == 3) {
+        std::cout << "quantity,order,order_err,log_prefactor,chi2_per_dof,points\n";
+        for (const auto& row : experiments::fitOrders(analysis::readCsv(a[1]), a[2]))
+            std::cout << row << '\n';
     } else {
         return usage();
     }
