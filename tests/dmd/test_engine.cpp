@@ -99,13 +99,8 @@ TEST(Engine, HoldScreenChangesNoCollision) {
         return e.statistics()[key].get<double>();
     };
     const double screenedAtStart = count(searched, "searches_screened");
-    for (int k = 1; k <= 50; ++k) {
-        screened.advanceTo(units::fromFs(2.0 * k));
-        searched.advanceTo(units::fromFs(2.0 * k));
-        ASSERT_EQ(screened.counts().up, searched.counts().up) << k * 2 << " fs";
-        ASSERT_EQ(screened.counts().down, searched.counts().down) << k * 2 << " fs";
-        ASSERT_EQ(screened.counts().reflect, searched.counts().reflect) << k * 2 << " fs";
-    }
+    expectSameCollisions(screened, searched, 50);
+    if (HasFatalFailure()) return;
     EXPECT_GT(screened.counts().up + screened.counts().down + screened.counts().reflect, 1000u);
     const RodSystem a = screened.synchronisedCopy(), b = searched.synchronisedCopy();
     double largest = 0.0;

@@ -10,21 +10,18 @@
 #include "core/lj_potential.hpp"
 #include "core/sphere.hpp"
 #include "dmd/engine.hpp"
+#include "test_systems.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <numbers>
 #include <vector>
 
 using namespace terrace;
+using terrace::dmdtest::innerRoot;
 
 namespace {
 
 using SphereEngine = dmd::Engine<Sphere, LJPotential>;
-
-/// LJ inner root at u: 4ε(y² − y) = u, y = (σ/x)^6.
-double innerRoot(double u, double epsilon, double sigma) {
-    return sigma / std::pow(0.5 * (1.0 + std::sqrt(1.0 + u / epsilon)), 1.0 / 6.0);
-}
 
 /// Z = PV/(NkT) of hard spheres of diameter d at packing fraction η, from DMD on LJ spheres whose
 /// only reachable level is a step of 40 kT on the wall; mean and block error over `blocks`.

@@ -3,11 +3,14 @@
 #include "core/lj_potential.hpp"
 #include "core/sphere.hpp"
 #include "dmd/engine.hpp"
+#include "test_systems.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
 
 using namespace terrace;
+using terrace::dmdtest::innerRoot;
+using terrace::dmdtest::outerRoot;
 
 namespace {
 
@@ -29,11 +32,6 @@ SphereEngine headOn(double x0, double u, std::vector<double> levels) {
     Scene scene;
     scene.dmd.levels = std::move(levels);
     return SphereEngine(sys, scene);
-}
-
-/// LJ inner root at u: 4ε(y² − y) = u, y = (σ/x)^6.
-double innerRoot(double u, double epsilon, double sigma) {
-    return sigma / std::pow(0.5 * (1.0 + std::sqrt(1.0 + u / epsilon)), 1.0 / 6.0);
 }
 
 } // namespace
@@ -62,10 +60,7 @@ TEST(Pressure, TransmissionsAddTheHandComputedImpulseVirial) {
     const auto levels = dmd::TerraceLevels::explicitLevels({L0, 60.0});
     const double dE = levels.energy(-1) - levels.energy(0); // < 0: energy released
     ASSERT_LT(dE, 0.0);
-    const double d = [&] { // the outer root of L0
-        const double y = 0.5 * (1.0 - std::sqrt(1.0 + L0 / 3.0));
-        return 3.035 / std::pow(y, 1.0 / 6.0);
-    }();
+    const double d = outerRoot(L0, 3.0, 3.035);
     e.advanceTo(0.99 * (6.0 - 0.5 * d) / u); // just before the pair reaches d
     ASSERT_EQ(e.counts().down, 0u);
     e.advanceTo(1.01 * (6.0 - 0.5 * d) / u);

@@ -81,13 +81,8 @@ TEST(SmoothedModel, HoldScreenWithTheCeilingChangesNoCollision) {
         searched(buildInitialState<LinearRotor>(s, modelOf(s)), s);
     screened.setHoldScreen(true);
     searched.setHoldScreen(false);
-    for (int k = 1; k <= 50; ++k) {
-        screened.advanceTo(units::fromFs(2.0 * k));
-        searched.advanceTo(units::fromFs(2.0 * k));
-        ASSERT_EQ(screened.counts().up, searched.counts().up) << k * 2 << " fs";
-        ASSERT_EQ(screened.counts().down, searched.counts().down) << k * 2 << " fs";
-        ASSERT_EQ(screened.counts().reflect, searched.counts().reflect) << k * 2 << " fs";
-    }
+    expectSameCollisions(screened, searched, 50);
+    if (HasFatalFailure()) return;
     EXPECT_GT(screened.counts().up + screened.counts().down, 1000u);
     const auto evaluations = [](const ModelEngine& e) {
         return e.statistics()["search_evaluations"].get<double>();

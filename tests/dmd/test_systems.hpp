@@ -6,6 +6,7 @@
 #include "core/rod_potential.hpp"
 #include "dmd/engine.hpp"
 #include <cmath>
+#include <gtest/gtest.h>
 #include <random>
 
 namespace terrace::dmdtest {
@@ -52,6 +53,30 @@ inline RodSystem alignedLattice(int m, double a, double kT, std::uint64_t seed) 
     for (auto& b : sys.bodies)
         b.v -= p / sys.size();
     return sys;
+}
+
+/// Inner (repulsive-side) root of the LJ curve at u: 4ε(y² − y) = u with y = (σ/x)^6.
+inline double innerRoot(double u, double epsilon, double sigma) {
+    const double y = 0.5 * (1.0 + std::sqrt(1.0 + u / epsilon));
+    return sigma / std::pow(y, 1.0 / 6.0);
+}
+
+/// Outer (attractive-side) root of the LJ curve at −ε < u < 0.
+inline double outerRoot(double u, double epsilon, double sigma) {
+    const double y = 0.5 * (1.0 - std::sqrt(1.0 + u / epsilon));
+    return sigma / std::pow(y, 1.0 / 6.0);
+}
+
+/// Advances both engines on a 2 fs grid for `samples` samples, asserting the same collisions
+/// (up, down, reflect) at every sample: a screen or a bookkeeping mode that must change none.
+template <class E> void expectSameCollisions(E& a, E& b, int samples) {
+    for (int k = 1; k <= samples; ++k) {
+        a.advanceTo(units::fromFs(2.0 * k));
+        b.advanceTo(units::fromFs(2.0 * k));
+        ASSERT_EQ(a.counts().up, b.counts().up) << k * 2 << " fs";
+        ASSERT_EQ(a.counts().down, b.counts().down) << k * 2 << " fs";
+        ASSERT_EQ(a.counts().reflect, b.counts().reflect) << k * 2 << " fs";
+    }
 }
 
 inline double totalEnergy(const RodEngine& e) {

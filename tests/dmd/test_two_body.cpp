@@ -5,12 +5,14 @@
 #include "core/rod_potential.hpp"
 #include "core/sphere.hpp"
 #include "dmd/engine.hpp"
+#include "test_systems.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
 
 using namespace terrace;
 using namespace terrace::dmd;
+using terrace::dmdtest::innerRoot;
 
 namespace {
 
@@ -37,12 +39,6 @@ template <class E> bool runToNextCollision(E& engine, int maxEvents = 100000) {
         if (collisions(engine.counts()) > collisions(before)) return true;
     }
     return false;
-}
-
-/// Inner (repulsive-side) root of the LJ curve at u: 4ε(y² − y) = u with y = (σ/x)^6.
-double innerRoot(double u, double epsilon, double sigma) {
-    const double y = 0.5 * (1.0 + std::sqrt(1.0 + u / epsilon));
-    return sigma / std::pow(y, 1.0 / 6.0);
 }
 
 } // namespace
