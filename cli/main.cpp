@@ -3,8 +3,10 @@
 //   terrace run --continue DIR
 //   terrace analyse DIR
 //   terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
+//   terrace design [SCENE] [--set key.path=value]... [--profile]
 #include "analysis/compare.hpp"
 #include "analysis/correlations.hpp"
+#include "cli/design_command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run_command.hpp"
 #include "core/xyz.hpp"
@@ -43,6 +45,11 @@ Usage:
       short by a killed run is left out, with a warning).
   terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
       Regression check of two correlation curves; exit status 1 when they disagree.
+  terrace design [SCENE.json] [--set key.path=value]... [--profile]
+      The terraces the scene's DMD runs on (dmd.dV, dmd.levels or the design of
+      dmd.terraces), as CSV: each terrace's levels and energy; with --profile, U along
+      the design's reference alignment (s_i.s_j = 1/sqrt 2; for rods r_e = r) beside
+      its terraced value.
   terrace --help
 
 SIGINT, SIGTERM and SIGHUP end a run at the next sample with its output written (exit
@@ -81,19 +88,26 @@ void printRunSummary(const Scene& scene, const nlohmann::json& s,
     std::printf("  output in %s/\n", out.c_str());
 }
 
-int runMain(const std::vector<std::string>& args) {
-    po::options_description opts("run options");
-    opts.add_options()("set", po::value<std::vector<std::string>>()->composing(),
-                       "key.path=value")("out", po::value<std::string>(), "output directory")(
-        "overwrite", "replace the results of an earlier run in the output directory")(
-        "continue", po::value<std::string>(), "continue the run in DIR from its restart file")(
-        "quiet", "no progress output")("help,h", "this help")("scene", po::value<std::string>(),
-                                                              "scene file");
+/// The options of a command on a scene: [SCENE] [--set key.path=value]... [--help], and its own.
+po::variables_map parseSceneCommand(const std::vector<std::string>& args,
+                                    po::options_description& opts) {
+    opts.add_options()("set", po::value<std::vector<std::string>>()->composing(), "key.path=value")(
+        "help,h", "this help")("scene", po::value<std::string>(), "scene file");
     po::positional_options_description pos;
     pos.add("scene", 1);
     po::variables_map vm;
     po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
     po::notify(vm);
+    return vm;
+}
+
+int runMain(const std::vector<std::string>& args) {
+    po::options_description opts("run options");
+    opts.add_options()("out", po::value<std::string>(), "output directory")(
+        "overwrite", "replace the results of an earlier run in the output directory")(
+        "continue", po::value<std::string>(),
+        "continue the run in DIR from its restart file")("quiet", "no progress output");
+    const auto vm = parseSceneCommand(args, opts);
     if (vm.count("help")) {
         std::fputs(usage, stdout);
         return 0;
@@ -147,6 +161,21 @@ int analyseMain(const std::vector<std::string>& args) {
     return 0;
 }
 
+int designMain(const std::vector<std::string>& args) {
+    po::options_description opts("design options");
+    opts.add_options()("profile", "U and its terraced value along r");
+    const auto vm = parseSceneCommand(args, opts);
+    if (vm.count("help")) {
+        std::fputs(usage, stdout);
+        return 0;
+    }
+    cli::DesignRequest req;
+    if (vm.count("scene")) req.scenePath = vm["scene"].as<std::string>();
+    if (vm.count("set")) req.overrides = vm["set"].as<std::vector<std::string>>();
+    req.profile = vm.count("profile") > 0;
+    return cli::printDesign(req);
+}
+
 int compareMain(const std::vector<std::string>& args) {
     po::options_description opts("compare options");
     opts.add_options()("tol-sigma", po::value<double>()->default_value(3.0), "tolerance in sigma")(
@@ -190,6 +219,7 @@ int main(int argc, char** argv) {
         if (command == "run") return checkedStdout(runMain(args));
         if (command == "analyse" || command == "analyze") return checkedStdout(analyseMain(args));
         if (command == "compare") return checkedStdout(compareMain(args));
+        if (command == "design") return checkedStdout(designMain(args));
         std::fprintf(stderr, "terrace: unknown command '%s' (try terrace --help)\n",
                      command.c_str());
         return 2;

@@ -390,7 +390,9 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     if (j.contains("engine")) s.engine = rd.choice(j, "", "engine", s.engine, {"dmd", "smd"});
 
     const auto& dmd = rd.section(j, "dmd");
-    rd.onlyKeys(dmd, "dmd", {"dV", "levels", "queue", "invalidation", "horizon_fs", "model"});
+    rd.onlyKeys(
+        dmd, "dmd",
+        {"dV", "levels", "values", "terraces", "queue", "invalidation", "horizon_fs", "model"});
     s.dmd.model = rd.choice(dmd, "dmd", "model", s.dmd.model, {"smoothed", "bare"});
     s.dmd.dV = rd.number(dmd, "dmd", "dV", s.dmd.dV, 0.0, 1e6, true);
     if (dmd.contains("levels")) {
@@ -404,6 +406,38 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         for (std::size_t k = 1; k < s.dmd.levels.size(); ++k)
             if (!(s.dmd.levels[k] > s.dmd.levels[k - 1]))
                 rd.fail("dmd.levels", "must be strictly increasing");
+    }
+    if (dmd.contains("values")) {
+        if (!dmd.contains("levels")) rd.fail("dmd.values", "needs dmd.levels, the levels it fills");
+        const auto& vs = dmd["values"];
+        if (!vs.is_array()) rd.fail("dmd.values", "must be an array");
+        for (const auto& x : vs) {
+            if (!x.is_number() || !std::isfinite(x.get<double>()))
+                rd.fail("dmd.values", "must hold finite numbers (kJ/mol)");
+            s.dmd.values.push_back(x.get<double>());
+        }
+        if (s.dmd.values.size() != s.dmd.levels.size() + 1)
+            rd.fail("dmd.values", "needs one value per terrace, " +
+                                      std::to_string(s.dmd.levels.size() + 1) + " for " +
+                                      std::to_string(s.dmd.levels.size()) + " levels, got " +
+                                      std::to_string(s.dmd.values.size()));
+    }
+    if (dmd.contains("terraces")) {
+        const auto& t = rd.section(dmd, "terraces");
+        rd.onlyKeys(t, "dmd.terraces", {"levels", "values", "n"});
+        auto& d = s.dmd.terraces;
+        d.levels = rd.choice(t, "dmd.terraces", "levels", d.levels,
+                             {"energy", "distance", "volume", "optimal"});
+        d.values = rd.choice(t, "dmd.terraces", "values",
+                             d.levels == "optimal" ? std::string("boltzmann") : d.values,
+                             {"midpoint", "volume", "boltzmann", "virial"});
+        if (d.levels == "optimal" && d.values != "boltzmann")
+            rd.fail("dmd.terraces.values",
+                    "levels \"optimal\" set their own values (the Boltzmann mean of each "
+                    "terrace): give \"boltzmann\" or leave it out");
+        d.n = static_cast<int>(rd.integer(t, "dmd.terraces", "n", d.n, 0, 100000));
+        if (!s.dmd.levels.empty() && !d.isDefault())
+            rd.fail("dmd.terraces", "and dmd.levels both set the levels: give one of them");
     }
     s.dmd.queue = rd.choice(dmd, "dmd", "queue", s.dmd.queue, {"heap", "bpq"});
     s.dmd.invalidation =
@@ -634,6 +668,11 @@ json toJson(const Scene& s) {
                 {"horizon_fs", s.dmd.horizon_fs},
                 {"model", s.dmd.model}};
     if (!s.dmd.levels.empty()) j["dmd"]["levels"] = s.dmd.levels;
+    if (!s.dmd.values.empty()) j["dmd"]["values"] = s.dmd.values;
+    if (!s.dmd.terraces.isDefault())
+        j["dmd"]["terraces"] = {{"levels", s.dmd.terraces.levels},
+                                {"values", s.dmd.terraces.values},
+                                {"n", s.dmd.terraces.n}};
     j["smd"] = {{"dt_fs", s.smd.dt_fs}, {"skin", s.smd.skin}};
     j["run"] = {{"equilibrate_ps", s.run.equilibrate_ps},
                 {"time_ps", s.run.time_ps},

@@ -67,7 +67,19 @@ struct Scene {
     struct Dmd {
         double dV = 0.5;            // terrace height in units of kT
         std::vector<double> levels; // explicit levels U_k in kJ/mol (overrides dV when given)
-        std::string queue = "bpq";  // heap | bpq
+        std::vector<double> values; // with levels: the terrace energies V_s, kJ/mol (default
+                                    // midpoints); levels.size() + 1 of them
+        // A terrace design (dmd/terrace_design.hpp): level placement energy | distance | volume
+        // | optimal, terrace values midpoint | volume | boltzmann | virial, and n levels in the
+        // well (0: as many as uniform levels of height dV put there). The default, energy and
+        // midpoint with n = 0, is the paper's uniform terracing.
+        struct Terraces {
+            std::string levels = "energy";
+            std::string values = "midpoint";
+            int n = 0;
+            bool isDefault() const { return levels == "energy" && values == "midpoint" && n == 0; }
+        } terraces;
+        std::string queue = "bpq";         // heap | bpq
         std::string invalidation = "lazy"; // lazy | eager
         double horizon_fs = 4.0;           // virtual-event horizon and largest search step, >= 0.1
         // smoothed: terrace g(r)·U, the model SMD integrates (ΔV → 0 converges to SMD's model);

@@ -156,8 +156,15 @@ public:
             terraces_.forEachPair([&](int, int, int n) { sum += n; });
             return static_cast<double>(sum) * settings_.levels.step();
         }
+        // Explicit levels: pairs counted per terrace, then Σ count × V, so that the sum is the
+        // same whatever order the pairs are visited in.
+        const auto& L = settings_.levels;
+        std::vector<std::int64_t> count(L.highestTerrace() - L.lowestTerrace() + 1, 0);
+        terraces_.forEachPair([&](int, int, int n) { ++count[n - L.lowestTerrace()]; });
         double e = 0.0;
-        terraces_.forEachPair([&](int, int, int n) { e += settings_.levels.energy(n); });
+        for (std::size_t s = 0; s < count.size(); ++s)
+            if (count[s] != 0)
+                e += static_cast<double>(count[s]) * L.energy(L.lowestTerrace() + int(s));
         return e;
     }
     Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }

@@ -8,6 +8,7 @@
 //   horizon_fs    virtual-event horizon and largest search step, fs, >= limits::minHorizonFs
 #include "core/scene.hpp"
 #include "core/units.hpp"
+#include "dmd/terrace_design.hpp"
 #include "dmd/terrace_levels.hpp"
 #include <cmath>
 #include <string>
@@ -28,8 +29,15 @@ template <PairPotential P>
 DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, double boxLength) {
     DmdSettings s;
     if (!d.levels.empty()) {
-        s.levels = TerraceLevels::explicitLevels(d.levels);
+        s.levels = TerraceLevels::explicitLevels(d.levels, d.values);
         s.levels.checkMinimum(potential.minimumEnergy(), "dmd.levels");
+    } else if (!d.terraces.isDefault()) {
+        if (!(kT > 0.0) || !std::isfinite(kT))
+            throw SceneError("state.temperature: kT must be > 0 to design terraces");
+        auto design = designTerraces(d, potential, kT);
+        s.levels =
+            TerraceLevels::explicitLevels(std::move(design->levels), std::move(design->values));
+        s.levels.checkMinimum(potential.minimumEnergy(), "dmd.terraces");
     } else {
         if (!(kT > 0.0) || !std::isfinite(kT))
             throw SceneError("state.temperature: kT must be > 0 to set dmd.dV in units of kT");

@@ -6,10 +6,13 @@
 // A pair sits on an integer terrace n: the open interval between its lower and upper level.
 // With uniform levels terrace n spans ((n − ½)ΔV, (n + ½)ΔV) and carries the energy nΔV, i.e. U
 // rounded to the nearest multiple of ΔV, so that far-apart pairs (|U| < ΔV/2) carry none.
-// An explicit, increasing list of levels L_0 < … < L_{K−1} (kJ/mol) is also accepted; terrace
-// energies are then the midpoints of neighbouring levels (the outermost terraces repeat the
-// neighbouring step), shifted so that the terrace holding U = 0 has index 0 and energy 0.
-// For uniform levels this reproduces nΔV exactly.
+// An explicit, increasing list of levels L_0 < … < L_{K−1} (kJ/mol) is also accepted. Its K + 1
+// terrace energies V_s (the paper's eq. 7 allows any step ΔV_k = V_k − V_{k−1}) are either given
+// — a terrace design (dmd/terrace_design.hpp) — or by default the midpoints of neighbouring levels
+// (the outermost terraces repeat the neighbouring step), shifted so that the terrace holding
+// U = 0 has energy 0. Either way that terrace has index 0 and energy exactly 0: every far pair
+// sits on it. For uniform levels the midpoints reproduce nΔV exactly. A crossing from terrace n
+// to m exchanges V_m − V_n with the kinetic energy whatever the levels.
 //
 // Interaction range r_m: the largest centre distance at which U can reach a level bounding
 // terrace 0, from P::reachDistance (paper: r_m = ζ/2 + σ/[½(1 − √(1 − ΔV/2ε))]^{1/6}). Beyond
@@ -43,7 +46,10 @@ public:
     }
 
     /// Explicit increasing levels in kJ/mol; none may be 0 (far-apart pairs would sit on it).
-    static TerraceLevels explicitLevels(std::vector<double> levels) {
+    /// values: the K + 1 terrace energies from below the lowest level to above the highest, in
+    /// kJ/mol, the one holding U = 0 exactly 0; empty for the midpoints.
+    static TerraceLevels explicitLevels(std::vector<double> levels,
+                                        std::vector<double> values = {}) {
         if (levels.size() < 2)
             throw SceneError("dmd.levels: need at least two levels to define a step height");
         for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -58,12 +64,27 @@ public:
         t.levels_ = std::move(levels);
         const auto& L = t.levels_;
         const std::size_t K = L.size();
+        t.zeroSlot_ = static_cast<int>(std::upper_bound(L.begin(), L.end(), 0.0) - L.begin());
+        if (!values.empty()) {
+            if (values.size() != K + 1)
+                throw SceneError("dmd.values: " + std::to_string(K) + " levels bound " +
+                                 std::to_string(K + 1) + " terraces, got " +
+                                 std::to_string(values.size()) + " values");
+            for (std::size_t s = 0; s <= K; ++s)
+                if (!std::isfinite(values[s]))
+                    throw SceneError("dmd.values: value " + std::to_string(s) + " is not finite");
+            if (values[t.zeroSlot_] != 0.0)
+                throw SceneError("dmd.values: the terrace holding U = 0 (value " +
+                                 std::to_string(t.zeroSlot_) +
+                                 ") must carry exactly 0, the energy of every far pair");
+            t.energy_ = std::move(values);
+            return t;
+        }
         std::vector<double> energy(K + 1);
         for (std::size_t s = 1; s < K; ++s)
             energy[s] = 0.5 * (L[s - 1] + L[s]);
         energy[0] = L[0] - 0.5 * (L[1] - L[0]);
         energy[K] = L[K - 1] + 0.5 * (L[K - 1] - L[K - 2]);
-        t.zeroSlot_ = static_cast<int>(std::upper_bound(L.begin(), L.end(), 0.0) - L.begin());
         const double shift = energy[t.zeroSlot_];
         for (double& e : energy)
             e -= shift;
@@ -72,6 +93,9 @@ public:
     }
 
     bool isUniform() const { return step_ > 0.0; }
+    /// The explicit levels and terrace energies (empty for uniform levels), kJ/mol.
+    const std::vector<double>& explicitLevelList() const { return levels_; }
+    const std::vector<double>& explicitValueList() const { return energy_; }
     double step() const { return step_; }
     /// The smallest distance between two levels (the height scale of grazing checks).
     double smallestStep() const {

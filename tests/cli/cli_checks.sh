@@ -68,6 +68,24 @@ bad_value)
         "run.equilibrate_ps: must be a whole multiple of run.thermostat_fs = 9 fs, got 1 ps" \
         --set run.equilibrate_ps=1
     ;;
+design)
+    # The table of a design: a header, then one row a terrace, terrace 0 carrying exactly 0.
+    "$terrace" design "$src/experiments/scenes/dense-rods.json" \
+        --set 'dmd.terraces={"levels":"optimal","n":3}' >"$work/design.csv" ||
+        fail "design failed"
+    head -1 "$work/design.csv" | grep -q "levels optimal, values boltzmann, n 3" ||
+        fail "design header: $(head -1 "$work/design.csv")"
+    grep -q '^0,-[0-9.e-]*,[0-9.e-]*,0$' "$work/design.csv" || fail "terrace 0 does not carry 0"
+    [ "$(grep -c '^-[0-9]*,' "$work/design.csv")" -eq 3 ] || fail "not 3 terraces in the well"
+    "$terrace" design --profile --set dmd.dV=0.25 | head -1 | grep -q '^r_A,U_kJ_per_mol,V_kJ_per_mol$' ||
+        fail "profile header"
+    expect_error "$src/experiments/scenes/dense-rods.json" "dmd.terraces.levels" \
+        --set 'dmd.terraces={"levels":"log"}'
+    expect_error "$src/experiments/scenes/dense-rods.json" "dmd.values" \
+        --set 'dmd.levels=[-1,1]' --set 'dmd.values=[0,0]'
+    # A run on a design goes end to end.
+    short_run dmd --set 'dmd.terraces={"levels":"volume","values":"virial","n":3}'
+    ;;
 end_to_end_dmd)
     short_run dmd
     grep -q '"collisions_per_ps"' "$work/dmd/summary.json" || fail "DMD summary lacks collisions_per_ps"

@@ -1,0 +1,65 @@
+#include "cli/design_command.hpp"
+#include "cli/dispatch.hpp"
+#include "cli/run_command.hpp"
+#include "dmd/settings.hpp"
+#include "dmd/terrace_design.hpp"
+#include <cstdio>
+
+namespace terrace::cli {
+
+namespace {
+
+/// The reference profile from the wall (U = 20 kT) out to the model's range (or 1.1 r_m for a
+/// bare potential), with the terraced value of U on each point; columns r (Å), U and V (kJ/mol).
+template <PairPotential P>
+void printProfile(const dmd::TerraceLevels& levels, const P& model, double rm, double kT) {
+    const double rIn = model.reachDistance(20.0 * kT);
+    double rOut = 1.1 * rm;
+    if constexpr (requires { model.range(); })
+        if (std::isfinite(model.range())) rOut = std::max(rOut, model.range());
+    constexpr int points = 2000;
+    std::printf("r_A,U_kJ_per_mol,V_kJ_per_mol\n");
+    for (int k = 0; k <= points; ++k) {
+        const double r = rIn + (rOut - rIn) * k / points;
+        const double u = dmd::profileEnergy(model, r);
+        const double v = levels.energy(levels.terraceOf(u));
+        std::printf("%.6f,%.9g,%.9g\n", r, u, v);
+    }
+}
+
+} // namespace
+
+int printDesign(const DesignRequest& request) {
+    RunRequest run;
+    run.scenePath = request.scenePath;
+    run.overrides = request.overrides;
+    run.quiet = true;
+    const Scene scene = resolveScene(run);
+    return withBodyAndPotential(scene, [&]<BodyKind K, PairPotential P>(const P& bare) {
+        const auto model = sceneModel(scene, bare, true);
+        const auto settings = dmd::readDmdSettings(scene.dmd, model, scene.kT(),
+                                                   std::numeric_limits<double>::infinity());
+        const auto& L = settings.levels;
+        if (request.profile) {
+            printProfile(L, model, settings.rm, scene.kT());
+            return 0;
+        }
+        std::printf("# %s: levels %s, values %s, n %d, dV %g kT, model %s; kT = %.6g kJ/mol, "
+                    "r_m = %.6g A\n",
+                    scene.name.c_str(), scene.dmd.terraces.levels.c_str(),
+                    scene.dmd.terraces.values.c_str(), scene.dmd.terraces.n, scene.dmd.dV,
+                    scene.dmd.model.c_str(), scene.kT(), settings.rm);
+        std::printf("terrace,lower_kJ_per_mol,upper_kJ_per_mol,value_kJ_per_mol\n");
+        // Uniform levels are unbounded: print the well and the wall up to 50 kT.
+        const int lo = L.isUniform()
+                           ? static_cast<int>(std::floor(model.minimumEnergy() / L.step()))
+                           : L.lowestTerrace();
+        const int hi = L.isUniform() ? static_cast<int>(std::ceil(50.0 * scene.kT() / L.step()))
+                                     : L.highestTerrace();
+        for (int n = lo; n <= hi; ++n)
+            std::printf("%d,%.9g,%.9g,%.9g\n", n, L.lower(n), L.upper(n), L.energy(n));
+        return 0;
+    });
+}
+
+} // namespace terrace::cli

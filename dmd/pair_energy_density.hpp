@@ -1,0 +1,99 @@
+#pragma once
+// The energies an isolated pair takes, weighted by the configuration volume that carries them:
+// the density of states Ω(U) of one pair, over centre distances r in [r_in, r_out] and random
+// relative orientations,
+//
+//     Ω(U) dU = ∫ 4πr² dr ⟨ δ(U(r, s_i, s_j) − U) ⟩_{s_i, s_j} dU   (Å³ per kJ/mol).
+//
+// In a dilute gas the pair density is ρ² e^{−βU} Ω(U) (the second-virial level of theory), so
+// Ω with a Boltzmann factor is the weight a terrace design (dmd/terrace_design.hpp) gives to
+// the error it makes at U. Built by quadrature: midpoint radii, and a fixed set of random axis
+// pairs for an orientational potential (the separation along x; any potential is invariant
+// under a common rotation), so the same potential always gives the same density.
+//
+// Terrace sums are prefix sums over the samples sorted by U: Σw, Σw e^{−βU}, Σw U e^{−βU},
+// Σw U and Σw U² e^{−βU} over any interval of U in O(log n).
+#include "core/initial_state.hpp"
+#include "core/pair_potential.hpp"
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+namespace terrace::dmd {
+
+class PairEnergyDensity {
+public:
+    /// Sums over the samples with U in [lo, hi): volume (Å³), Boltzmann-weighted volume, and the
+    /// first moments of U under each (kJ/mol Å³).
+    struct Sums {
+        double volume = 0.0, boltzmann = 0.0, energyBoltzmann = 0.0, energyVolume = 0.0;
+        double squareBoltzmann = 0.0; // Σw e^{−βU} U², kJ²/mol² Å³
+    };
+
+    /// radii × orientations samples over r in [rIn, rOut] (Å); energies above uCap (or not
+    /// finite) are left out: no design places a terrace there.
+    template <PairPotential P>
+    static PairEnergyDensity build(const P& p, double kT, double rIn, double rOut, double uCap,
+                                   int radii = 4000, int orientations = 512) {
+        PairEnergyDensity d;
+        d.kT_ = kT;
+        const int nOrient = P::orientational ? orientations : 1;
+        std::mt19937_64 rng(0x7e44ace5); // fixed: a design is a pure function of its inputs
+        std::vector<std::pair<Vec3, Vec3>> axes(nOrient, {Vec3::UnitZ(), Vec3::UnitZ()});
+        if constexpr (P::orientational)
+            for (auto& a : axes)
+                a = {terrace::detail::randomUnitVector(rng),
+                     terrace::detail::randomUnitVector(rng)};
+        const double dr = (rOut - rIn) / radii;
+        struct Sample {
+            double U, w;
+        };
+        std::vector<Sample> s;
+        s.reserve(static_cast<std::size_t>(radii) * nOrient);
+        for (int k = 0; k < radii; ++k) {
+            const double r = rIn + (k + 0.5) * dr;
+            const double w = 4.0 * std::numbers::pi * r * r * dr / nOrient;
+            for (const auto& [si, sj] : axes) {
+                const double U = p.energy(Vec3(r, 0.0, 0.0), si, sj);
+                if (std::isfinite(U) && U <= uCap) s.push_back({U, w});
+            }
+        }
+        std::sort(s.begin(), s.end(), [](const Sample& a, const Sample& b) { return a.U < b.U; });
+        d.energy_.reserve(s.size());
+        d.prefix_.assign(1, Sums{});
+        for (const auto& x : s) {
+            Sums next = d.prefix_.back();
+            const double b = x.w * std::exp(-x.U / kT);
+            next.volume += x.w;
+            next.boltzmann += b;
+            next.energyBoltzmann += b * x.U;
+            next.energyVolume += x.w * x.U;
+            next.squareBoltzmann += b * x.U * x.U;
+            d.energy_.push_back(x.U);
+            d.prefix_.push_back(next);
+        }
+        return d;
+    }
+
+    double kT() const { return kT_; }
+    double lowestEnergy() const { return energy_.empty() ? 0.0 : energy_.front(); }
+
+    /// Sums over U in [lo, hi) (infinite bounds allowed).
+    Sums over(double lo, double hi) const {
+        const auto a = std::lower_bound(energy_.begin(), energy_.end(), lo) - energy_.begin();
+        const auto b = std::lower_bound(energy_.begin(), energy_.end(), hi) - energy_.begin();
+        const Sums &x = prefix_[b], &y = prefix_[a];
+        return {x.volume - y.volume, x.boltzmann - y.boltzmann,
+                x.energyBoltzmann - y.energyBoltzmann, x.energyVolume - y.energyVolume,
+                x.squareBoltzmann - y.squareBoltzmann};
+    }
+
+private:
+    double kT_ = 1.0;
+    std::vector<double> energy_; // sorted
+    std::vector<Sums> prefix_;   // prefix_[k]: sums over the first k samples
+};
+
+} // namespace terrace::dmd

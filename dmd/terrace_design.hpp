@@ -1,0 +1,268 @@
+#pragma once
+// Terrace designs: where the levels U_k lie and what energy V_s each terrace carries, as pure
+// functions of (potential, kT, parameters). The paper uses uniform levels U_k = (k − ½)ΔV with
+// midpoint energies and expects "some other distribution of energy levels" to do better;
+// Thomson, Lue & Bannerman (J. Chem. Phys. 140, 034105 (2014)) compared, for LJ spheres, steps
+// placed by equal energy, equal distance or equal shell volume, with step energies at the
+// midpoint, volume average or matched to the second virial coefficient. Here the same choices
+// are made for any pair potential, orientational ones included, plus one of our own.
+//
+// Level placement (`dmd.terraces.levels`), with n levels in the well (U < 0; by default as many
+// as uniform levels of height dV put there, and at least 2):
+//   energy    U_k = (k − ½)ΔV, ΔV = |U_min|/n (or the scene's dV when n is not given), k ≠ 0.
+//   distance  radii uniform along the profile u(r) = U at the alignment s_i·s_j = 1/√2 (for the
+//             rods r_e = r there, so this is uniform in the effective distance): in the well
+//             r_k = r_min + (k − ½)h, h = (r_out − r_min)/n; on the wall r_σ − (k − ½)h while
+//             u < U_cap; U_k = u(r_k).
+//   volume    the same with r³ in place of r: shells of equal volume.
+//   optimal   see below.
+// Above U_cap = 50 kT (every start lies below it, core/initial_state.hpp) one more level closes
+// the set, and the terrace beyond it carries U_cap: a wall no thermal pair crosses.
+//
+// Terrace energies (`dmd.terraces.values`) over the configurations whose U lies on the terrace,
+// with the pair density of states Ω(U) (dmd/pair_energy_density.hpp):
+//   midpoint   (U_{k−1} + U_k)/2 (the paper; the outermost terraces repeat the next step);
+//   volume     ⟨U⟩ under Ω;
+//   boltzmann  ⟨U⟩ under Ω e^{−βU};
+//   virial     −kT ln⟨e^{−βU}⟩ under Ω: each terrace then contributes to the second virial
+//              coefficient B₂ = −½∫(e^{−βU} − 1) exactly what the continuous potential does
+//              over the same configurations, so the terraced B₂ equals the continuous one to
+//              the quadrature (terrace 0 and the wall aside).
+// The terrace holding U = 0 always carries exactly 0 (every far pair sits on it).
+//
+// Our design, `optimal`: the levels and energies that minimise the Boltzmann-weighted squared
+// error of the terraced energy for a given number of levels,
+//
+//     E² = ∫ Ω(U) e^{−βU} (U − V(U))² dU,   V(U) = V_s for U on terrace s,
+//
+// over the pair configurations within the model's range, with V_0 = 0 held. It is the Lloyd–Max
+// quantiser of U under the weight Ω e^{−βU} (S. P. Lloyd, IEEE Trans. Inf. Theory 28, 129 (1982);
+// J. Max, IRE Trans. Inf. Theory 6, 7 (1960)): at the optimum each level is the midpoint of the
+// energies on its two sides, U_k = (V_k + V_{k+1})/2, and each energy is the Boltzmann mean of U
+// over its terrace; alternating the two conditions lowers E² at every step. Levels gather where
+// pairs spend their time (the well, the foot of the wall) and thin out where they rarely go, so
+// that for the same number of crossings the energy the run samples is closer to the continuous
+// one. n levels go below 0 and, by default, as many above it as uniform levels of the same
+// step fit below 5 kT (the wall a thermal pair climbs: e^{−5} ≈ 0.7 %).
+//
+// Units: kJ/mol, Å.
+#include "core/initial_state.hpp"
+#include "core/pair_potential.hpp"
+#include "core/scene.hpp"
+#include "dmd/pair_energy_density.hpp"
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace terrace::dmd {
+
+/// Levels and the energies of the terraces between them (levels.size() + 1), kJ/mol.
+struct TerraceDesign {
+    std::vector<double> levels, values;
+};
+
+/// Highest designed level, in kT: every start configuration lies below it.
+inline constexpr double designCapInKT = terrace::detail::maxStartEnergyInKT;
+/// The wall the optimal design resolves by default, in kT.
+inline constexpr double optimalWallInKT = 5.0;
+
+/// The potential along one fixed alignment, s_i·s_j = 1/√2 with the separation along x.
+template <PairPotential P> double profileEnergy(const P& p, double r) {
+    const Vec3 si = Vec3::UnitZ();
+    const Vec3 sj = (Vec3::UnitZ() + Vec3::UnitY()).normalized();
+    return p.energy(Vec3(r, 0.0, 0.0), si, sj);
+}
+
+/// Landmarks of the profile: its minimum r_min, its inner zero r_σ, searched in [rIn, rOut].
+struct ProfileShape {
+    double rMin = 0.0, rZero = 0.0, uMin = 0.0;
+};
+
+template <PairPotential P> ProfileShape profileShape(const P& p, double rIn, double rOut) {
+    ProfileShape s;
+    constexpr int scan = 4000;
+    s.uMin = std::numeric_limits<double>::infinity();
+    for (int k = 0; k <= scan; ++k) {
+        const double r = rIn + (rOut - rIn) * k / scan;
+        const double u = profileEnergy(p, r);
+        if (u < s.uMin) s.uMin = u, s.rMin = r;
+    }
+    // Golden-section refinement of the minimum within one scan step either side.
+    double a = std::max(rIn, s.rMin - (rOut - rIn) / scan);
+    double b = std::min(rOut, s.rMin + (rOut - rIn) / scan);
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 100; ++it) {
+        const double c = b - g * (b - a), d = a + g * (b - a);
+        if (profileEnergy(p, c) < profileEnergy(p, d))
+            b = d;
+        else
+            a = c;
+    }
+    s.rMin = 0.5 * (a + b);
+    s.uMin = profileEnergy(p, s.rMin);
+    double lo = rIn, hi = s.rMin; // u(lo) > 0 > u(hi)
+    for (int it = 0; it < 200 && hi - lo > 1e-14 * hi; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (profileEnergy(p, mid) > 0.0 ? lo : hi) = mid;
+    }
+    s.rZero = 0.5 * (lo + hi);
+    return s;
+}
+
+/// Uniform levels (k − ½) step above uMin and below uCap.
+inline std::vector<double> energyLevels(double uMin, double step, double uCap) {
+    std::vector<double> L;
+    for (int k = static_cast<int>(std::ceil(uMin / step + 0.5)); (k - 0.5) * step < uCap; ++k)
+        if ((k - 0.5) * step > uMin) L.push_back((k - 0.5) * step);
+    return L;
+}
+
+/// Levels at radii uniform in the coordinate x(r) (r for distance, r³ for volume): n in the
+/// well between r_min and rOut, and down the wall from r_σ with the same spacing in x while the
+/// profile stays below uCap.
+template <PairPotential P>
+std::vector<double> radialLevels(const P& p, const ProfileShape& shape, double rIn, double rOut,
+                                 int n, double uCap, const std::function<double(double)>& x,
+                                 const std::function<double(double)>& xInverse) {
+    const double h = (x(rOut) - x(shape.rMin)) / n;
+    std::vector<double> wall, well;
+    for (int k = 1;; ++k) {
+        const double xk = x(shape.rZero) - (k - 0.5) * h;
+        if (xk <= x(rIn)) break;
+        const double u = profileEnergy(p, xInverse(xk));
+        if (!(u < uCap)) break;
+        wall.push_back(u);
+    }
+    for (int k = 1; k <= n; ++k)
+        well.push_back(profileEnergy(p, xInverse(x(shape.rMin) + (k - 0.5) * h)));
+    std::vector<double> L(well.begin(), well.end());
+    L.insert(L.end(), wall.begin(), wall.end()); // the wall's levels rise as r falls
+    return L;
+}
+
+/// Terrace energies for levels L, whose last is the cap, by a rule (midpoint | volume |
+/// boltzmann | virial): the terrace holding U = 0 gets 0, the one beyond the cap the cap's
+/// energy, an empty terrace (no configuration in the density) its midpoint; the lowest terrace
+/// spans [U_min, L_0].
+inline std::vector<double> terraceValues(const std::vector<double>& L, const std::string& rule,
+                                         const PairEnergyDensity& density, double uMin) {
+    if (rule != "midpoint" && rule != "volume" && rule != "boltzmann" && rule != "virial")
+        throw SceneError("dmd.terraces.values: must be midpoint, volume, boltzmann or virial, "
+                         "got \"" +
+                         rule + "\"");
+    const std::size_t K = L.size();
+    std::vector<double> V(K + 1);
+    for (std::size_t s = 0; s <= K; ++s) {
+        if (s == K) {
+            V[s] = L[K - 1];
+            continue;
+        }
+        const double lo = s == 0 ? -std::numeric_limits<double>::infinity() : L[s - 1];
+        const double hi = L[s];
+        const double mid = 0.5 * ((s == 0 ? uMin : lo) + hi);
+        const auto sum = density.over(lo, hi);
+        if (lo < 0.0 && hi > 0.0)
+            V[s] = 0.0;
+        else if (rule == "midpoint" || !(sum.volume > 0.0) || !(sum.boltzmann > 0.0))
+            V[s] = mid;
+        else if (rule == "volume")
+            V[s] = sum.energyVolume / sum.volume;
+        else if (rule == "boltzmann")
+            V[s] = sum.energyBoltzmann / sum.boltzmann;
+        else // virial
+            V[s] = -density.kT() * std::log(sum.boltzmann / sum.volume);
+    }
+    return V;
+}
+
+/// The Boltzmann-weighted squared terracing error E² = Σ_s Σ w e^{−βU} (U − V_s)² over the
+/// density's configurations (kJ²/mol² Å³).
+inline double designError(const TerraceDesign& d, const PairEnergyDensity& density) {
+    const double inf = std::numeric_limits<double>::infinity();
+    double e2 = 0.0;
+    for (std::size_t s = 0; s < d.values.size(); ++s) {
+        const auto sum =
+            density.over(s == 0 ? -inf : d.levels[s - 1], s == d.levels.size() ? inf : d.levels[s]);
+        const double V = d.values[s];
+        e2 += sum.squareBoltzmann - 2.0 * V * sum.energyBoltzmann + V * V * sum.boltzmann;
+    }
+    return e2;
+}
+
+/// Lloyd–Max: nBelow levels under 0 and nAbove over it, then the cap; from a uniform start of
+/// the given step, iterated until no level moves by more than 1e-12 of the step (or 10⁴ sweeps).
+inline TerraceDesign optimalDesign(const PairEnergyDensity& density, int nBelow, int nAbove,
+                                   double step, double uCap, double uMin) {
+    TerraceDesign d;
+    for (int k = -nBelow; k <= nAbove; ++k)
+        if (k != 0) d.levels.push_back((k > 0 ? k - 0.5 : k + 0.5) * step);
+    d.levels.push_back(uCap);
+    const std::size_t free = d.levels.size() - 1; // the cap stays
+    for (int sweep = 0; sweep < 10000; ++sweep) {
+        d.values = terraceValues(d.levels, "boltzmann", density, uMin);
+        double moved = 0.0;
+        for (std::size_t k = 0; k < free; ++k) {
+            const double next = 0.5 * (d.values[k] + d.values[k + 1]);
+            moved = std::max(moved, std::abs(next - d.levels[k]));
+            d.levels[k] = next;
+        }
+        if (moved < 1e-12 * step) break;
+    }
+    d.values = terraceValues(d.levels, "boltzmann", density, uMin);
+    return d;
+}
+
+/// The design a scene asks for (dmd.terraces), or none for the paper's uniform levels with
+/// midpoint energies (dmd.dV alone), which the engine keeps in closed form. dV in kT; the model's
+/// range bounds the density (for a bare potential, the reach of the level −ΔV/2).
+template <PairPotential P>
+std::optional<TerraceDesign> designTerraces(const Scene::Dmd& dmd, const P& p, double kT) {
+    const auto& t = dmd.terraces;
+    if (t.levels == "energy" && t.values == "midpoint" && t.n == 0) return std::nullopt;
+    const double uMin = p.minimumEnergy();
+    if (!(uMin < 0.0))
+        throw SceneError("dmd.terraces: the potential has no well (U_min = " +
+                         std::to_string(uMin) + " kJ/mol) to place levels in");
+    const double step = t.n > 0 ? -uMin / t.n : dmd.dV * kT;
+    const int nWell = t.n > 0 ? t.n : std::max(2, static_cast<int>(std::floor(-uMin / step + 0.5)));
+    const double uCap = designCapInKT * kT;
+    double rOut = std::numeric_limits<double>::infinity();
+    if constexpr (requires { p.range(); }) rOut = p.range();
+    if (!std::isfinite(rOut)) rOut = p.reachDistance(-0.5 * step);
+    const double rIn = 0.5 * p.reachDistance(uCap);
+    const auto density = PairEnergyDensity::build(p, kT, rIn, rOut, uCap);
+
+    TerraceDesign d;
+    if (t.levels == "optimal") {
+        if (t.values != "boltzmann")
+            throw SceneError("dmd.terraces: levels \"optimal\" set their own values (the "
+                             "Boltzmann mean of each terrace); give values \"boltzmann\" or none");
+        const int nAbove = static_cast<int>(std::floor(optimalWallInKT * kT / step + 0.5));
+        return optimalDesign(density, nWell, std::max(1, nAbove), step, uCap, uMin);
+    }
+    if (t.levels == "energy") {
+        d.levels = energyLevels(uMin, step, uCap);
+    } else if (t.levels == "distance" || t.levels == "volume") {
+        const ProfileShape shape = profileShape(p, rIn, rOut);
+        if (t.levels == "distance")
+            d.levels = radialLevels(
+                p, shape, rIn, rOut, nWell, uCap, [](double r) { return r; },
+                [](double x) { return x; });
+        else
+            d.levels = radialLevels(
+                p, shape, rIn, rOut, nWell, uCap, [](double r) { return r * r * r; },
+                [](double x) { return std::cbrt(x); });
+    } else {
+        throw SceneError(
+            "dmd.terraces.levels: must be energy, distance, volume or optimal, got \"" + t.levels +
+            "\"");
+    }
+    d.levels.push_back(uCap); // every placement stops below it
+    d.values = terraceValues(d.levels, t.values, density, uMin);
+    return d;
+}
+
+} // namespace terrace::dmd
