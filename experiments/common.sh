@@ -43,6 +43,10 @@ if [ "$SIZE" = quick ]; then
     CONV_EQUIL_PS=0.099
     CONV_RODS_PS=0.198
     CONV_LJ_PS=0.198
+    FRONT_REPLICAS=2    # fronts.sh (states front-dense, front-gas)
+    FRONT_N=216
+    FRONT_EQUIL_PS=0.099
+    FRONT_PS=0.198
 else
     REPLICAS=4
     DENSE_N=512
@@ -68,6 +72,12 @@ else
     CONV_EQUIL_PS=0.9   # 100 thermostat intervals
     CONV_RODS_PS=5.4    # 600 samples
     CONV_LJ_PS=2.7      # 300 samples, 27 LJ time units (τ = σ sqrt(m/ε) = 100 fs there)
+    # fronts.sh: every design over ΔV = 2 … ⅛ kT and SMD over its dt ladder, both states, at the
+    # smallest N whose dense box holds two SMD cutoffs; the SMD reference REF_PS_FACTOR longer.
+    FRONT_REPLICAS=4
+    FRONT_N=216
+    FRONT_EQUIL_PS=0.9  # 100 thermostat intervals
+    FRONT_PS=3.6        # 400 samples
 fi
 # convergence.sh's sets write a trajectory frame this often (fs), for the continuous model's U
 # and P on their configurations (paper_tools configurational).
@@ -103,6 +113,16 @@ state_point() {
             STATE_SCENE=$SCENES/dense-rods.json STATE_N=$CONV_RODS_N STATE_PS=$CONV_RODS_PS
         else
             STATE_SCENE=$SCENES/lj-liquid.json STATE_N=$CONV_LJ_N STATE_PS=$CONV_LJ_PS
+        fi
+        ;;
+    # fronts.sh: one model for both engines, the paper's two states.
+    front-dense | front-gas)
+        STATE_SETS=(--set dmd.model=smoothed)
+        STATE_EQUIL_PS=$FRONT_EQUIL_PS STATE_N=$FRONT_N STATE_PS=$FRONT_PS
+        if [ "$1" = front-dense ]; then
+            STATE_SCENE=$SCENES/dense-rods.json
+        else
+            STATE_SCENE=$SCENES/gas-rods.json
         fi
         ;;
     *) echo "unknown state '$1'" >&2; return 2 ;;

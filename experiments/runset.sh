@@ -4,9 +4,12 @@
 #   runset.sh STATE/ENGINE-PARAM[-OPTION...]    e.g. dense/dmd-0.5, dense/dmd-0.5-heap, rho0.1-T10/smd-1.8
 #   STATE   dense | gas | rho<ρ*>-T<T*> (e.g. rho0.05-T1.4; rods as in dense-rods.json)
 #           | conv-rods | conv-lj (convergence.sh: dense rods, LJ liquid; smoothed DMD model)
+#           | front-dense | front-gas (fronts.sh: dense and gas rods; smoothed DMD model)
 #   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs; Verlet skin tuned for the state by
 #           smd-skin.sh)
 #   OPTION  heap | eager (DMD queue and invalidation, default bpq + lazy)
+#           optimal | virial | boltzmann | distance | volume (DMD terrace design, default the
+#                    paper's uniform levels and midpoints; fronts.sh)
 #           mayfail (a failed run marks the set FAILED instead of stopping make: unstable
 #                    settings are a result of the trade-off, not an error of the pipeline;
 #                    in the dense and gas states such sets run TRADE_PS)
@@ -22,7 +25,11 @@ read -r -a options <<<"${options_text//-/ }"
 
 state_point "$state"
 scene=$STATE_SCENE n=$STATE_N ps=$STATE_PS sets=("${STATE_SETS[@]}")
-case $state in rho*-T*) REPLICAS=$SCAN_REPLICAS ;; conv-*) REPLICAS=$CONV_REPLICAS ;; esac
+case $state in
+rho*-T*) REPLICAS=$SCAN_REPLICAS ;;
+conv-*) REPLICAS=$CONV_REPLICAS ;;
+front-*) REPLICAS=$FRONT_REPLICAS ;;
+esac
 grid=$SAMPLE_FS # the run's sample and thermostat interval, fs
 case $engine in
 dmd) sets+=(--set engine=dmd --set dmd.dV="$param") ;;
@@ -42,6 +49,11 @@ for o in "${options[@]}"; do
     case $o in
     mayfail) mayfail=1 ;;
     heap) sets+=(--set dmd.queue=heap) ;;
+    # Terrace designs (dmd/terrace_design.hpp) over the same ΔV ladder: n levels in the well as
+    # uniform levels of height ΔV put there (at least 2).
+    optimal) sets+=(--set 'dmd.terraces={"levels":"optimal"}') ;;
+    virial | boltzmann) sets+=(--set "dmd.terraces={\"levels\":\"energy\",\"values\":\"$o\"}") ;;
+    distance | volume) sets+=(--set "dmd.terraces={\"levels\":\"$o\",\"values\":\"boltzmann\"}") ;;
     eager) sets+=(--set dmd.invalidation=eager) ;;
     ref)
         ps=$(awk -v p="$ps" -v f="$REF_PS_FACTOR" 'BEGIN{print p*f}')

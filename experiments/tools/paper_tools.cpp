@@ -11,9 +11,12 @@
 //   configurational DIR                   the continuous model's U and P on DIR's trajectory
 //                                         (configurational.hpp), as JSON
 //   order IN.csv OUT.csv                  orders of convergence of a table (convergence.hpp)
+//   equal-accuracy FRONTS.csv SET         equal-accuracy efficiency of each DMD design against
+//                                         SMD at SET's errors (equal_accuracy.hpp)
 #include "analysis/csv.hpp"
 #include "experiments/tools/configurational.hpp"
 #include "experiments/tools/convergence.hpp"
+#include "experiments/tools/equal_accuracy.hpp"
 #include "experiments/tools/potential_map.hpp"
 #include "experiments/tools/replicas.hpp"
 #include "experiments/tools/search_trace.hpp"
@@ -36,7 +39,8 @@ int usage() {
                  "       paper_tools get FILE.json KEY...\n"
                  "       paper_tools stats X...\n"
                  "       paper_tools configurational DIR\n"
-                 "       paper_tools order IN.csv OUT.csv\n";
+                 "       paper_tools order IN.csv OUT.csv\n"
+                 "       paper_tools equal-accuracy FRONTS.csv SET\n";
     return 2;
 }
 
@@ -77,6 +81,11 @@ int run(const std::vector<std::string>& a) {
     } else if (cmd == "order" && a.size() == 3) {
         std::cout << "quantity,order,order_err,log_prefactor,chi2_per_dof,points\n";
         for (const auto& row : experiments::fitOrders(analysis::readCsv(a[1]), a[2]))
+            std::cout << row << '\n';
+    } else if (cmd == "equal-accuracy" && a.size() == 3) {
+        std::cout << "design,quantity,target,target_error,resolved,smd_cost,design_cost,efficiency,"
+                     "bound\n";
+        for (const auto& row : experiments::equalAccuracy(a[1], a[2]))
             std::cout << row << '\n';
     } else {
         return usage();

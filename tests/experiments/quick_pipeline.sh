@@ -19,7 +19,9 @@ for f in fig1/fig1.png fig2/fig2.png fig3/fig3.png fig4/fig4.png fig5/fig5.png \
     table/efficiency.csv table/queues.csv tradeoff/tradeoff-dense.png tradeoff/tradeoff-gas.png \
     density/density.png extremes/extremes.csv versus/versus.png versus/versus.txt machine.txt \
     runs.csv convergence/convergence.png convergence/convergence-rods.csv \
-    convergence/convergence-lj.csv convergence/orders.csv; do
+    convergence/convergence-lj.csv convergence/orders.csv designs/designs.png \
+    designs/optimal-boltzmann.csv fronts/fronts-front-dense.png fronts/fronts-front-gas.png \
+    fronts/equal-accuracy-front-dense.csv fronts/equal-accuracy-front-gas.csv; do
     [ -s "$out/$f" ] || fail "missing or empty $f"
 done
 # PNG files start with the PNG signature.
@@ -47,6 +49,13 @@ for s in rods lj; do
         fail "convergence-$s rows"
 done
 [ "$(tail -n +2 "$out/convergence/orders.csv" | wc -l)" -eq 14 ] || fail "orders rows"
+# Fronts: 4 designs × 5 ΔV and 5 SMD steps per state; equal accuracy for 4 designs × 5
+# quantities × 2 targets.
+for s in dense gas; do
+    [ "$(tail -n +2 "$out/fronts/fronts-front-$s.csv" | wc -l)" -eq 25 ] || fail "fronts-$s rows"
+    [ "$(tail -n +2 "$out/fronts/equal-accuracy-front-$s.csv" | wc -l)" -eq 40 ] ||
+        fail "equal-accuracy-$s rows"
+done
 # Every extreme combination is listed (finished or with its reason).
 [ "$(tail -n +2 "$out/extremes/extremes.csv" | wc -l)" -eq 8 ] || fail "extremes rows"
 

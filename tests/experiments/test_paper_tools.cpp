@@ -6,6 +6,7 @@
 #include "core/xyz.hpp"
 #include "experiments/tools/configurational.hpp"
 #include "experiments/tools/convergence.hpp"
+#include "experiments/tools/equal_accuracy.hpp"
 #include "experiments/tools/potential_map.hpp"
 #include "experiments/tools/replicas.hpp"
 #include "experiments/tools/search_trace.hpp"
@@ -327,4 +328,58 @@ TEST(Configurational, TwoSpheresGiveTheirPairEnergyAndVirial) {
     EXPECT_NEAR(c.pressureReduced, 0.5 * (pA + pB) * 1.0 / 1.5, 1e-12);
     EXPECT_THROW(ex::configurational(d / "none"), std::exception);
     fs::remove_all(d);
+}
+
+TEST(EqualAccuracy, ParetoFrontKeepsOnlyUnbeatenPoints) {
+    const auto front = ex::paretoFront({{"c", 3.0, 0.08},
+                                        {"a", 1.0, 0.1},
+                                        {"d", 4.0, 0.01},
+                                        {"b", 2.0, 0.05},
+                                        {"failed", std::nan(""), 0.001},
+                                        {"zero", 5.0, 0.0}});
+    ASSERT_EQ(front.size(), 3u);
+    EXPECT_EQ(front[0].label, "a");
+    EXPECT_EQ(front[1].label, "b");
+    EXPECT_EQ(front[2].label, "d");
+}
+
+TEST(EqualAccuracy, CostIsInterpolatedInLogLogAlongTheFront) {
+    const std::vector<ex::FrontPoint> front{{"a", 1.0, 0.1}, {"b", 2.0, 0.05}, {"d", 4.0, 0.01}};
+    // Halfway between b and d in ln e is halfway in ln c: √(2·4).
+    const auto mid = ex::costAtError(front, std::sqrt(0.05 * 0.01));
+    EXPECT_NEAR(mid.cost, std::sqrt(8.0), roundOff);
+    EXPECT_FALSE(mid.bound);
+    EXPECT_NEAR(ex::costAtError(front, 0.05).cost, 2.0, roundOff);
+    const auto easy = ex::costAtError(front, 0.2); // looser than the cheapest point
+    EXPECT_EQ(easy.cost, 1.0);
+    EXPECT_TRUE(easy.bound);
+    EXPECT_TRUE(std::isnan(ex::costAtError(front, 0.005).cost)); // beyond the best
+}
+
+TEST(EqualAccuracy, EfficiencyIsSmdCostOverDesignCostAtTheTargets) {
+    const fs::path dir = scratch("fronts");
+    std::ofstream(dir / "fronts.csv")
+        << "set,engine,design,param,cpu_s_per_ps,err_g,floor_g,status\n"
+           "smd-1,smd,-,1,4,0.01,0.001,ok\n"
+           "smd-1.8,smd,-,1.8,2,0.04,0.001,ok\n"
+           "smd-4,smd,-,4,1,0.16,0.001,failed: unstable\n"
+           "dmd-0.5,dmd,uniform,0.5,1,0.08,0.001,ok\n"
+           "dmd-0.25,dmd,uniform,0.25,4,0.02,0.001,ok\n"
+           "dmd-0.5-opt,dmd,optimal,0.5,0.5,0.04,0.001,ok\n";
+    const auto rows = ex::equalAccuracy(dir / "fronts.csv", "smd-1.8");
+    ASSERT_EQ(rows.size(), 4u); // 2 designs × 2 targets, one quantity; SMD-1.8's error resolved
+    // optimal reaches SMD-1.8's error at 0.5 against SMD's 2: 4 times cheaper, an exact point.
+    EXPECT_EQ(rows[0], "optimal,g,smd-1.8,0.04,1,2,0.5,4,0");
+    // At twice the error SMD's cheapest stable point already is below it: a bound on both.
+    EXPECT_EQ(rows[1], "optimal,g,2xsmd-1.8,0.08,1,2,0.5,4,1");
+    // uniform: 0.04 lies halfway (in ln e) between 0.08 and 0.02, so its cost is √(1·4) = 2.
+    EXPECT_EQ(rows[2], "uniform,g,smd-1.8,0.04,1,2,2,1,0");
+    EXPECT_EQ(rows[3], "uniform,g,2xsmd-1.8,0.08,1,2,1,2,1");
+    // A target within its floor is marked: SMD-1.8's error 0.04 against a floor of 0.03.
+    std::ofstream(dir / "noisy.csv")
+        << "set,engine,design,param,cpu_s_per_ps,err_g,floor_g,status\n"
+           "smd-1.8,smd,-,1.8,2,0.04,0.03,ok\n"
+           "dmd-1,dmd,uniform,1,1,0.05,0.03,ok\n";
+    EXPECT_EQ(ex::equalAccuracy(dir / "noisy.csv", "smd-1.8")[0],
+              "uniform,g,smd-1.8,0.04,0,2,nan,nan,0");
 }
