@@ -9,9 +9,12 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 # python3-ase: the test suite reads our trajectories with ASE (tests/cli/cli_checks.sh ase_read).
+# libopenmpi-dev, openmpi-bin: terrace sweep under mpirun (optional for a build of your own: without
+# them terrace builds and sweeps locally, and says so; the test suite runs a sweep under mpirun).
 packages=(build-essential cmake pkg-config git libeigen3-dev libfftw3-dev
           libboost-program-options-dev libboost-math-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox python3-ase)
+          libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox python3-ase
+          libopenmpi-dev openmpi-bin)
 
 install_missing() {
     local missing=()

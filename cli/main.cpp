@@ -4,11 +4,13 @@
 //   terrace analyse DIR
 //   terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
 //   terrace design [SCENE] [--set key.path=value]... [--profile]
+//   terrace sweep SWEEP.json [--out DIR] [-j N] [--set key.path=value]... [--retry-failed]
 #include "analysis/compare.hpp"
 #include "analysis/correlations.hpp"
 #include "cli/design_command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run_command.hpp"
+#include "cli/sweep_mpi.hpp"
 #include "core/xyz.hpp"
 #include <boost/program_options.hpp>
 #include <cerrno>
@@ -50,6 +52,21 @@ Usage:
       dmd.terraces), as CSV: each terrace's levels and energy; with --profile, U along
       the design's reference alignment (s_i.s_j = 1/sqrt 2; for rods r_e = r) beside
       its terraced value.
+  terrace sweep SWEEP.json [--out DIR] [-j N] [--set key.path=value]... [--retry-failed]
+                [--quiet]
+      Run every scene of a sweep: a base scene and axes of values for dotted scene
+      keys (product, zipped, or cases), and seeds, as in
+        {"scene": "dense-rods.json", "set": {"state.n": 216},
+         "axes": [{"state.density": [0.1, 0.5]},
+                  {"cases": [{"engine": "dmd", "dmd.dV": 0.5},
+                             {"engine": "smd", "smd.dt_fs": 1.8}]}],
+         "seeds": [1, 2]}
+      Each run goes to DIR/<its overrides> (e.g. density-0.1_engine-dmd_dV-0.5_seed-1),
+      one row each in DIR/sweep.csv (default DIR: out/<sweep file name>). -j N runs N
+      at once; under mpirun every rank takes runs as they come (DIR on a file system
+      all ranks see). Runs done before for the same scene are not run again, nor failed
+      ones (unless --retry-failed); a failed run is recorded and the sweep goes on. Exit
+      status 0: all runs done; 1: some failed; 128 + signal: stopped by one.
   terrace --help
 
 SIGINT, SIGTERM and SIGHUP end a run at the next sample with its output written (exit
@@ -176,6 +193,47 @@ int designMain(const std::vector<std::string>& args) {
     return cli::printDesign(req);
 }
 
+int sweepMain(const std::vector<std::string>& args) {
+    po::options_description opts("sweep options");
+    opts.add_options()("out", po::value<std::string>(), "output directory")(
+        "jobs,j", po::value<int>()->default_value(1), "runs at once in this process")(
+        "retry-failed", "run again the runs whose failure is recorded")(
+        "quiet", "no progress output")("sweep", po::value<std::string>(), "sweep file")(
+        "set", po::value<std::vector<std::string>>()->composing(), "key.path=value")("help,h",
+                                                                                     "this help");
+    po::positional_options_description pos;
+    pos.add("sweep", 1);
+    po::variables_map vm;
+    po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
+    po::notify(vm);
+    if (vm.count("help")) {
+        std::fputs(usage, stdout);
+        return 0;
+    }
+    if (!vm.count("sweep")) throw po::error("sweep takes a sweep file (SWEEP.json)");
+    const std::filesystem::path file = vm["sweep"].as<std::string>();
+    const auto sets =
+        vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
+    cli::SweepOptions options;
+    options.out = vm.count("out")
+                      ? std::filesystem::path(vm["out"].as<std::string>())
+                      : std::filesystem::path("out") / cli::sanitisedName(file.stem().string());
+    options.jobs = vm["jobs"].as<int>();
+    options.quiet = vm.count("quiet") > 0;
+    options.retryFailed = vm.count("retry-failed") > 0;
+    if (options.jobs < 0 || (options.jobs == 0 && !cli::launchedByMpi()))
+        throw po::error("-j must be at least 1 (0 only under mpirun: rank 0 then only hands out)");
+    if (cli::launchedByMpi()) return cli::mpiSweep(file, sets, options);
+    cli::SweepPlan plan;
+    try {
+        plan = cli::loadSweep(file, sets);
+    } catch (const SceneError& e) { // a bad sweep file: nothing has run
+        std::fprintf(stderr, "terrace: %s\n", e.what());
+        return 2;
+    }
+    return cli::runSweep(plan, options);
+}
+
 int compareMain(const std::vector<std::string>& args) {
     po::options_description opts("compare options");
     opts.add_options()("tol-sigma", po::value<double>()->default_value(3.0), "tolerance in sigma")(
@@ -220,6 +278,7 @@ int main(int argc, char** argv) {
         if (command == "analyse" || command == "analyze") return checkedStdout(analyseMain(args));
         if (command == "compare") return checkedStdout(compareMain(args));
         if (command == "design") return checkedStdout(designMain(args));
+        if (command == "sweep") return checkedStdout(sweepMain(args));
         std::fprintf(stderr, "terrace: unknown command '%s' (try terrace --help)\n",
                      command.c_str());
         return 2;

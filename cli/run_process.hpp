@@ -1,0 +1,51 @@
+#pragma once
+// One run of a sweep as a child process: `terrace run` (this same executable) with the sweep's
+// scene and the run's overrides, or `terrace run --continue` on a run a restart file can finish.
+// A process of its own keeps a run's CPU clock, its memory and a crash to itself, and makes a
+// run's output the same whoever started it (a sweep with -j 1, -j 8 or under mpirun on any rank).
+// The child gets a process group of its own, so that a terminal's Ctrl-C reaches the sweep alone
+// and the sweep passes it on once (a second signal would cancel the child's analysis). Its
+// standard output and error go to DIR/run.log.
+#include "cli/sweep_plan.hpp"
+#include <filesystem>
+#include <optional>
+#include <sys/types.h>
+
+namespace terrace::cli {
+
+enum class RunAction { Fresh, Continue, Skip };
+
+/// How a child ended.
+struct ChildExit {
+    bool signalled = false; // killed by a signal (code is its number) rather than exiting
+    int code = 0;           // exit status, or the signal's number
+};
+
+class RunProcess {
+public:
+    RunProcess() = default;
+    /// Starts the run `run` of `plan` in `dir` (created if needed); Fresh overwrites whatever an
+    /// earlier run left there, Continue resumes from its restart file.
+    RunProcess(const SweepPlan& plan, const SweepRun& run, const std::filesystem::path& dir,
+               RunAction action);
+    RunProcess(RunProcess&& other) noexcept : pid_(other.pid_) { other.pid_ = -1; }
+    RunProcess& operator=(RunProcess&& other) noexcept;
+    RunProcess(const RunProcess&) = delete;
+    RunProcess& operator=(const RunProcess&) = delete;
+    /// A child still running is sent SIGKILL and reaped: no orphan outlives its sweep's error.
+    ~RunProcess();
+
+    bool running() const { return pid_ > 0; }
+    /// The child's end, once it has ended (without blocking).
+    std::optional<ChildExit> poll();
+    /// Passes a signal on to the child.
+    void signal(int sig) const;
+
+private:
+    pid_t pid_ = -1;
+};
+
+/// The path of this executable (/proc/self/exe), which the children run.
+std::filesystem::path selfExecutable();
+
+} // namespace terrace::cli

@@ -1,0 +1,240 @@
+#include "cli/sweep_plan.hpp"
+#include "cli/output_dir.hpp"
+#include "core/output_file.hpp"
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace terrace::cli {
+
+namespace {
+
+using ordered = nlohmann::ordered_json;
+using nlohmann::json;
+
+/// Directory names stay well inside the 255 bytes a file name may take.
+constexpr std::size_t maxRunNameLength = 200;
+
+/// One value of one axis: the overrides it sets and, if the axis has labels, its label.
+struct AxisValue {
+    std::vector<Override> overrides;
+    std::string label;
+};
+
+class SweepReader {
+public:
+    explicit SweepReader(std::string origin) : origin_(std::move(origin)) {}
+
+    [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+        throw SceneError(origin_ + ": " + where + ": " + what);
+    }
+
+    static json plain(const ordered& v) { return json::parse(v.dump()); }
+
+    void checkKey(const std::string& key, const std::string& where) const {
+        if (key.empty() || key.front() == '.' || key.back() == '.' ||
+            key.find("..") != std::string::npos)
+            fail(where, "'" + key + "' is not a dotted scene key");
+    }
+
+    std::vector<AxisValue> axis(const ordered& a, const std::string& where) const {
+        if (!a.is_object() || a.empty())
+            fail(where, "an axis must be an object of key: [values], or {\"cases\": [...]}");
+        std::vector<AxisValue> values;
+        if (a.contains("cases")) {
+            for (const auto& [k, v] : a.items())
+                if (k != "cases" && k != "labels")
+                    fail(where + "." + k, "an axis with cases takes no other key but labels");
+            const auto& cases = a["cases"];
+            if (!cases.is_array() || cases.empty())
+                fail(where + ".cases", "must be a non-empty list of objects of overrides");
+            for (std::size_t c = 0; c < cases.size(); ++c) {
+                const std::string at = where + ".cases[" + std::to_string(c) + "]";
+                if (!cases[c].is_object() || cases[c].empty())
+                    fail(at, "must be a non-empty object of key: value overrides");
+                AxisValue value;
+                for (const auto& [k, v] : cases[c].items()) {
+                    checkKey(k, at);
+                    value.overrides.emplace_back(k, plain(v));
+                }
+                values.push_back(std::move(value));
+            }
+        } else {
+            std::size_t length = 0;
+            bool first = true;
+            for (const auto& [k, v] : a.items()) {
+                if (k == "labels") continue;
+                checkKey(k, where);
+                if (!v.is_array() || v.empty())
+                    fail(where + "." + k, "must be a non-empty list of values");
+                if (first) length = v.size(), values.resize(length);
+                if (v.size() != length)
+                    fail(where + "." + k,
+                         "zipped keys need lists of one length: " + std::to_string(v.size()) +
+                             " values against " + std::to_string(length));
+                first = false;
+                for (std::size_t i = 0; i < length; ++i)
+                    values[i].overrides.emplace_back(k, plain(v[i]));
+            }
+            if (first) fail(where, "an axis needs at least one key");
+        }
+        if (a.contains("labels")) {
+            const auto& labels = a["labels"];
+            if (!labels.is_array() || labels.size() != values.size())
+                fail(where + ".labels", "must be a list of " + std::to_string(values.size()) +
+                                            " strings, one per value");
+            std::set<std::string> seen;
+            for (std::size_t i = 0; i < values.size(); ++i) {
+                if (!labels[i].is_string() || labels[i].get<std::string>().empty())
+                    fail(where + ".labels", "must be non-empty strings");
+                values[i].label = labels[i].get<std::string>();
+                if (!seen.insert(values[i].label).second)
+                    fail(where + ".labels", "'" + values[i].label + "' is given twice");
+            }
+        }
+        return values;
+    }
+
+private:
+    std::string origin_;
+};
+
+std::string lastComponent(const std::string& key) {
+    const auto dot = key.rfind('.');
+    return dot == std::string::npos ? key : key.substr(dot + 1);
+}
+
+} // namespace
+
+std::string valueText(const json& value) {
+    return value.is_string() ? value.get<std::string>() : value.dump();
+}
+
+std::string overrideArgument(const Override& o) {
+    return o.first + "=" + o.second.dump();
+}
+
+SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
+                        const std::filesystem::path& baseDir,
+                        const std::vector<std::string>& extraSets) {
+    const SweepReader rd(origin);
+    const ordered file = ordered::parse(text, nullptr, false);
+    if (file.is_discarded()) rd.fail("<top>", "not valid JSON");
+    if (!file.is_object()) rd.fail("<top>", "a sweep must be a JSON object");
+    for (const auto& [k, v] : file.items())
+        if (k != "scene" && k != "set" && k != "axes" && k != "seeds")
+            rd.fail(k, "unknown key (a sweep has scene, set, axes and seeds)");
+
+    SweepPlan plan;
+    plan.origin = origin;
+    if (file.contains("scene")) {
+        if (!file["scene"].is_string() || file["scene"].get<std::string>().empty())
+            rd.fail("scene", "must be the path of a scene file");
+        const std::filesystem::path p = file["scene"].get<std::string>();
+        plan.scenePath = p.is_absolute() ? p : baseDir / p;
+    }
+    if (file.contains("set")) {
+        if (!file["set"].is_object()) rd.fail("set", "must be an object of key: value overrides");
+        for (const auto& [k, v] : file["set"].items()) {
+            rd.checkKey(k, "set");
+            plan.common.emplace_back(k, SweepReader::plain(v));
+        }
+    }
+    for (const auto& s : extraSets) {
+        const auto eq = s.find('=');
+        if (eq == std::string::npos || eq == 0) rd.fail("--set " + s, "expected key.path=value");
+        json value = json::parse(s.substr(eq + 1), nullptr, false);
+        if (value.is_discarded()) value = s.substr(eq + 1); // a bare string, as terrace run
+        rd.checkKey(s.substr(0, eq), "--set");
+        plan.common.emplace_back(s.substr(0, eq), value);
+    }
+
+    std::vector<std::vector<AxisValue>> axes;
+    if (file.contains("axes")) {
+        if (!file["axes"].is_array()) rd.fail("axes", "must be a list of axes");
+        for (std::size_t a = 0; a < file["axes"].size(); ++a)
+            axes.push_back(rd.axis(file["axes"][a], "axes[" + std::to_string(a) + "]"));
+    }
+    if (file.contains("seeds")) {
+        const auto& seeds = file["seeds"];
+        if (!seeds.is_array() || seeds.empty()) rd.fail("seeds", "must be a non-empty list");
+        std::vector<AxisValue> values;
+        for (const auto& s : seeds) {
+            if (!s.is_number_integer()) rd.fail("seeds", "must be integers, got " + s.dump());
+            values.push_back({{{"seed", SweepReader::plain(s)}}, ""});
+        }
+        axes.push_back(std::move(values));
+    }
+
+    // Short names: a key's last component, unless two of the sweep's keys share it.
+    std::map<std::string, std::set<std::string>> byComponent;
+    for (const auto& axis : axes)
+        for (const auto& value : axis)
+            for (const auto& [key, v] : value.overrides) {
+                byComponent[lastComponent(key)].insert(key);
+                if (std::find(plan.axisKeys.begin(), plan.axisKeys.end(), key) ==
+                    plan.axisKeys.end())
+                    plan.axisKeys.push_back(key);
+            }
+    auto shortKey = [&](const std::string& key) {
+        return byComponent[lastComponent(key)].size() > 1 ? key : lastComponent(key);
+    };
+
+    // The product of the axes, the last fastest (an odometer over the axes' indices).
+    std::vector<std::size_t> index(axes.size(), 0);
+    std::set<std::string> names;
+    std::vector<std::string> commonSets;
+    for (const auto& o : plan.common)
+        commonSets.push_back(overrideArgument(o));
+    while (true) {
+        SweepRun run;
+        for (std::size_t a = 0; a < axes.size(); ++a) {
+            const AxisValue& value = axes[a][index[a]];
+            std::string part = value.label;
+            for (const auto& o : value.overrides) {
+                run.overrides.push_back(o);
+                if (value.label.empty())
+                    part +=
+                        (part.empty() ? "" : "_") + shortKey(o.first) + "-" + valueText(o.second);
+            }
+            run.name += (run.name.empty() ? "" : "_") + part;
+        }
+        if (run.name.empty()) run.name = "run";
+        run.name = sanitisedName(run.name);
+        if (run.name.size() > maxRunNameLength)
+            rd.fail("axes", "run name '" + run.name.substr(0, 60) +
+                                "...' is too long for a directory: give the axes labels");
+        if (!names.insert(run.name).second)
+            rd.fail("axes", "two runs are both named '" + run.name +
+                                "' (a value given twice, or labels that collide)");
+        std::vector<std::string> sets = commonSets;
+        for (const auto& o : run.overrides)
+            sets.push_back(overrideArgument(o));
+        try {
+            run.scene = plan.scenePath.empty() ? sceneFromJson(toJson(defaultScene()),
+                                                               "<built-in default scene>", sets)
+                                               : loadScene(plan.scenePath.string(), sets);
+        } catch (const SceneError& e) {
+            rd.fail("run " + run.name, e.what());
+        }
+        plan.runs.push_back(std::move(run));
+
+        std::size_t a = axes.size();
+        while (a > 0 && ++index[a - 1] == axes[a - 1].size())
+            index[--a] = 0;
+        if (a == 0) break;
+    }
+    return plan;
+}
+
+SweepPlan loadSweep(const std::filesystem::path& file, const std::vector<std::string>& extraSets) {
+    std::string text;
+    try {
+        text = readWholeFile(file);
+    } catch (const IoError& e) {
+        throw SceneError(e.what());
+    }
+    return sweepFromJson(text, file.string(), file.parent_path(), extraSets);
+}
+
+} // namespace terrace::cli
