@@ -7,8 +7,12 @@
 # (paper_tools error), and |Δ⟨U⟩/N| (kJ/mol; DMD's own, terraced energy) and |ΔP*| with the
 # replica errors of both combined. Cost: CPU s per simulated ps. Every design runs the ΔV ladder
 # 2 … ⅛ kT; SMD runs dt = 0.5 … 4 fs (a setting whose runs fail is listed as failed).
+# An SMD setting whose energy is not conserved (replicas' mean |drift| above
+# MAX_DRIFT_NKT_PER_PS · N kT per ps) is marked unstable and takes no part in SMD's front: the
+# equal-accuracy comparison is with SMD at a stable dt.
 # paper_tools equal-accuracy then interpolates each engine's cost along its Pareto front at the
-# error of SMD at 1.8 fs, and twice it: the equal-accuracy efficiency is SMD's cost over DMD's.
+# error of SMD at 1.8 fs, or of the largest stable dt where 1.8 fs is not, and twice it: the
+# equal-accuracy efficiency is SMD's cost over DMD's.
 source "$(dirname "$0")/common.sh"
 state=$1
 dir=$OUT/fronts
@@ -27,6 +31,21 @@ replica_stats() {
     done
     "$TOOLS" stats "${values[@]}"
 }
+
+# 0.1 % of the thermal energy per ps: 10 % over a 100 ps run.
+MAX_DRIFT_NKT_PER_PS=1e-3
+
+# drift_per_nkt DIR : the replicas' mean |energy drift| in units of N kT per ps.
+drift_per_nkt() {
+    local d values=()
+    for d in $(replica_dirs "$1"); do
+        # kT in kJ/mol: R T, R = 8.314462618e-3 kJ/(mol K).
+        values+=("$("$TOOLS" get "$d/summary.json" energy.drift_per_ps n_bodies temperature_target_K |
+            awk -F, '{ d = $1 < 0 ? -$1 : $1; printf "%.12g", d / ($2 * $3 * 8.314462618e-3) }')")
+    done
+    "$TOOLS" stats "${values[@]}" | cut -d' ' -f1
+}
+
 read -r refU refUErr < <(replica_stats "$ref" potential_energy_mean 1)
 read -r refP refPErr < <(replica_stats "$ref" pressure.mean_reduced 0)
 
@@ -45,11 +64,18 @@ row() { # SET ENGINE DESIGN PARAM
     read -r eo fo < <("$TOOLS" error "$ref/mean-oacf.csv" "$d/mean-oacf.csv" c1 2)
     read -r u ue < <(replica_stats "$d" potential_energy_mean 1)
     read -r p pe < <(replica_stats "$d" pressure.mean_reduced 0)
+    local status=ok drift
+    if [ "$2" = smd ]; then
+        drift=$(drift_per_nkt "$d")
+        if awk -v x="$drift" -v m="$MAX_DRIFT_NKT_PER_PS" 'BEGIN { exit !(x > m) }'; then
+            status="unstable: energy drifts by $(printf '%.2g' "$drift") N kT per ps"
+        fi
+    fi
     awk -v row="$s,$2,$3,$4,$cost,$eg,$fg,$ev,$fv,$eo,$fo" -v u="$u" -v ue="$ue" -v ru="$refU" \
-        -v rue="$refUErr" -v p="$p" -v pe="$pe" -v rp="$refP" -v rpe="$refPErr" 'BEGIN {
+        -v rue="$refUErr" -v p="$p" -v pe="$pe" -v rp="$refP" -v rpe="$refPErr" -v status="$status" 'BEGIN {
         du = u - ru; dp = p - rp
-        printf "%s,%.6g,%.6g,%.6g,%.6g,ok\n", row, du < 0 ? -du : du, sqrt(ue * ue + rue * rue),
-               dp < 0 ? -dp : dp, sqrt(pe * pe + rpe * rpe) }' >>"$table"
+        printf "%s,%.6g,%.6g,%.6g,%.6g,%s\n", row, du < 0 ? -du : du, sqrt(ue * ue + rue * rue),
+               dp < 0 ? -dp : dp, sqrt(pe * pe + rpe * rpe), status }' >>"$table"
 }
 for design in "${designs[@]}"; do
     for dv in "${dvs[@]}"; do
@@ -58,7 +84,26 @@ for design in "${designs[@]}"; do
     done
 done
 for dt in 0.5 1 1.8 3 4; do row "smd-$dt-mayfail" smd - "$dt"; done
-"$TOOLS" equal-accuracy "$table" smd-1.8-mayfail >"$dir/equal-accuracy-$state.csv"
+
+# What a DMD design's accuracy costs: collisions (terrace crossings and reflections) and all
+# events (with virtual, cell and list events) per simulated ps, beside its g(r) error.
+events=$dir/events-$state.csv
+echo "set,design,param,collisions_per_ps,collisions_per_ps_err,events_per_ps,events_per_ps_err,err_g,cpu_s_per_ps" >"$events"
+awk -F, 'NR > 1 && $2 == "dmd" && $NF == "ok" { print $1, $3, $4, $7, $5 }' "$table" |
+    while read -r s design param eg cost; do
+        read -r c ce < <(replica_stats "$RUNS/$state/$s" collisions_per_ps 0)
+        read -r e ee < <(replica_stats "$RUNS/$state/$s" events_per_ps 0)
+        echo "$s,$design,$param,$c,$ce,$e,$ee,$eg,$cost" >>"$events"
+    done
+# The target: SMD at 1.8 fs, or the largest stable dt below it where 1.8 fs is not stable.
+target=$(awk -F, '$2 == "smd" && $NF == "ok" && $4 <= 1.8 && $4 > best { best = $4; set = $1 }
+    END { print set }' "$table")
+if [ -z "$target" ]; then
+    log "fronts $state: no stable SMD setting up to 1.8 fs: no equal-accuracy table"
+    : >"$dir/equal-accuracy-$state.csv"
+else
+    "$TOOLS" equal-accuracy "$table" "$target" >"$dir/equal-accuracy-$state.csv"
+fi
 
 gnuplot <<GP
 set terminal $(png_terminal | sed 's/900,650/1500,900/')
@@ -76,7 +121,8 @@ do for [k = 1:5] {
     set ylabel sprintf('error of %s', word(names, k))
     plot for [d in "uniform optimal virial distance"] '$table' skip 1 \
             using (strcol(3) eq d ? \$5 : NaN):c with linespoints pt 7 lw 2 title 'DMD '.d, \
-         '' skip 1 using (strcol(2) eq "smd" ? \$5 : NaN):c with linespoints pt 5 lw 2 lc rgb 'black' title 'SMD', \
+         '' skip 1 using (strcol(2) eq "smd" && strcol(17) eq "ok" ? \$5 : NaN):c with linespoints pt 5 lw 2 lc rgb 'black' title 'SMD', \
+         '' skip 1 using (strcol(2) eq "smd" && strcol(17) ne "ok" ? \$5 : NaN):c with points pt 4 ps 1.5 lc rgb 'black' title 'SMD, energy not conserved', \
          '' skip 1 using 5:(column(c + 1)) with points pt 1 lc rgb '#888888' title 'statistical floor'
 }
 unset multiplot
