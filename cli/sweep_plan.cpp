@@ -104,6 +104,16 @@ std::string lastComponent(const std::string& key) {
     return dot == std::string::npos ? key : key.substr(dot + 1);
 }
 
+/// "key-value"; an object value (e.g. dmd.terraces) names itself by its own keys instead,
+/// {"levels": "optimal", "n": 3} as levels-optimal_n-3.
+std::string namePart(const std::string& key, const json& value) {
+    if (!value.is_object() || value.empty()) return key + "-" + valueText(value);
+    std::string part;
+    for (const auto& [k, v] : value.items())
+        part += (part.empty() ? "" : "_") + namePart(k, v);
+    return part;
+}
+
 } // namespace
 
 std::string valueText(const json& value) {
@@ -194,8 +204,7 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
             for (const auto& o : value.overrides) {
                 run.overrides.push_back(o);
                 if (value.label.empty())
-                    part +=
-                        (part.empty() ? "" : "_") + shortKey(o.first) + "-" + valueText(o.second);
+                    part += (part.empty() ? "" : "_") + namePart(shortKey(o.first), o.second);
             }
             run.name += (run.name.empty() ? "" : "_") + part;
         }

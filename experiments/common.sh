@@ -1,8 +1,10 @@
 # Shared by the figure and table scripts (sourced, not run). Environment, set by Makefile.paper:
 #   TERRACE      the terrace executable            TOOLS  the paper_tools executable
 #   OUT          where results go (results/)       SIZE   full | quick (tiny, short runs)
-# Every run lands in its own directory, written under a temporary name and renamed when complete,
-# so that parallel make jobs never share a file and an interrupted run is redone, not reused.
+# Every run lands in its own directory, so that parallel make jobs never share a file. Replica
+# sets run as `terrace sweep`s (run_replicas): a run is reused only when its directory holds the
+# complete result of the same scene, so an interrupted run is continued or redone, never reused;
+# single runs (run_one) are written under a temporary name and renamed when complete.
 set -euo pipefail
 : "${TERRACE:?TERRACE must name the terrace executable}"
 : "${TOOLS:?TOOLS must name the paper_tools executable}"
@@ -160,33 +162,56 @@ run_one() {
 }
 
 # run_replicas DIR SCENE [--set ...]... : REPLICAS independent runs DIR/seed-K, seeds from
-# SEED_OFFSET + 1 (offset 0 unless set). A failed run is a result, not a reason to stop: its
-# seed and the engine's message go to DIR/failures.txt and the next seed is tried, up to
-# 2 × REPLICAS seeds in all; the set fails only when fewer than REPLICAS runs complete.
+# SEED_OFFSET + 1 (offset 0 unless set), as one `terrace sweep` (DIR/sweep.json, its table
+# DIR/sweep.csv; a run done before for the same scene is not run again). A failed run is a
+# result, not a reason to stop: its seed and the engine's message go to DIR/failures.txt and the
+# sweep is run again with one more seed per failure, up to 2 × REPLICAS seeds in all; the set
+# fails only when fewer than REPLICAS runs complete.
+#   SWEEP_LAUNCH  prefix of the sweep command, e.g. "mpirun -np 4" to spread a set's replicas
+#                 over MPI ranks on a cluster (default: none)
+#   SWEEP_JOBS    runs at once in the sweep's own process (default 1; 0 under mpirun: rank 0
+#                 then only hands out)
 run_replicas() {
     local dir=$1 scene=$2
     shift 2
-    local k seed done=0
+    local seeds=$REPLICAS done status first=$((${SEED_OFFSET:-0} + 1))
     mkdir -p "$dir"
-    rm -f "$dir/failures.txt"
-    for k in $(seq 1 $((2 * REPLICAS))); do
-        [ "$done" -lt "$REPLICAS" ] || break
-        seed=$((${SEED_OFFSET:-0} + k))
-        if run_one "$dir/seed-$seed" "$scene" --set seed="$seed" --set run.sample_fs="$SAMPLE_FS" "$@"; then
-            done=$((done + 1))
-        else
-            echo "seed-$seed: $(tail -n 1 "$dir/seed-$seed.partial.log")" >>"$dir/failures.txt"
-        fi
+    while true; do
+        printf '{"scene": "%s", "seeds": [%s]}\n' "$(realpath "$scene")" \
+            "$(seq -s, "$first" $((first + seeds - 1)))" >"$dir/sweep.json"
+        log "sweep $dir ($seeds seeds)"
+        status=0
+        # shellcheck disable=SC2086
+        ${SWEEP_LAUNCH:-} "$TERRACE" sweep "$dir/sweep.json" --out "$dir" --quiet \
+            -j "${SWEEP_JOBS:-1}" --set run.sample_fs="$SAMPLE_FS" "$@" || status=$?
+        # 0: every run done; 1: some failed (recorded); anything else stops the set.
+        [ "$status" -le 1 ] || { log "sweep $dir stopped (exit status $status)"; return 1; }
+        done=$(awk -F, 'NR > 1 && $3 == "ok"' "$dir/sweep.csv" | wc -l)
+        sweep_failures "$dir" >"$dir/failures.txt"
+        [ "$done" -lt "$REPLICAS" ] && [ "$seeds" -lt $((2 * REPLICAS)) ] || break
+        seeds=$((seeds + REPLICAS - done))
+        [ "$seeds" -le $((2 * REPLICAS)) ] || seeds=$((2 * REPLICAS))
     done
+    [ -s "$dir/failures.txt" ] || rm -f "$dir/failures.txt"
     [ "$done" -ge "$REPLICAS" ]
 }
 
-# replica_dirs DIR : the completed replica directories of DIR, one per line. A failed run keeps
-# its directory as seed-K.partial, with a summary.json that records the error: not a replica.
+# sweep_failures DIR : "seed-K: message" for each failed run of DIR (its FAILED.json).
+sweep_failures() {
+    local d
+    for d in "$1"/seed-*; do
+        [ -s "$d/FAILED.json" ] || continue
+        echo "$(basename "$d"): $(sed -n 's/^  "error": "\(.*\)",\{0,1\}$/\1/p' "$d/FAILED.json")"
+    done
+}
+
+# replica_dirs DIR : the completed replica directories of DIR, one per line: those with a
+# summary and no recorded failure (a run that failed keeps its directory, with FAILED.json).
 replica_dirs() {
     local d
     for d in "$1"/seed-*; do
         case $d in *.partial | *.log) continue ;; esac
+        [ -e "$d/FAILED.json" ] && continue
         if [ -s "$d/summary.json" ]; then echo "$d"; fi
     done
 }

@@ -28,6 +28,17 @@ wait_frames() {
     done
 }
 
+# sweep_file FILE: six short runs of 64 rods, DMD and SMD, and two that the run refuses.
+sweep_file() {
+    cat >"$1" <<END
+{"scene": "$src/experiments/scenes/dense-rods.json",
+ "set": {"state.n": 64, "state.density": 0.1, "run.equilibrate_ps": 0.018, "run.time_ps": 0.09},
+ "axes": [{"cases": [{"engine": "dmd"}, {"engine": "smd"}, {"engine": "smd", "run.time_ps": 1e9}],
+           "labels": ["dmd", "smd", "too-long"]}],
+ "seeds": [1, 2]}
+END
+}
+
 short_run() { # engine extra-args...
     local engine=$1
     shift
@@ -484,6 +495,95 @@ thermo)
         fail "dmd: thermo.csv counts $sum collisions, summary.json $rate per ps over 0.54 ps"
     awk -F, '/^#/ || NR == 1 { next } $4 != $5 { exit 1 }' "$work/smd/thermo.csv" ||
         fail "smd: potential_continuous differs from potential"
+    ;;
+sweep)
+    # Six small runs, two of which the run refuses (too many samples for any memory): four done,
+    # the two failures recorded, exit status 1; run again, nothing runs again.
+    sweep_file "$work/s.json"
+    "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err"
+    status=$?
+    [ $status -eq 1 ] || fail "exit status $status for a sweep with failed runs: $(cat "$work/err")"
+    [ "$(wc -l <"$work/out/sweep.csv")" -eq 7 ] || fail "sweep.csv: not a header and 6 rows"
+    [ "$(grep -c ',ok,' "$work/out/sweep.csv")" -eq 4 ] || fail "not 4 runs ok: $(cat "$work/out/sweep.csv")"
+    [ "$(grep -c ',failed,.*would take' "$work/out/sweep.csv")" -eq 2 ] || fail "the failures are not recorded"
+    for run in dmd_seed-1 smd_seed-2; do
+        for f in summary.json scene.json rdf.csv vacf.csv run.log; do
+            [ -s "$work/out/$run/$f" ] || fail "$run lacks $f"
+        done
+    done
+    grep -q 'sweep: \[6/6\]' "$work/err" || fail "no progress line: $(cat "$work/err")"
+    grep -q 'ETA' "$work/err" || fail "no ETA"
+    before=$(stat -c %Y "$work/out/dmd_seed-1/summary.json")
+    cp "$work/out/sweep.csv" "$work/first.csv"
+    sleep 1
+    "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err"
+    [ $? -eq 1 ] || fail "the sweep run again forgot its failures"
+    grep -q '6 done before, 0 to run' "$work/err" || fail "runs ran again: $(cat "$work/err")"
+    [ "$(stat -c %Y "$work/out/dmd_seed-1/summary.json")" = "$before" ] || fail "a finished run was run again"
+    cmp -s <(cut -d, -f1-18 "$work/first.csv") <(cut -d, -f1-18 "$work/out/sweep.csv") ||
+        fail "the table changed when nothing ran"
+    # A bad sweep file: one line naming the run and the key, status 2, nothing written.
+    printf '{"axes": [{"dmd.dv": [1]}]}' >"$work/bad.json"
+    err=$("$terrace" sweep "$work/bad.json" --out "$work/bad" 2>&1)
+    status=$?
+    [ $status -eq 2 ] || fail "exit status $status for a bad sweep"
+    [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "error is not one line: $err"
+    [[ $err == *"run dv-1"*"dmd.dv: unknown key"* ]] || fail "error does not name run and key: $err"
+    [ ! -e "$work/bad" ] || fail "a bad sweep wrote its directory"
+    ;;
+sweep_interrupt)
+    # SIGINT to a sweep: its runs end as interrupted runs do, the table stays valid, the exit
+    # status is 130; the same command then finishes the sweep, continuing from restart files.
+    cat >"$work/s.json" <<END
+{"scene": "$src/experiments/scenes/dense-rods.json",
+ "set": {"state.n": 216, "engine": "smd", "smd.dt_fs": 0.5, "run.equilibrate_ps": 0.09,
+         "run.time_ps": 18, "output.restart_every_ps": 0.9},
+ "seeds": [1, 2, 3]}
+END
+    "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err" &
+    pid=$!
+    for _ in $(seq 1 3000); do
+        [ -e "$work/out/seed-1/restart.bin" ] && [ -e "$work/out/seed-2/restart.bin" ] && break
+        sleep 0.01
+    done
+    kill -INT $pid
+    wait $pid
+    status=$?
+    [ $status -eq 130 ] || fail "exit status $status after SIGINT: $(cat "$work/err")"
+    [ "$(wc -l <"$work/out/sweep.csv")" -eq 4 ] || fail "sweep.csv: not a header and 3 rows"
+    grep -q '^seed-1,1,interrupted,.*interrupted by SIGINT' "$work/out/sweep.csv" ||
+        fail "seed-1 not interrupted: $(cat "$work/out/sweep.csv")"
+    grep -q '^seed-3,3,pending,' "$work/out/sweep.csv" || fail "seed-3 was started after the signal"
+    grep -q '"interrupted": true' "$work/out/seed-2/summary.json" || fail "seed-2's summary"
+    grep -q 'the same command goes on' "$work/err" || fail "no word on how to go on"
+    "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err" || fail "resumed: $(cat "$work/err")"
+    [ "$(grep -c ',ok,' "$work/out/sweep.csv")" -eq 3 ] || fail "not all done: $(cat "$work/out/sweep.csv")"
+    grep -q '"continued": 1' "$work/out/seed-1/summary.json" || fail "seed-1 not continued"
+    ;;
+sweep_mpi)
+    # The same sweep under mpirun (3 ranks, rank 0 only handing out, so that every run, the failed
+    # ones too, runs on another rank) and with -j 1: the same run files, the same table but for
+    # the costs.
+    export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+    export OMPI_MCA_btl_vader_single_copy_mechanism=none
+    sweep_file "$work/s.json"
+    "$terrace" sweep "$work/s.json" --out "$work/serial" -j 1 --quiet
+    [ $? -eq 1 ] || fail "-j 1: not exit status 1"
+    mpirun --oversubscribe -np 3 "$terrace" sweep "$work/s.json" --out "$work/mpi" -j 0 \
+        >"$work/mpi.log" 2>&1
+    status=$?
+    [ $status -eq 1 ] || fail "mpirun: exit status $status: $(cat "$work/mpi.log")"
+    grep -q '2 remote workers' "$work/mpi.log" || fail "not 2 workers: $(cat "$work/mpi.log")"
+    for d in "$work/serial"/*/; do
+        run=$(basename "$d")
+        for f in rdf.csv vacf.csv oacf.csv msd.csv scene.json; do
+            [ -e "$d/$f" ] || continue
+            cmp -s "$d/$f" "$work/mpi/$run/$f" || fail "$run/$f differs under mpirun"
+        done
+    done
+    cmp -s <(cut -d, -f1-18 "$work/serial/sweep.csv") <(cut -d, -f1-18 "$work/mpi/sweep.csv") ||
+        fail "sweep.csv differs under mpirun: $(diff "$work/serial/sweep.csv" "$work/mpi/sweep.csv")"
+    [ "$(grep -c ',failed,' "$work/mpi/sweep.csv")" -eq 2 ] || fail "the failures got lost under mpirun"
     ;;
 *)
     fail "unknown check"
