@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <csignal>
 #include <fcntl.h>
+#include <poll.h>
 #include <spawn.h>
 #include <string>
 #include <sys/wait.h>
@@ -17,6 +18,35 @@ std::filesystem::path selfExecutable() {
     const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (ec) throwIoError("find this executable at", "/proc/self/exe", ec.value());
     return self;
+}
+
+namespace {
+extern "C" void onChild(int) {} // only wakes ppoll; the loop reaps with waitpid
+} // namespace
+
+ChildWatch::ChildWatch() {
+    struct sigaction action {};
+    action.sa_handler = onChild;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_NOCLDSTOP;
+    sigaction(SIGCHLD, &action, &previousAction_);
+    sigset_t block;
+    sigemptyset(&block);
+    sigaddset(&block, SIGCHLD);
+    sigprocmask(SIG_BLOCK, &block, &previousMask_);
+}
+
+ChildWatch::~ChildWatch() {
+    sigprocmask(SIG_SETMASK, &previousMask_, nullptr);
+    sigaction(SIGCHLD, &previousAction_, nullptr);
+}
+
+void ChildWatch::wait(std::chrono::milliseconds timeout) const {
+    sigset_t open = previousMask_;
+    sigdelset(&open, SIGCHLD);
+    const long ms = long(timeout.count());
+    const timespec ts{ms / 1000, (ms % 1000) * 1000000L};
+    ::ppoll(nullptr, 0, &ts, &open); // EINTR on SIGCHLD or a stop signal: the caller looks
 }
 
 RunProcess::RunProcess(const SweepPlan& plan, const SweepRun& run, const std::filesystem::path& dir,

@@ -7,6 +7,8 @@
 // and the sweep passes it on once (a second signal would cancel the child's analysis). Its
 // standard output and error go to DIR/run.log.
 #include "cli/sweep_plan.hpp"
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <optional>
 #include <sys/types.h>
@@ -43,6 +45,23 @@ public:
 
 private:
     pid_t pid_ = -1;
+};
+
+/// Waiting for children without spinning and without lag: while it lives, SIGCHLD is blocked
+/// except inside wait(), which sleeps until a child ends, a signal arrives or the timeout passes,
+/// whichever comes first (ppoll with SIGCHLD unblocked). A sweep's loop then notices a run's end
+/// at once, so that short runs are not padded by a polling interval.
+class ChildWatch {
+public:
+    ChildWatch();
+    ~ChildWatch();
+    ChildWatch(const ChildWatch&) = delete;
+    ChildWatch& operator=(const ChildWatch&) = delete;
+    void wait(std::chrono::milliseconds timeout) const;
+
+private:
+    sigset_t previousMask_;
+    struct sigaction previousAction_;
 };
 
 /// The path of this executable (/proc/self/exe), which the children run.

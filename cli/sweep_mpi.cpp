@@ -80,6 +80,7 @@ void waitFor(MPI_Request& request) {
 /// Ranks 1..K-1: ask, run, report, until told there is no more or a signal arrives.
 void workerLoop(const SweepPlan& plan, const SweepOptions& options) {
     const InterruptGuard guard;
+    const ChildWatch watch;
     double report[reportLength] = {-1.0, 0.0, 0.0, 0.0, 0.0};
     while (true) {
         report[4] = guard.requested() ? 1.0 : 0.0;
@@ -99,7 +100,7 @@ void workerLoop(const SweepPlan& plan, const SweepOptions& options) {
         std::optional<ChildExit> exit;
         while (!(exit = process.poll())) {
             if (guard.requested() && !forwarded) process.signal(guard.signal()), forwarded = true;
-            std::this_thread::sleep_for(pollInterval);
+            watch.wait(std::chrono::milliseconds(1000));
         }
         report[0] = i;
         report[1] = exit->signalled ? 1.0 : 0.0;

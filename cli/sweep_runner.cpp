@@ -8,7 +8,6 @@
 #include <deque>
 #include <fcntl.h>
 #include <sys/file.h>
-#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -82,6 +81,7 @@ public:
                 remote_ ? (", " + std::to_string(remote_->count()) + " remote workers").c_str()
                         : "");
         const InterruptGuard guard;
+        const ChildWatch watch;
         const auto start = Clock::now();
         int stoppedWorkers = 0;
         bool forwarded = false;
@@ -131,7 +131,8 @@ public:
             const bool handedOut = queue_.empty() || guard.requested();
             const bool workersDone = remote_ == nullptr || stoppedWorkers == remote_->count();
             if (handedOut && local_.empty() && workersDone) break;
-            if (!progressed) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            // Remote reports have no signal to wake on: look for them every 10 ms.
+            if (!progressed) watch.wait(std::chrono::milliseconds(remote_ ? 10 : 1000));
         }
         return report(guard, secondsSince(start));
     }

@@ -49,6 +49,10 @@ if [ "$SIZE" = quick ]; then
     FRONT_N=216
     FRONT_EQUIL_PS=0.099
     FRONT_PS=0.198
+    MAP_REPLICAS=2      # map.sh (states map-rho<ρ*>-T<T*>)
+    MAP_N=64
+    MAP_EQUIL_PS=0.099
+    MAP_PS=0.198
 else
     REPLICAS=4
     DENSE_N=512
@@ -80,6 +84,12 @@ else
     FRONT_N=216
     FRONT_EQUIL_PS=0.9  # 100 thermostat intervals
     FRONT_PS=3.6        # 400 samples
+    # map.sh: the fronts of uniform and virial levels and SMD at every state point of the map,
+    # shorter than fronts.sh's (the map is 21 state points).
+    MAP_REPLICAS=2
+    MAP_N=216
+    MAP_EQUIL_PS=0.45   # 50 thermostat intervals
+    MAP_PS=1.8          # 200 samples
 fi
 # convergence.sh's sets write a trajectory frame this often (fs), for the continuous model's U
 # and P on their configurations (paper_tools configurational).
@@ -126,6 +136,15 @@ state_point() {
         else
             STATE_SCENE=$SCENES/gas-rods.json
         fi
+        ;;
+    # map.sh: one model, the dense rods' scene at another density and temperature.
+    map-rho*-T*)
+        local rho=${1#map-rho} temp=${1##*-T}
+        rho=${rho%%-T*}
+        STATE_SCENE=$SCENES/dense-rods.json STATE_N=$MAP_N STATE_PS=$MAP_PS
+        STATE_EQUIL_PS=$MAP_EQUIL_PS
+        STATE_SETS=(--set dmd.model=smoothed --set state.density="$rho"
+            --set state.temperature="$temp")
         ;;
     *) echo "unknown state '$1'" >&2; return 2 ;;
     esac

@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # Speed against accuracy on one model (DMD terraces the smoothed g(r)·U that SMD integrates), for
 # each terrace design (dmd/terrace_design.hpp) and SMD, and the equal-accuracy efficiency:
-#   fronts.sh front-dense | front-gas
-# Errors against SMD at dt = REF_DT_FS (REF_PS_FACTOR times longer, seeds of its own): RMS of g(r)
+#   fronts.sh front-dense | front-gas      every design, into OUT/fronts, with a figure
+#   fronts.sh map-rho<ρ*>-T<T*>            uniform and virial levels over MAP_DVS, SMD over
+#                                          MAP_DTS (Makefile.paper), into OUT/map/fronts
+# Errors against the state's SMD reference set (smd-<dt>-ref: REF_DT_FS, or for the map a dt
+# converged at the state's temperature; REF_PS_FACTOR times longer, seeds of its own): RMS of g(r)
 # (r ≤ 12 Å), the VACF (t ≤ 1 ps) and the OACF (t ≤ 2 ps) with their statistical floors
 # (paper_tools error), and |Δ⟨U⟩/N| (kJ/mol; DMD's own, terraced energy) and |ΔP*| with the
 # replica errors of both combined. Cost: CPU s per simulated ps. Every design runs the ΔV ladder
@@ -15,12 +18,27 @@
 # equal-accuracy efficiency is SMD's cost over DMD's.
 source "$(dirname "$0")/common.sh"
 state=$1
-dir=$OUT/fronts
+case $state in
+map-*)
+    dir=$OUT/map/fronts figure=0
+    designs=(uniform virial)
+    read -r -a dvs <<<"${MAP_DVS:?Makefile.paper sets MAP_DVS}"
+    read -r -a dts <<<"${MAP_DTS:?Makefile.paper sets MAP_DTS}"
+    ;;
+*)
+    dir=$OUT/fronts figure=1
+    designs=(uniform optimal virial distance)
+    dvs=(2 1 0.5 0.25 0.125)
+    dts=(0.5 1 1.8 3 4)
+    ;;
+esac
 mkdir -p "$dir"
-ref=$RUNS/$state/smd-$REF_DT_FS-ref
+refs=("$RUNS/$state"/smd-*-ref)
+[ ${#refs[@]} -eq 1 ] && [ -d "${refs[0]}" ] || { echo "fronts.sh: $state needs one reference set smd-<dt>-ref" >&2; exit 1; }
+ref=${refs[0]}
+ref_dt=${ref##*/smd-}
+ref_dt=${ref_dt%-ref}
 table=$dir/fronts-$state.csv
-designs=(uniform optimal virial distance)
-dvs=(2 1 0.5 0.25 0.125)
 
 # replica_stats DIR KEY : mean and error over the replicas of a summary key (per body for U).
 replica_stats() {
@@ -83,7 +101,7 @@ for design in "${designs[@]}"; do
         else row "dmd-$dv-$design-mayfail" dmd "$design" "$dv"; fi
     done
 done
-for dt in 0.5 1 1.8 3 4; do row "smd-$dt-mayfail" smd - "$dt"; done
+for dt in "${dts[@]}"; do row "smd-$dt-mayfail" smd - "$dt"; done
 
 # What a DMD design's accuracy costs: collisions (terrace crossings and reflections) and all
 # events (with virtual, cell and list events) per simulated ps, beside its g(r) error.
@@ -105,12 +123,13 @@ else
     "$TOOLS" equal-accuracy "$table" "$target" >"$dir/equal-accuracy-$state.csv"
 fi
 
+if [ "$figure" = 1 ]; then
 gnuplot <<GP
 set terminal $(png_terminal | sed 's/900,650/1500,900/')
 set output '$dir/fronts-$state.png'
 set datafile separator ','
 set datafile missing 'nan'
-set multiplot layout 2,3 title '${state#front-} rods, one model: error against SMD dt = $REF_DT_FS fs vs cost'
+set multiplot layout 2,3 title '${state#front-} rods, one model: error against SMD dt = $ref_dt fs vs cost'
 set logscale xy
 set grid
 set xlabel 'CPU s per simulated ps'
@@ -119,7 +138,7 @@ names = "g(r) VACF OACF <U>/N P*"
 do for [k = 1:5] {
     c = 5 + 2 * k
     set ylabel sprintf('error of %s', word(names, k))
-    plot for [d in "uniform optimal virial distance"] '$table' skip 1 \
+    plot for [d in "${designs[*]}"] '$table' skip 1 \
             using (strcol(3) eq d ? \$5 : NaN):c with linespoints pt 7 lw 2 title 'DMD '.d, \
          '' skip 1 using (strcol(2) eq "smd" && strcol(17) eq "ok" ? \$5 : NaN):c with linespoints pt 5 lw 2 lc rgb 'black' title 'SMD', \
          '' skip 1 using (strcol(2) eq "smd" && strcol(17) ne "ok" ? \$5 : NaN):c with points pt 4 ps 1.5 lc rgb 'black' title 'SMD, energy not conserved', \
@@ -127,4 +146,5 @@ do for [k = 1:5] {
 }
 unset multiplot
 GP
+fi
 log "fronts $state done"
