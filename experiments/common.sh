@@ -53,6 +53,7 @@ if [ "$SIZE" = quick ]; then
     MAP_N=64
     MAP_EQUIL_PS=0.099
     MAP_PS=0.198
+    MAP_LJ_PS=0.198
 else
     REPLICAS=4
     DENSE_N=512
@@ -85,11 +86,12 @@ else
     FRONT_EQUIL_PS=0.9  # 100 thermostat intervals
     FRONT_PS=3.6        # 400 samples
     # map.sh: the fronts of uniform and virial levels and SMD at every state point of the map,
-    # shorter than fronts.sh's (the map is 21 state points).
-    MAP_REPLICAS=2
+    # as long as fronts.sh's (21 state points: ~0.3 CPU h in all).
+    MAP_REPLICAS=4
     MAP_N=216
     MAP_EQUIL_PS=0.45   # 50 thermostat intervals
-    MAP_PS=1.8          # 200 samples
+    MAP_PS=3.6          # 400 samples
+    MAP_LJ_PS=1.8       # the LJ map: 18 LJ time units (τ = 100 fs), its DMD at ⅛ kT dearer
 fi
 # convergence.sh's sets write a trajectory frame this often (fs), for the continuous model's U
 # and P on their configurations (paper_tools configurational).
@@ -145,6 +147,14 @@ state_point() {
         STATE_EQUIL_PS=$MAP_EQUIL_PS
         STATE_SETS=(--set dmd.model=smoothed --set state.density="$rho"
             --set state.temperature="$temp")
+        ;;
+    # The same for the Lennard-Jones spheres of lj-liquid.json.
+    maplj-rho*-T*)
+        local rho=${1#maplj-rho} temp=${1##*-T}
+        rho=${rho%%-T*}
+        STATE_SCENE=$SCENES/lj-liquid.json STATE_N=$MAP_N STATE_PS=$MAP_LJ_PS
+        STATE_EQUIL_PS=$MAP_EQUIL_PS
+        STATE_SETS=(--set state.density="$rho" --set state.temperature="$temp")
         ;;
     *) echo "unknown state '$1'" >&2; return 2 ;;
     esac

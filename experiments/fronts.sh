@@ -2,7 +2,7 @@
 # Speed against accuracy on one model (DMD terraces the smoothed g(r)·U that SMD integrates), for
 # each terrace design (dmd/terrace_design.hpp) and SMD, and the equal-accuracy efficiency:
 #   fronts.sh front-dense | front-gas      every design, into OUT/fronts, with a figure
-#   fronts.sh map-rho<ρ*>-T<T*>            uniform and virial levels over MAP_DVS, SMD over
+#   fronts.sh map[lj]-rho<ρ*>-T<T*>        uniform and virial levels over MAP_DVS, SMD over
 #                                          MAP_DTS (Makefile.paper), into OUT/map/fronts
 # Errors against the state's SMD reference set (smd-<dt>-ref: REF_DT_FS, or for the map a dt
 # converged at the state's temperature; REF_PS_FACTOR times longer, seeds of its own): RMS of g(r)
@@ -19,7 +19,7 @@
 source "$(dirname "$0")/common.sh"
 state=$1
 case $state in
-map-*)
+map-* | maplj-*)
     dir=$OUT/map/fronts figure=0
     designs=(uniform virial)
     read -r -a dvs <<<"${MAP_DVS:?Makefile.paper sets MAP_DVS}"
@@ -79,7 +79,10 @@ row() { # SET ENGINE DESIGN PARAM
     cost=$("$TOOLS" summary "$s" $(replica_dirs "$d") | cut -d, -f5,6)
     read -r eg fg < <("$TOOLS" error "$ref/mean-rdf.csv" "$d/mean-rdf.csv" g 12)
     read -r ev fv < <("$TOOLS" error "$ref/mean-vacf.csv" "$d/mean-vacf.csv" c 1)
-    read -r eo fo < <("$TOOLS" error "$ref/mean-oacf.csv" "$d/mean-oacf.csv" c1 2)
+    eo=nan fo=nan # spheres have no OACF
+    if [ -s "$ref/mean-oacf.csv" ]; then
+        read -r eo fo < <("$TOOLS" error "$ref/mean-oacf.csv" "$d/mean-oacf.csv" c1 2)
+    fi
     read -r u ue < <(replica_stats "$d" potential_energy_mean 1)
     read -r p pe < <(replica_stats "$d" pressure.mean_reduced 0)
     local status=ok drift

@@ -1,30 +1,36 @@
 #!/usr/bin/env bash
-# Where DMD pays at equal accuracy: the rods on one model (DMD terraces the smoothed g(r)·U that
-# SMD integrates) over a grid of densities and temperatures.
-#   map.sh "DENSITIES" "TEMPERATURES"
-# At each state point fronts.sh (state map-rho<ρ*>-T<T*>) has the errors and costs of SMD over its
+# Where DMD pays at equal accuracy: the rods, or the LJ spheres, on one model (DMD terraces the
+# smoothed g(r)·U that SMD integrates) over a grid of densities and temperatures.
+#   map.sh map | maplj "DENSITIES" "TEMPERATURES"     (rods | LJ spheres)
+# At each state point fronts.sh (state map[lj]-rho<ρ*>-T<T*>) has the errors and costs of SMD over its
 # dt ladder and of DMD over the ΔV ladder with uniform levels (the paper's) and virial values,
 # against SMD at a dt converged at that temperature, and paper_tools equal-accuracy's efficiency
 # (SMD's cost over DMD's along their Pareto fronts) at the error of SMD at 1.8 fs (or its largest
-# stable dt) and twice it. Writes OUT/map:
-#   map.csv       every state, design, quantity and target: efficiency, costs, resolved, bound
-#   map-best.csv  per state and quantity, at twice SMD's error (the stated target): the best
-#                 design's efficiency (nan: no design reaches the target)
-#   runs.csv      runs and CPU hours the map took (every run under RUNS/map-*, skin trials too)
-#   map.png       the heat map of the best design's efficiency in g(r), VACF and OACF, with the
-#                 break-even contour
+# stable dt) and twice it. Writes OUT/map (NAME: map for the rods, map-lj for the spheres):
+#   NAME.csv       every state, design, quantity and target: efficiency, costs, resolved, bound
+#   NAME-best.csv  per state and quantity, at twice SMD's error (the stated target): the best
+#                  design's efficiency (nan: no design reaches the target)
+#   NAME-runs.csv  runs and CPU hours the map took (every run of its states, skin trials too)
+#   NAME.png       the heat map of the best design's efficiency in g(r), the VACF and (rods) the
+#                  OACF, with the break-even contour
 source "$(dirname "$0")/common.sh"
-read -r -a densities <<<"$1"
-read -r -a temperatures <<<"$2"
+prefix=$1
+read -r -a densities <<<"$2"
+read -r -a temperatures <<<"$3"
+case $prefix in
+map) name=map system=Rods quantities=(g vacf oacf) titles="g(r) VACF OACF" ;;
+maplj) name=map-lj system="LJ spheres" quantities=(g vacf) titles="g(r) VACF" ;;
+*) echo "usage: map.sh map | maplj DENSITIES TEMPERATURES" >&2; exit 2 ;;
+esac
 dir=$OUT/map
 mkdir -p "$dir"
 
-echo "rho,T,design,quantity,target,target_error,resolved,smd_cost,design_cost,efficiency,bound" >"$dir/map.csv"
+echo "rho,T,design,quantity,target,target_error,resolved,smd_cost,design_cost,efficiency,bound" >"$dir/$name.csv"
 for T in "${temperatures[@]}"; do
     for rho in "${densities[@]}"; do
-        f=$dir/fronts/equal-accuracy-map-rho$rho-T$T.csv
+        f=$dir/fronts/equal-accuracy-$prefix-rho$rho-T$T.csv
         [ -s "$f" ] || { log "map: no equal-accuracy table for rho $rho, T $T"; continue; }
-        tail -n +2 "$f" | awk -v r="$rho" -v t="$T" '{ print r "," t "," $0 }' >>"$dir/map.csv"
+        tail -n +2 "$f" | awk -v r="$rho" -v t="$T" '{ print r "," t "," $0 }' >>"$dir/$name.csv"
     done
 done
 
@@ -39,12 +45,12 @@ awk -F, 'NR > 1 && $5 ~ /^2x/ {
     END { print "rho,T,quantity,best_design,efficiency,bound,resolved"
           for (k = 1; k <= n; ++k) { key = order[k]
               print key "," design[key] "," best[key] "," bound[key] "," resolved[key] } }' \
-    "$dir/map.csv" >"$dir/map-best.csv"
+    "$dir/$name.csv" >"$dir/$name-best.csv"
 
 # What the map cost: every run of its states (replicas, references, skin trials).
-find "$RUNS" -path "$RUNS/map-*" -name summary.json -print0 |
+find "$RUNS" -path "$RUNS/$prefix-rho*" -name summary.json -print0 |
     xargs -0 -r cat | awk '/"cpu_seconds":/ { sub(/.*"cpu_seconds": */, ""); sub(/,.*/, ""); s += $0; ++n }
-        END { printf "runs,cpu_seconds,cpu_hours\n%d,%.1f,%.3f\n", n, s, s / 3600 }' >"$dir/runs.csv"
+        END { printf "runs,cpu_seconds,cpu_hours\n%d,%.1f,%.3f\n", n, s, s / 3600 }' >"$dir/$name-runs.csv"
 
 # The grid for gnuplot: one block per temperature, log10 of the efficiency; a target no design
 # reaches counts as -2 (DMD 100 times dearer), so that the contour closes around it.
@@ -57,7 +63,7 @@ grid() { # QUANTITY
                 '$1 == r && $2 == t && $3 == q {
                     e = $5 == "nan" ? -2 : log($5) / log(10)
                     printf "%d %d %.6g %s\n", i, j, e, $5 == "nan" ? "-" : sprintf("%.2g%s", $5, $6 ? "*" : "") }' \
-                "$dir/map-best.csv"
+                "$dir/$name-best.csv"
             i=$((i + 1))
         done
         echo
@@ -66,24 +72,24 @@ grid() { # QUANTITY
 }
 xtics=$(i=0; for r in "${densities[@]}"; do printf '"%s" %d,' "$r" $i; i=$((i + 1)); done)
 ytics=$(j=0; for t in "${temperatures[@]}"; do printf '"%s" %d,' "$t" $j; j=$((j + 1)); done)
-for q in g vacf oacf; do
-    grid $q >"$dir/grid-$q.dat"
+for q in "${quantities[@]}"; do
+    grid "$q" >"$dir/$name-grid-$q.dat"
     # The break-even contour (efficiency 1) of the grid, as line segments.
     gnuplot <<GP 2>/dev/null || true
-set table '$dir/contour-$q.dat'
+set table '$dir/$name-contour-$q.dat'
 set contour base
 set cntrparam levels discrete 0
 set cntrparam linear
 unset surface
-splot '$dir/grid-$q.dat' using 1:2:3 with lines
+splot '$dir/$name-grid-$q.dat' using 1:2:3 with lines
 unset table
 GP
 done
 
 gnuplot <<GP
-set terminal $(png_terminal | sed 's/900,650/1500,560/')
-set output '$dir/map.png'
-set multiplot layout 1,3 title 'Rods, one model: SMD cost / DMD cost at twice the error of SMD at 1.8 fs (best of uniform and virial levels; * bound, - not reached; black line: break-even)'
+set terminal $(png_terminal | sed "s/900,650/$((520 * ${#quantities[@]})),580/")
+set output '$dir/$name.png'
+set multiplot layout 1,${#quantities[@]} title "$system, one model: SMD cost / DMD cost at twice the error of SMD at 1.8 fs\\n(best of uniform and virial levels; * bound, - not reached; black line: break-even)"
 set xtics (${xtics%,})
 set ytics (${ytics%,})
 set xlabel 'density {/Symbol r}*'
@@ -94,14 +100,14 @@ set cbrange [-1.5:1.5]
 set cblabel 'log_{10} efficiency'
 set palette defined (-1.5 '#b2182b', 0 '#f7f7f7', 1.5 '#2166ac')
 unset key
-names = "g(r) VACF OACF"
-files = "g vacf oacf"
-do for [k = 1:3] {
+names = "$titles"
+files = "${quantities[*]}"
+do for [k = 1:${#quantities[@]}] {
     set title word(names, k)
-    plot '$dir/grid-'.word(files, k).'.dat' using 1:2:(0.5):(0.5):3 with boxxyerror fs solid 1.0 lc palette, \
+    plot '$dir/$name-grid-'.word(files, k).'.dat' using 1:2:(0.5):(0.5):3 with boxxyerror fs solid 1.0 lc palette, \
          '' using 1:2:4 with labels font ',10', \
-         '$dir/contour-'.word(files, k).'.dat' using 1:2 with lines lw 3 lc rgb 'black'
+         '$dir/$name-contour-'.word(files, k).'.dat' using 1:2 with lines lw 3 lc rgb 'black'
 }
 unset multiplot
 GP
-log "map done"
+log "map $name done"

@@ -5,7 +5,8 @@
 #   STATE   dense | gas | rho<ρ*>-T<T*> (e.g. rho0.05-T1.4; rods as in dense-rods.json)
 #           | conv-rods | conv-lj (convergence.sh: dense rods, LJ liquid; smoothed DMD model)
 #           | front-dense | front-gas (fronts.sh: dense and gas rods; smoothed DMD model)
-#           | map-rho<ρ*>-T<T*> (map.sh: rods at ρ*, T*; smoothed DMD model)
+#           | map-rho<ρ*>-T<T*> | maplj-rho<ρ*>-T<T*> (map.sh: rods, LJ spheres at ρ*, T*;
+#             smoothed DMD model)
 #   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs; Verlet skin tuned for the state by
 #           smd-skin.sh)
 #   OPTION  heap | eager (DMD queue and invalidation, default bpq + lazy)
@@ -30,7 +31,7 @@ case $state in
 rho*-T*) REPLICAS=$SCAN_REPLICAS ;;
 conv-*) REPLICAS=$CONV_REPLICAS ;;
 front-*) REPLICAS=$FRONT_REPLICAS ;;
-map-*) REPLICAS=$MAP_REPLICAS ;;
+map-* | maplj-*) REPLICAS=$MAP_REPLICAS ;;
 esac
 grid=$SAMPLE_FS # the run's sample and thermostat interval, fs
 case $engine in

@@ -22,7 +22,8 @@ for f in fig1/fig1.png fig2/fig2.png fig3/fig3.png fig4/fig4.png fig5/fig5.png \
     convergence/convergence-lj.csv convergence/orders.csv designs/designs.png \
     designs/optimal-boltzmann.csv fronts/fronts-front-dense.png fronts/fronts-front-gas.png \
     fronts/equal-accuracy-front-dense.csv fronts/equal-accuracy-front-gas.csv \
-    fronts/events-front-dense.csv map/map.png map/map.csv map/map-best.csv map/runs.csv; do
+    fronts/events-front-dense.csv map/map.png map/map.csv map/map-best.csv map/map-runs.csv \
+    map/map-lj.png map/map-lj.csv map/map-lj-best.csv map/map-lj-runs.csv; do
     [ -s "$out/$f" ] || fail "missing or empty $f"
 done
 # PNG files start with the PNG signature.
@@ -59,10 +60,12 @@ for s in dense gas; do
 done
 # Map: 2 densities × 2 temperatures; per state 2 designs × 5 quantities × 2 targets, and the
 # best design per state and quantity; the replica sets ran as sweeps.
-[ "$(tail -n +2 "$out/map/map.csv" | wc -l)" -eq 80 ] || fail "map rows"
-[ "$(tail -n +2 "$out/map/map-best.csv" | wc -l)" -eq 20 ] || fail "map-best rows"
+for m in map map-lj; do
+    [ "$(tail -n +2 "$out/map/$m.csv" | wc -l)" -eq 80 ] || fail "$m rows"
+    [ "$(tail -n +2 "$out/map/$m-best.csv" | wc -l)" -eq 20 ] || fail "$m-best rows"
+    awk -F, 'NR == 2 { exit !($1 > 0) }' "$out/map/$m-runs.csv" || fail "$m runs not counted"
+done
 [ -s "$out/runs/map-rho0.1-T10/dmd-1-mayfail/sweep.csv" ] || fail "no sweep.csv in a replica set"
-awk -F, 'NR == 2 { exit !($1 > 0) }' "$out/map/runs.csv" || fail "map runs not counted"
 # Every extreme combination is listed (finished or with its reason).
 [ "$(tail -n +2 "$out/extremes/extremes.csv" | wc -l)" -eq 8 ] || fail "extremes rows"
 
