@@ -463,9 +463,10 @@ Scene sceneFromJson(const json& input, const std::string& origin,
             rd.fail(std::string("smd.") + moved,
                     "has moved to potential.cutoff = [r_l, r_u] (σ), the cutoff of the model both "
                     "engines simulate");
-    rd.onlyKeys(smd, "smd", {"dt_fs", "skin"});
+    rd.onlyKeys(smd, "smd", {"dt_fs", "skin", "scheme"});
     s.smd.dt_fs = rd.number(smd, "smd", "dt_fs", s.smd.dt_fs, 0.0, 1e3, true);
     s.smd.skin = rd.number(smd, "smd", "skin", s.smd.skin, 0.0, 10.0);
+    s.smd.scheme = rd.choice(smd, "smd", "scheme", s.smd.scheme, {"verlet", "omelyan", "yoshida4"});
 
     const auto& run = rd.section(j, "run");
     rd.onlyKeys(run, "run", {"equilibrate_ps", "time_ps", "sample_fs", "thermostat_fs"});
@@ -673,7 +674,7 @@ json toJson(const Scene& s) {
         j["dmd"]["terraces"] = {{"levels", s.dmd.terraces.levels},
                                 {"values", s.dmd.terraces.values},
                                 {"n", s.dmd.terraces.n}};
-    j["smd"] = {{"dt_fs", s.smd.dt_fs}, {"skin", s.smd.skin}};
+    j["smd"] = {{"dt_fs", s.smd.dt_fs}, {"skin", s.smd.skin}, {"scheme", s.smd.scheme}};
     j["run"] = {{"equilibrate_ps", s.run.equilibrate_ps},
                 {"time_ps", s.run.time_ps},
                 {"sample_fs", s.run.sample_fs},

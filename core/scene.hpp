@@ -90,6 +90,8 @@ struct Scene {
     struct Smd {
         double dt_fs = 1.8;
         double skin = 0.3; // Verlet skin, σ
+        // The splitting (smd/splitting.hpp): verlet (the paper's), omelyan, yoshida4.
+        std::string scheme = "verlet";
     } smd;
 
     // Every interval is honoured exactly or refused. Intervals must fit in the run and lie on the

@@ -8,6 +8,8 @@
 //     drift  exact free motion over dt (straight line, the body kind's exact rotation)
 //     force  F, τ at the new positions (Verlet list, rebuilt when a body moved > skin/2)
 //     kick   p += F dt/2,  L += τ dt/2
+// or, with smd.scheme, one of the longer symmetric splittings of smd/splitting.hpp (kicks and
+// drifts of other lengths, a force evaluation after every drift).
 // Time only advances in whole steps: advanceTo(t) stops at the first grid point t0 + k dt >= t,
 // so every step is the same symplectic map (the run driver samples on multiples of dt).
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
@@ -18,6 +20,7 @@
 #include "smd/neighbour_list.hpp"
 #include "smd/pair_forces.hpp"
 #include "smd/parameters.hpp"
+#include "smd/splitting.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -44,7 +47,7 @@ private:
     Engine(System<K, P> initial, const Scene& scene, bool isStart)
         : sys_(std::move(initial)),
           par_(smd::parameters(scene, sys_.box.length, sys_.potential.range())),
-          sigmaUnit_(scene.potential.sigma) {
+          scheme_(splitting(scene.smd.scheme)), sigmaUnit_(scene.potential.sigma) {
         for (const auto& b : sys_.bodies)
             if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
                 !K::angularVelocity(b, sys_.body).allFinite())
@@ -89,32 +92,36 @@ public:
             step();
     }
 
-    /// One splitting step (kick, drift, force, kick).
+    /// One splitting step: kick, then (drift, force, kick) once per drift of the scheme.
     void step() {
         using Clock = std::chrono::steady_clock;
-        const auto t0 = Clock::now();
-        halfKick();
-        const auto t1 = Clock::now();
-        for (auto& b : sys_.bodies)
-            freeMove<K>(b, sys_.body, par_.dt);
-        gatherPositions();
-        const auto t2 = Clock::now();
-        const double moved2 = maxSquaredDisplacement(list_, position_);
-        if (!(moved2 <= 0.25 * list_.skin * list_.skin)) {
-            checkStable(moved2);
-            build(list_, sys_.box, position_);
-            ++list_.rebuilds;
+        auto t0 = Clock::now();
+        kick(scheme_.kick[0] * par_.dt);
+        for (std::size_t k = 0; k < scheme_.drift.size(); ++k) {
+            const auto t1 = Clock::now();
+            const double h = scheme_.drift[k] * par_.dt;
+            for (auto& b : sys_.bodies)
+                freeMove<K>(b, sys_.body, h);
+            gatherPositions();
+            const auto t2 = Clock::now();
+            const double moved2 = maxSquaredDisplacement(list_, position_);
+            if (!(moved2 <= 0.25 * list_.skin * list_.skin)) {
+                checkStable(moved2);
+                build(list_, sys_.box, position_);
+                ++list_.rebuilds;
+            }
+            const auto t3 = Clock::now();
+            computeForces();
+            const auto t4 = Clock::now();
+            kick(scheme_.kick[k + 1] * par_.dt);
+            const auto t5 = Clock::now();
+            seconds_.kick += seconds(t0, t1) + seconds(t4, t5);
+            seconds_.drift += seconds(t1, t2);
+            seconds_.neighbour += seconds(t2, t3);
+            seconds_.force += seconds(t3, t4);
+            t0 = t5;
         }
-        const auto t3 = Clock::now();
-        computeForces();
-        const auto t4 = Clock::now();
-        halfKick();
-        const auto t5 = Clock::now();
         ++steps_;
-        seconds_.kick += seconds(t0, t1) + seconds(t4, t5);
-        seconds_.drift += seconds(t1, t2);
-        seconds_.neighbour += seconds(t2, t3);
-        seconds_.force += seconds(t3, t4);
     }
 
     double time() const { return steps_ * par_.dt; }
@@ -148,6 +155,7 @@ public:
                 {"neighbour_rebuilds", list_.rebuilds},
                 {"pair_evaluations", evaluations_},
                 {"dt_fs", units::toFs(par_.dt)},
+                {"force_evaluations", steps_ * scheme_.forceEvaluations()},
                 {"skin_sigma", par_.skin / sigma},
                 {"r_l_sigma", sys_.potential.cut.inner() / sigma},
                 {"r_u_sigma", sys_.potential.range() / sigma},
@@ -207,8 +215,9 @@ private:
         return std::chrono::duration<double>(b - a).count();
     }
 
-    void halfKick() {
-        const double h = 0.5 * par_.dt, hm = h / sys_.body.mass;
+    /// p += F h, L += τ h with the forces at the current positions.
+    void kick(double h) {
+        const double hm = h / sys_.body.mass;
         for (std::size_t a = 0; a < sys_.bodies.size(); ++a) { // forces are kept per list slot
             auto& b = sys_.bodies[list_.order[a]];
             b.v += hm * forces_.force[a];
@@ -240,6 +249,7 @@ private:
 
     System<K, P> sys_;
     Parameters par_;
+    Splitting scheme_;
     double sigmaUnit_; // Å: σ of the scene, the unit of skin and cutoffs in statistics()
     NeighbourList list_;
     Forces forces_;                  // per list slot (list_.order maps slots to bodies)

@@ -2,6 +2,7 @@
 // Small hand-built systems for the SMD tests: bodies on a simple cubic lattice filling a periodic
 // box at reduced density ρ* = Nσ³/L³, uniformly random unit axes, Maxwell-Boltzmann velocities and
 // angular velocities (ω ⟂ s for rods) at kT, total momentum removed. Deterministic from a seed.
+#include "core/body_kind.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
@@ -9,6 +10,7 @@
 #include "core/smoothed_potential.hpp"
 #include "core/sphere.hpp"
 #include "core/system.hpp"
+#include "core/top_state.hpp"
 #include <cmath>
 #include <random>
 
@@ -90,6 +92,34 @@ inline Scene smdScene(double sigma, double dtFs) {
     s.potential.sigma = sigma;
     s.smd.dt_fs = dtFs;
     return s;
+}
+
+/// The rods' lattice start turned into tops: attitude with the rod axis as body axis 3, L from
+/// the rod's ω plus a spin about the axis, principal moments `inertia`.
+template <BodyKind Top>
+System<Top, RodModel> topsFromRods(const System<LinearRotor, RodModel>& rods, const Vec3& inertia) {
+    System<Top, RodModel> sys;
+    sys.box = rods.box;
+    sys.potential = rods.potential;
+    sys.kT = rods.kT;
+    sys.body.mass = rods.body.mass;
+    sys.body.inertia = inertia;
+    std::mt19937_64 rng(21);
+    for (const auto& rod : rods.bodies) {
+        TopState b;
+        b.r = rod.r;
+        b.v = rod.v;
+        const Vec3 e3 = rod.s;
+        const Vec3 e1 =
+            (std::abs(e3.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(e3).normalized();
+        b.A.row(0) = e1.transpose();
+        b.A.row(1) = e3.cross(e1).transpose();
+        b.A.row(2) = e3.transpose();
+        const Vec3 omegaBody = b.A * rod.w + Vec3(0, 0, 3.0 * (double(rng() % 1000) / 1000 - 0.5));
+        b.L = b.A.transpose() * omegaBody.cwiseProduct(inertia);
+        sys.bodies.push_back(b);
+    }
+    return sys;
 }
 
 } // namespace terrace::smd::fixtures

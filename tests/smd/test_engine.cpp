@@ -163,38 +163,9 @@ TEST(Engine, TimeReversible) {
 
 namespace {
 
-/// The rods' lattice start turned into tops: attitude with the rod axis as body axis 3, L from
-/// the rod's ω plus a spin about the axis, principal moments `inertia`.
-template <BodyKind Top>
-System<Top, smd::fixtures::RodModel>
-topsFromRods(const System<LinearRotor, smd::fixtures::RodModel>& rods, const Vec3& inertia) {
-    System<Top, smd::fixtures::RodModel> sys;
-    sys.box = rods.box;
-    sys.potential = rods.potential;
-    sys.kT = rods.kT;
-    sys.body.mass = rods.body.mass;
-    sys.body.inertia = inertia;
-    std::mt19937_64 rng(21);
-    for (const auto& rod : rods.bodies) {
-        TopState b;
-        b.r = rod.r;
-        b.v = rod.v;
-        const Vec3 e3 = rod.s;
-        const Vec3 e1 =
-            (std::abs(e3.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(e3).normalized();
-        b.A.row(0) = e1.transpose();
-        b.A.row(1) = e3.cross(e1).transpose();
-        b.A.row(2) = e3.transpose();
-        const Vec3 omegaBody = b.A * rod.w + Vec3(0, 0, 3.0 * (double(rng() % 1000) / 1000 - 0.5));
-        b.L = b.A.transpose() * omegaBody.cwiseProduct(inertia);
-        sys.bodies.push_back(b);
-    }
-    return sys;
-}
-
 template <BodyKind Top> void checkTops(const Vec3& inertia) {
     const auto rods = smd::fixtures::rods(6, 0.5, 1.4, 22);
-    smd::Engine<Top, smd::fixtures::RodModel> e(topsFromRods<Top>(rods, inertia),
+    smd::Engine<Top, smd::fixtures::RodModel> e(smd::fixtures::topsFromRods<Top>(rods, inertia),
                                                 smd::fixtures::smdScene(sigmaRod, 1.0));
     const Vec3 p0 = e.totalMomentum();
     const double e0 = e.kineticEnergy() + e.potentialEnergy();
