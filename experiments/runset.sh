@@ -12,6 +12,7 @@
 #   OPTION  heap | eager (DMD queue and invalidation, default bpq + lazy)
 #           optimal | virial | boltzmann | distance | volume (DMD terrace design, default the
 #                    paper's uniform levels and midpoints; fronts.sh)
+#           omelyan | yoshida4 (SMD splitting, default the paper's verlet; fronts.sh)
 #           mayfail (a failed run marks the set FAILED instead of stopping make: unstable
 #                    settings are a result of the trade-off, not an error of the pipeline;
 #                    in the dense and gas states such sets run TRADE_PS)
@@ -58,6 +59,7 @@ for o in "${options[@]}"; do
     virial | boltzmann) sets+=(--set "dmd.terraces={\"levels\":\"energy\",\"values\":\"$o\"}") ;;
     distance | volume) sets+=(--set "dmd.terraces={\"levels\":\"$o\",\"values\":\"boltzmann\"}") ;;
     eager) sets+=(--set dmd.invalidation=eager) ;;
+    omelyan | yoshida4) sets+=(--set smd.scheme="$o") ;; # SMD splitting (smd/splitting.hpp)
     ref)
         ps=$(awk -v p="$ps" -v f="$REF_PS_FACTOR" 'BEGIN{print p*f}')
         # Seeds of its own: a reference run from the same start as the run it judges would share

@@ -27,15 +27,17 @@ std::vector<FrontPoint> paretoFront(std::vector<FrontPoint> points) {
 CostAtError costAtError(const std::vector<FrontPoint>& front, double e) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (front.empty() || !(e > 0.0)) return {nan, false};
-    if (e >= front.front().error) return {front.front().cost, e > front.front().error};
+    if (e >= front.front().error)
+        return {front.front().cost, e > front.front().error, front.front().label};
     for (std::size_t k = 1; k < front.size(); ++k) {
         const FrontPoint &a = front[k - 1], &b = front[k]; // a cheaper, b more accurate
         if (e >= b.error) {
             const double t = std::log(e / a.error) / std::log(b.error / a.error);
-            return {std::exp(std::log(a.cost) + t * std::log(b.cost / a.cost)), false};
+            return {std::exp(std::log(a.cost) + t * std::log(b.cost / a.cost)), false,
+                    e == b.error ? b.label : a.label + "~" + b.label};
         }
     }
-    return {nan, false};
+    return {nan, false, ""};
 }
 
 namespace {
@@ -103,10 +105,11 @@ std::vector<std::string> equalAccuracy(const std::filesystem::path& fronts,
             for (const double factor : {1.0, 2.0}) {
                 const double e = factor * targetError;
                 const auto a = costAtError(smdFront, e), b = costAtError(front, e);
-                std::snprintf(buf, sizeof buf, "%s,%s,%s%s,%.6g,%d,%.6g,%.6g,%.6g,%d",
+                std::snprintf(buf, sizeof buf, "%s,%s,%s%s,%.6g,%d,%.6g,%.6g,%.6g,%d,%s",
                               design.c_str(), q.c_str(), factor == 1.0 ? "" : "2x",
                               targetSet.c_str(), e, int(targetError > resolvedSigmas * targetFloor),
-                              a.cost, b.cost, a.cost / b.cost, int(a.bound || b.bound));
+                              a.cost, b.cost, a.cost / b.cost, int(a.bound || b.bound),
+                              a.via.c_str());
                 out.emplace_back(buf);
             }
         }

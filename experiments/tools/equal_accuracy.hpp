@@ -29,6 +29,7 @@ std::vector<FrontPoint> paretoFront(std::vector<FrontPoint> points);
 struct CostAtError {
     double cost = 0.0;  // CPU s per ps; NaN when the error is out of reach
     bool bound = false; // the error lies above the cheapest point's: cost is an upper bound
+    std::string via;    // the front point it is, or "a~b" for the two it lies between
 };
 
 /// The cost to reach error e along a front (see above).
@@ -38,8 +39,9 @@ CostAtError costAtError(const std::vector<FrontPoint>& front, double e);
 /// per quantity q, and status; rows whose status is not "ok" take no part) and the label of the
 /// reference setting whose errors set the targets (e.g. smd-1.8): one CSV row per design, quantity
 /// and target (the reference setting's error, and twice it) — "design,quantity,target,
-/// target_error,resolved,smd_cost,design_cost,efficiency,bound" — the SMD front against each DMD
-/// design's. `resolved` is 0 when the reference setting's own error lies within resolvedSigmas
+/// target_error,resolved,smd_cost,design_cost,efficiency,bound,smd_via" — the SMD front against
+/// each DMD design's. SMD's front is that of all its rows whatever their scheme (column design),
+/// so its cost at a target is that of the cheapest scheme and dt reaching it, named in smd_via. `resolved` is 0 when the reference setting's own error lies within resolvedSigmas
 /// of its statistical floor (floor_q; convergence.hpp): the target is then noise, not accuracy.
 std::vector<std::string> equalAccuracy(const std::filesystem::path& fronts,
                                        const std::string& targetSet);

@@ -84,7 +84,7 @@ int run(const std::vector<std::string>& a) {
             std::cout << row << '\n';
     } else if (cmd == "equal-accuracy" && a.size() == 3) {
         std::cout << "design,quantity,target,target_error,resolved,smd_cost,design_cost,efficiency,"
-                     "bound\n";
+                     "bound,smd_via\n";
         for (const auto& row : experiments::equalAccuracy(a[1], a[2]))
             std::cout << row << '\n';
     } else {

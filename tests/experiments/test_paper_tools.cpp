@@ -349,10 +349,13 @@ TEST(EqualAccuracy, CostIsInterpolatedInLogLogAlongTheFront) {
     const auto mid = ex::costAtError(front, std::sqrt(0.05 * 0.01));
     EXPECT_NEAR(mid.cost, std::sqrt(8.0), roundOff);
     EXPECT_FALSE(mid.bound);
+    EXPECT_EQ(mid.via, "b~d");
+    EXPECT_EQ(ex::costAtError(front, 0.05).via, "b");
     EXPECT_NEAR(ex::costAtError(front, 0.05).cost, 2.0, roundOff);
     const auto easy = ex::costAtError(front, 0.2); // looser than the cheapest point
     EXPECT_EQ(easy.cost, 1.0);
     EXPECT_TRUE(easy.bound);
+    EXPECT_EQ(easy.via, "a");
     EXPECT_TRUE(std::isnan(ex::costAtError(front, 0.005).cost)); // beyond the best
 }
 
@@ -369,17 +372,37 @@ TEST(EqualAccuracy, EfficiencyIsSmdCostOverDesignCostAtTheTargets) {
     const auto rows = ex::equalAccuracy(dir / "fronts.csv", "smd-1.8");
     ASSERT_EQ(rows.size(), 4u); // 2 designs × 2 targets, one quantity; SMD-1.8's error resolved
     // optimal reaches SMD-1.8's error at 0.5 against SMD's 2: 4 times cheaper, an exact point.
-    EXPECT_EQ(rows[0], "optimal,g,smd-1.8,0.04,1,2,0.5,4,0");
+    EXPECT_EQ(rows[0], "optimal,g,smd-1.8,0.04,1,2,0.5,4,0,smd-1.8");
     // At twice the error SMD's cheapest stable point already is below it: a bound on both.
-    EXPECT_EQ(rows[1], "optimal,g,2xsmd-1.8,0.08,1,2,0.5,4,1");
+    EXPECT_EQ(rows[1], "optimal,g,2xsmd-1.8,0.08,1,2,0.5,4,1,smd-1.8");
     // uniform: 0.04 lies halfway (in ln e) between 0.08 and 0.02, so its cost is √(1·4) = 2.
-    EXPECT_EQ(rows[2], "uniform,g,smd-1.8,0.04,1,2,2,1,0");
-    EXPECT_EQ(rows[3], "uniform,g,2xsmd-1.8,0.08,1,2,1,2,1");
+    EXPECT_EQ(rows[2], "uniform,g,smd-1.8,0.04,1,2,2,1,0,smd-1.8");
+    EXPECT_EQ(rows[3], "uniform,g,2xsmd-1.8,0.08,1,2,1,2,1,smd-1.8");
     // A target within its floor is marked: SMD-1.8's error 0.04 against a floor of 0.03.
     std::ofstream(dir / "noisy.csv")
         << "set,engine,design,param,cpu_s_per_ps,err_g,floor_g,status\n"
            "smd-1.8,smd,-,1.8,2,0.04,0.03,ok\n"
            "dmd-1,dmd,uniform,1,1,0.05,0.03,ok\n";
     EXPECT_EQ(ex::equalAccuracy(dir / "noisy.csv", "smd-1.8")[0],
-              "uniform,g,smd-1.8,0.04,0,2,nan,nan,0");
+              "uniform,g,smd-1.8,0.04,0,2,nan,nan,0,smd-1.8");
+}
+
+TEST(EqualAccuracy, SmdFrontTakesTheCheapestSchemeReachingTheTargetAndNamesIt) {
+    const fs::path dir = scratch("schemes");
+    // A fourth-order scheme at 3 fs is both cheaper and more accurate than the paper's at 1.8 fs;
+    // between it and verlet at 1 fs SMD's front runs through both schemes.
+    std::ofstream(dir / "fronts.csv")
+        << "set,engine,design,param,cpu_s_per_ps,err_g,floor_g,status\n"
+           "smd-1-mayfail,smd,verlet,1,4,0.01,0.001,ok\n"
+           "smd-1.8-mayfail,smd,verlet,1.8,2,0.04,0.001,ok\n"
+           "smd-3-yoshida4-mayfail,smd,yoshida4,3,1.5,0.02,0.001,ok\n"
+           "dmd-0.5,dmd,uniform,0.5,1,0.04,0.001,ok\n";
+    const auto rows = ex::equalAccuracy(dir / "fronts.csv", "smd-1.8-mayfail");
+    ASSERT_EQ(rows.size(), 2u);
+    // At SMD-1.8's error the cheapest SMD is yoshida4 at 3 fs (1.5, a bound): DMD 1.5× cheaper.
+    EXPECT_EQ(rows[0], "uniform,g,smd-1.8-mayfail,0.04,1,1.5,1,1.5,1,smd-3-yoshida4-mayfail");
+    EXPECT_EQ(rows[1], "uniform,g,2xsmd-1.8-mayfail,0.08,1,1.5,1,1.5,1,smd-3-yoshida4-mayfail");
+    const std::vector<ex::FrontPoint> front = ex::paretoFront(
+        {{"smd-1", 4.0, 0.01}, {"smd-1.8", 2.0, 0.04}, {"smd-3-yoshida4", 1.5, 0.02}});
+    EXPECT_EQ(ex::costAtError(front, 0.015).via, "smd-3-yoshida4~smd-1");
 }
