@@ -68,6 +68,9 @@ for m in map map-lj; do
     awk -F, 'NR == 2 { exit !($1 > 0) }' "$out/map/$m-runs.csv" || fail "$m runs not counted"
 done
 [ -s "$out/runs/map-rho0.1-T10/dmd-1-mayfail/sweep.csv" ] || fail "no sweep.csv in a replica set"
+# SMD schemes: 3 schemes × 8 steps, a limit per scheme.
+[ "$(tail -n +2 "$out/schemes/stability.csv" | wc -l)" -eq 24 ] || fail "schemes stability rows"
+[ "$(tail -n +2 "$out/schemes/limits.csv" | wc -l)" -eq 3 ] || fail "schemes limits rows"
 # Every extreme combination is listed (finished or with its reason).
 [ "$(tail -n +2 "$out/extremes/extremes.csv" | wc -l)" -eq 8 ] || fail "extremes rows"
 
