@@ -30,7 +30,9 @@ for T in "${temperatures[@]}"; do
     for rho in "${densities[@]}"; do
         f=$dir/fronts/equal-accuracy-$prefix-rho$rho-T$T.csv
         [ -s "$f" ] || { log "map: no equal-accuracy table for rho $rho, T $T"; continue; }
-        tail -n +2 "$f" | awk -v r="$rho" -v t="$T" '{ print r "," t "," $0 }' >>"$dir/$name.csv"
+        # The first nine columns (design … bound): SMD runs one scheme here, smd_via says nothing.
+        tail -n +2 "$f" | cut -d, -f1-9 | awk -v r="$rho" -v t="$T" '{ print r "," t "," $0 }' \
+            >>"$dir/$name.csv"
     done
 done
 
