@@ -41,8 +41,9 @@ CostAtError costAtError(const std::vector<FrontPoint>& front, double e);
 /// and target (the reference setting's error, and twice it) — "design,quantity,target,
 /// target_error,resolved,smd_cost,design_cost,efficiency,bound,smd_via" — the SMD front against
 /// each DMD design's. SMD's front is that of all its rows whatever their scheme (column design),
-/// so its cost at a target is that of the cheapest scheme and dt reaching it, named in smd_via. `resolved` is 0 when the reference setting's own error lies within resolvedSigmas
-/// of its statistical floor (floor_q; convergence.hpp): the target is then noise, not accuracy.
+/// so its cost at a target is that of the cheapest scheme and dt reaching it, named in smd_via.
+/// `resolved` is 0 when the reference setting's own error lies within resolvedSigmas of its
+/// statistical floor (floor_q; convergence.hpp): the target is then noise, not accuracy.
 std::vector<std::string> equalAccuracy(const std::filesystem::path& fronts,
                                        const std::string& targetSet);
 
