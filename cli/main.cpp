@@ -66,7 +66,8 @@ Usage:
       at once; under mpirun every rank takes runs as they come (DIR on a file system
       all ranks see). Runs done before for the same scene are not run again, nor failed
       ones (unless --retry-failed); a failed run is recorded and the sweep goes on. Exit
-      status 0: all runs done; 1: some failed; 128 + signal: stopped by one.
+      status 0: all runs done; 1: some failed; 2: a bad sweep file; 3: the sweep itself
+      failed (another sweep holds DIR, a table it cannot write); 128 + signal: stopped.
   terrace --help
 
 SIGINT, SIGTERM and SIGHUP end a run at the next sample with its output written (exit
@@ -231,7 +232,12 @@ int sweepMain(const std::vector<std::string>& args) {
         std::fprintf(stderr, "terrace: %s\n", e.what());
         return 2;
     }
-    return cli::runSweep(plan, options);
+    try {
+        return cli::runSweep(plan, options);
+    } catch (const std::exception& e) { // the sweep itself, not a run: another sweep holds DIR,
+        std::fprintf(stderr, "terrace: %s\n", e.what()); // the table cannot be written, ...
+        return 3;
+    }
 }
 
 int compareMain(const std::vector<std::string>& args) {

@@ -195,7 +195,8 @@ run_one() {
 # DIR/sweep.csv; a run done before for the same scene is not run again). A failed run is a
 # result, not a reason to stop: its seed and the engine's message go to DIR/failures.txt and the
 # sweep is run again with one more seed per failure, up to 2 × REPLICAS seeds in all; the set
-# fails only when fewer than REPLICAS runs complete.
+# fails (status 1) only when fewer than REPLICAS runs complete; a sweep that stops (a signal,
+# another sweep holding DIR) returns 2.
 #   SWEEP_LAUNCH  prefix of the sweep command, e.g. "mpirun -np 4" to spread a set's replicas
 #                 over MPI ranks on a cluster (default: none)
 #   SWEEP_JOBS    runs at once in the sweep's own process (default 1; 0 under mpirun: rank 0
@@ -213,8 +214,9 @@ run_replicas() {
         # shellcheck disable=SC2086
         ${SWEEP_LAUNCH:-} "$TERRACE" sweep "$dir/sweep.json" --out "$dir" --quiet \
             -j "${SWEEP_JOBS:-1}" --set run.sample_fs="$SAMPLE_FS" "$@" || status=$?
-        # 0: every run done; 1: some failed (recorded); anything else stops the set.
-        [ "$status" -le 1 ] || { log "sweep $dir stopped (exit status $status)"; return 1; }
+        # 0: every run done; 1: some failed (recorded); anything else (a signal, another sweep
+        # holding the set) stops the set with status 2: not a result, whatever mayfail says.
+        [ "$status" -le 1 ] || { log "sweep $dir stopped (exit status $status)"; return 2; }
         done=$(awk -F, 'NR > 1 && $3 == "ok"' "$dir/sweep.csv" | wc -l)
         sweep_failures "$dir" >"$dir/failures.txt"
         [ "$done" -lt "$REPLICAS" ] && [ "$seeds" -lt $((2 * REPLICAS)) ] || break

@@ -85,15 +85,20 @@ ps=$(on_grid "$ps")
 equilibrate=$(on_grid "$STATE_EQUIL_PS")
 
 dir=$RUNS/$id
-rm -f "$dir/FAILED"
-if ! run_replicas "$dir" "$scene" --set state.n="$n" --set run.equilibrate_ps="$equilibrate" \
-    --set run.time_ps="$ps" "${sets[@]}"; then
-    [ "$mayfail" = 1 ] || exit 1
+rc=0
+run_replicas "$dir" "$scene" --set state.n="$n" --set run.equilibrate_ps="$equilibrate" \
+    --set run.time_ps="$ps" "${sets[@]}" || rc=$?
+if [ "$rc" -ne 0 ]; then
+    [ "$rc" -eq 1 ] && [ "$mayfail" = 1 ] || exit 1
     # The reason is the failed run's own message, kept for the tables.
     cut -c1-300 "$dir/failures.txt" | tr "\n" " " >"$dir/FAILED"
     log "runset $id FAILED (recorded)"
     exit 0
 fi
+# Only now: a set that failed before and completes this time is no longer failed (removed after
+# the sweep, which holds the set's lock, so that a second make on the same set cannot drop a
+# failure it is recording).
+rm -f "$dir/FAILED"
 # Spheres have no OACF: a curve the runs did not write has no mean.
 for f in rdf vacf oacf; do
     if [ -s "$(replica_dirs "$dir" | head -n 1)/$f.csv" ]; then

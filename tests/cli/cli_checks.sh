@@ -546,6 +546,11 @@ END
         [ -e "$work/out/seed-1/restart.bin" ] && [ -e "$work/out/seed-2/restart.bin" ] && break
         sleep 0.01
     done
+    # A second sweep into the same directory meanwhile is refused (exit status 3), touching nothing.
+    "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err2"
+    status=$?
+    [ $status -eq 3 ] || fail "a second sweep into a running sweep's directory: exit status $status"
+    grep -q 'another terrace sweep is running' "$work/err2" || fail "second sweep: $(cat "$work/err2")"
     kill -INT $pid
     wait $pid
     status=$?
