@@ -150,13 +150,11 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
             plan.common.emplace_back(k, SweepReader::plain(v));
         }
     }
-    for (const auto& s : extraSets) {
-        const auto eq = s.find('=');
-        if (eq == std::string::npos || eq == 0) rd.fail("--set " + s, "expected key.path=value");
-        json value = json::parse(s.substr(eq + 1), nullptr, false);
-        if (value.is_discarded()) value = s.substr(eq + 1); // a bare string, as terrace run
-        rd.checkKey(s.substr(0, eq), "--set");
-        plan.common.emplace_back(s.substr(0, eq), value);
+    for (const auto& s : extraSets) { // the same rule as terrace run --set
+        auto parsed = parseOverride(s);
+        if (!parsed) rd.fail("--set " + s, "expected key.path=value");
+        rd.checkKey(parsed->first, "--set");
+        plan.common.push_back(std::move(*parsed));
     }
 
     std::vector<std::vector<AxisValue>> axes;

@@ -117,13 +117,9 @@ private:
 };
 
 void applyOverride(json& j, const std::string& assignment, const Reader& rd) {
-    const auto eq = assignment.find('=');
-    if (eq == std::string::npos || eq == 0)
-        rd.fail("--set " + assignment, "expected key.path=value");
-    const std::string path = assignment.substr(0, eq);
-    const std::string text = assignment.substr(eq + 1);
-    json value = json::parse(text, nullptr, false);
-    if (value.is_discarded()) value = text; // not JSON: a bare string such as smd or heap
+    const auto parsed = parseOverride(assignment);
+    if (!parsed) rd.fail("--set " + assignment, "expected key.path=value");
+    const auto& [path, value] = *parsed;
     json* node = &j;
     std::size_t start = 0;
     while (true) {
@@ -251,6 +247,15 @@ std::string limits::terraceCountProblem(double uMin, double dV, double kT) {
 double Scene::boxLength() const {
     const int count = state.particles.empty() ? state.n : static_cast<int>(state.particles.size());
     return std::cbrt(count / state.density) * potential.sigma;
+}
+
+std::optional<std::pair<std::string, json>> parseOverride(const std::string& assignment) {
+    const auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) return std::nullopt;
+    const std::string text = assignment.substr(eq + 1);
+    json value = json::parse(text, nullptr, false);
+    if (value.is_discarded()) value = text; // not JSON: a bare string such as smd or heap
+    return std::make_pair(assignment.substr(0, eq), std::move(value));
 }
 
 Scene defaultScene() {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace terrace {
@@ -131,6 +132,10 @@ Scene defaultScene();
 Scene sceneFromJson(const nlohmann::json& j, const std::string& origin,
                     const std::vector<std::string>& overrides = {});
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+/// A "dotted.key=value" override split into its key and value: the value is JSON where the text
+/// parses as JSON, otherwise the bare string (smd, heap). nullopt when there is no '=' or no key.
+std::optional<std::pair<std::string, nlohmann::json>> parseOverride(const std::string& assignment);
 
 /// The fully resolved scene, every key written out (recorded next to every run's output).
 nlohmann::json toJson(const Scene& s);
