@@ -17,6 +17,17 @@ namespace terrace::cli {
 /// Calls fn.template operator()<Kind>(potential) for the scene's body kind and potential.
 template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
     if (scene.potential.kind == "lj") return fn.template operator()<Sphere>(ljPotential(scene));
+    if (scene.potential.kind == "gay-berne")
+        return fn.template operator()<LinearRotor>(gayBernePotential(scene));
+    if (scene.potential.kind == "sites") {
+        // A linear molecule reads its axis only; any other needs its whole frame.
+        const std::vector<Site> sites = sceneSites(scene);
+        if (scene.body.kind == "linear")
+            return fn.template operator()<LinearRotor>(
+                SitePotential<AttitudeUse::Axis>::fromSites(sites));
+        return fn.template operator()<AsymmetricTop>(
+            SitePotential<AttitudeUse::Frame>::fromSites(sites));
+    }
     const RodPotential rod = rodPotential(scene);
     if (scene.body.kind == "symmetric") return fn.template operator()<SymmetricTop>(rod);
     if (scene.body.kind == "asymmetric") return fn.template operator()<AsymmetricTop>(rod);

@@ -12,27 +12,37 @@
 // so that a search sampling a few fs past "now" turns each body through small angles only (where
 // the rotor's sin and cos come from a short series, core/small_angle.hpp).
 // Units: time unit 100 fs, ω in rad per time unit.
+#include "core/asymmetric_top.hpp"
 #include "core/body_kind.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/small_angle.hpp"
 #include "core/sphere.hpp"
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 namespace terrace {
 
-/// Any body kind: the State is rotated afresh at every τ.
+/// Any body kind: the State is rotated afresh at every τ. The attitude carries the whole frame
+/// where the kind has one (tops), for potentials that read more than the axis.
 template <BodyKind K> class FreeOrbit {
+    static constexpr bool framed = requires(const typename K::State& b) { K::frame(b); };
+
 public:
     FreeOrbit(const typename K::State& start, const BodyParams& p) : start_(start), params_(&p) {}
+    struct Empty {};
     struct Attitude {
         Vec3 axis; // unit long (symmetry) axis
         Vec3 w;    // lab angular velocity
+        [[no_unique_address]] std::conditional_t<framed, Mat3, Empty> frame; // body -> lab
     };
     Attitude at(double tau) const {
         typename K::State b = start_;
         K::freeRotate(b, *params_, tau);
-        return {K::axis(b), K::angularVelocity(b, *params_)};
+        if constexpr (framed)
+            return {K::axis(b), K::angularVelocity(b, *params_), K::frame(b)};
+        else
+            return {K::axis(b), K::angularVelocity(b, *params_), {}};
     }
     FreeOrbit from(double tau0) const {
         FreeOrbit o = *this;
@@ -122,6 +132,41 @@ private:
     // A search samples up to a few fs past its start, i.e. ≲ 0.15 rad for the paper's rods: a
     // shift leaving that much room below the series limit π/4 saves a rotation per body.
     static constexpr double shiftedAngle = 0.5;
+};
+
+/// Asymmetric top: the free rotation prepared once (AsymmetricTop::FreeRotation: ordering,
+/// elliptic parameter, theta or Legendre constants), so that a sample costs one evaluation of the
+/// attitude instead of that preparation as well. The attitude at τ is the prepared rotation at
+/// shift + τ, which is what freeRotate over the same time from the same State gives, bit for bit
+/// (freeRotate builds the same FreeRotation and evaluates it there).
+template <> class FreeOrbit<AsymmetricTop> {
+public:
+    FreeOrbit(const AsymmetricTop::State& start, const BodyParams& p)
+        : rotation_(start, p), A0_(start.A), L_(start.L), params_(&p) {}
+    struct Attitude {
+        Vec3 axis;
+        Vec3 w;
+        Mat3 frame; // body -> lab
+    };
+    Attitude at(double tau) const {
+        const double t = shift_ + tau;
+        const Mat3 A = t == 0.0 ? A0_ : rotation_.attitude(t); // freeRotate leaves A at t = 0
+        const Vec3 wBody = (A * L_).cwiseQuotient(params_->inertia);
+        return {A.row(2).transpose(), A.transpose() * wBody, A.transpose()};
+    }
+    FreeOrbit from(double tau0) const {
+        FreeOrbit o = *this;
+        o.shift_ += tau0;
+        return o;
+    }
+    Attitude startOf(double tau0) const { return at(tau0); }
+
+private:
+    AsymmetricTop::FreeRotation rotation_;
+    Mat3 A0_;
+    Vec3 L_; // lab angular momentum, constant in free flight
+    const BodyParams* params_;
+    double shift_ = 0.0; // from(): time since the prepared start
 };
 
 /// Sphere: nothing turns.

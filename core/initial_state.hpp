@@ -5,12 +5,16 @@
 // kinetic temperature is exactly kT. Deterministic from the scene seed (named random streams).
 // An explicit `state.particles` list is used as given instead (converted from ps to time units).
 #include "core/body_kind.hpp"
+#include "core/body_orientation.hpp"
+#include "core/gay_berne_potential.hpp"
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
 #include "core/scene.hpp"
+#include "core/site_potential.hpp"
 #include "core/smoothed_cutoff.hpp"
 #include "core/system.hpp"
 #include "core/units.hpp"
+#include <array>
 #include <cmath>
 #include <random>
 #include <string>
@@ -19,6 +23,9 @@ namespace terrace {
 
 RodPotential rodPotential(const Scene& scene);
 LJPotential ljPotential(const Scene& scene);
+GayBernePotential gayBernePotential(const Scene& scene);
+/// body.sites as the site potential takes them.
+std::vector<Site> sceneSites(const Scene& scene);
 BodyParams bodyParams(const Scene& scene);
 /// potential.cutoff in Å: the smoothed cutoff of the model both engines simulate.
 SmoothedCutoff sceneCutoff(const Scene& scene);
@@ -31,6 +38,15 @@ namespace detail {
 
 /// Lattice sites of a simple cubic lattice with m = ceil(N^(1/3)) sites per edge, first N used.
 std::vector<Vec3> cubicLattice(int n, double boxLength);
+/// A lattice filling the cubic box with m sites along x and y and mz along z, the cell about
+/// `aspect` times longer along z than across (aspect 1: the cubic lattice), the first N of its
+/// sites in the order z fastest, then y, then x.
+struct Lattice {
+    std::vector<Vec3> sites;
+    int m = 0, mz = 0;
+    Vec3 spacing = Vec3::Zero(); // Å, along x, y, z
+};
+Lattice elongatedLattice(int n, double boxLength, double aspect);
 Vec3 randomUnitVector(std::mt19937_64& rng);
 Mat3 randomRotation(std::mt19937_64& rng); // uniform on SO(3), lab -> body
 Vec3 anyPerpendicular(const Vec3& s);
@@ -54,6 +70,38 @@ void thermalise(typename K::State& b, const BodyParams& p, double kT, std::mt199
         for (int a = 0; a < 3; ++a)
             Lbody[a] = gauss(rng) * std::sqrt(kT * p.inertia[a]);
         b.L = b.A.transpose() * Lbody;
+    }
+}
+
+/// The lattice start with its orientations: every body against its next lattice neighbours along
+/// x, y and z (periodic), each pair's U at most maxStartEnergyInKT kT, else a SceneError naming
+/// the remedy. What the worst-case probe of the rods cannot see: elongated bodies end to end, or
+/// a molecule's sites, at the start's own orientations. O(N), by the lattice's order.
+template <BodyKind K, PairPotential P>
+void refuseOverlappingNeighbours(const System<K, P>& sys, const Lattice& lattice,
+                                 const Scene& scene) {
+    const int n = sys.size(), m = lattice.m, mz = lattice.mz;
+    const double limit = maxStartEnergyInKT * sys.kT;
+    for (int i = 0; i < n; ++i) {
+        const int z = i % mz, y = (i / mz) % m, x = i / (mz * m);
+        const std::array<int, 3> next{((x + 1) % m * m + y) * mz + z,
+                                      (x * m + (y + 1) % m) * mz + z,
+                                      (x * m + y) * mz + (z + 1) % mz};
+        for (const int j : next) {
+            if (j >= n || j == i) continue;
+            const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
+            const double U = sys.potential.energy(rij, orientationOf<P, K>(sys.bodies[i]),
+                                                  orientationOf<P, K>(sys.bodies[j]));
+            if (!(U <= limit))
+                throw SceneError(
+                    "state.density: " + std::to_string(scene.state.density) +
+                    " puts lattice neighbours " + std::to_string(i) + " and " + std::to_string(j) +
+                    " at U = " + std::to_string(U) + " kJ/mol (> " +
+                    std::to_string(maxStartEnergyInKT) +
+                    " kT) in their start orientations: lower the density, start them aligned "
+                    "(state.orientations) or lengthen the lattice cell along the bodies "
+                    "(state.lattice_aspect)");
+        }
     }
 }
 
@@ -100,18 +148,23 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
         return sys;
     }
 
-    const auto sites = detail::cubicLattice(n, sys.box.length);
-    if (n > 1) {
-        const double spacing = sys.box.length / std::ceil(std::cbrt(double(n)) - 1e-9);
-        // Worst case: r_e is smallest for aligned neighbours (rods) -- probe along and across.
-        const Vec3 d(spacing, 0, 0);
-        const double uAligned = potential.energy(d, Vec3::UnitY(), Vec3::UnitY());
-        const double uCrossed = potential.energy(d, Vec3::UnitY(), Vec3::UnitZ());
-        if (std::max(uAligned, uCrossed) > detail::maxStartEnergyInKT * sys.kT)
-            throw SceneError("state.density: " + std::to_string(scene.state.density) +
-                             " puts lattice neighbours " + std::to_string(spacing) +
-                             " Å apart, deep in the repulsive core (overlap); lower the density");
-    }
+    const detail::Lattice lattice =
+        detail::elongatedLattice(n, sys.box.length, scene.state.lattice_aspect);
+    const auto& sites = lattice.sites;
+    const Vec3& spacing = lattice.spacing;
+    // Worst case: r_e is smallest for aligned neighbours (rods) -- probe along and across. (A
+    // frame potential has no such worst pair; refuseOverlappingNeighbours checks its start.)
+    if constexpr (P::attitude != AttitudeUse::Frame)
+        if (n > 1) {
+            const Vec3 d(spacing.x(), 0, 0);
+            const double uAligned = potential.energy(d, Vec3::UnitY(), Vec3::UnitY());
+            const double uCrossed = potential.energy(d, Vec3::UnitY(), Vec3::UnitZ());
+            if (std::max(uAligned, uCrossed) > detail::maxStartEnergyInKT * sys.kT)
+                throw SceneError(
+                    "state.density: " + std::to_string(scene.state.density) +
+                    " puts lattice neighbours " + std::to_string(spacing.x()) +
+                    " Å apart, deep in the repulsive core (overlap); lower the density");
+        }
     auto orientRng = namedStream(scene.seed, "orientations");
     auto velocityRng = namedStream(scene.seed, "velocities");
     for (int i = 0; i < n; ++i) {
@@ -125,6 +178,7 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
         }
         detail::thermalise<K>(b, sys.body, sys.kT, velocityRng);
     }
+    if (n > 1) detail::refuseOverlappingNeighbours(sys, lattice, scene);
     const Vec3 pMean = totalMomentum(sys) / (sys.body.mass * n);
     for (auto& b : sys.bodies)
         b.v -= pMean;

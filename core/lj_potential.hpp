@@ -6,7 +6,8 @@ namespace terrace {
 
 struct LJPotential {
     static constexpr std::string_view name = "lj";
-    static constexpr bool orientational = false;
+    static constexpr AttitudeUse attitude = AttitudeUse::None;
+    using Orientation = Vec3;
 
     double epsilon = 1.0; // kJ/mol
     double sigma = 1.0;   // Å

@@ -2,13 +2,31 @@
 // What a pair potential gives the engines (paper eqs. 4-5 and 13): the energy U, the force on i,
 // the torques on i and j, and -- from those and the velocities -- the rate dU/dt along free motion.
 // Potentials are compile-time types; both engines are templates over them.
+//
+// A potential sees each body through its Orientation, the part of the attitude it reads, declared
+// at compile time (AttitudeUse): nothing (spheres), the unit symmetry axis (the paper's rods,
+// Gay–Berne ellipsoids, linear molecules), or the whole body frame (a molecule with sites off its
+// axis). An axis potential is handed the lab axis and pays for nothing more; a frame potential is
+// handed the rotation body -> lab (core/body_orientation.hpp builds either from a body's state).
 #include "core/vec.hpp"
 #include <cmath>
 #include <concepts>
 #include <limits>
 #include <string_view>
+#include <type_traits>
 
 namespace terrace {
+
+/// How much of a body's attitude a potential reads.
+enum class AttitudeUse {
+    None,  // central forces: the attitude is never read
+    Axis,  // the unit symmetry axis s (lab frame)
+    Frame, // the rotation Q = Aᵀ, body -> lab: its columns are the body's principal axes
+};
+
+/// What a potential with the given use is handed of each body.
+template <AttitudeUse use>
+using OrientationFor = std::conditional_t<use == AttitudeUse::Frame, Mat3, Vec3>;
 
 /// Everything a pair evaluation returns (kJ/mol, kJ/mol/Å, kJ/mol per radian).
 struct PairForce {
@@ -19,17 +37,21 @@ struct PairForce {
 };
 
 template <class P>
-concept PairPotential = requires(const P p, Vec3 r, double u) {
+concept PairPotential = requires(const P p, Vec3 r, typename P::Orientation o, double u) {
     { P::name } -> std::convertible_to<std::string_view>;
-    { P::orientational } -> std::convertible_to<bool>;
-    // rij = ri - rj (minimum image), si, sj unit long axes (ignored when not orientational)
-    { p.evaluate(r, r, r) } -> std::same_as<PairForce>;
-    { p.energy(r, r, r) } -> std::convertible_to<double>;
+    { P::attitude } -> std::convertible_to<AttitudeUse>;
+    requires std::same_as<typename P::Orientation, OrientationFor<P::attitude>>;
+    // rij = ri - rj (minimum image), oi, oj the bodies' orientations (ignored under None)
+    { p.evaluate(r, o, o) } -> std::same_as<PairForce>;
+    { p.energy(r, o, o) } -> std::convertible_to<double>;
     // lowest value U can take over all configurations (a level there makes a zero-width terrace)
     { p.minimumEnergy() } -> std::convertible_to<double>;
     // largest centre distance at which U can equal u (0 if U never reaches u)
     { p.reachDistance(u) } -> std::convertible_to<double>;
 };
+
+/// Whether P reads the attitude at all (torques, rotation in the search).
+template <class P> inline constexpr bool isOrientational = P::attitude != AttitudeUse::None;
 
 /// dU/dt along free motion, paper eq. (13): -F_ij·v_ij - τ_ij·ω_i - τ_ji·ω_j, with v_ij = v_i -
 /// v_j.
@@ -44,12 +66,13 @@ struct EnergyRate {
 };
 
 /// U and dU/dt (paper eq. 13) of the pair (rij, si, sj) moving with v_ij = v_i - v_j and angular
-/// velocities wi, wj. A potential may provide energyRate() with the same arguments, which skips
-/// the force and torque vectors (a potential's rate is a scalar chain rule); otherwise the rate
-/// comes from evaluate() and dUdt().
+/// velocities wi, wj; si, sj the bodies' orientations. A potential may provide energyRate() with
+/// the same arguments, which skips the force and torque vectors (a potential's rate is a scalar
+/// chain rule); otherwise the rate comes from evaluate() and dUdt().
 template <PairPotential P>
-EnergyRate energyAndRate(const P& p, const Vec3& rij, const Vec3& vij, const Vec3& si,
-                         const Vec3& wi, const Vec3& sj, const Vec3& wj) {
+EnergyRate energyAndRate(const P& p, const Vec3& rij, const Vec3& vij,
+                         const typename P::Orientation& si, const Vec3& wi,
+                         const typename P::Orientation& sj, const Vec3& wj) {
     if constexpr (requires { p.energyRate(rij, vij, si, wi, sj, wj); }) {
         return p.energyRate(rij, vij, si, wi, sj, wj);
     } else {

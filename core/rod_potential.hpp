@@ -13,7 +13,8 @@ namespace terrace {
 
 struct RodPotential {
     static constexpr std::string_view name = "rod-lj";
-    static constexpr bool orientational = true;
+    static constexpr AttitudeUse attitude = AttitudeUse::Axis;
+    using Orientation = Vec3;
 
     double epsilon = 3.0; // kJ/mol
     double sigma = 3.035; // Å

@@ -137,6 +137,76 @@ void applyOverride(json& j, const std::string& assignment, const Reader& rd) {
     }
 }
 
+/// body.sites (potential.kind sites): the sites, and the mass and principal moments they imply,
+/// which body.mass and body.inertia, when given, must match. The sites must be given in the
+/// principal frame: centre of mass at the origin, inertia tensor diagonal (the body frame of
+/// the exact free motion); a linear molecule's on the body z axis.
+void readSites(const json& body, Scene& s, const Reader& rd) {
+    constexpr double frameTolerance = 1e-9; // relative: far above round-off, far below any design
+    constexpr double momentTolerance = 1e-6;
+    if (s.body.kind != "linear" && s.body.kind != "asymmetric")
+        rd.fail("body.kind", "sites need linear (all sites on the body z axis) or asymmetric "
+                             "(any rigid molecule; two equal moments are handled exactly)");
+    if (!body.contains("sites"))
+        rd.fail("body.sites", "potential.kind sites needs the molecule's sites: [{\"r\": [x, y, "
+                              "z], \"mass\": m, \"epsilon\": ε, \"sigma\": σ}, ...]");
+    const auto& list = body["sites"];
+    const std::size_t most = SitePotential<AttitudeUse::Frame>::maxSites;
+    if (!list.is_array() || list.empty() || list.size() > most)
+        rd.fail("body.sites", "must be an array of 1 to " + std::to_string(most) + " sites");
+    double mass = 0.0, extent = 0.0;
+    Vec3 moment = Vec3::Zero();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string name = "body.sites[" + std::to_string(i) + "]";
+        const json& e = list[i];
+        rd.onlyKeys(e, name, {"r", "mass", "epsilon", "sigma"});
+        for (const char* key : {"r", "mass", "epsilon", "sigma"})
+            if (!e.contains(key)) rd.fail(name + "." + key, "missing");
+        SiteSpec site;
+        site.r = rd.vec3(e["r"], name + ".r");
+        site.mass = rd.number(e, name, "mass", 0.0, 0.0, 1e6);
+        site.epsilon = rd.number(e, name, "epsilon", 0.0, 0.0, 1e6);
+        site.sigma = rd.number(e, name, "sigma", 0.0, 0.0, 1e3, true);
+        if (s.body.kind == "linear" && (site.r.x() != 0.0 || site.r.y() != 0.0))
+            rd.fail(name + ".r", "a linear molecule's sites lie on the body z axis (x = y = 0)");
+        mass += site.mass;
+        moment += site.mass * site.r;
+        extent = std::max(extent, site.r.norm());
+        s.body.sites.push_back(site);
+    }
+    if (!(mass > 0.0)) rd.fail("body.sites", "the sites' masses must add up to more than 0");
+    const Vec3 centre = moment / mass;
+    if (centre.norm() > frameTolerance * std::max(extent, 1.0))
+        rd.fail("body.sites", "the sites' centre of mass is at (" + Reader::fmt(centre.x()) + ", " +
+                                  Reader::fmt(centre.y()) + ", " + Reader::fmt(centre.z()) +
+                                  ") Å: give the positions relative to it");
+    Mat3 tensor = Mat3::Zero();
+    for (const auto& site : s.body.sites)
+        tensor +=
+            site.mass * (site.r.squaredNorm() * Mat3::Identity() - site.r * site.r.transpose());
+    const double offDiagonal =
+        std::max({std::abs(tensor(0, 1)), std::abs(tensor(0, 2)), std::abs(tensor(1, 2))});
+    if (offDiagonal > frameTolerance * tensor.trace())
+        rd.fail("body.sites", "are not in the principal frame (off-diagonal moment " +
+                                  Reader::fmt(offDiagonal) +
+                                  " g/mol Å²): rotate them onto the principal axes");
+    const Vec3 principal = tensor.diagonal();
+    if (body.contains("mass") && std::abs(s.body.mass - mass) > frameTolerance * mass)
+        rd.fail("body.mass", Reader::fmt(s.body.mass) + " disagrees with the sites' total mass " +
+                                 Reader::fmt(mass) + " g/mol (leave it out to take theirs)");
+    s.body.mass = mass;
+    if (body.contains("inertia")) {
+        const int used = s.body.kind == "linear" ? 2 : 3;
+        for (int a = 0; a < used; ++a)
+            if (std::abs(s.body.inertia[a] - principal[a]) > momentTolerance * principal.maxCoeff())
+                rd.fail("body.inertia",
+                        "disagrees with the sites' principal moments (" +
+                            Reader::fmt(principal.x()) + ", " + Reader::fmt(principal.y()) + ", " +
+                            Reader::fmt(principal.z()) + ") g/mol Å² (leave it out to take them)");
+    }
+    s.body.inertia = principal;
+}
+
 ParticleSpec readParticle(const json& p, const std::string& name, const Reader& rd,
                           const std::string& kind) {
     rd.onlyKeys(p, name, {"r", "v", "axis", "orientation", "omega"});
@@ -288,7 +358,7 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     s.seed = static_cast<std::uint64_t>(rd.integer(j, "", "seed", 1, 0, (1LL << 62)));
 
     const auto& body = rd.section(j, "body");
-    rd.onlyKeys(body, "body", {"kind", "mass", "inertia"});
+    rd.onlyKeys(body, "body", {"kind", "mass", "inertia", "sites"});
     s.body.kind = rd.choice(body, "body", "kind", s.body.kind,
                             {"sphere", "linear", "symmetric", "asymmetric"});
     s.body.mass = rd.number(body, "body", "mass", s.body.mass, 0.0, inf, true);
@@ -296,6 +366,13 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         s.body.inertia = rd.vec3(body["inertia"], "body.inertia");
         if (s.body.inertia.minCoeff() < 0.0) rd.fail("body.inertia", "moments must be >= 0");
     }
+    const auto& pot = rd.section(j, "potential");
+    s.potential.kind = rd.choice(pot, "potential", "kind", s.potential.kind,
+                                 {"rod-lj", "lj", "gay-berne", "sites"});
+    if (s.potential.kind == "sites")
+        readSites(body, s, rd);
+    else if (body.contains("sites"))
+        rd.fail("body.sites", "only meaningful for potential.kind sites");
     const Vec3& I = s.body.inertia;
     if (s.body.kind == "linear" && !(I[0] > 0.0 && I[0] == I[1]))
         rd.fail("body.inertia", "a linear rotor needs I1 = I2 > 0 (I3 is ignored)");
@@ -304,9 +381,8 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     if (s.body.kind == "asymmetric" && !(I.minCoeff() > 0.0))
         rd.fail("body.inertia", "an asymmetric top needs three positive moments");
 
-    const auto& pot = rd.section(j, "potential");
-    rd.onlyKeys(pot, "potential", {"kind", "epsilon", "sigma", "zeta", "cutoff"});
-    s.potential.kind = rd.choice(pot, "potential", "kind", s.potential.kind, {"rod-lj", "lj"});
+    rd.onlyKeys(pot, "potential",
+                {"kind", "epsilon", "sigma", "zeta", "cutoff", "kappa", "kappa_prime", "mu", "nu"});
     s.potential.epsilon = rd.number(pot, "potential", "epsilon", s.potential.epsilon, 0, inf, true);
     s.potential.sigma = rd.number(pot, "potential", "sigma", s.potential.sigma, 0, inf, true);
     s.potential.zeta = rd.number(pot, "potential", "zeta", s.potential.zeta, 0, inf);
@@ -323,8 +399,23 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         rd.fail("potential.cutoff", "must be [r_l, r_u] with 0 < r_l < r_u <= 100 (σ), got [" +
                                         Reader::fmt(s.potential.r_l) + ", " +
                                         Reader::fmt(s.potential.r_u) + "]");
-    if (s.potential.kind == "lj" && pot.contains("zeta"))
+    if (s.potential.kind != "rod-lj" && pot.contains("zeta"))
         rd.fail("potential.zeta", "only meaningful for rod-lj");
+    for (const char* key : {"kappa", "kappa_prime", "mu", "nu"})
+        if (s.potential.kind != "gay-berne" && pot.contains(key))
+            rd.fail(std::string("potential.") + key, "only meaningful for gay-berne");
+    if (s.potential.kind == "gay-berne") {
+        s.potential.kappa = rd.number(pot, "potential", "kappa", s.potential.kappa, 0, 100, true);
+        s.potential.kappa_prime =
+            rd.number(pot, "potential", "kappa_prime", s.potential.kappa_prime, 0, 1e4, true);
+        s.potential.mu = rd.number(pot, "potential", "mu", s.potential.mu, 0, 100);
+        s.potential.nu = rd.number(pot, "potential", "nu", s.potential.nu, 0, 100);
+        // An ellipsoid's torque is perpendicular to its axis: the spin about it is conserved and
+        // decoupled, so the linear rotor is its exact kind (as for the paper's rods).
+        if (s.body.kind != "linear")
+            rd.fail("body.kind", "gay-berne ellipsoids are uniaxial: set body.kind to linear");
+    }
+
     if (s.potential.kind == "lj" && s.body.kind != "sphere")
         rd.fail("potential.kind", "lj is a potential between spheres: set body.kind to sphere");
     if (s.potential.kind == "rod-lj" && s.body.kind == "sphere")
@@ -332,7 +423,10 @@ Scene sceneFromJson(const json& input, const std::string& origin,
                 "rod-lj needs bodies with an axis (linear, symmetric, asymmetric)");
 
     const auto& st = rd.section(j, "state");
-    rd.onlyKeys(st, "state", {"n", "density", "temperature", "orientations", "particles"});
+    rd.onlyKeys(st, "state",
+                {"n", "density", "temperature", "orientations", "lattice_aspect", "particles"});
+    s.state.lattice_aspect =
+        rd.number(st, "state", "lattice_aspect", s.state.lattice_aspect, 1.0, 100.0);
     s.state.n = static_cast<int>(rd.integer(st, "state", "n", s.state.n, 2, 100000000));
     s.state.density = rd.number(st, "state", "density", s.state.density, 0.0, 10.0, true);
     s.state.temperature = rd.number(st, "state", "temperature", s.state.temperature, 0, inf, true);
@@ -347,6 +441,9 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         if (st.contains("orientations"))
             rd.fail("state.orientations",
                     "applies to lattice starts only: state.particles gives each orientation");
+        if (st.contains("lattice_aspect"))
+            rd.fail("state.lattice_aspect",
+                    "applies to lattice starts only: state.particles gives each position");
         for (std::size_t i = 0; i < list.size(); ++i)
             s.state.particles.push_back(readParticle(
                 list[i], "state.particles[" + std::to_string(i) + "]", rd, s.body.kind));
@@ -455,8 +552,7 @@ Scene sceneFromJson(const json& input, const std::string& origin,
                     ": a thermal pair moves ~1e-3 Å in 0.1 fs, so a shorter horizon only "
                     "multiplies virtual events (the paper uses 4 fs)");
     if (s.engine == "dmd" && s.dmd.levels.empty()) {
-        const double uMin = s.potential.kind == "lj" ? ljPotential(s).minimumEnergy()
-                                                     : rodPotential(s).minimumEnergy();
+        const double uMin = sceneMinimumEnergy(s);
         const std::string problem = limits::terraceCountProblem(uMin, s.dmd.dV, kT);
         if (!problem.empty()) throw SceneError(origin + ": " + problem);
     }
@@ -647,10 +743,28 @@ json toJson(const Scene& s) {
     j["potential"] = {
         {"kind", s.potential.kind}, {"epsilon", s.potential.epsilon}, {"sigma", s.potential.sigma}};
     if (s.potential.kind == "rod-lj") j["potential"]["zeta"] = s.potential.zeta;
+    if (s.potential.kind == "gay-berne") {
+        j["potential"]["kappa"] = s.potential.kappa;
+        j["potential"]["kappa_prime"] = s.potential.kappa_prime;
+        j["potential"]["mu"] = s.potential.mu;
+        j["potential"]["nu"] = s.potential.nu;
+    }
+    if (!s.body.sites.empty()) {
+        json list = json::array();
+        for (const auto& site : s.body.sites)
+            list.push_back({{"r", v3(site.r)},
+                            {"mass", site.mass},
+                            {"epsilon", site.epsilon},
+                            {"sigma", site.sigma}});
+        j["body"]["sites"] = list;
+    }
     j["potential"]["cutoff"] = json::array({s.potential.r_l, s.potential.r_u});
     j["state"] = {
         {"n", s.state.n}, {"density", s.state.density}, {"temperature", s.state.temperature}};
-    if (s.state.particles.empty()) j["state"]["orientations"] = s.state.orientations;
+    if (s.state.particles.empty()) {
+        j["state"]["orientations"] = s.state.orientations;
+        j["state"]["lattice_aspect"] = s.state.lattice_aspect;
+    }
     if (!s.state.particles.empty()) {
         json list = json::array();
         for (const auto& p : s.state.particles) {
@@ -693,8 +807,7 @@ json toJson(const Scene& s) {
 std::vector<std::string> sceneWarnings(const Scene& s) {
     std::vector<std::string> out;
     if (!s.dmd.levels.empty()) {
-        const double uMin = s.potential.kind == "lj" ? ljPotential(s).minimumEnergy()
-                                                     : rodPotential(s).minimumEnergy();
+        const double uMin = sceneMinimumEnergy(s);
         bool inWell = false;
         for (double level : s.dmd.levels)
             inWell = inWell || (level > uMin && level < 0.0);
@@ -713,6 +826,29 @@ RodPotential rodPotential(const Scene& s) {
 }
 LJPotential ljPotential(const Scene& s) {
     return LJPotential{s.potential.epsilon, s.potential.sigma};
+}
+GayBernePotential gayBernePotential(const Scene& s) {
+    GayBernePotential p;
+    p.epsilon = s.potential.epsilon;
+    p.sigma = s.potential.sigma;
+    p.kappa = s.potential.kappa;
+    p.kappaPrime = s.potential.kappa_prime;
+    p.mu = s.potential.mu;
+    p.nu = s.potential.nu;
+    return p;
+}
+std::vector<Site> sceneSites(const Scene& s) {
+    std::vector<Site> sites;
+    for (const auto& x : s.body.sites)
+        sites.push_back(Site{x.r, x.epsilon, x.sigma, x.mass});
+    return sites;
+}
+double sceneMinimumEnergy(const Scene& s) {
+    if (s.potential.kind == "lj") return ljPotential(s).minimumEnergy();
+    if (s.potential.kind == "gay-berne") return gayBernePotential(s).minimumEnergy();
+    if (s.potential.kind == "sites")
+        return SitePotential<AttitudeUse::Frame>::fromSites(sceneSites(s)).minimumEnergy();
+    return rodPotential(s).minimumEnergy();
 }
 SmoothedCutoff sceneCutoff(const Scene& s) {
     return {s.potential.r_l * s.potential.sigma, s.potential.r_u * s.potential.sigma};

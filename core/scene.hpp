@@ -34,6 +34,16 @@ struct ParticleSpec {
     Vec3 omega = Vec3::Zero();       // lab angular velocity, rad/ps
 };
 
+/// One interaction site of a rigid site-site molecule (body.sites): its position in the body's
+/// principal frame relative to the centre of mass (Å), its mass (g/mol) and its Lennard-Jones ε
+/// (kJ/mol) and σ (Å); unlike sites interact by Lorentz–Berthelot mixing.
+struct SiteSpec {
+    Vec3 r = Vec3::Zero();
+    double mass = 0.0;
+    double epsilon = 0.0;
+    double sigma = 0.0;
+};
+
 struct Scene {
     std::string name = "dense-rods";
     std::uint64_t seed = 1;
@@ -42,13 +52,25 @@ struct Scene {
         std::string kind = "linear";     // sphere | linear | symmetric | asymmetric
         double mass = 18.0;              // g/mol
         Vec3 inertia{1.154, 1.154, 0.0}; // g/mol Å², principal moments
+        // potential.kind = sites only. Mass and inertia follow from the sites unless given (then
+        // they must agree); the sites must be given in the principal frame.
+        std::vector<SiteSpec> sites;
     } body;
 
     struct Potential {
-        std::string kind = "rod-lj"; // rod-lj | lj
-        double epsilon = 3.0;        // kJ/mol
-        double sigma = 3.035;        // Å
-        double zeta = 1.0;           // Å (rod-lj only)
+        std::string kind = "rod-lj"; // rod-lj | lj | gay-berne | sites
+        // The scene's energy and length units: T* = kT/ε and ρ* = Nσ³/L³, the cutoff in σ. For
+        // gay-berne they are also the potential's ε0 and σ0 (= σ_s); for sites the units only,
+        // the sites carrying their own.
+        double epsilon = 3.0; // kJ/mol
+        double sigma = 3.035; // Å
+        double zeta = 1.0;    // Å (rod-lj only)
+        // gay-berne only (core/gay_berne_potential.hpp): κ = σ_e/σ_s, κ' = ε_s/ε_e, μ, ν; the
+        // default is the standard GB(3, 5, 2, 1).
+        double kappa = 3.0;
+        double kappa_prime = 5.0;
+        double mu = 2.0;
+        double nu = 1.0;
         // Smoothed cutoff [r_l, r_u] in σ (paper eqs. 22-23): the model is g(r)·U, which SMD
         // integrates and DMD terraces (core/smoothed_potential.hpp). Key: "cutoff": [r_l, r_u].
         double r_l = 2.5;
@@ -60,6 +82,9 @@ struct Scene {
         double density = 0.5;                // ρσ³
         double temperature = 1.4;            // T* = kT/ε
         std::string orientations = "random"; // random | aligned (lattice starts only)
+        // The lattice cell's length along z over its width: elongated bodies started aligned
+        // along z sit end to end that much farther apart than side by side (lattice starts only).
+        double lattice_aspect = 1.0;
         std::vector<ParticleSpec> particles; // explicit start; overrides the lattice when given
     } state;
 
@@ -122,6 +147,9 @@ struct Scene {
     double kT() const { return state.temperature * potential.epsilon; } // kJ/mol
     double boxLength() const;                                           // Å, from n and density
 };
+
+/// The lowest value the scene's pair potential can take, kJ/mol (a bound for site-site models).
+double sceneMinimumEnergy(const Scene& s);
 
 /// The built-in default scene: the paper's dense rods (N 512, ρ* 0.5, T* 1.4).
 Scene defaultScene();

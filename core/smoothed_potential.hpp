@@ -26,7 +26,8 @@ namespace terrace {
 template <PairPotential P> struct Smoothed {
     using Bare = P;
     static constexpr std::string_view name = P::name;
-    static constexpr bool orientational = P::orientational;
+    static constexpr AttitudeUse attitude = P::attitude;
+    using Orientation = typename P::Orientation;
 
     P bare;
     SmoothedCutoff cut = SmoothedCutoff::none();
@@ -34,22 +35,22 @@ template <PairPotential P> struct Smoothed {
     /// The distance beyond which U_s is 0 (Å; +∞ without a cutoff).
     double range() const { return cut.outer(); }
 
-    PairForce evaluate(const Vec3& rij, const Vec3& si, const Vec3& sj) const {
+    PairForce evaluate(const Vec3& rij, const Orientation& si, const Orientation& sj) const {
         const double r2 = rij.squaredNorm();
         if (r2 <= cut.inner() * cut.inner()) return bare.evaluate(rij, si, sj);
         if (r2 >= cut.outer() * cut.outer()) return PairForce{};
         return smoothed(bare.evaluate(rij, si, sj), rij, std::sqrt(r2), cut);
     }
 
-    double energy(const Vec3& rij, const Vec3& si, const Vec3& sj) const {
+    double energy(const Vec3& rij, const Orientation& si, const Orientation& sj) const {
         const double r2 = rij.squaredNorm();
         if (r2 <= cut.inner() * cut.inner()) return bare.energy(rij, si, sj);
         if (r2 >= cut.outer() * cut.outer()) return 0.0;
         return cut.switching(std::sqrt(r2)) * bare.energy(rij, si, sj);
     }
 
-    EnergyRate energyRate(const Vec3& rij, const Vec3& vij, const Vec3& si, const Vec3& wi,
-                          const Vec3& sj, const Vec3& wj) const {
+    EnergyRate energyRate(const Vec3& rij, const Vec3& vij, const Orientation& si, const Vec3& wi,
+                          const Orientation& sj, const Vec3& wj) const {
         const double r2 = rij.squaredNorm();
         if (r2 <= cut.inner() * cut.inner()) return energyAndRate(bare, rij, vij, si, wi, sj, wj);
         if (r2 >= cut.outer() * cut.outer()) return {};

@@ -2,6 +2,7 @@
 // The shape both engines share: bodies of one kind in a periodic box, interacting through one pair
 // potential. Engines take a System by value, advance it, and hand out Snapshots.
 #include "core/body_kind.hpp"
+#include "core/body_orientation.hpp"
 #include "core/box.hpp"
 #include "core/pair_potential.hpp"
 #include <cmath>
@@ -78,7 +79,8 @@ template <BodyKind K, PairPotential P> double potentialEnergyAllPairs(const Syst
     for (int i = 0; i < sys.size(); ++i)
         for (int j = i + 1; j < sys.size(); ++j) {
             const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
-            u += sys.potential.energy(rij, K::axis(sys.bodies[i]), K::axis(sys.bodies[j]));
+            u += sys.potential.energy(rij, orientationOf<P, K>(sys.bodies[i]),
+                                      orientationOf<P, K>(sys.bodies[j]));
         }
     return u;
 }

@@ -37,6 +37,8 @@ struct TopCommon {
     using State = TopState;
     /// The body's third principal axis in the lab frame (the symmetry axis of a symmetric top).
     static Vec3 axis(const State& b) { return b.A.row(2).transpose(); }
+    /// The rotation body -> lab, Q = Aᵀ: its columns are the principal axes in the lab frame.
+    static Mat3 frame(const State& b) { return b.A.transpose(); }
     static Vec3 angularVelocity(const State& b, const BodyParams& p) {
         return b.A.transpose() * detail::bodyOmega(b, p);
     }

@@ -192,7 +192,8 @@ public:
                 if (j <= i) return;
                 const Vec3 rij = s.box.minimumImage(s.bodies[i].r - s.bodies[j].r);
                 if (rij.squaredNorm() < range * range)
-                    u += s.potential.energy(rij, K::axis(s.bodies[i]), K::axis(s.bodies[j]));
+                    u += s.potential.energy(rij, orientationOf<P, K>(s.bodies[i]),
+                                            orientationOf<P, K>(s.bodies[j]));
             });
         return u;
     }
@@ -276,8 +277,8 @@ public:
             for (int j = i + 1; j < s.size(); ++j) {
                 const Vec3 rij = s.box.minimumImage(s.bodies[i].r - s.bodies[j].r);
                 if (rij.norm() > settings_.rm) continue;
-                const double U =
-                    s.potential.energy(rij, K::axis(s.bodies[i]), K::axis(s.bodies[j]));
+                const double U = s.potential.energy(rij, orientationOf<P, K>(s.bodies[i]),
+                                                    orientationOf<P, K>(s.bodies[j]));
                 e += settings_.levels.energy(settings_.levels.terraceOf(U));
             }
         return e;
@@ -362,7 +363,8 @@ private:
         bringToNow(j);
         State &bi = sys_.bodies[i], &bj = sys_.bodies[j];
         const Vec3 rij = sys_.box.minimumImage(bi.r - bj.r);
-        const PairForce f = sys_.potential.evaluate(rij, K::axis(bi), K::axis(bj));
+        const PairForce f =
+            sys_.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
         const int n = terraces_.get(i, j);
         const int target = n + (e.side > 0 ? 1 : -1);
         const double dE = settings_.levels.energy(target) - settings_.levels.energy(n);

@@ -76,7 +76,8 @@ protected:
                 const State &bi = sys.bodies[i], &bj = sys.bodies[j];
                 const Vec3 rij = sys.box.minimumImage(bi.r - bj.r);
                 if (rij.norm() > engine.settings_.rm) return;
-                const PairForce f = sys.potential.evaluate(rij, K::axis(bi), K::axis(bj));
+                const PairForce f =
+                    sys.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
                 if (overlapsAtStart(f.U, uMin)) throwOverlap(i, j, f.U);
                 const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys.body),
                                          K::angularVelocity(bj, sys.body));

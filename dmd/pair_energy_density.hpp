@@ -13,6 +13,7 @@
 //
 // Terrace sums are prefix sums over the samples sorted by U: Σw, Σw e^{−βU}, Σw U e^{−βU},
 // Σw U and Σw U² e^{−βU} over any interval of U in O(log n).
+#include "core/body_orientation.hpp"
 #include "core/initial_state.hpp"
 #include "core/pair_potential.hpp"
 #include <algorithm>
@@ -39,13 +40,20 @@ public:
                                    int radii = 4000, int orientations = 512) {
         PairEnergyDensity d;
         d.kT_ = kT;
-        const int nOrient = P::orientational ? orientations : 1;
+        const int nOrient = isOrientational<P> ? orientations : 1;
         std::mt19937_64 rng(0x7e44ace5); // fixed: a design is a pure function of its inputs
-        std::vector<std::pair<Vec3, Vec3>> axes(nOrient, {Vec3::UnitZ(), Vec3::UnitZ()});
-        if constexpr (P::orientational)
-            for (auto& a : axes)
-                a = {terrace::detail::randomUnitVector(rng),
-                     terrace::detail::randomUnitVector(rng)};
+        using Orientation = typename P::Orientation;
+        std::vector<std::pair<Orientation, Orientation>> axes(
+            nOrient, {unusedOrientation<P>(), unusedOrientation<P>()});
+        if constexpr (isOrientational<P>)
+            for (auto& a : axes) {
+                if constexpr (P::attitude == AttitudeUse::Frame)
+                    a = {terrace::detail::randomRotation(rng),
+                         terrace::detail::randomRotation(rng)};
+                else
+                    a = {terrace::detail::randomUnitVector(rng),
+                         terrace::detail::randomUnitVector(rng)};
+            }
         const double dr = (rOut - rIn) / radii;
         struct Sample {
             double U, w;

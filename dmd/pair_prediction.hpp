@@ -238,8 +238,9 @@ protected:
         const auto ajNow = engine.orbit_[j].startOf(dtj);
         const auto sampleWith = [&](double tau, const auto& attitudes) {
             const auto& [ai, aj] = attitudes;
-            const EnergyRate e = energyAndRate(engine.sys_.potential, translated(r0, w, tau), w,
-                                               ai.axis, ai.w, aj.axis, aj.w);
+            const EnergyRate e =
+                energyAndRate(engine.sys_.potential, translated(r0, w, tau), w,
+                              orientationOf<P>(ai), ai.w, orientationOf<P>(aj), aj.w);
             return PairSample{tau, e.U, e.dUdt};
         };
         const std::array now{mi.now, ajNow};
@@ -317,7 +318,7 @@ protected:
         m.speedSquared = w.x() * w.x() + w.y() * w.y() + w.z() * w.z();
         m.r = std::sqrt(r0.x() * r0.x() + r0.y() * r0.y() + r0.z() * r0.z());
         m.rRate = (r0.x() * w.x() + r0.y() * w.y() + r0.z() * w.z()) / m.r;
-        if constexpr (P::orientational) {
+        if constexpr (isOrientational<P>) {
             const Vec3 &si = ai.axis, &sj = aj.axis;
             m.c = si.x() * sj.x() + si.y() * sj.y() + si.z() * sj.z();
             const Vec3 spin = ai.w - aj.w;
@@ -340,7 +341,7 @@ protected:
 
     /// The search settings for a pair with relative velocity w and summed angular speed turn: the
     /// step shortened where the pair would move more than stepShiftFraction r_m or turn more
-    /// than stepTurn in one.
+    /// than stepTurn in one, or where a body's extent would carry its sites or ends farther.
     SearchSettings pairSearch(const Vec3& w, double turn) const {
         const Engine& engine = self();
         SearchSettings s = search_;
@@ -348,6 +349,12 @@ protected:
         const double w2 = w.squaredNorm();
         if (w2 * s.maxStep * s.maxStep > shift * shift) s.maxStep = shift / std::sqrt(w2);
         if (turn * s.maxStep > stepTurn) s.maxStep = stepTurn / turn;
+        // Where U is shaped by points off the centres (a molecule's sites, an ellipsoid's ends),
+        // those move by up to extent·turn per time unit besides: the same shift bounds them.
+        if constexpr (requires { bandPotential(engine.sys_.potential).extent(); }) {
+            const double arm = bandPotential(engine.sys_.potential).extent() * turn;
+            if (arm * s.maxStep > shift) s.maxStep = shift / arm;
+        }
         return s;
     }
 

@@ -53,6 +53,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,11 +70,18 @@ inline constexpr double designCapInKT = terrace::detail::maxStartEnergyInKT;
 /// The wall the optimal design resolves by default, in kT.
 inline constexpr double optimalWallInKT = 5.0;
 
-/// The potential along one fixed alignment, s_i·s_j = 1/√2 with the separation along x.
+/// The potential along one fixed alignment, s_i·s_j = 1/√2 with the separation along x (a frame
+/// potential: body j turned by 45° about x from body i).
 template <PairPotential P> double profileEnergy(const P& p, double r) {
-    const Vec3 si = Vec3::UnitZ();
-    const Vec3 sj = (Vec3::UnitZ() + Vec3::UnitY()).normalized();
-    return p.energy(Vec3(r, 0.0, 0.0), si, sj);
+    if constexpr (P::attitude == AttitudeUse::Frame) {
+        const Mat3 qi = Mat3::Identity();
+        const Mat3 qj = rotationMatrix(Vec3::UnitX(), -0.25 * std::numbers::pi);
+        return p.energy(Vec3(r, 0.0, 0.0), qi, qj);
+    } else {
+        const Vec3 si = Vec3::UnitZ();
+        const Vec3 sj = (Vec3::UnitZ() + Vec3::UnitY()).normalized();
+        return p.energy(Vec3(r, 0.0, 0.0), si, sj);
+    }
 }
 
 /// Landmarks of the profile: its minimum r_min, its inner zero r_σ, searched in [rIn, rOut].

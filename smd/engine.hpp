@@ -59,7 +59,7 @@ private:
         const std::size_t n = sys_.bodies.size();
         position_.resize(n);
         local_.resize(n);
-        if (P::orientational) axis_.resize(n);
+        if (isOrientational<P>) orientation_.resize(n);
         gatherPositions();
         build(list_, sys_.box, position_);
         computeForces();
@@ -197,7 +197,7 @@ private:
     void checkOverlap() const {
         const double uMin = sys_.potential.minimumEnergy();
         const double outer2 = sys_.potential.range() * sys_.potential.range();
-        const Vec3 noAxis = Vec3::UnitZ();
+        const auto none = unusedOrientation<P>();
         for (std::size_t a = 0; a + 1 < list_.start.size(); ++a)
             for (std::size_t k = list_.start[a]; k < list_.start[a + 1]; ++k) {
                 const std::uint32_t e = list_.entry[k];
@@ -205,8 +205,9 @@ private:
                 const Vec3 rij =
                     local_[a] - local_[b] + list_.imageShift[e & NeighbourList::imageMask];
                 if (!(rij.squaredNorm() < outer2)) continue;
-                const double U = sys_.potential.energy(rij, P::orientational ? axis_[a] : noAxis,
-                                                       P::orientational ? axis_[b] : noAxis);
+                const double U =
+                    sys_.potential.energy(rij, isOrientational<P> ? orientation_[a] : none,
+                                          isOrientational<P> ? orientation_[b] : none);
                 if (overlapsAtStart(U, uMin)) throwOverlap(list_.order[a], list_.order[b], U);
             }
     }
@@ -236,10 +237,11 @@ private:
         for (std::size_t a = 0; a < n; ++a) {
             const int i = list_.order[a];
             local_[a] = position_[i] - list_.offset[a];
-            if constexpr (P::orientational) axis_[a] = K::axis(sys_.bodies[i]);
+            if constexpr (isOrientational<P>) orientation_[a] = orientationOf<P, K>(sys_.bodies[i]);
         }
         forces_.reset(n);
-        accumulateListedPairs(forces_, sys_.potential, list_, local_, axis_);
+        accumulateListedPairs<typename P::Bare>(forces_, sys_.potential, list_, local_,
+                                                orientation_);
         evaluations_ += forces_.evaluations;
     }
 
@@ -252,9 +254,10 @@ private:
     Splitting scheme_;
     double sigmaUnit_; // Å: σ of the scene, the unit of skin and cutoffs in statistics()
     NeighbourList list_;
-    Forces forces_;                  // per list slot (list_.order maps slots to bodies)
-    std::vector<Vec3> position_;     // per body, unwrapped
-    std::vector<Vec3> local_, axis_; // per list slot: r - offset, and the long axis
+    Forces forces_;              // per list slot (list_.order maps slots to bodies)
+    std::vector<Vec3> position_; // per body, unwrapped
+    std::vector<Vec3> local_;    // per list slot: r - offset
+    std::vector<typename P::Orientation> orientation_; // per list slot, orientational P only
     long steps_ = 0;
     long evaluations_ = 0;
     PhaseSeconds seconds_;

@@ -35,22 +35,24 @@ struct Forces {
 };
 
 /// Accumulates every listed pair within r_u into out, per list slot. x[a] = r - list.offset[a]
-/// for the body in slot a; axis is read only for orientational potentials.
+/// for the body in slot a; orientation[a] its orientation (core/body_orientation.hpp), read only
+/// for orientational potentials.
 template <PairPotential P>
 [[gnu::flatten]] void accumulateListedPairs(Forces& out, const Smoothed<P>& potentialIn,
                                             const NeighbourList& list, std::span<const Vec3> x,
-                                            std::span<const Vec3> axis) {
+                                            std::span<const typename P::Orientation> orientation) {
+    using Orientation = typename P::Orientation;
     using Kernel = PairKernel<Smoothed<P>>;
     // Local copies and raw pointers: the force stores below could otherwise alias the parameters
     // and the vectors' bookkeeping, forcing reloads in every iteration.
     const Smoothed<P> potential = potentialIn;
     const std::array<Vec3, 27> shift = list.imageShift;
     const double outer2 = potential.range() * potential.range();
-    const Vec3 noAxis(0.0, 0.0, 1.0);
+    const Orientation none = unusedOrientation<P>();
     const std::size_t* start = list.start.data();
     const std::uint32_t* entry = list.entry.data();
     const Vec3* xs = x.data();
-    const Vec3* axes = axis.data();
+    const Orientation* orientations = orientation.data();
     Vec3* force = out.force.data();
     Vec3* torque = out.torque.data();
     double u = 0.0, w = 0.0;
@@ -58,7 +60,7 @@ template <PairPotential P>
     const std::size_t n = x.size();
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3 xi = xs[i];
-        const Vec3 si = P::orientational ? axes[i] : noAxis;
+        const Orientation& si = isOrientational<P> ? orientations[i] : none;
         Vec3 fi(0.0, 0.0, 0.0), ti(0.0, 0.0, 0.0); // not Vec3::Zero(): an out-of-line call at -O2
         const std::size_t end = start[i + 1];
         for (std::size_t k = start[i]; k < end; ++k) {
@@ -72,19 +74,19 @@ template <PairPotential P>
                 if (r2 >= outer2) continue;
                 ++evaluations;
             }
-            const Vec3 sj = P::orientational ? axes[j] : noAxis;
+            const Orientation& sj = isOrientational<P> ? orientations[j] : none;
             const auto f = Kernel::evaluate(potential, rij, r2, si, sj);
             u += f.U;
             w += rij.dot(f.F);
             fi += f.F;
             force[j] -= f.F;
-            if constexpr (P::orientational) {
+            if constexpr (isOrientational<P>) {
                 ti += f.tauI;
                 torque[j] += f.tauJ;
             }
         }
         force[i] += fi;
-        if constexpr (P::orientational) torque[i] += ti;
+        if constexpr (isOrientational<P>) torque[i] += ti;
     }
     out.potential += u;
     out.virial += w;
@@ -101,7 +103,8 @@ template <BodyKind K, PairPotential P> Forces allPairsForces(const System<K, Smo
             const Vec3 rij = sys.box.minimumImage(bi.r - bj.r);
             const double r = rij.norm();
             if (r >= sys.potential.range()) continue;
-            const PairForce f = sys.potential.evaluate(rij, K::axis(bi), K::axis(bj));
+            const PairForce f =
+                sys.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
             ++out.evaluations;
             out.potential += f.U;
             out.virial += rij.dot(f.F);

@@ -18,8 +18,9 @@ namespace terrace::smd {
 template <class S> struct PairKernel {
     static constexpr bool evaluatesBeyondCutoff = false; // the loop skips pairs beyond r_u
 
-    static PairForce evaluate(const S& potential, const Vec3& rij, double r2, const Vec3& si,
-                              const Vec3& sj) {
+    static PairForce evaluate(const S& potential, const Vec3& rij, double r2,
+                              const typename S::Orientation& si,
+                              const typename S::Orientation& sj) {
         const PairForce f = potential.bare.evaluate(rij, si, sj);
         const SmoothedCutoff& cut = potential.cut;
         return r2 <= cut.inner() * cut.inner() ? f : smoothed(f, rij, std::sqrt(r2), cut);

@@ -83,6 +83,8 @@ template <class K> void expectTopMatchesFreeMove(const BodyParams& p) {
             const auto a = orbit.at(tau);
             EXPECT_LE((a.axis - K::axis(moved)).norm(), roundoffTol) << tau;
             EXPECT_LE((a.w - K::angularVelocity(moved, p)).norm(), roundoffTol) << tau;
+            // the whole frame, which a frame potential reads (core/body_orientation.hpp)
+            EXPECT_LE((a.frame - K::frame(moved)).norm(), roundoffTol) << tau;
         }
     }
 }

@@ -311,7 +311,7 @@ TYPED_TEST(PairPotentialContract, TorquesFromSmallRotations) {
             << region << ", r = " << c.rij.norm();
         EXPECT_TRUE(closeRelative(f.tauJ, -dUdThetaJ, kFiniteDifferenceTol, this->torqueFloor()))
             << region << ", r = " << c.rij.norm();
-        if constexpr (!TypeParam::orientational) {
+        if constexpr (!isOrientational<TypeParam>) {
             EXPECT_EQ(f.tauI, Vec3::Zero());
             EXPECT_EQ(f.tauJ, Vec3::Zero());
         }

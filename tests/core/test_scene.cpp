@@ -480,3 +480,83 @@ TEST(Scene, ANameThatIsNotUtf8IsRefused) {
     }
     EXPECT_NO_THROW(sceneFromJson(nlohmann::json::object(), "test.json", {"name=dense-rods-ρ0.5"}));
 }
+
+TEST(Scene, ShippedModelScenesLoadAndRoundTrip) {
+    for (const char* name : {"gay-berne-liquid", "dumbbell-liquid", "triatomic-liquid"}) {
+        const Scene s = loadScene(
+            (sourceDir() / "experiments/scenes" / (std::string(name) + ".json")).string());
+        EXPECT_EQ(toJson(sceneFromJson(toJson(s), "x")), toJson(s)) << name;
+    }
+    const Scene gb = loadScene((sourceDir() / "experiments/scenes/gay-berne-liquid.json").string());
+    EXPECT_DOUBLE_EQ(gb.potential.kappa, 3.0);
+    EXPECT_DOUBLE_EQ(gb.potential.kappa_prime, 5.0);
+    EXPECT_DOUBLE_EQ(gb.state.lattice_aspect, 3.0);
+}
+
+// body.sites: mass and principal moments from the sites (m = 14 at z = ±0.5 Å: I⊥ = 2·14·0.25),
+// given values checked against them, the principal frame required.
+TEST(Scene, SitesGiveMassAndInertiaAndMustBeInThePrincipalFrame) {
+    const json dumbbell = {
+        {"body",
+         {{"kind", "linear"},
+          {"sites",
+           {{{"r", {0, 0, 0.5}}, {"mass", 14.0}, {"epsilon", 0.3}, {"sigma", 3.3}},
+            {{"r", {0, 0, -0.5}}, {"mass", 14.0}, {"epsilon", 0.3}, {"sigma", 3.3}}}}}},
+        {"potential", {{"kind", "sites"}, {"epsilon", 0.3}, {"sigma", 3.3}}},
+        {"state", {{"density", 0.3}, {"temperature", 2.0}}}};
+    const Scene s = sceneFromJson(dumbbell, "x");
+    EXPECT_DOUBLE_EQ(s.body.mass, 28.0);
+    EXPECT_DOUBLE_EQ(s.body.inertia[0], 7.0);
+    EXPECT_DOUBLE_EQ(s.body.inertia[1], 7.0);
+    ASSERT_EQ(s.body.sites.size(), 2u);
+
+    json j = dumbbell;
+    j["body"]["mass"] = 30.0;
+    EXPECT_NE(errorOf(j).find("body.mass: 30 disagrees with the sites' total mass 28"),
+              std::string::npos)
+        << errorOf(j);
+    j = dumbbell;
+    j["body"]["inertia"] = {7.0, 7.0, 0.0};
+    EXPECT_EQ(errorOf(j), "");
+    j["body"]["inertia"] = {8.0, 8.0, 0.0};
+    EXPECT_NE(errorOf(j).find("body.inertia: disagrees with the sites' principal moments"),
+              std::string::npos);
+    j = dumbbell;
+    j["body"]["sites"][0]["r"] = {0, 0, 0.6};
+    EXPECT_NE(errorOf(j).find("centre of mass"), std::string::npos) << errorOf(j);
+    j = dumbbell;
+    j["body"]["sites"][0]["r"] = {0.1, 0, 0.5};
+    EXPECT_NE(errorOf(j).find("body.sites[0].r: a linear molecule's sites lie on the body z"),
+              std::string::npos);
+    j["body"]["sites"][1]["r"] = {-0.1, 0, -0.5}; // centred, but off the principal axes
+    j["body"]["kind"] = "asymmetric";
+    EXPECT_NE(errorOf(j).find("principal frame"), std::string::npos) << errorOf(j);
+    j = dumbbell;
+    j["body"]["sites"][1].erase("sigma");
+    EXPECT_NE(errorOf(j).find("body.sites[1].sigma: missing"), std::string::npos);
+    j = dumbbell;
+    j["potential"]["kind"] = "rod-lj";
+    EXPECT_NE(errorOf(j).find("body.sites: only meaningful for potential.kind sites"),
+              std::string::npos);
+    j = dumbbell;
+    j["body"]["kind"] = "symmetric";
+    EXPECT_NE(errorOf(j).find("body.kind: sites need linear"), std::string::npos);
+}
+
+TEST(Scene, GayBerneKeysBelongToGayBerneOnLinearBodies) {
+    const json gb = {{"potential", {{"kind", "gay-berne"}, {"kappa", 4.4}, {"kappa_prime", 20.0}}}};
+    const Scene s = sceneFromJson(gb, "x");
+    EXPECT_DOUBLE_EQ(s.potential.kappa, 4.4);
+    EXPECT_DOUBLE_EQ(s.potential.mu, 2.0);
+    EXPECT_NE(errorOf({{"potential", {{"kappa", 3.0}}}}).find("potential.kappa: only meaningful"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"body", {{"kind", "asymmetric"}, {"inertia", {1, 2, 3}}}},
+                       {"potential", {{"kind", "gay-berne"}}}})
+                  .find("body.kind: gay-berne ellipsoids are uniaxial"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"potential", {{"kind", "gay-berne"}, {"zeta", 1.0}}}})
+                  .find("potential.zeta: only meaningful for rod-lj"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"state", {{"lattice_aspect", 0.5}}}}).find("state.lattice_aspect"),
+              std::string::npos);
+}

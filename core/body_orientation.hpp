@@ -1,0 +1,43 @@
+#pragma once
+// A body's orientation as a potential reads it (core/pair_potential.hpp AttitudeUse): the unit
+// axis K::axis, or the frame K::frame (rotation body -> lab) of a kind that has one. Only tops
+// carry a full frame; a linear rotor has an axis alone, so a frame potential on rods is a compile
+// error rather than a silent use of half an attitude. Also the same choice from an attitude of
+// a free orbit (core/free_orbit.hpp), which the DMD search samples.
+#include "core/body_kind.hpp"
+#include "core/pair_potential.hpp"
+
+namespace terrace {
+
+template <PairPotential P, BodyKind K>
+typename P::Orientation orientationOf(const typename K::State& b) {
+    if constexpr (P::attitude == AttitudeUse::Frame) {
+        static_assert(
+            requires { K::frame(b); }, "a frame potential needs a body kind with a frame");
+        return K::frame(b);
+    } else {
+        return K::axis(b);
+    }
+}
+
+/// The orientation carried by a free orbit's Attitude (its axis, or its frame).
+template <PairPotential P, class Attitude>
+const typename P::Orientation& orientationOf(const Attitude& a) {
+    if constexpr (P::attitude == AttitudeUse::Frame) {
+        static_assert(
+            requires { a.frame; }, "a frame potential needs a body kind with a frame");
+        return a.frame;
+    } else {
+        return a.axis;
+    }
+}
+
+/// The orientation handed to a potential that never reads it (AttitudeUse::None).
+template <PairPotential P> typename P::Orientation unusedOrientation() {
+    if constexpr (P::attitude == AttitudeUse::Frame)
+        return Mat3::Identity();
+    else
+        return Vec3::UnitZ();
+}
+
+} // namespace terrace
