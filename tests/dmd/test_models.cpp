@@ -164,7 +164,9 @@ TYPED_TEST(Models, DmdConvergesToSmdAsTheTerraceShrinks) {
     // least fourfold (slope 1/3).
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     for (std::size_t k = 0; k < gaps.size(); ++k) {
-        if (k > 0) EXPECT_LT(gaps[k], gaps[k - 1]) << "ΔV = " << dVs[k] << " kT";
+        if (k > 0) {
+            EXPECT_LT(gaps[k], gaps[k - 1]) << "ΔV = " << dVs[k] << " kT";
+        }
         const double x = std::log(dVs[k]), y = std::log(gaps[k]);
         sx += x, sy += y, sxx += x * x, sxy += x * y;
     }
