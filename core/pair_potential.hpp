@@ -50,6 +50,21 @@ concept PairPotential = requires(const P p, Vec3 r, typename P::Orientation o, d
     { p.reachDistance(u) } -> std::convertible_to<double>;
 };
 
+/// Bounds of U over a set of configurations, kJ/mol (hi may be +∞).
+struct EnergyRange {
+    double lo = 0.0, hi = 0.0;
+};
+
+/// A potential that bounds its own values near a configuration: energyRange(rij, oi, oj, shift,
+/// turnI, turnJ) holds U over every configuration whose centre separation differs from rij by at
+/// most `shift` (Å) and whose bodies are turned by at most turnI, turnJ (rad) from oi, oj. The
+/// DMD engine's hold screen for potentials without an effective-distance form
+/// (dmd/pair_prediction.hpp).
+template <class P>
+concept RangeBounded = requires(const P p, Vec3 r, typename P::Orientation o, double x) {
+    { p.energyRange(r, o, o, x, x, x) } -> std::same_as<EnergyRange>;
+};
+
 /// Whether P reads the attitude at all (torques, rotation in the search).
 template <class P> inline constexpr bool isOrientational = P::attitude != AttitudeUse::None;
 

@@ -111,7 +111,8 @@ template <AttitudeUse use> struct SitePotential {
         for (int a = 0; a < n; ++a) {
             for (int b = 0; b < n; ++b) {
                 const double sigma = p.mixedSigma(a, b);
-                p.mixed_[a][b] = {4.0 * p.mixedEpsilon(a, b), sigma * sigma};
+                p.mixed_[a][b] = {4.0 * p.mixedEpsilon(a, b), sigma * sigma,
+                                  std::pow(2.0, 1.0 / 6.0) * sigma};
             }
         }
         return p;
@@ -251,6 +252,46 @@ template <AttitudeUse use> struct SitePotential {
         return hi;
     }
 
+    /// The range of U over every configuration whose centre separation differs from rij by at
+    /// most `shift` (Å) and whose bodies are turned by at most turnI, turnJ (rad) from oi, oj
+    /// (core/pair_potential.hpp RangeBounded). A site ρ from its centre then moves by at most ρ
+    /// times the angle (an arc is no shorter than its chord), so the distance of sites a and b
+    /// stays within δ = shift + ρ_a turnI + ρ_b turnJ of its value now; over that interval their
+    /// LJ is least at its bottom 2^(1/6)σ_ab, or at the end nearer it, and greatest at an end.
+    /// +∞ above when two sites could meet.
+    EnergyRange energyRange(const Vec3& rij, const Orientation& oi, const Orientation& oj,
+                            double shift, double turnI, double turnJ) const {
+        std::array<Vec3, maxSites> di, dj;
+        offsets(oi, oj, di, dj);
+        std::array<double, maxSites> radius;
+        for (int a = 0; a < count_; ++a)
+            radius[a] = sites_[a].r.norm();
+        const auto lj = [](const Mixed& m, double x) {
+            const double s2 = m.sigma2 / (x * x);
+            const double s6 = s2 * s2 * s2;
+            return m.fourEpsilon * (s6 * s6 - s6);
+        };
+        EnergyRange out;
+        for (int a = 0; a < count_; ++a) {
+            const Vec3 ra = rij + di[a];
+            for (int b = 0; b < count_; ++b) {
+                const Mixed& m = mixed_[a][b];
+                if (m.fourEpsilon == 0.0) continue;
+                const double d = (ra - dj[b]).norm();
+                const double delta = shift + radius[a] * turnI + radius[b] * turnJ;
+                const double lo = d - delta, hi = d + delta;
+                if (!(lo > 0.0)) {
+                    out.lo += lj(m, std::min(m.bottom, hi));
+                    out.hi = std::numeric_limits<double>::infinity();
+                    continue;
+                }
+                out.lo += lj(m, std::clamp(m.bottom, lo, hi));
+                out.hi += std::max(lj(m, lo), lj(m, hi));
+            }
+        }
+        return out;
+    }
+
     /// The largest site offset max_a |d_a| (Å): a site lies within this of its body's centre.
     double extent() const {
         double rho = 0.0;
@@ -263,6 +304,7 @@ private:
     struct Mixed {
         double fourEpsilon = 0.0; // 4ε_ab, kJ/mol
         double sigma2 = 0.0;      // σ_ab², Å²
+        double bottom = 0.0;      // 2^(1/6)σ_ab, Å: where the pair's LJ is least
     };
     /// What the bounds need of a site pair.
     struct PairBound {

@@ -19,6 +19,7 @@
 #include "core/smoothed_cutoff.hpp"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string_view>
 
 namespace terrace {
@@ -57,6 +58,23 @@ template <PairPotential P> struct Smoothed {
         const EnergyRate e = energyAndRate(bare, rij, vij, si, wi, sj, wj);
         const double r = std::sqrt(r2), g = cut.switching(r);
         return {g * e.U, g * e.dUdt + e.U * cut.switchingSlope(r) * rij.dot(vij) / r};
+    }
+
+    /// U_s = g·U over the neighbourhood: g is non-increasing in r, so over the centre distances
+    /// [r − shift, r + shift] it lies between its values at the ends, and the bilinear g·U is
+    /// extreme at a corner of (g range) × (U's range).
+    EnergyRange energyRange(const Vec3& rij, const Orientation& si, const Orientation& sj,
+                            double shift, double turnI,
+                            double turnJ) const requires RangeBounded<P> {
+        const double r = rij.norm();
+        const double rLo = std::max(0.0, r - shift), rHi = r + shift;
+        if (rLo >= cut.outer()) return {};
+        const EnergyRange u = bare.energyRange(rij, si, sj, shift, turnI, turnJ);
+        if (rHi <= cut.inner()) return u;
+        const double gMax = cut.switching(rLo), gMin = cut.switching(rHi);
+        return {std::min(gMin * u.lo, gMax * u.lo), std::isfinite(u.hi)
+                                                        ? std::max(gMin * u.hi, gMax * u.hi)
+                                                        : std::numeric_limits<double>::infinity()};
     }
 
     double minimumEnergy() const { return bare.minimumEnergy(); }

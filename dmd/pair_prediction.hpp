@@ -59,6 +59,8 @@ inline constexpr double stepTurn = 0.5;
 /// A pair screened by its hold time (dmd/terrace_hold.hpp) is looked at again after at most this
 /// many horizons: by then one of its bodies has usually collided (every ~5 fs in the dense liquid).
 inline constexpr double maxHoldHorizons = 8.0;
+/// The range hold screen keeps this fraction of a terrace height clear of each level.
+inline constexpr double rangeMargin = 1e-9;
 /// Extrema of the interpolant within this fraction of a terrace height of a level are examined.
 inline constexpr double grazeFraction = 0.25;
 /// Distance from a level, as a fraction of the terrace height, below which U counts as on it:
@@ -258,6 +260,16 @@ protected:
                     return none;
                 }
             }
+        if constexpr (!HoldScreenable<P> && RangeBounded<P>)
+            if (holdScreen_ && !afterEvent) { // as above, with the potential's own bounds
+                const double hold = holdInRange(now, i, j, r0, w, n, horizon, win.exit);
+                if (hold == none) return none;
+                if (hold > 0.0) {
+                    schedule(pairEvent(EventKind::Virtual, i, j, engine.time_ + hold));
+                    ++screened_;
+                    return none;
+                }
+            }
         const FreeOrbit<K> orbitJ = engine.orbit_[j].from(dtj);
         auto eval = [&](double tau) { return sampleWith(tau, attitudesAt(mi.orbit, orbitJ, tau)); };
         PairSample start;
@@ -337,6 +349,37 @@ protected:
         if (windowExit <= longest && hold.through(windowExit))
             return std::numeric_limits<double>::infinity();
         return holdTime(hold, horizon, longest);
+    }
+
+    /// holdOnTerrace for a potential that bounds its own values (core/pair_potential.hpp
+    /// RangeBounded): over [0, T] the centres' separation moves by at most |w|T and the bodies
+    /// turn by at most their angular-speed bounds times T (the same bounds the search's step
+    /// uses), so U stays in energyRange(…, |w|T, Ω_i T, Ω_j T); the pair holds through T while
+    /// that range lies inside its terrace. The range only widens with T.
+    template <class Attitudes>
+    double holdInRange(const Attitudes& now, int i, int j, const Vec3& r0, const Vec3& w, int n,
+                       double horizon, double windowExit) const {
+        const Engine& engine = self();
+        const auto& [ai, aj] = now;
+        const double speed = w.norm();
+        const double spinI = engine.schedule_.book(i).axisRate;
+        const double spinJ = engine.schedule_.book(j).axisRate;
+        const TerraceLevels& levels = engine.settings_.levels;
+        // Far from round-off in U and in g(r), far below any terrace.
+        const double margin = rangeMargin * engine.terraceHeight();
+        const double lower = levels.lower(n) + margin, upper = levels.upper(n) - margin;
+        const auto through = [&](double T) {
+            const EnergyRange u = engine.sys_.potential.energyRange(
+                r0, orientationOf<P>(ai), orientationOf<P>(aj), speed * T, spinI * T, spinJ * T);
+            return u.lo > lower && u.hi < upper;
+        };
+        const double longest = maxHoldHorizons * horizon;
+        if (windowExit <= longest && through(windowExit))
+            return std::numeric_limits<double>::infinity();
+        double held = 0.0;
+        for (double T = horizon; T <= longest && through(T); T *= 2.0)
+            held = T;
+        return held;
     }
 
     /// The search settings for a pair with relative velocity w and summed angular speed turn: the

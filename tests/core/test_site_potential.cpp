@@ -509,6 +509,51 @@ TEST(SitePotential, SmoothedReachIsValid) {
     }
 }
 
+/// A configuration moved within the limits of energyRange: the separation by up to `shift`, each
+/// body turned about a random axis by up to its angle.
+template <class P>
+typename P::Orientation turned(const typename P::Orientation& o, const Vec3& axis, double angle) {
+    return rotation(axis, angle) * o; // the axis, or the frame's columns, turned alike
+}
+
+// energyRange (the DMD hold screen's bound) holds U over every configuration it claims to cover,
+// bare and through the cutoff wrapper, and is tight for no motion.
+template <class P> void expectRangeHolds() {
+    std::mt19937_64 rng(kSeed + 700);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (const Molecule& mol : molecules<P>()) {
+        const P bare = P::fromSites(mol.sites);
+        const Smoothed<P> model{bare, SmoothedCutoff{2.5 * kSigma, 3.0 * kSigma}};
+        for (int k = 0; k < 300; ++k) {
+            const Vec3 rij = (0.9 + 2.4 * unit(rng)) * kSigma * randomUnit(rng);
+            const auto oi = randomOrientation<P>(rng), oj = randomOrientation<P>(rng);
+            const double shift = 0.3 * unit(rng), turnI = 0.4 * unit(rng), turnJ = 0.4 * unit(rng);
+            const EnergyRange still = model.energyRange(rij, oi, oj, 0.0, 0.0, 0.0);
+            const double u0 = model.energy(rij, oi, oj);
+            EXPECT_NEAR(still.lo, u0, 1e-9 * std::max(1.0, std::abs(u0))) << mol.name;
+            EXPECT_NEAR(still.hi, u0, 1e-9 * std::max(1.0, std::abs(u0))) << mol.name;
+            const EnergyRange range = model.energyRange(rij, oi, oj, shift, turnI, turnJ);
+            const EnergyRange bareRange = bare.energyRange(rij, oi, oj, shift, turnI, turnJ);
+            for (int m = 0; m < 50; ++m) {
+                const Vec3 r = rij + shift * unit(rng) * randomUnit(rng);
+                const auto ti = turned<P>(oi, randomUnit(rng), turnI * unit(rng));
+                const auto tj = turned<P>(oj, randomUnit(rng), turnJ * unit(rng));
+                const double u = model.energy(r, ti, tj), ub = bare.energy(r, ti, tj);
+                const double slack = 1e-12 * std::max(1.0, std::abs(u));
+                EXPECT_GE(u, range.lo - slack) << mol.name;
+                EXPECT_LE(u, range.hi + slack) << mol.name;
+                EXPECT_GE(ub, bareRange.lo - slack) << mol.name;
+                EXPECT_LE(ub, bareRange.hi + slack) << mol.name;
+            }
+        }
+    }
+}
+
+TEST(SitePotential, EnergyRangeHoldsOverTheMotionItCovers) {
+    expectRangeHolds<AxisSites>();
+    expectRangeHolds<FrameSites>();
+}
+
 // ---------------------------------------------------------------------------------------------
 // Inertia and input checks.
 
