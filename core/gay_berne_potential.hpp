@@ -188,7 +188,83 @@ struct GayBernePotential {
         return (u < 0.0 ? x.outer : x.inner) + (sigmaMax() - sigma);
     }
 
+    /// The range of U over every configuration whose centre separation differs from rij by at
+    /// most `shift` (Å) and whose axes are turned by at most turnI, turnJ (rad) from ui, uj
+    /// (core/pair_potential.hpp RangeBounded; the DMD hold screen's bound). r lies within shift
+    /// of r0; r̂ turns by at most asin(shift/r0), so a = r̂·u_i moves by at most that plus turnI
+    /// (|Δ(r̂·u)| ≤ |Δr̂| + |Δu|, a chord no longer than its arc), b likewise, c by turnI + turnJ.
+    /// Over that box of (r, a, b, c) interval arithmetic bounds H(χ), H(χ'), c² and so σ, ε1,
+    /// ε2 (each monotone in its argument), each clipped to its range over all configurations;
+    /// then x = r − σ + σ0 and U = ε LJ₁(x) take their extremes at the ends (LJ₁'s least at its
+    /// minimum when inside). +∞ above when the cores could overlap.
+    EnergyRange energyRange(const Vec3& rij, const Vec3& ui, const Vec3& uj, double shift,
+                            double turnI, double turnJ) const {
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        const double r0 = rij.norm();
+        if (!(shift < r0)) return {minimumEnergy(), inf};
+        const Vec3 rHat = rij / r0;
+        const double tilt = std::asin(shift / r0);
+        const auto around = [](double v, double d) {
+            return Interval{std::max(-1.0, v - d), std::min(1.0, v + d)};
+        };
+        const Interval a = around(rHat.dot(ui), tilt + turnI);
+        const Interval b = around(rHat.dot(uj), tilt + turnJ);
+        const Interval c = around(ui.dot(uj), turnI + turnJ);
+        const Interval hs = overlapRange(chi(), a, b, c);
+        const Interval he = overlapRange(chiPrime(), a, b, c);
+        // σ = σ0 (1 − H)^(−1/2), rising with H
+        const auto range = [&](double h) { return h < 1.0 ? sigma / std::sqrt(1.0 - h) : inf; };
+        const double sigmaLo = std::clamp(range(hs.lo), sigmaMin(), sigmaMax());
+        const double sigmaHi = std::clamp(range(hs.hi), sigmaMin(), sigmaMax());
+        // ε1 = (1 − χ²c²)^(−ν/2), rising with c²; ε2 = 1 − H(χ'), falling with it
+        const double chiS = chi();
+        const Interval c2 = c.squared();
+        const double e1Lo = power(1.0 - chiS * chiS * c2.lo, -0.5 * nu);
+        const double e1Hi = power(1.0 - chiS * chiS * c2.hi, -0.5 * nu);
+        const double e2Floor = std::min(1.0, 1.0 / kappaPrime),
+                     e2Ceiling = std::max(1.0, 1.0 / kappaPrime);
+        const double e2Lo = std::clamp(power(std::max(0.0, 1.0 - he.hi), mu), e2Floor, e2Ceiling);
+        const double e2Hi = std::clamp(power(std::max(0.0, 1.0 - he.lo), mu), e2Floor, e2Ceiling);
+        const double depthLo = std::max(epsilonMin(), epsilon * e1Lo * e2Lo);
+        const double depthHi = std::min(epsilonMax(), epsilon * e1Hi * e2Hi);
+        const double xLo = r0 - shift - sigmaHi + sigma, xHi = r0 + shift - sigmaLo + sigma;
+        const auto lj1 = [&](double x) { return detail::lennardJones(x, 1.0, sigma).U; };
+        const double bottom = sigma * std::pow(2.0, 1.0 / 6.0);
+        const double least = xLo > 0.0 ? lj1(std::clamp(bottom, xLo, xHi)) : -1.0;
+        const double most = xLo > 0.0 ? std::max(lj1(xLo), lj1(xHi)) : inf;
+        return {least < 0.0 ? depthHi * least : depthLo * least,
+                most > 0.0 ? (std::isfinite(most) ? depthHi * most : inf) : depthLo * most};
+    }
+
 private:
+    /// A closed interval of reals, with the few operations energyRange() needs.
+    struct Interval {
+        double lo, hi;
+        Interval operator+(const Interval& o) const { return {lo + o.lo, hi + o.hi}; }
+        Interval operator-(const Interval& o) const { return {lo - o.hi, hi - o.lo}; }
+        Interval squared() const {
+            const double m = std::max(lo * lo, hi * hi);
+            return {lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(lo * lo, hi * hi), m};
+        }
+        /// this / o for a positive o
+        Interval over(const Interval& o) const {
+            const double a = lo / o.lo, b = lo / o.hi, c = hi / o.lo, d = hi / o.hi;
+            return {std::min({a, b, c, d}), std::max({a, b, c, d})};
+        }
+        Interval scaled(double k) const {
+            return k >= 0.0 ? Interval{k * lo, k * hi} : Interval{k * hi, k * lo};
+        }
+    };
+    /// H(χ; a, b, c) over a box of (a, b, c): (χ/2)[(a+b)²/(1+χc) + (a−b)²/(1−χc)], where both
+    /// denominators are positive (|χ| < 1, |c| ≤ 1).
+    static Interval overlapRange(double chi, const Interval& a, const Interval& b,
+                                 const Interval& c) {
+        const Interval plus = Interval{1.0, 1.0} + c.scaled(chi);
+        const Interval minus = Interval{1.0, 1.0} - c.scaled(chi);
+        const Interval sum = (a + b).squared().over(plus), diff = (a - b).squared().over(minus);
+        return (sum + diff).scaled(0.5 * chi);
+    }
+
     /// x^e, with the usual exponents 0, 1, 2 and −1/2 spared the call to pow.
     static double power(double x, double e) {
         if (e == 1.0) return x;

@@ -465,6 +465,38 @@ TEST(GayBerneBounds, ReachDistanceBoundsEveryCrossing) {
 // ---------------------------------------------------------------------------------------------
 // Overlapping cores and parameter checks.
 
+// energyRange (the DMD hold screen's bound) holds U over every configuration it claims to cover —
+// the centres moved by up to `shift`, each axis turned by up to its angle — and is U itself for
+// no motion.
+TEST(GayBerneBounds, EnergyRangeHoldsOverTheMotionItCovers) {
+    std::mt19937_64 rng(kSeed + 21);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (const GayBernePotential& p : kShapes) {
+        SCOPED_TRACE(describe(p));
+        for (int k = 0; k < 400; ++k) {
+            const Vec3 rij = (p.sigmaMin() + (p.sigmaMax() + p.sigma) * unit(rng)) * randomUnit(rng);
+            const Vec3 ui = randomUnit(rng), uj = randomUnit(rng);
+            const double u0 = p.energy(rij, ui, uj);
+            if (!std::isfinite(u0)) continue;
+            const EnergyRange still = p.energyRange(rij, ui, uj, 0.0, 0.0, 0.0);
+            EXPECT_NEAR(still.lo, u0, 1e-9 * std::max(1.0, std::abs(u0)));
+            EXPECT_NEAR(still.hi, u0, 1e-9 * std::max(1.0, std::abs(u0)));
+            const double shift = 0.2 * p.sigma * unit(rng);
+            const double turnI = 0.3 * unit(rng), turnJ = 0.3 * unit(rng);
+            const EnergyRange range = p.energyRange(rij, ui, uj, shift, turnI, turnJ);
+            for (int m = 0; m < 50; ++m) {
+                const Vec3 r = rij + shift * unit(rng) * randomUnit(rng);
+                const Vec3 vi = rotationMatrix(randomUnit(rng), turnI * unit(rng)) * ui;
+                const Vec3 vj = rotationMatrix(randomUnit(rng), turnJ * unit(rng)) * uj;
+                const double u = p.energy(r, vi, vj);
+                const double slack = 1e-12 * std::max(1.0, std::abs(u));
+                EXPECT_GE(u, range.lo - slack);
+                EXPECT_LE(u, range.hi + slack);
+            }
+        }
+    }
+}
+
 TEST(GayBerneDomain, OverlappingCoresAreInfinitelyHigh) {
     const GayBernePotential& p = kReduced;
     // End to end, σ = 3: x = r − 2 ≤ 0 for r ≤ 2.
