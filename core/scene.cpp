@@ -494,7 +494,8 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     const auto& dmd = rd.section(j, "dmd");
     rd.onlyKeys(
         dmd, "dmd",
-        {"dV", "levels", "values", "terraces", "queue", "invalidation", "horizon_fs", "model"});
+        {"dV", "levels", "values", "terraces", "queue", "invalidation", "horizon_fs", "model",
+         "hold_screen"});
     s.dmd.model = rd.choice(dmd, "dmd", "model", s.dmd.model, {"smoothed", "bare"});
     s.dmd.dV = rd.number(dmd, "dmd", "dV", s.dmd.dV, 0.0, 1e6, true);
     if (dmd.contains("levels")) {
@@ -545,6 +546,11 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     s.dmd.invalidation =
         rd.choice(dmd, "dmd", "invalidation", s.dmd.invalidation, {"lazy", "eager"});
     s.dmd.horizon_fs = rd.number(dmd, "dmd", "horizon_fs", s.dmd.horizon_fs, 0.0, 1e6, true);
+    if (dmd.contains("hold_screen")) {
+        if (!dmd["hold_screen"].is_boolean())
+            rd.fail("dmd.hold_screen", "must be true or false, got " + dmd["hold_screen"].dump());
+        s.dmd.hold_screen = dmd["hold_screen"].get<bool>();
+    }
     if (s.dmd.horizon_fs < limits::minHorizonFs)
         rd.fail("dmd.horizon_fs",
                 "must be >= " + Reader::fmt(limits::minHorizonFs) + " fs, got " +
@@ -789,6 +795,8 @@ json toJson(const Scene& s) {
                 {"model", s.dmd.model}};
     if (!s.dmd.levels.empty()) j["dmd"]["levels"] = s.dmd.levels;
     if (!s.dmd.values.empty()) j["dmd"]["values"] = s.dmd.values;
+    // Written only when off, so that the resolved scenes of earlier runs are unchanged.
+    if (!s.dmd.hold_screen) j["dmd"]["hold_screen"] = false;
     if (!s.dmd.terraces.isDefault())
         j["dmd"]["terraces"] = {{"levels", s.dmd.terraces.levels},
                                 {"values", s.dmd.terraces.values},

@@ -111,6 +111,9 @@ struct Scene {
         // smoothed: terrace g(r)·U, the model SMD integrates (ΔV → 0 converges to SMD's model);
         // bare: the paper's setting, U itself terraced out to r_m whatever potential.cutoff says.
         std::string model = "smoothed";
+        // Screen pairs by their hold time before searching (dmd/pair_prediction.hpp); off only
+        // to measure what the screen saves: the events are the same either way.
+        bool hold_screen = true;
     } dmd;
 
     struct Smd {

@@ -92,6 +92,7 @@ protected:
         : jitter_(settings.horizon, horizonJitter, seed), plans_(bodies),
           ceiling_(bandCeiling(potential, settings.rm)) {
         const double terraceHeight = settings.levels.smallestStep();
+        holdScreen_ = settings.holdScreen;
         search_.maxStep = settings.horizon;
         search_.nudge = nudgeFraction * settings.horizon;
         search_.grazeWindow = grazeFraction * terraceHeight;
@@ -376,10 +377,10 @@ protected:
         const double longest = maxHoldHorizons * horizon;
         if (windowExit <= longest && through(windowExit))
             return std::numeric_limits<double>::infinity();
-        double held = 0.0;
-        for (double T = horizon; T <= longest && through(T); T *= 2.0)
-            held = T;
-        return held;
+        // The longest rung first, then the first: most pairs hold through all or fail at once,
+        // and a bound costs several samples of U, so the rungs between are not tried.
+        if (through(longest)) return longest;
+        return through(horizon) ? horizon : 0.0;
     }
 
     /// The search settings for a pair with relative velocity w and summed angular speed turn: the

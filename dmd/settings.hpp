@@ -6,6 +6,8 @@
 //   queue         heap | bpq
 //   invalidation  lazy | eager
 //   horizon_fs    virtual-event horizon and largest search step, fs, >= limits::minHorizonFs
+//   hold_screen   whether pairs are screened by their hold time before a search (default true;
+//                 false only to measure what the screen saves: it changes no event)
 #include "core/scene.hpp"
 #include "core/units.hpp"
 #include "dmd/terrace_design.hpp"
@@ -23,6 +25,7 @@ struct DmdSettings {
     QueueKind queue = QueueKind::BoundedPriority;
     bool eager = false;    // eager invalidation: erase a body's queued events at its event
     double horizon = 0.04; // time units
+    bool holdScreen = true;
 };
 
 template <PairPotential P>
@@ -67,6 +70,7 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
                          " fs, got " + std::to_string(d.horizon_fs) +
                          ": a shorter horizon only multiplies virtual events");
     s.horizon = units::fromFs(d.horizon_fs);
+    s.holdScreen = d.hold_screen;
     s.rm = interactionRange(s.levels, potential);
     if (!(s.rm > 0.0))
         throw SceneError("dmd.dV: no level bounding terrace 0 is ever reached (r_m = 0)");
