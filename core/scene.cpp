@@ -492,10 +492,9 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     if (j.contains("engine")) s.engine = rd.choice(j, "", "engine", s.engine, {"dmd", "smd"});
 
     const auto& dmd = rd.section(j, "dmd");
-    rd.onlyKeys(
-        dmd, "dmd",
-        {"dV", "levels", "values", "terraces", "queue", "invalidation", "horizon_fs", "model",
-         "hold_screen"});
+    rd.onlyKeys(dmd, "dmd",
+                {"dV", "levels", "values", "terraces", "queue", "invalidation", "horizon_fs",
+                 "model", "hold_screen"});
     s.dmd.model = rd.choice(dmd, "dmd", "model", s.dmd.model, {"smoothed", "bare"});
     s.dmd.dV = rd.number(dmd, "dmd", "dV", s.dmd.dV, 0.0, 1e6, true);
     if (dmd.contains("levels")) {

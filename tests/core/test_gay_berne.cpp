@@ -474,7 +474,8 @@ TEST(GayBerneBounds, EnergyRangeHoldsOverTheMotionItCovers) {
     for (const GayBernePotential& p : kShapes) {
         SCOPED_TRACE(describe(p));
         for (int k = 0; k < 400; ++k) {
-            const Vec3 rij = (p.sigmaMin() + (p.sigmaMax() + p.sigma) * unit(rng)) * randomUnit(rng);
+            const Vec3 rij =
+                (p.sigmaMin() + (p.sigmaMax() + p.sigma) * unit(rng)) * randomUnit(rng);
             const Vec3 ui = randomUnit(rng), uj = randomUnit(rng);
             const double u0 = p.energy(rij, ui, uj);
             if (!std::isfinite(u0)) continue;
