@@ -1,7 +1,9 @@
 #include "cli/run_driver.hpp"
+#include "analysis/block_average.hpp"
 #include "analysis/cancellation.hpp"
 #include "analysis/conservation.hpp"
 #include "analysis/correlations.hpp"
+#include "cli/thermo.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -167,8 +169,16 @@ void addEnergy(nlohmann::json& summary, const RunRecord& run) {
         return x;
     };
     const std::vector<double> potential = column(&SampleRecord::potential);
-    const double keMean = mean(column(&SampleRecord::kinetic));
+    const std::vector<double> kinetic = column(&SampleRecord::kinetic);
+    const double keMean = mean(kinetic);
     summary["temperature_K"] = units::kelvin(2.0 * keMean / run.dof);
+    // One standard error of each mean from the pressure's contiguous blocks (cli/thermo.hpp), for
+    // regression checks; null with fewer than two samples.
+    const auto orNull = [](double x) {
+        return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
+    };
+    summary["temperature_err_K"] =
+        orNull(units::kelvin(2.0 * analysis::blockMean(kinetic, pressureBlocks).err / run.dof));
     const auto es =
         analysis::energyStats(column(&SampleRecord::tPs), column(&SampleRecord::total), potential);
     const double uStd = standardDeviation(potential);
@@ -185,6 +195,7 @@ void addEnergy(nlohmann::json& summary, const RunRecord& run) {
                          {"units", "kJ/mol"}};
     summary["potential_energy_mean"] = mean(potential);
     summary["potential_energy_std"] = uStd;
+    summary["potential_energy_err"] = orNull(analysis::blockMean(potential, pressureBlocks).err);
     if (es.maxAbsDev > energyWanderWarning * keMean) {
         char text[256];
         std::snprintf(text, sizeof text,

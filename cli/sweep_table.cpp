@@ -73,6 +73,8 @@ constexpr Column summaryColumns[] = {
     {"temperature_K", "/temperature_K"},
     {"potential_energy_kJ_per_mol", "/potential_energy_mean"},
     {"potential_energy_std", "/potential_energy_std"},
+    {"potential_energy_err", "/potential_energy_err"},
+    {"temperature_err_K", "/temperature_err_K"},
     {"pressure_reduced", "/pressure/mean_reduced"},
     {"pressure_reduced_err", "/pressure/error_reduced"},
     {"pressure_bar", "/pressure/mean_bar"},

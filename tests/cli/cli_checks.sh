@@ -51,6 +51,11 @@ short_run() { # engine extra-args...
     done
     grep -q '"cpu_seconds_per_ps"' "$work/$engine/summary.json" || fail "summary lacks cpu_seconds_per_ps"
     grep -q '"rel_fluct"' "$work/$engine/summary.json" || fail "summary lacks energy.rel_fluct"
+    # block errors of the means, numbers (55 samples in 8 blocks), for regression checks
+    grep -Eq '"potential_energy_err": [0-9]' "$work/$engine/summary.json" ||
+        fail "summary lacks a number for potential_energy_err"
+    grep -Eq '"temperature_err_K": [0-9]' "$work/$engine/summary.json" ||
+        fail "summary lacks a number for temperature_err_K"
 }
 
 case $check in
