@@ -229,7 +229,8 @@ struct GayBernePotential {
         const double depthHi = std::min(epsilonMax(), epsilon * e1Hi * e2Hi);
         const double xLo = r0 - shift - sigmaHi + sigma, xHi = r0 + shift - sigmaLo + sigma;
         const auto lj1 = [&](double x) { return detail::lennardJones(x, 1.0, sigma).U; };
-        const double bottom = sigma * std::pow(2.0, 1.0 / 6.0);
+        constexpr double twoToTheSixth = 1.122462048309373; // 2^(1/6): no pow() per bound
+        const double bottom = sigma * twoToTheSixth;
         const double least = xLo > 0.0 ? lj1(std::clamp(bottom, xLo, xHi)) : -1.0;
         const double most = xLo > 0.0 ? std::max(lj1(xLo), lj1(xHi)) : inf;
         return {least < 0.0 ? depthHi * least : depthLo * least,

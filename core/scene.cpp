@@ -155,7 +155,6 @@ void readSites(const json& body, Scene& s, const Reader& rd) {
     if (!list.is_array() || list.empty() || list.size() > most)
         rd.fail("body.sites", "must be an array of 1 to " + std::to_string(most) + " sites");
     double mass = 0.0, extent = 0.0;
-    Vec3 moment = Vec3::Zero();
     for (std::size_t i = 0; i < list.size(); ++i) {
         const std::string name = "body.sites[" + std::to_string(i) + "]";
         const json& e = list[i];
@@ -170,12 +169,13 @@ void readSites(const json& body, Scene& s, const Reader& rd) {
         if (s.body.kind == "linear" && (site.r.x() != 0.0 || site.r.y() != 0.0))
             rd.fail(name + ".r", "a linear molecule's sites lie on the body z axis (x = y = 0)");
         mass += site.mass;
-        moment += site.mass * site.r;
         extent = std::max(extent, site.r.norm());
         s.body.sites.push_back(site);
     }
     if (!(mass > 0.0)) rd.fail("body.sites", "the sites' masses must add up to more than 0");
-    const Vec3 centre = moment / mass;
+    // core/site_potential.hpp's centre of mass and inertia tensor of the sites as point masses
+    const std::vector<Site> sites = sceneSites(s);
+    const Vec3 centre = siteCentreOfMass(sites);
     if (centre.norm() > frameTolerance * std::max(extent, 1.0))
         rd.fail("body.sites", "the sites' centre of mass is at (" + Reader::fmt(centre.x()) + ", " +
                                   Reader::fmt(centre.y()) + ", " + Reader::fmt(centre.z()) +

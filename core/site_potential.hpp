@@ -106,8 +106,10 @@ template <AttitudeUse use> struct SitePotential {
         }
         SitePotential p;
         p.count_ = n;
-        for (int a = 0; a < n; ++a)
+        for (int a = 0; a < n; ++a) {
             p.sites_[a] = sites[a];
+            p.radius_[a] = sites[a].r.norm();
+        }
         for (int a = 0; a < n; ++a) {
             for (int b = 0; b < n; ++b) {
                 const double sigma = p.mixedSigma(a, b);
@@ -263,9 +265,6 @@ template <AttitudeUse use> struct SitePotential {
                             double shift, double turnI, double turnJ) const {
         std::array<Vec3, maxSites> di, dj;
         offsets(oi, oj, di, dj);
-        std::array<double, maxSites> radius;
-        for (int a = 0; a < count_; ++a)
-            radius[a] = sites_[a].r.norm();
         const auto lj = [](const Mixed& m, double x) {
             const double s2 = m.sigma2 / (x * x);
             const double s6 = s2 * s2 * s2;
@@ -278,7 +277,7 @@ template <AttitudeUse use> struct SitePotential {
                 const Mixed& m = mixed_[a][b];
                 if (m.fourEpsilon == 0.0) continue;
                 const double d = (ra - dj[b]).norm();
-                const double delta = shift + radius[a] * turnI + radius[b] * turnJ;
+                const double delta = shift + radius_[a] * turnI + radius_[b] * turnJ;
                 const double lo = d - delta, hi = d + delta;
                 if (!(lo > 0.0)) {
                     out.lo += lj(m, std::min(m.bottom, hi));
@@ -296,7 +295,7 @@ template <AttitudeUse use> struct SitePotential {
     double extent() const {
         double rho = 0.0;
         for (int a = 0; a < count_; ++a)
-            rho = std::max(rho, sites_[a].r.norm());
+            rho = std::max(rho, radius_[a]);
         return rho;
     }
 
@@ -313,6 +312,7 @@ private:
     };
 
     std::array<Site, maxSites> sites_{};
+    std::array<double, maxSites> radius_{}; // |d_a|, Å: kept for energyRange, the hold screen
     std::array<std::array<Mixed, maxSites>, maxSites> mixed_{};
     int count_ = 0;
 
@@ -330,7 +330,7 @@ private:
             for (int b = 0; b < count_; ++b) {
                 const double sigma = mixedSigma(a, b);
                 fn(PairBound{mixedEpsilon(a, b), sigma, twoToTheSixth * sigma,
-                             sites_[a].r.norm() + sites_[b].r.norm()});
+                             radius_[a] + radius_[b]});
             }
         }
     }

@@ -12,6 +12,7 @@
 #include "core/gay_berne_potential.hpp"
 #include "core/lj_potential.hpp"
 
+#include "pair_checks.hpp"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,6 +24,10 @@
 
 namespace terrace {
 namespace {
+
+using pairchecks::centralDerivative;
+using pairchecks::closeRelative;
+using pairchecks::randomUnit;
 
 static_assert(PairPotential<GayBernePotential>);
 
@@ -46,28 +51,6 @@ constexpr double kTranslationStep = 3e-4; // Å
 constexpr double kRotationStep = 1e-4;    // rad
 constexpr double kTimeStep = 1e-4;        // time units
 constexpr std::uint64_t kSeed = 19810601;
-
-/// f'(0) by the fourth-order central stencil [8(f(h) − f(−h)) − (f(2h) − f(−2h))] / 12h.
-template <class Fn> double centralDerivative(Fn&& f, double h) {
-    return (8.0 * (f(h) - f(-h)) - (f(2.0 * h) - f(-2.0 * h))) / (12.0 * h);
-}
-
-/// |a − b| ≤ tol · max(|b|, floor).
-::testing::AssertionResult closeRelative(const Vec3& a, const Vec3& b, double tol, double floor) {
-    const double err = (a - b).norm(), scale = std::max(b.norm(), floor);
-    if (err <= tol * scale) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "got (" << a.transpose() << "), expected ("
-                                         << b.transpose() << "), relative error " << err / scale;
-}
-::testing::AssertionResult closeRelative(double a, double b, double tol, double floor) {
-    return closeRelative(Vec3(a, 0, 0), Vec3(b, 0, 0), tol, floor);
-}
-
-Vec3 randomUnit(std::mt19937_64& rng) {
-    std::normal_distribution<double> gauss;
-    const Vec3 g(gauss(rng), gauss(rng), gauss(rng));
-    return g / g.norm();
-}
 
 // The classic parametrisation GB(κ = 3, κ' = 5, μ = 2, ν = 1) in reduced units.
 const GayBernePotential kReduced{.epsilon = 1.0, .sigma = 1.0};

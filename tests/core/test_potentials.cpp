@@ -8,6 +8,7 @@
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
 
+#include "pair_checks.hpp"
 #include <gtest/gtest.h>
 
 #include <array>
@@ -20,6 +21,10 @@
 
 namespace terrace {
 namespace {
+
+using pairchecks::centralDerivative;
+using pairchecks::closeRelative;
+using pairchecks::randomUnit;
 
 using Triple = std::array<double, 3>;
 Vec3 vec(const Triple& a) {
@@ -44,22 +49,6 @@ constexpr double kRotationStep = 3e-4;    // rad
 constexpr double kTimeStep = 3e-4;        // time units (0.03 fs)
 // Seed of the random stream of pair configurations.
 constexpr std::uint64_t kPairSeed = 20240611;
-
-/// f'(0) by the fourth-order central stencil [8(f(h) - f(-h)) - (f(2h) - f(-2h))] / 12h.
-template <class Fn> double centralDerivative(Fn&& f, double h) {
-    return (8.0 * (f(h) - f(-h)) - (f(2.0 * h) - f(-2.0 * h))) / (12.0 * h);
-}
-
-/// |a - b| ≤ tol · max(|b|, floor): relative error, with a floor where b vanishes.
-::testing::AssertionResult closeRelative(const Vec3& a, const Vec3& b, double tol, double floor) {
-    const double err = (a - b).norm(), scale = std::max(b.norm(), floor);
-    if (err <= tol * scale) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "got (" << a.transpose() << "), expected ("
-                                         << b.transpose() << "), relative error " << err / scale;
-}
-::testing::AssertionResult closeRelative(double a, double b, double tol, double floor) {
-    return closeRelative(Vec3(a, 0, 0), Vec3(b, 0, 0), tol, floor);
-}
 
 // ---------------------------------------------------------------------------------------------
 // Rod potential against independent reference values.
@@ -229,12 +218,6 @@ template <class P> double epsilonOf(const P& p) {
 struct PairConfig {
     Vec3 rij, si, sj;
 };
-
-Vec3 randomUnit(std::mt19937_64& rng) {
-    std::normal_distribution<double> gauss;
-    const Vec3 g(gauss(rng), gauss(rng), gauss(rng));
-    return g / g.norm();
-}
 
 /// A random pair whose Lennard-Jones argument (r_e for rods, r for spheres) is x.
 template <class P> PairConfig pairAt(const P& p, double x, std::mt19937_64& rng) {

@@ -12,6 +12,7 @@
 #include "core/site_potential.hpp"
 #include "core/smoothed_potential.hpp"
 
+#include "pair_checks.hpp"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,6 +27,10 @@
 
 namespace terrace {
 namespace {
+
+using pairchecks::centralDerivative;
+using pairchecks::closeRelative;
+using pairchecks::randomUnit;
 
 using AxisSites = SitePotential<AttitudeUse::Axis>;
 using FrameSites = SitePotential<AttitudeUse::Frame>;
@@ -50,27 +55,6 @@ constexpr double kClosestSitePair = 0.8;
 constexpr int kConfigurations = 150;
 constexpr std::uint64_t kSeed = 20240917;
 
-/// f'(0) by the fourth-order central stencil [8(f(h) - f(-h)) - (f(2h) - f(-2h))] / 12h.
-template <class Fn> double centralDerivative(Fn&& f, double h) {
-    return (8.0 * (f(h) - f(-h)) - (f(2.0 * h) - f(-2.0 * h))) / (12.0 * h);
-}
-
-/// |a - b| ≤ tol · max(|b|, floor): relative error, with a floor where b vanishes.
-::testing::AssertionResult closeRelative(const Vec3& a, const Vec3& b, double tol, double floor) {
-    const double err = (a - b).norm(), scale = std::max(b.norm(), floor);
-    if (err <= tol * scale) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "got (" << a.transpose() << "), expected ("
-                                         << b.transpose() << "), relative error " << err / scale;
-}
-::testing::AssertionResult closeRelative(double a, double b, double tol, double floor) {
-    return closeRelative(Vec3(a, 0, 0), Vec3(b, 0, 0), tol, floor);
-}
-
-Vec3 randomUnit(std::mt19937_64& rng) {
-    std::normal_distribution<double> gauss;
-    const Vec3 g(gauss(rng), gauss(rng), gauss(rng));
-    return g / g.norm();
-}
 Mat3 randomRotation(std::mt19937_64& rng) {
     std::normal_distribution<double> gauss;
     return Quat(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
