@@ -19,8 +19,7 @@ constexpr double largeRFraction = 0.4;
 
 namespace detail {
 
-nlohmann::json rdfSummary(const RadialDistribution& rdf, double boxLength) {
-    const double from = largeRFraction * boxLength;
+nlohmann::json rdfSummary(const RadialDistribution& rdf, double from) {
     double sum = 0.0, var = 0.0;
     int count = 0;
     for (std::size_t k = 0; k < rdf.r.size(); ++k)
@@ -98,18 +97,19 @@ nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
         {"blocks_requested", options.blocks},
         {"msd_blocks_of_bodies", msdBlocks},
         {"max_lag_ps", maxLag * dtPs},
-        {"rdf", detail::rdfSummary(rdf, samples.front().boxLength)},
+        {"rdf", detail::rdfSummary(rdf, largeRFraction * samples.front().boxLength)},
         {"vacf", {{"c0", vacf.value.front()}, {"mean_square_velocity_angstrom2_per_ps2", v2ps}}}};
     if (rotating)
         summary["oacf"] = {{"c1_0", oacf.c1.value.front()}, {"c2_0", oacf.c2.value.front()}};
     else
         summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
-    summary["diffusion"] = {
-        {"einstein_angstrom2_per_ps", d.coefficient},
-        {"einstein_err", d.err},
-        {"fit_from_ps", d.fromPs},
-        {"fit_to_ps", d.toPs},
-        {"green_kubo_angstrom2_per_ps", detail::greenKuboDiffusion(vacf.tPs, vacf.value, v2)}};
+    const Diffusion gk = greenKuboDiffusion(vacf, v2);
+    summary["diffusion"] = {{"einstein_angstrom2_per_ps", d.coefficient},
+                            {"einstein_err", d.err},
+                            {"fit_from_ps", d.fromPs},
+                            {"fit_to_ps", d.toPs},
+                            {"green_kubo_angstrom2_per_ps", gk.coefficient},
+                            {"green_kubo_err", gk.err}};
     return summary;
 }
 

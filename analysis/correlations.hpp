@@ -39,8 +39,9 @@ nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
 struct RadialDistribution; // rdf.hpp
 
 namespace detail {
-/// Summary entries of a g(r): bins, and g averaged over r ∈ [0.4, 0.5] L with a rough error.
-nlohmann::json rdfSummary(const RadialDistribution& rdf, double boxLength);
+/// Summary entries of a g(r): bins, and g averaged over r ≥ largeRFrom (Å) with a rough error
+/// (writeCorrelations: the outer fifth of its range, [0.4, 0.5] L).
+nlohmann::json rdfSummary(const RadialDistribution& rdf, double largeRFrom);
 /// D = (1/3) ∫₀^tmax ⟨v(0)·v(t)⟩ dt (trapezoid rule, truncated at the last lag), Å²/ps, from
 /// the normalised VACF on its lag grid (ps) and ⟨v²⟩ in Å² per time unit².
 double greenKuboDiffusion(const std::vector<double>& tPs, const std::vector<double>& c,

@@ -48,8 +48,9 @@ void coarseValues(const SampledCurve& c, int k, const std::vector<int>& group,
         if (weight[b] > 0.0) value[b] /= weight[b];
 }
 
-/// Pools the fine values into value (all origins) and err (B coarse blocks), lag by lag.
-void poolBlocks(SampledCurve& c) {
+} // namespace
+
+void poolFineBlocks(SampledCurve& c) {
     std::vector<double> v, w, lagWeights(c.fineWeight.size());
     c.value.assign(c.tPs.size(), 0.0);
     c.err.assign(c.tPs.size(), 0.0);
@@ -64,6 +65,8 @@ void poolBlocks(SampledCurve& c) {
         c.err[k] = blockError(v, w, c.value[k]);
     }
 }
+
+namespace {
 
 /// Feeds every body's series x_i(t) = component(sample t, body i) into the correlator.
 void addSeries(BlockedAutocorrelation& acf, const std::vector<Snapshot>& samples,
@@ -185,7 +188,7 @@ SampledCurve velocityAutocorrelation(const std::vector<Snapshot>& samples, int m
         for (double& v : fine)
             v /= v2;
     }
-    poolBlocks(c);
+    poolFineBlocks(c);
     return c;
 }
 
@@ -214,8 +217,8 @@ OrientationalCorrelation orientationalAutocorrelation(const std::vector<Snapshot
     for (auto& block : out.c2.fineValue)
         for (double& v : block)
             v = 1.5 * v - 0.5; // P₂ of ⟨(s(0)·s(t))²⟩, linear per block
-    poolBlocks(out.c1);
-    poolBlocks(out.c2);
+    poolFineBlocks(out.c1);
+    poolFineBlocks(out.c2);
     return out;
 }
 
@@ -265,7 +268,7 @@ SampledCurve meanSquaredDisplacement(const std::vector<Snapshot>& samples, int m
         c.fineValue.push_back(std::move(value));
         c.fineWeight.push_back(std::move(weight));
     }
-    poolBlocks(c);
+    poolFineBlocks(c);
     return c;
 }
 
@@ -285,9 +288,25 @@ double slope(const std::vector<double>& x, const std::vector<double>& y, int lo,
 
 } // namespace
 
+namespace {
+
+/// Index of the last lag at or before time t on a grid of increasing lags (0 if none).
+int lastLagAtOrBefore(const std::vector<double>& tPs, double t) {
+    const double tolerance = 1e-9 * tPs.back();
+    int k = 0;
+    while (k + 1 < static_cast<int>(tPs.size()) && tPs[k + 1] <= t + tolerance)
+        ++k;
+    return k;
+}
+
+} // namespace
+
 Diffusion diffusionFromMsd(const SampledCurve& msd) {
-    const int maxLag = static_cast<int>(msd.tPs.size()) - 1;
-    const int lo = maxLag / 4, hi = (3 * maxLag) / 4;
+    // The window [t_max/4, 3 t_max/4] by time, so that uniform and multiple-tau grids fit the same
+    // span (on a uniform grid, lags ⌊K/4⌋ … ⌊3K/4⌋).
+    const double tMax = msd.tPs.empty() ? 0.0 : msd.tPs.back();
+    const int lo = msd.tPs.empty() ? 0 : lastLagAtOrBefore(msd.tPs, 0.25 * tMax);
+    const int hi = msd.tPs.empty() ? 0 : lastLagAtOrBefore(msd.tPs, 0.75 * tMax);
     Diffusion d;
     if (hi - lo < 1) {
         d.coefficient = d.err = std::numeric_limits<double>::quiet_NaN();
@@ -311,6 +330,43 @@ Diffusion diffusionFromMsd(const SampledCurve& msd) {
     std::vector<double> blockD(msd.blocks, 0.0);
     for (int b = 0; b < msd.blocks; ++b)
         if (weight[b] > 0.0) blockD[b] = slope(msd.tPs, curve[b], lo, hi) / 6.0;
+    d.err = blockError(blockD, weight, d.coefficient);
+    return d;
+}
+
+Diffusion greenKuboDiffusion(const SampledCurve& vacf, double meanSquareVelocity) {
+    // D = ⟨v²⟩/3 ∫ c dt (trapezoid rule over the lag grid, truncated at the last lag), Å²/ps.
+    const double v2 = meanSquareVelocity / (units::psPerTimeUnit * units::psPerTimeUnit);
+    auto integral = [&vacf](const std::vector<double>& c) {
+        double sum = 0.0;
+        for (std::size_t k = 1; k < vacf.tPs.size(); ++k)
+            sum += 0.5 * (c[k] + c[k - 1]) * (vacf.tPs[k] - vacf.tPs[k - 1]);
+        return sum;
+    };
+    Diffusion d;
+    d.coefficient = v2 * integral(vacf.value) / 3.0;
+    d.toPs = vacf.tPs.empty() ? 0.0 : vacf.tPs.back();
+    if (vacf.tPs.size() < 2 || vacf.fineValue.empty()) {
+        d.err = std::numeric_limits<double>::quiet_NaN();
+        return d;
+    }
+    // Blocks as for the MSD fit: coarse blocks fixed by the fine blocks' origins at the last lag,
+    // each block's curve integrated whole; the spread of the block integrals is the error.
+    const int last = static_cast<int>(vacf.tPs.size()) - 1;
+    std::vector<double> lastWeights;
+    for (const auto& w : vacf.fineWeight)
+        lastWeights.push_back(w[last]);
+    const std::vector<int> group = coarseBlocks(lastWeights, vacf.blocks);
+    std::vector<std::vector<double>> curve(vacf.blocks, std::vector<double>(last + 1, 0.0));
+    std::vector<double> weight(vacf.blocks, 0.0), v, w;
+    for (int k = 0; k <= last; ++k) {
+        coarseValues(vacf, k, group, v, w);
+        for (int b = 0; b < vacf.blocks; ++b)
+            curve[b][k] = v[b], weight[b] += w[b];
+    }
+    std::vector<double> blockD(vacf.blocks, 0.0);
+    for (int b = 0; b < vacf.blocks; ++b)
+        if (weight[b] > 0.0) blockD[b] = v2 * integral(curve[b]) / 3.0;
     d.err = blockError(blockD, weight, d.coefficient);
     return d;
 }

@@ -80,9 +80,19 @@ struct Diffusion {
     double err = 0.0;
     double fromPs = 0.0, toPs = 0.0; // fit window
 };
-/// Least-squares slope of the MSD over lags [maxLag/4, 3·maxLag/4] (past the ballistic and caging
+/// Pools a curve's fine values into value (all origins) and err (its B coarse blocks, regrouped
+/// lag by lag from the fine blocks' weights at that lag).
+void poolFineBlocks(SampledCurve& c);
+
+/// Least-squares slope of the MSD over lags [t_max/4, 3·t_max/4] (by time; on a uniform grid of
+/// K lags, ⌊K/4⌋ … ⌊3K/4⌋) (past the ballistic and caging
 /// regime, short of the longest lags with the fewest origins), divided by 6; the error from the
 /// slopes of the B blocks (of bodies, see above). NaN when the window holds fewer than two lags.
 Diffusion diffusionFromMsd(const SampledCurve& msd);
+
+/// Green–Kubo D = (1/3) ∫₀^tmax ⟨v(0)·v(t)⟩ dt (trapezoid rule over the curve's lags, truncated
+/// at the last one), Å²/ps, from the normalised VACF and ⟨v²⟩ in Å² per time unit²; the error
+/// from the block curves, grouped as of the last lag and integrated whole. fromPs is 0.
+Diffusion greenKuboDiffusion(const SampledCurve& vacf, double meanSquareVelocity);
 
 } // namespace terrace::analysis

@@ -104,7 +104,7 @@ nlohmann::json writeReplicaCorrelations(const std::vector<std::vector<Snapshot>>
             {"bodies", n},
             {"sample_interval_ps", dtPs},
             {"max_lag_ps", maxLag * dtPs},
-            {"rdf", detail::rdfSummary(grid, first.front().boxLength)},
+            {"rdf", detail::rdfSummary(grid, 0.4 * first.front().boxLength)},
             {"oacf", rotating ? "written" : "not written: the axes do not change"},
             {"diffusion",
              {{"einstein_angstrom2_per_ps", d.value[0]},

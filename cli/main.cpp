@@ -7,13 +7,17 @@
 //   terrace sweep SWEEP.json [--out DIR] [-j N] [--set key.path=value]... [--retry-failed]
 #include "analysis/compare.hpp"
 #include "analysis/correlations.hpp"
+#include "analysis/run_analysis.hpp"
 #include "cli/design_command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run_command.hpp"
+#include "cli/run_driver.hpp"
 #include "cli/sweep_mpi.hpp"
 #include "core/xyz.hpp"
+#include <algorithm>
 #include <boost/program_options.hpp>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -43,8 +47,10 @@ Usage:
       Continue the run in DIR from its restart file, extending its output as if it had
       never stopped.
   terrace analyse DIR
-      Recompute the correlation CSVs of DIR from DIR/trajectory.xyz (a last frame cut
-      short by a killed run is left out, with a warning).
+      Recompute the correlation CSVs of DIR from DIR/trajectory.xyz, read frame by frame
+      into the accumulators a run uses, with the run's analysis settings (DIR/scene.json;
+      without it the defaults, g(r) out to L/2). A last frame cut short by a killed run is
+      left out, with a warning.
   terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
       Regression check of two correlation curves; exit status 1 when they disagree.
   terrace design [SCENE.json] [--set key.path=value]... [--profile]
@@ -165,16 +171,48 @@ int analyseMain(const std::vector<std::string>& args) {
     const std::filesystem::path dir = args[0];
     // The CSVs go into DIR: not while a run is writing there.
     const cli::OutputDirectory claimed(dir, cli::OutputMode::Continue);
+    // Two passes, never holding the trajectory: the first counts the whole frames (the blocks
+    // of the analysis are laid out over them), the second streams them into the accumulators.
+    const std::string path = (dir / "trajectory.xyz").string();
     std::string partial;
-    const auto frames = readTrajectory((dir / "trajectory.xyz").string(), &partial);
+    int bodies = 0;
+    double boxLength = 0.0, firstTime = 0.0, secondTime = 0.0;
+    const long frames = forEachTrajectoryFrame(
+        path,
+        [&, k = 0L](Snapshot&& f) mutable {
+            if (k == 0) bodies = f.size(), boxLength = f.boxLength, firstTime = f.time;
+            if (k == 1) secondTime = f.time;
+            ++k;
+        },
+        &partial);
     if (!partial.empty()) std::fprintf(stderr, "terrace: warning: %s\n", partial.c_str());
-    if (frames.size() < 4)
-        throw TrajectoryError((dir / "trajectory.xyz").string() + ": " +
-                              std::to_string(frames.size()) +
+    if (frames < 4)
+        throw TrajectoryError(path + ": " + std::to_string(frames) +
                               " whole frames, too few to correlate (at least 4)");
-    const auto summary = analysis::writeCorrelations(frames, dir);
-    std::printf("%zu frames analysed; wrote the correlation CSVs in %s/\n", frames.size(),
-                dir.c_str());
+    // The run's own analysis settings where its scene.json is there, else the defaults.
+    analysis::StreamingOptions options;
+    options.rdfMaxAngstrom = 0.0; // without a scene: out to L/2
+    if (std::filesystem::exists(dir / "scene.json")) {
+        const Scene scene = loadScene((dir / "scene.json").string());
+        options = cli::streamingOptions(scene);
+        // g(r) frames as far apart in time as in the run (trajectory frames are sparser).
+        const double frameFs = units::toFs(secondTime - firstTime);
+        options.rdfEvery =
+            std::max(1, static_cast<int>(
+                            std::lround(scene.analysis.rdf_every * scene.run.sample_fs / frameFs)));
+    }
+    analysis::RunAnalysis accumulated(bodies, boxLength, units::toPs(secondTime - firstTime),
+                                      frames, options);
+    long fed = 0;
+    std::string cutShort; // the same frame as in the first pass, already reported
+    forEachTrajectoryFrame(
+        path,
+        [&](Snapshot&& f) {
+            if (fed++ < frames) accumulated.add(f);
+        },
+        &cutShort);
+    const auto summary = accumulated.write(dir);
+    std::printf("%ld frames analysed; wrote the correlation CSVs in %s/\n", frames, dir.c_str());
     std::printf("%s\n", summary.dump().c_str());
     return 0;
 }

@@ -32,18 +32,23 @@ nlohmann::json provenance(const Scene& scene) {
             {"date_utc", stamp}};
 }
 
-ProgressReporter::ProgressReporter(bool quiet)
-    : quiet_(quiet), started_(wallNow()), last_(started_) {}
+ProgressReporter::ProgressReporter(bool quiet, double endTime)
+    : quiet_(quiet), started_(wallNow()), last_(started_), endTime_(endTime) {}
 
 void ProgressReporter::report(const char* phase, long done, long total, double time) {
     constexpr double everySeconds = 5.0; // quiet for short runs, a heartbeat for long ones
     const double now = wallNow();
+    if (phase_ != phase) phase_ = phase, phaseWall_ = now, phaseTime_ = time;
     if (quiet_ || (now - last_ < everySeconds && done != total) || now - started_ < everySeconds)
         return;
     last_ = now;
-    std::fprintf(stderr, "terrace: %s %ld/%ld samples (%.0f%%), t = %.3f ps, %.0f s elapsed\n",
+    char eta[64] = "";
+    if (time > phaseTime_ && endTime_ > time)
+        std::snprintf(eta, sizeof eta, ", about %.0f s left",
+                      (now - phaseWall_) / (time - phaseTime_) * (endTime_ - time));
+    std::fprintf(stderr, "terrace: %s %ld/%ld samples (%.0f%%), t = %.3f ps, %.0f s elapsed%s\n",
                  phase, done, total, total > 0 ? 100.0 * double(done) / double(total) : 100.0,
-                 time * 0.1, now - started_);
+                 time * 0.1, now - started_, eta);
 }
 
 } // namespace terrace::cli

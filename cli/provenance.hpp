@@ -13,13 +13,20 @@ nlohmann::json provenance(const Scene& scene);
 /// longer than that, so short runs stay silent.
 class ProgressReporter {
 public:
-    explicit ProgressReporter(bool quiet);
+    /// endTime: where the run ends, internal time units (equilibration and production).
+    ProgressReporter(bool quiet, double endTime);
+    /// A line every few seconds: the phase, samples done, the time reached and the wall seconds
+    /// left until endTime at the pace of the current phase, the analysis' time per sample included
+    /// (during equilibration, which analyses nothing, the estimate is a little short).
     void report(const char* phase, long done, long total, double time);
 
 private:
     bool quiet_;
     double started_;
     double last_;
+    double endTime_;
+    std::string phase_;                        // the phase whose pace is measured
+    double phaseWall_ = 0.0, phaseTime_ = 0.0; // wall seconds and run time where it began
 };
 
 } // namespace terrace::cli

@@ -1,5 +1,8 @@
 #include "cli/restart.hpp"
 #include "core/output_file.hpp"
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 
 namespace terrace::cli {
 
@@ -76,6 +79,31 @@ void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, d
         samples.push_back(std::move(s));
         energies.push_back(e);
     }
+}
+
+long forEachSample(const std::filesystem::path& path, int bodies, bool withOrientation,
+                   double boxLength,
+                   const std::function<void(const Snapshot&, const SampleRecord&)>& each) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(path.string() + ": cannot open: " + std::strerror(errno));
+    const std::size_t record = recordDoubles(bodies, withOrientation) * sizeof(double);
+    std::string bytes(record, '\0');
+    long count = 0;
+    std::vector<Snapshot> one;
+    std::vector<SampleRecord> energy;
+    while (true) {
+        in.read(bytes.data(), std::streamsize(record));
+        const std::size_t got = static_cast<std::size_t>(in.gcount());
+        if (got == 0) break;
+        if (got != record)
+            throw std::runtime_error("samples.bin does not hold whole sample records");
+        one.clear(), energy.clear();
+        decodeSamples(bytes, bodies, withOrientation, boxLength, one, energy);
+        each(one.front(), energy.front());
+        ++count;
+    }
+    if (in.bad()) throw IoError(path.string() + ": read failed: " + std::strerror(errno));
+    return count;
 }
 
 void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restart) {

@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -51,6 +52,12 @@ std::string encodeSample(const Snapshot& s, const SampleRecord& e);
 /// Every record of a samples.bin of `bytes` bytes (N bodies, tops when withOrientation).
 void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, double boxLength,
                    std::vector<Snapshot>& samples, std::vector<SampleRecord>& energies);
+/// The records of DIR/samples.bin handed to `each` one at a time, read in pieces so that the file
+/// is never held whole; returns the number of records. Throws IoError when the file cannot be
+/// read and std::runtime_error when it does not hold whole records.
+long forEachSample(const std::filesystem::path& path, int bodies, bool withOrientation,
+                   double boxLength,
+                   const std::function<void(const Snapshot&, const SampleRecord&)>& each);
 
 void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restart);
 /// "DIR/restart.bin: damaged, or written by another version of terrace (<what is missing>)" for

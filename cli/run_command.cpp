@@ -34,21 +34,17 @@ double availableMemory() {
     return pages > 0 && size > 0 ? double(pages) * double(size) : 0.0;
 }
 
-int rotationalDofOf(const Scene& scene) {
-    return withBodyAndPotential(scene, []<class K, class P>(const P&) { return K::rotationalDof; });
-}
-
 } // namespace
 
 void checkSampleMemory(const Scene& scene) {
-    const double need = storedSampleBytes(scene, rotationalDofOf(scene));
+    const double need = analysisBytes(scene);
     const double have = availableMemory();
     if (have > 0.0 && need > have) {
         char text[512];
         std::snprintf(text, sizeof text,
-                      "run: the %.0f samples of this run (run.time_ps / run.sample_fs) would "
-                      "take %.3g GiB of memory, more than the %.3g GiB available: use a longer "
-                      "run.sample_fs or a shorter run.time_ps",
+                      "run: the analysis of the %.0f samples of this run (run.time_ps / "
+                      "run.sample_fs) would take %.3g GiB of memory, more than the %.3g GiB "
+                      "available: use fewer analysis.follow_bodies or a longer run.sample_fs",
                       double(planRun(scene).productionSamples) + 1.0, need / (1 << 30),
                       have / (1 << 30));
         throw SceneError(text);

@@ -50,14 +50,34 @@ double RunPlan::productionTime(long s, double tStart) const {
     return tStart + double(s) * sampleInterval;
 }
 
-double storedSampleBytes(const Scene& scene, int rotationalDof) {
+analysis::StreamingOptions streamingOptions(const Scene& scene) {
+    analysis::StreamingOptions o;
+    const auto& a = scene.analysis;
+    o.blocks = a.blocks;
+    o.maxLagPs = a.max_lag_ps;
+    o.rdfBinAngstrom = a.rdf_bin_angstrom;
+    o.rdfMaxAngstrom = a.rdf_max * scene.potential.sigma; // 0 stays 0: L/2
+    o.rdfEvery = a.rdf_every;
+    o.followBodies = a.follow_bodies;
+    o.lagsPerLevel = a.lags_per_level;
+    return o;
+}
+
+double analysisBytes(const Scene& scene) {
     const RunPlan plan = planRun(scene);
     const double n = scene.state.particles.empty() ? double(scene.state.n)
                                                    : double(scene.state.particles.size());
-    // position, velocity, axis, ω and a top's quaternion per body, the snapshot and its record
-    const double perBody = 4.0 * sizeof(Vec3) + (rotationalDof == 3 ? sizeof(Quat) : 0.0);
-    return (double(plan.productionSamples) + 1.0) *
-           (n * perBody + sizeof(Snapshot) + sizeof(SampleRecord));
+    const double samples = double(plan.productionSamples) + 1.0;
+    const auto& a = scene.analysis;
+    const double followed = a.follow_bodies > 0 ? std::min(n, double(a.follow_bodies)) : n;
+    // Multiple-tau levels up to the longest lag (at most half the run): 9 doubles per followed
+    // body per slot, p slots per level; g(r): three coordinates and a cell index per body.
+    const double p = a.lags_per_level;
+    const double lag =
+        a.max_lag_ps > 0.0 ? units::fromPs(a.max_lag_ps) / plan.sampleInterval : 0.5 * samples;
+    const double levels = 1.0 + std::max(0.0, std::ceil(std::log2(std::max(1.0, lag / (p - 1)))));
+    return samples * sizeof(SampleRecord) + followed * levels * p * 9.0 * sizeof(double) +
+           n * (3.0 * sizeof(double) + 2.0 * sizeof(int));
 }
 
 nlohmann::json vec3Json(const Vec3& v) {
@@ -220,7 +240,7 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     if (!run.failure.empty()) summary["error"] = run.failure;
     summary["simulated_ps"] = run.simulatedPs;
     summary["sample_fs"] = units::toFs(run.sampleInterval);
-    summary["samples"] = run.samples.size();
+    summary["samples"] = run.records.size();
     summary["cpu_seconds"] = run.cpuSeconds;
     summary["cpu_seconds_equilibration"] = run.cpuEquilibration;
     summary["cpu_seconds_per_ps"] = run.simulatedPs > 0 ? run.cpuSeconds / run.simulatedPs : 0.0;
@@ -239,6 +259,16 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
                            {"final", vec3Json(run.momentumFinal / units::psPerTimeUnit)},
                            {"units", "g/mol A/ps"}};
     addEngineStatistics(summary, run.production, run.simulatedPs);
+    // The collision rate's block error, from the collisions between samples (DMD only).
+    if (summary.contains("collisions_per_ps") && run.records.size() >= 3) {
+        std::vector<double> perInterval;
+        for (std::size_t k = 1; k < run.records.size(); ++k)
+            perInterval.push_back(run.records[k].collisions - run.records[k - 1].collisions);
+        const double err = analysis::blockMean(perInterval, pressureBlocks).err;
+        summary["collisions_per_ps_err"] =
+            std::isfinite(err) ? nlohmann::json(err / units::toPs(run.sampleInterval))
+                               : nlohmann::json();
+    }
     return summary;
 }
 
@@ -250,7 +280,7 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
                                        bool& analysed) {
     nlohmann::json summary = summaryOf(scene, run);
     summary["provenance"] = provenance(scene);
-    analysed = run.samples.size() < 4; // too few to analyse: nothing is due
+    analysed = !run.analysis || run.analysis->samples() < 4; // too few: nothing is due
     // Written before the analysis, so that a run killed during a long analysis keeps it.
     if (!analysed) summary["analysis"] = "not finished: the process ended during the analysis";
     writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
@@ -258,7 +288,10 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
     try {
         // A signal beyond those that stopped the run cancels the analysis.
         const analysis::ScopedCancellation hook([&] { return interrupt.count() > tolerated; });
-        summary["analysis"] = analysis::writeCorrelations(run.samples, dir);
+        run.analysisClock.start();
+        summary["analysis"] = run.analysis->write(dir);
+        run.analysisClock.stop();
+        summary["analysis_cpu_seconds"] = run.analysisClock.seconds();
         analysed = true;
     } catch (const analysis::Cancelled&) {
         summary["analysis"] = {{"error", "cancelled by a signal before it finished"}};
@@ -336,15 +369,13 @@ Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::files
     if (withTrajectory) at.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
     if (withThermo) at.thermo = AppendFile(dir / "thermo.csv", thermoBytes);
     at.samples = AppendFile(dir / "samples.bin", samplesBytes);
-    std::vector<Snapshot> samples;
-    std::vector<SampleRecord> energies;
-    decodeSamples(readWholeFile(dir / "samples.bin"), bodies, withOrientation, boxLength, samples,
-                  energies);
-    if (long(samples.size()) != at.sample + 1)
-        throw IoError((dir / "samples.bin").string() + " holds " + std::to_string(samples.size()) +
+    // The samples go through the analysis again, one at a time: never all in memory.
+    const long read =
+        forEachSample(dir / "samples.bin", bodies, withOrientation, boxLength,
+                      [&run](const Snapshot& s, const SampleRecord& e) { run.add(e, s); });
+    if (read != at.sample + 1)
+        throw IoError((dir / "samples.bin").string() + " holds " + std::to_string(read) +
                       " samples, its restart point " + std::to_string(at.sample + 1));
-    for (std::size_t k = 0; k < samples.size(); ++k)
-        run.add(energies[k], std::move(samples[k]));
     return at;
 }
 

@@ -2,18 +2,22 @@
 // The run loop shared by both engines (STYLE.md items 8-9): sampling in physical time is decided
 // here, outside the engines:
 //   equilibration  advanceTo(k·Δt_thermostat), then rescale v, ω to the scene temperature
-//   production     advanceTo(t_s) on the sample grid, record energies, K_trans, the virial and a
-//                  Snapshot, append trajectory frames and thermo.csv rows (cli/thermo.hpp) and,
-//                  with restarts on, the sample to samples.bin
+//   production     advanceTo(t_s) on the sample grid, record energies, K_trans and the virial,
+//                  hand a Snapshot to the analysis (analysis/run_analysis.hpp, which accumulates
+//                  g(r) and the time correlations as the run goes and keeps no sample), append
+//                  trajectory frames and thermo.csv rows (cli/thermo.hpp) and, with restarts on,
+//                  the sample to samples.bin
 //   restart points every output.restart_every_ps (cli/restart.hpp): the engine is rebuilt from
 //                  its bodies and checkpoint and restart.bin is written
 // CPU time is measured around the engine's advanceTo and rescale calls only, so output, analysis
-// and restart points do not count against either engine.
+// and restart points do not count against either engine; the analysis' own CPU time is reported
+// apart (analysis_cpu_seconds).
 //
 // Nothing is lost when a run stops: every file is written whole (core/output_file.hpp); a signal
 // (cli/interrupt.hpp) ends the run at the next sample with restart.bin, summary.json (saying
 // "interrupted" and by which signal) and the analysis written; an engine failure or a failed
 // write ends it with what was gathered until then written and the first error raised again.
+#include "analysis/run_analysis.hpp"
 #include "cli/cpu_clock.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/output_dir.hpp"
@@ -56,8 +60,11 @@ struct RunPlan {
 /// whole multiples: SMD moves in whole steps, outputs come at whole samples).
 RunPlan planRun(const Scene& scene);
 
-/// Bytes that the production samples kept for the analysis take in memory.
-double storedSampleBytes(const Scene& scene, int rotationalDof);
+/// The analysis settings of a scene (analysis.rdf_max is in σ there, in Å here).
+analysis::StreamingOptions streamingOptions(const Scene& scene);
+
+/// Bytes the run's analysis and per-sample records will hold in memory at most.
+double analysisBytes(const Scene& scene);
 
 /// Where and how a run writes.
 struct RunTarget {
@@ -93,7 +100,8 @@ void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& producti
 /// What a run gathered, handed from the engine loop to the summary.
 struct RunRecord {
     std::vector<SampleRecord> records; // per production sample: energies, K_trans, virial, …
-    std::vector<Snapshot> samples;
+    std::unique_ptr<analysis::RunAnalysis> analysis; // null with fewer than 4 samples planned
+    CpuClock analysisClock;                          // CPU time of the analysis
     Vec3 momentumInitial = Vec3::Zero(), momentumFinal = Vec3::Zero(); // internal units
     nlohmann::json production = nlohmann::json::object(); // engine statistics over production
     double simulatedPs = 0.0, cpuSeconds = 0.0, cpuEquilibration = 0.0;
@@ -109,8 +117,12 @@ struct RunRecord {
     double restartEveryPs = 0.0;       // 0: no restart files
     std::vector<std::string> warnings; // from the scene (sceneWarnings)
 
-    void add(const SampleRecord& e, Snapshot s) {
-        records.push_back(e), samples.push_back(std::move(s));
+    void add(const SampleRecord& e, const Snapshot& s) {
+        records.push_back(e);
+        if (!analysis) return;
+        analysisClock.start();
+        analysis->add(s);
+        analysisClock.stop();
     }
 };
 
@@ -185,11 +197,17 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     run.volume = std::pow(engine->snapshot().boxLength, 3);
     run.virialKind = virialKindOf<E>();
     const ThermoLayout thermoLayout{run.virialKind, run.volume, run.dof, run.bodies};
+    if (plan.productionSamples + 1 >= 4)
+        run.analysis = std::make_unique<analysis::RunAnalysis>(
+            run.bodies, engine->snapshot().boxLength, units::toPs(plan.sampleInterval),
+            plan.productionSamples + 1, streamingOptions(scene));
     run.restartEveryPs = scene.output.restart_every_ps;
     run.warnings = sceneWarnings(scene);
     for (const auto& w : run.warnings)
         std::fprintf(stderr, "terrace: warning: %s\n", w.c_str());
-    ProgressReporter progress(target.quiet);
+    ProgressReporter progress(target.quiet,
+                              double(plan.equilibrationTicks) * plan.thermostatInterval +
+                                  double(plan.productionSamples) * plan.sampleInterval);
     CpuClock cpu;
     InterruptGuard interrupt;
 
@@ -205,7 +223,6 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     bool& inProduction = at.inProduction;
     long &tick = at.tick, &sample = at.sample;
     AppendFile &trajectory = at.trajectory, &thermo = at.thermo, &samplesFile = at.samples;
-    run.samples.reserve(plan.productionSamples + 1);
     nlohmann::json stretchStart; // engine statistics where the current stretch began
     if (inProduction) stretchStart = engine->statistics();
 
@@ -233,7 +250,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                 sample > 0 ? &run.records[sample - plan.thermoEvery] : nullptr;
             thermo.append(thermoRow(e, before, continuousPotentialOf(*engine), thermoLayout));
         }
-        run.add(e, std::move(s));
+        run.add(e, s);
     };
     // A restart point: the engine is rebuilt from its bodies and checkpoint, exactly as a run
     // continued from the file written here builds it; the growing files reach the disk before the

@@ -82,6 +82,11 @@ constexpr Column summaryColumns[] = {
     {"energy_rel_fluct", "/energy/rel_fluct"},
     {"energy_drift_per_ps", "/energy/drift_per_ps"},
     {"collisions_per_ps", "/collisions_per_ps"},
+    {"collisions_per_ps_err", "/collisions_per_ps_err"},
+    {"diffusion_einstein", "/analysis/diffusion/einstein_angstrom2_per_ps"},
+    {"diffusion_einstein_err", "/analysis/diffusion/einstein_err"},
+    {"diffusion_green_kubo", "/analysis/diffusion/green_kubo_angstrom2_per_ps"},
+    {"diffusion_green_kubo_err", "/analysis/diffusion/green_kubo_err"},
     {"steps_per_ps", "/steps_per_ps"},
     // Costs last: the columns before them are the physics, the same wherever a run ran.
     {"cpu_seconds", "/cpu_seconds"},

@@ -339,9 +339,9 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     if (!j.is_object()) rd.fail("<top>", "a scene must be a JSON object");
     for (const auto& o : overrides)
         applyOverride(j, o, rd);
-    rd.onlyKeys(
-        j, "",
-        {"name", "seed", "body", "potential", "state", "engine", "dmd", "smd", "run", "output"});
+    rd.onlyKeys(j, "",
+                {"name", "seed", "body", "potential", "state", "engine", "dmd", "smd", "run",
+                 "output", "analysis"});
     Scene s;
     const double inf = std::numeric_limits<double>::infinity();
 
@@ -644,6 +644,33 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         requireOnGrid(rd, "output.restart_every_ps", s.output.restart_every_ps, "ps", 1000.0,
                       "run.sample_fs", s.run.sample_fs);
     }
+
+    const auto& an = rd.section(j, "analysis");
+    rd.onlyKeys(an, "analysis",
+                {"blocks", "max_lag_ps", "rdf_max", "rdf_bin_angstrom", "rdf_every",
+                 "follow_bodies", "lags_per_level"});
+    auto& a = s.analysis;
+    a.blocks = static_cast<int>(rd.integer(an, "analysis", "blocks", a.blocks, 2, 10000));
+    a.max_lag_ps = rd.number(an, "analysis", "max_lag_ps", a.max_lag_ps, 0, 1e9);
+    a.rdf_max = rd.number(an, "analysis", "rdf_max", a.rdf_max, 0, 1e6);
+    a.rdf_bin_angstrom =
+        rd.number(an, "analysis", "rdf_bin_angstrom", a.rdf_bin_angstrom, 1e-6, 1e6);
+    if (!(a.rdf_bin_angstrom > 0.0)) rd.fail("analysis.rdf_bin_angstrom", "must be > 0");
+    a.rdf_every =
+        static_cast<int>(rd.integer(an, "analysis", "rdf_every", a.rdf_every, 1, 1 << 30));
+    a.follow_bodies = static_cast<int>(
+        rd.integer(an, "analysis", "follow_bodies", a.follow_bodies, 0, 100000000));
+    a.lags_per_level =
+        static_cast<int>(rd.integer(an, "analysis", "lags_per_level", a.lags_per_level, 4, 4096));
+    if (a.lags_per_level % 2 != 0)
+        rd.fail("analysis.lags_per_level", std::to_string(a.lags_per_level) +
+                                               " is odd: each level adds the upper half of "
+                                               "its lags, so the number must be even");
+    const double halfBox = 0.5 * s.boxLength();
+    if (a.rdf_bin_angstrom > halfBox)
+        rd.fail("analysis.rdf_bin_angstrom", Reader::fmt(a.rdf_bin_angstrom) +
+                                                 " Å is wider than half the box, " +
+                                                 Reader::fmt(halfBox) + " Å: g(r) has no bin");
     return s;
 }
 
@@ -808,6 +835,13 @@ json toJson(const Scene& s) {
     j["output"] = {{"trajectory_every_fs", s.output.trajectory_every_fs},
                    {"restart_every_ps", s.output.restart_every_ps},
                    {"thermo_every_fs", s.output.thermo_every_fs}};
+    j["analysis"] = {{"blocks", s.analysis.blocks},
+                     {"max_lag_ps", s.analysis.max_lag_ps},
+                     {"rdf_max", s.analysis.rdf_max},
+                     {"rdf_bin_angstrom", s.analysis.rdf_bin_angstrom},
+                     {"rdf_every", s.analysis.rdf_every},
+                     {"follow_bodies", s.analysis.follow_bodies},
+                     {"lags_per_level", s.analysis.lags_per_level}};
     return j;
 }
 

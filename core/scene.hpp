@@ -147,6 +147,18 @@ struct Scene {
         double thermo_every_fs = 0.0;
     } output;
 
+    // The analysis, accumulated as the run goes (analysis/run_analysis.hpp): memory independent
+    // of the run's length, time O(N) per sample.
+    struct Analysis {
+        int blocks = 8;          // blocks behind every error bar, >= 2
+        double max_lag_ps = 0.0; // longest lag of the time correlations; 0 = half the run
+        double rdf_max = 5.0;    // g(r) out to this distance, σ (at most L/2); 0 = L/2
+        double rdf_bin_angstrom = 0.05;
+        int rdf_every = 10;       // samples between g(r) frames (90 fs by default)
+        int follow_bodies = 4096; // bodies the time correlations follow; 0 = all
+        int lags_per_level = 16;  // lags per level of the multiple-tau grid, even, >= 4
+    } analysis;
+
     double kT() const { return state.temperature * potential.epsilon; } // kJ/mol
     double boxLength() const;                                           // Å, from n and density
 };

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -91,13 +92,14 @@ std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout) {
     return std::move(out).str();
 }
 
-std::vector<Snapshot> readTrajectory(const std::string& path, std::string* partialLastFrame) {
+long forEachTrajectoryFrame(const std::string& path, const std::function<void(Snapshot&&)>& each,
+                            std::string* partialLastFrame) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw TrajectoryError(path + ": is a directory, not a trajectory");
     std::ifstream in(path);
     if (!in) throw TrajectoryError(path + ": cannot open the trajectory: " + std::strerror(errno));
-    std::vector<Snapshot> frames;
+    long frames = 0; // whole frames handed on
     std::string line;
     long lineNo = 0;
     long frameLine = 0; // where the frame being read starts
@@ -108,7 +110,7 @@ std::vector<Snapshot> readTrajectory(const std::string& path, std::string* parti
         if (partialLastFrame && cutShort) {
             *partialLastFrame = path + ":" + std::to_string(frameLine) +
                                 ": the last frame is cut short (" + what + "); read the " +
-                                std::to_string(frames.size()) + " whole frames before it";
+                                std::to_string(frames) + " whole frames before it";
             throw PartialFrame{};
         }
         throw TrajectoryError(path + ":" + std::to_string(lineNo) + ": " + what);
@@ -184,10 +186,18 @@ std::vector<Snapshot> readTrajectory(const std::string& path, std::string* parti
                 f.axis.push_back(s);
                 f.omega.push_back(w / perPs);
             }
-            frames.push_back(std::move(f));
+            ++frames;
+            each(std::move(f));
         }
     } catch (const PartialFrame&) {
     }
+    return frames;
+}
+
+std::vector<Snapshot> readTrajectory(const std::string& path, std::string* partialLastFrame) {
+    std::vector<Snapshot> frames;
+    forEachTrajectoryFrame(
+        path, [&frames](Snapshot&& f) { frames.push_back(std::move(f)); }, partialLastFrame);
     return frames;
 }
 

@@ -20,6 +20,7 @@
 // Orientation, whose quaternion it orders x y z w). readTrajectory also reads the files written
 // before the body column (species S, R or T and no body column).
 #include "core/snapshot.hpp"
+#include <functional>
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
@@ -51,5 +52,11 @@ std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout);
 /// (empty when the file ends on a whole frame); without it, that too is an error.
 std::vector<Snapshot> readTrajectory(const std::string& path,
                                      std::string* partialLastFrame = nullptr);
+
+/// The same frames handed one at a time to `each` as they are read, so that a long trajectory
+/// is never held whole (terrace analyse); returns the number of whole frames. The errors and
+/// the cut-short last frame are as for readTrajectory; frames before an error have been handed on.
+long forEachTrajectoryFrame(const std::string& path, const std::function<void(Snapshot&&)>& each,
+                            std::string* partialLastFrame = nullptr);
 
 } // namespace terrace

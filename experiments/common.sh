@@ -168,6 +168,12 @@ smd_skin() {
     cat "$RUNS/$1/smd-skin"
 }
 
+# The analysis settings of every run here: g(r) out to L/2 from every sample, and the first
+# 128 lags (1.15 ps at 9 fs, past every curve distance measured here) on one uniform grid with
+# every time origin, so that the curves and their distances are those of the all-origins
+# analysis the committed results were made with (run_analysis.hpp: exact below p lags).
+PAPER_ANALYSIS=(--set analysis.rdf_every=1 --set analysis.rdf_max=0 --set analysis.lags_per_level=128)
+
 # run_one DIR SCENE [--set key=value]... : one run, skipped when DIR already holds its summary.
 run_one() {
     local dir=$1 scene=$2
@@ -178,7 +184,7 @@ run_one() {
     mkdir -p "$(dirname "$dir")"
     log "run $dir"
     local rc=0
-    "$TERRACE" run "$scene" --quiet --out "$partial" "$@" >"$partial.log" 2>&1 || rc=$?
+    "$TERRACE" run "$scene" --quiet --out "$partial" "${PAPER_ANALYSIS[@]}" "$@" >"$partial.log" 2>&1 || rc=$?
     if [ "$rc" -ne 0 ]; then
         # A crash leaves no message of its own; the exit status (128 + signal) is then the record.
         [ "$rc" -gt 128 ] && echo "terrace killed by signal $((rc - 128)) (exit status $rc)" >>"$partial.log"
@@ -213,7 +219,7 @@ run_replicas() {
         status=0
         # shellcheck disable=SC2086
         ${SWEEP_LAUNCH:-} "$TERRACE" sweep "$dir/sweep.json" --out "$dir" --quiet \
-            -j "${SWEEP_JOBS:-1}" --set run.sample_fs="$SAMPLE_FS" "$@" || status=$?
+            -j "${SWEEP_JOBS:-1}" --set run.sample_fs="$SAMPLE_FS" "${PAPER_ANALYSIS[@]}" "$@" || status=$?
         # 0: every run done; 1: some failed (recorded); anything else (a signal, another sweep
         # holding the set) stops the set with status 2: not a result, whatever mayfail says.
         [ "$status" -le 1 ] || { log "sweep $dir stopped (exit status $status)"; return 2; }

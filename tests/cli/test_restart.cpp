@@ -287,6 +287,8 @@ TEST(Restart, AWriteThatFailsInTheAnalysisIsRecorded) {
     run.bodies = sys.size();
     run.dof = degreesOfFreedom<LinearRotor>(sys.size());
     run.kT = scene.kT();
+    run.analysis = std::make_unique<analysis::RunAnalysis>(run.bodies, sys.box.length, 0.001, 8,
+                                                           cli::streamingOptions(scene));
     for (int k = 0; k < 8; ++k) {
         auto moved = sys;
         for (auto& b : moved.bodies)

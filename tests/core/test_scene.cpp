@@ -560,3 +560,29 @@ TEST(Scene, GayBerneKeysBelongToGayBerneOnLinearBodies) {
     EXPECT_NE(errorOf({{"state", {{"lattice_aspect", 0.5}}}}).find("state.lattice_aspect"),
               std::string::npos);
 }
+
+TEST(Scene, AnalysisKeysAreReadCheckedAndWrittenOut) {
+    const Scene s = sceneFromJson(
+        {{"analysis",
+          {{"rdf_max", 3.0}, {"rdf_every", 2}, {"follow_bodies", 0}, {"lags_per_level", 32}}}},
+        "test.json");
+    EXPECT_EQ(s.analysis.rdf_max, 3.0);
+    EXPECT_EQ(s.analysis.rdf_every, 2);
+    EXPECT_EQ(s.analysis.follow_bodies, 0);
+    EXPECT_EQ(s.analysis.lags_per_level, 32);
+    EXPECT_EQ(s.analysis.blocks, 8); // defaults where not given
+    const Scene back = sceneFromJson(toJson(s), "round trip");
+    EXPECT_EQ(toJson(back), toJson(s));
+    EXPECT_EQ(errorOf({{"analysis", {{"lags_per_level", 15}}}})
+                  .rfind("test.json: analysis.lags_per_level: 15 is odd", 0),
+              0u);
+    EXPECT_EQ(errorOf({{"analysis", {{"blocks", 1}}}}),
+              "test.json: analysis.blocks: must be in [2, 10000], got 1");
+    EXPECT_EQ(errorOf({{"analysis", {{"rdf_every", 0}}}}),
+              "test.json: analysis.rdf_every: must be in [1, 1073741824], got 0");
+    EXPECT_EQ(errorOf({{"analysis", {{"rdf_bin", 0.1}}}}),
+              "test.json: analysis.rdf_bin: unknown key");
+    // The default box (N 512, ρ* 0.5) is 30.6 Å wide: a 20 Å bin leaves g(r) no bin.
+    EXPECT_NE(errorOf({{"analysis", {{"rdf_bin_angstrom", 20.0}}}}).find("wider than half the box"),
+              std::string::npos);
+}

@@ -1,0 +1,169 @@
+#include "analysis/rdf_accumulator.hpp"
+#include "analysis/block_average.hpp"
+#include "analysis/cancellation.hpp"
+#include "core/box.hpp"
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace terrace::analysis {
+
+namespace {
+
+double shellVolume(double lo, double hi) {
+    return 4.0 / 3.0 * std::numbers::pi * (hi * hi * hi - lo * lo * lo);
+}
+
+/// First frame of block b of B over F planned frames: rdf.hpp's contiguous blocks.
+long blockBegin(long b, long planned, int blocks) {
+    return (b * planned) / blocks;
+}
+
+} // namespace
+
+RdfAccumulator::RdfAccumulator(int bodies, double boxLength, double binWidth, double rMax,
+                               long plannedFrames, int blocks)
+    : bodies_(bodies), blocks_(blocks), length_(boxLength), binWidth_(binWidth),
+      plannedFrames_(plannedFrames) {
+    if (bodies < 2 || !(boxLength > 0.0))
+        throw std::invalid_argument("g(r): need two bodies and a box");
+    if (!(binWidth > 0.0)) throw std::invalid_argument("g(r): the bin width must be > 0");
+    if (!(rMax > 0.0) || rMax > 0.5 * boxLength * (1.0 + 1e-12))
+        throw std::invalid_argument("g(r): r_max must lie in (0, L/2]");
+    if (plannedFrames < 1 || blocks < 1 || blocks > plannedFrames)
+        throw std::invalid_argument("g(r): need 1 ≤ blocks ≤ planned frames");
+    bins_ = static_cast<int>(std::floor(std::min(rMax, 0.5 * boxLength) / binWidth));
+    if (bins_ < 1) throw std::invalid_argument("g(r): the bin is wider than r_max");
+    histogram_.assign(blocks, std::vector<double>(bins_, 0.0));
+    framesInBlock_.assign(blocks, 0.0);
+    cellsPerSide_ = static_cast<int>(std::floor(boxLength / (binWidth_ * bins_)));
+    // Cells beyond ~N per side would be mostly empty: no gain, only memory.
+    cellsPerSide_ = std::min(cellsPerSide_, std::max(1, static_cast<int>(std::cbrt(bodies))));
+    x_.resize(bodies), y_.resize(bodies), z_.resize(bodies);
+    if (cellsPerSide_ >= 3) {
+        cellOf_.resize(bodies);
+        cellStart_.resize(std::size_t(cellsPerSide_) * cellsPerSide_ * cellsPerSide_ + 1);
+    }
+}
+
+void RdfAccumulator::add(const Snapshot& frame) {
+    if (frame.size() != bodies_ || frame.boxLength != length_)
+        throw std::invalid_argument("g(r): N and box length must not change");
+    while (block_ + 1 < blocks_ && frames_ >= blockBegin(block_ + 1, plannedFrames_, blocks_))
+        ++block_;
+    const PeriodicBox box{length_};
+    if (cellsPerSide_ < 3) {
+        for (int i = 0; i < bodies_; ++i) {
+            const Vec3 r = box.wrap(frame.position[i]);
+            x_[i] = r.x(), y_[i] = r.y(), z_[i] = r.z();
+        }
+        countAllPairs(histogram_[block_]);
+    } else {
+        // Counting sort of the wrapped positions by cell: each cell's bodies contiguous.
+        const int m = cellsPerSide_;
+        const double perCell = m / length_;
+        std::fill(cellStart_.begin(), cellStart_.end(), 0);
+        auto index = [m, perCell](double c) { return std::min(m - 1, int(c * perCell)); };
+        for (int i = 0; i < bodies_; ++i) {
+            const Vec3 r = box.wrap(frame.position[i]);
+            cellOf_[i] = (index(r.x()) * m + index(r.y())) * m + index(r.z());
+            ++cellStart_[cellOf_[i] + 1];
+        }
+        for (std::size_t c = 1; c < cellStart_.size(); ++c)
+            cellStart_[c] += cellStart_[c - 1];
+        std::vector<int> fill(cellStart_.begin(), cellStart_.end() - 1);
+        for (int i = 0; i < bodies_; ++i) {
+            const Vec3 r = box.wrap(frame.position[i]);
+            const int k = fill[cellOf_[i]]++;
+            x_[k] = r.x(), y_[k] = r.y(), z_[k] = r.z();
+        }
+        countByCells(histogram_[block_]);
+    }
+    framesInBlock_[block_] += 1.0;
+    ++frames_;
+}
+
+void RdfAccumulator::countAllPairs(std::vector<double>& histogram) {
+    const double length = length_, half = 0.5 * length;
+    const double rMax2 = rMax() * rMax(), inverseWidth = 1.0 / binWidth_;
+    const auto image = [length, half](double d) { // branch-free: random signs mispredict
+        return d - length * static_cast<double>((d > half) - (d < -half));
+    };
+    for (int i = 0; i < bodies_; ++i) {
+        if (i % 1024 == 0) throwIfCancelled();
+        for (int j = i + 1; j < bodies_; ++j) {
+            const double dx = image(x_[i] - x_[j]), dy = image(y_[i] - y_[j]),
+                         dz = image(z_[i] - z_[j]);
+            const double r2 = dx * dx + dy * dy + dz * dz;
+            if (r2 >= rMax2) continue;
+            const int bin = static_cast<int>(std::sqrt(r2) * inverseWidth);
+            if (bin < bins_) ++histogram[bin]; // sqrt may round r just onto the last edge
+        }
+    }
+}
+
+void RdfAccumulator::countByCells(std::vector<double>& histogram) {
+    const int m = cellsPerSide_;
+    const double length = length_, half = 0.5 * length;
+    const double rMax2 = rMax() * rMax(), inverseWidth = 1.0 / binWidth_;
+    const auto image = [length, half](double d) {
+        return d - length * static_cast<double>((d > half) - (d < -half));
+    };
+    auto pairs = [&](int i, int jBegin, int jEnd) {
+        const double xi = x_[i], yi = y_[i], zi = z_[i];
+        for (int j = jBegin; j < jEnd; ++j) {
+            const double dx = image(xi - x_[j]), dy = image(yi - y_[j]), dz = image(zi - z_[j]);
+            const double r2 = dx * dx + dy * dy + dz * dz;
+            if (r2 >= rMax2) continue;
+            const int bin = static_cast<int>(std::sqrt(r2) * inverseWidth);
+            if (bin < bins_) ++histogram[bin];
+        }
+    };
+    auto wrap = [m](int c) { return c < 0 ? c + m : (c >= m ? c - m : c); };
+    for (int cx = 0; cx < m; ++cx) {
+        throwIfCancelled();
+        for (int cy = 0; cy < m; ++cy)
+            for (int cz = 0; cz < m; ++cz) {
+                const int c = (cx * m + cy) * m + cz;
+                const int begin = cellStart_[c], end = cellStart_[c + 1];
+                for (int i = begin; i < end; ++i)
+                    pairs(i, i + 1, end);
+                // The 13 neighbours lexicographically after (0, 0, 0): each pair of cells once.
+                for (int dx = 0; dx <= 1; ++dx)
+                    for (int dy = (dx == 0 ? 0 : -1); dy <= 1; ++dy)
+                        for (int dz = (dx == 0 && dy == 0 ? 1 : -1); dz <= 1; ++dz) {
+                            const int d = (wrap(cx + dx) * m + wrap(cy + dy)) * m + wrap(cz + dz);
+                            for (int i = begin; i < end; ++i)
+                                pairs(i, cellStart_[d], cellStart_[d + 1]);
+                        }
+            }
+    }
+}
+
+RadialDistribution RdfAccumulator::result() const {
+    if (frames_ < 1) throw std::invalid_argument("g(r): no frames");
+    const double volume = length_ * length_ * length_;
+    const double pairs = 0.5 * bodies_ * (bodies_ - 1.0);
+    RadialDistribution rdf;
+    rdf.binWidth = binWidth_;
+    rdf.partnerDensity = (bodies_ - 1.0) / volume;
+    std::vector<double> sums(blocks_);
+    for (int k = 0; k < bins_; ++k) {
+        const double ideal = pairs * shellVolume(k * binWidth_, (k + 1) * binWidth_) / volume;
+        for (int b = 0; b < blocks_; ++b)
+            sums[b] = histogram_[b][k] / ideal;
+        const Estimate e = blockRatio(sums, framesInBlock_);
+        rdf.r.push_back((k + 0.5) * binWidth_);
+        rdf.g.push_back(e.mean);
+        rdf.err.push_back(e.err);
+    }
+    return rdf;
+}
+
+std::size_t RdfAccumulator::bytes() const {
+    return sizeof(double) * (std::size_t(blocks_) * bins_ + 3 * x_.size()) +
+           sizeof(int) * (cellOf_.size() + cellStart_.size());
+}
+
+} // namespace terrace::analysis

@@ -1,0 +1,47 @@
+#pragma once
+// g(r) accumulated frame by frame as a run goes, in memory independent of the run's length and
+// time O(N) per frame: pairs are found through a cell list of cells at least r_max wide (each
+// body meets the bodies of its own and the 26 neighbouring cells; the 13 forward neighbours and
+// the cell itself give every pair once). Boxes fewer than three cells wide are counted over all
+// pairs, as rdf.hpp does. Normalisation and block errors are those of rdf.hpp: the frames are
+// cut into B contiguous blocks of a planned number of frames, g per block, the spread of the
+// blocks gives the error. With r_max = L/2, one frame every sample and the planned number of
+// frames all seen, the histogram is rdf.hpp's, count for count.
+#include "analysis/rdf.hpp"
+#include "core/snapshot.hpp"
+#include <cstddef>
+#include <vector>
+
+namespace terrace::analysis {
+
+class RdfAccumulator {
+public:
+    /// bins of width binWidth (Å) up to rMax (Å, ≤ L/2); `plannedFrames` frames cut into
+    /// `blocks` contiguous blocks (frames beyond the plan join the last block).
+    RdfAccumulator(int bodies, double boxLength, double binWidth, double rMax, long plannedFrames,
+                   int blocks);
+
+    void add(const Snapshot& frame);
+    long frames() const { return frames_; }
+    /// g(r) of the frames added so far; blocks that received no frame do not count.
+    RadialDistribution result() const;
+    double rMax() const { return binWidth_ * bins_; }
+    /// Heap memory held, bytes.
+    std::size_t bytes() const;
+
+private:
+    void countAllPairs(std::vector<double>& histogram);
+    void countByCells(std::vector<double>& histogram);
+
+    int bodies_, bins_, blocks_, block_ = 0;
+    double length_, binWidth_;
+    long plannedFrames_, frames_ = 0;
+    int cellsPerSide_;                           // < 3: all pairs
+    std::vector<std::vector<double>> histogram_; // [block][bin]
+    std::vector<double> framesInBlock_;
+    // Scratch, reused frame after frame: wrapped coordinates sorted by cell, cell starts.
+    std::vector<double> x_, y_, z_;
+    std::vector<int> cellOf_, cellStart_;
+};
+
+} // namespace terrace::analysis

@@ -1,0 +1,127 @@
+#include "analysis/run_analysis.hpp"
+#include "analysis/correlations.hpp"
+#include "analysis/csv.hpp"
+#include "analysis/dynamic_correlations.hpp"
+#include "analysis/rdf_accumulator.hpp"
+#include "analysis/streaming_correlations.hpp"
+#include "core/output_file.hpp"
+#include "core/units.hpp"
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace terrace::analysis {
+
+namespace {
+
+/// g(r) far from a body should be 1: averaged over the outer fifth of its range.
+constexpr double largeRFraction = 0.8;
+
+} // namespace
+
+RunAnalysis::RunAnalysis(int bodies, double boxLength, double sampleIntervalPs, long plannedSamples,
+                         const StreamingOptions& options)
+    : options_(options), bodies_(bodies), planned_(plannedSamples), dtPs_(sampleIntervalPs),
+      boxLength_(boxLength) {
+    if (plannedSamples < 4) throw std::invalid_argument("analysis: need at least 4 samples");
+    if (bodies < 2) throw std::invalid_argument("analysis: need at least 2 bodies");
+    if (options.blocks < 2)
+        throw std::invalid_argument("analysis: need at least 2 blocks for error bars");
+    if (options.rdfEvery < 1) throw std::invalid_argument("analysis: rdf_every must be ≥ 1");
+    if (options.maxLagPs < 0.0 || !std::isfinite(options.maxLagPs))
+        throw std::invalid_argument("analysis: max_lag_ps must be ≥ 0 (0: half the span)");
+    // A short run still gets its files: fewer blocks (at least two samples each).
+    blocks_ = static_cast<int>(std::min<long>(options.blocks, plannedSamples / 2));
+    const int samples = static_cast<int>(std::min<long>(plannedSamples, 1L << 30));
+    StreamingCorrelationPlan plan;
+    plan.samples = plannedSamples;
+    plan.blocks = blocks_;
+    plan.maxLag = lagFor(options.maxLagPs, sampleIntervalPs, samples, blocks_);
+    plan.lagsPerLevel = options.lagsPerLevel;
+    plan.followBodies = options.followBodies;
+    correlations_ = std::make_unique<StreamingCorrelations>(bodies, sampleIntervalPs, plan);
+    const double rMax = options.rdfMaxAngstrom > 0.0
+                            ? std::min(options.rdfMaxAngstrom, 0.5 * boxLength)
+                            : 0.5 * boxLength;
+    const long frames = (plannedSamples + options.rdfEvery - 1) / options.rdfEvery;
+    rdf_ = std::make_unique<RdfAccumulator>(bodies, boxLength, options.rdfBinAngstrom, rMax, frames,
+                                            static_cast<int>(std::min<long>(blocks_, frames)));
+}
+
+RunAnalysis::~RunAnalysis() = default;
+
+void RunAnalysis::add(const Snapshot& sample) {
+    if (sample.boxLength != boxLength_)
+        throw std::invalid_argument("analysis: the box length must not change");
+    correlations_->add(sample);
+    if (samples_ % options_.rdfEvery == 0) rdf_->add(sample);
+    ++samples_;
+}
+
+nlohmann::json RunAnalysis::write(const std::filesystem::path& dir) const {
+    if (samples_ < 4) throw std::invalid_argument("analysis: need at least 4 samples");
+    const RadialDistribution rdf = rdf_->result();
+    double v2 = 0.0;
+    const SampledCurve vacf = correlations_->velocity(&v2);
+    const bool rotating = correlations_->rotating();
+    OrientationalCorrelation oacf;
+    if (rotating) oacf = correlations_->orientation();
+    const SampledCurve msd = correlations_->displacement();
+    const Diffusion d = diffusionFromMsd(msd);
+    const Diffusion gk = greenKuboDiffusion(vacf, v2);
+
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throwIoError("create the directory", dir, ec.value());
+    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
+    if (rotating)
+        writeCsv(dir / "oacf.csv",
+                 {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
+                  {oacf.c1.tPs, oacf.c1.value, oacf.c1.err, oacf.c2.value, oacf.c2.err}});
+    else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
+        throwIoError("remove", dir / "oacf.csv", ec.value());
+    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+
+    const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
+    nlohmann::json rdfEntry = detail::rdfSummary(rdf, largeRFraction * rdf_->rMax());
+    rdfEntry["r_max_angstrom"] = rdf_->rMax();
+    rdfEntry["frames"] = rdf_->frames();
+    rdfEntry["every_samples"] = options_.rdfEvery;
+    nlohmann::json summary{
+        {"samples", samples_},
+        {"samples_planned", planned_},
+        {"bodies", bodies_},
+        {"sample_interval_ps", dtPs_},
+        {"blocks", blocks_},
+        {"blocks_requested", options_.blocks},
+        {"msd_blocks_of_bodies", msd.blocks},
+        {"max_lag_ps", vacf.tPs.back()},
+        {"lags", vacf.tPs.size()},
+        {"lags_per_level", options_.lagsPerLevel},
+        {"lag_levels", correlations_->levels()},
+        {"followed_bodies", correlations_->followed()},
+        {"memory_bytes", bytes()},
+        {"rdf", rdfEntry},
+        {"vacf", {{"c0", vacf.value.front()}, {"mean_square_velocity_angstrom2_per_ps2", v2ps}}}};
+    if (rotating)
+        summary["oacf"] = {{"c1_0", oacf.c1.value.front()}, {"c2_0", oacf.c2.value.front()}};
+    else
+        summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
+    const auto orNull = [](double x) {
+        return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
+    };
+    summary["diffusion"] = {{"einstein_angstrom2_per_ps", orNull(d.coefficient)},
+                            {"einstein_err", orNull(d.err)},
+                            {"fit_from_ps", d.fromPs},
+                            {"fit_to_ps", d.toPs},
+                            {"green_kubo_angstrom2_per_ps", orNull(gk.coefficient)},
+                            {"green_kubo_err", orNull(gk.err)}};
+    return summary;
+}
+
+std::size_t RunAnalysis::bytes() const {
+    return rdf_->bytes() + correlations_->bytes();
+}
+
+} // namespace terrace::analysis

@@ -1,0 +1,62 @@
+#pragma once
+// The analysis of a run, accumulated sample by sample as the run goes (either engine, and
+// `terrace analyse` on a trajectory), in memory that does not grow with the run's length:
+//
+//   g(r)              rdf_accumulator.hpp: a cell list out to r_max, O(N) per frame, one frame
+//                     every `rdfEvery` samples
+//   VACF, OACF, MSD   streaming_correlations.hpp: multiple-tau lags up to maxLag, following at
+//                     most `followBodies` bodies
+//
+// It writes the files and summary entries of correlations.hpp (rdf.csv, vacf.csv, oacf.csv,
+// msd.csv; D by Einstein and Green–Kubo, each with its block error). The blocks of time origins
+// and of g(r) frames are laid out over the planned number of samples, as the post-hoc analysis
+// lays them over the samples it is given: a run that reaches its planned length gets the same
+// blocks. A run stopped early is analysed over the samples it has, its last blocks short or empty.
+#include "core/snapshot.hpp"
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+namespace terrace::analysis {
+
+class RdfAccumulator;
+class StreamingCorrelations;
+
+struct StreamingOptions {
+    int blocks = 8;
+    double maxLagPs = 0.0;        // 0: half the planned span
+    double rdfBinAngstrom = 0.05; // Å
+    double rdfMaxAngstrom = 0.0;  // Å, at most L/2; 0: L/2
+    int rdfEvery = 1;             // samples between g(r) frames
+    int followBodies = 4096;      // bodies the time correlations follow; 0: all
+    int lagsPerLevel = 16;        // p of the multiple-tau grid
+};
+
+class RunAnalysis {
+public:
+    /// plannedSamples ≥ 4 (fewer: nothing to analyse, do not build one).
+    RunAnalysis(int bodies, double boxLength, double sampleIntervalPs, long plannedSamples,
+                const StreamingOptions& options);
+    ~RunAnalysis();
+    RunAnalysis(const RunAnalysis&) = delete;
+    RunAnalysis& operator=(const RunAnalysis&) = delete;
+
+    void add(const Snapshot& sample);
+    long samples() const { return samples_; }
+    /// Writes the CSVs into dir (created if needed) and returns the summary entries; needs at
+    /// least 4 samples (std::invalid_argument). Everything is computed before anything is written.
+    nlohmann::json write(const std::filesystem::path& dir) const;
+    /// Heap memory held by the accumulators, bytes.
+    std::size_t bytes() const;
+
+private:
+    StreamingOptions options_;
+    int blocks_, bodies_;
+    long planned_, samples_ = 0;
+    double dtPs_, boxLength_;
+    std::unique_ptr<RdfAccumulator> rdf_;
+    std::unique_ptr<StreamingCorrelations> correlations_;
+};
+
+} // namespace terrace::analysis

@@ -1,0 +1,92 @@
+#pragma once
+// VACF, OACF and MSD accumulated sample by sample as a run goes, on a multiple-tau lag grid, so
+// that memory and time per sample grow only with the logarithm of the longest lag, never with
+// the run's length:
+//
+//   level 0   the last p samples; lags 0, 1, …, p−1                     (every time origin)
+//   level l   every 2^l-th sample, the last p of them; lags j·2^l, j = p/2 … p−1
+//             (time origins every 2^l samples)
+//
+// The lag grid is that of the multiple-tau correlator of J. Ramírez, S. K. Sukumaran,
+// B. Vorselaars and A. E. Likhtman, J. Chem. Phys. 133, 154103 (2010), but the coarser levels
+// keep every 2^l-th sample (decimation) instead of the mean of 2^l samples. Why: averaging
+// biases every quadratic observable — for the MSD of a diffusing body by −2D·2^l per level, up to
+// 1/(3j) ≈ 4 % of the value at p = 16 — while decimation leaves each correlation an exact sum
+// over a subset of the time origins: unbiased, equal within round-off to the post-hoc sums
+// (dynamic_correlations.hpp) at lags below p, and within their error bars beyond, with fewer
+// origins at long lags where neighbouring origins carry little new information anyway.
+//
+// Sums per lag: Σ_i v_i(t0)·v_i(t0+k), Σ_i s_i(t0)·s_i(t0+k), Σ_i (s_i(t0)·s_i(t0+k))² (the
+// P₂ correlation, as Σ_ab Q_ab(0) Q_ab(t) of dynamic_correlations.hpp) and Σ_i |r_i(t0+k) −
+// r_i(t0)|² over the followed bodies. Error bars as in dynamic_correlations.hpp: the time origins
+// fall into 4B fine blocks of the planned run (so that a run of the planned length gives the same
+// blocks as the post-hoc analysis of its samples), regrouped lag by lag into B coarse blocks; the
+// MSD's B blocks are groups of bodies.
+//
+// Large systems: the time correlations follow at most `followBodies` bodies, evenly spread over
+// the index range (all when N is no larger). Averages over 4096 bodies and every origin leave the
+// statistical error far below that of the time origins; the memory stays fixed as N grows.
+// Memory: levels × p × 9 doubles per followed body.
+#include "analysis/dynamic_correlations.hpp"
+#include "core/snapshot.hpp"
+#include <cstddef>
+#include <vector>
+
+namespace terrace::analysis {
+
+struct StreamingCorrelationPlan {
+    long samples = 0;      // T planned (the lags and fine blocks are set by it)
+    int maxLag = 0;        // samples, ≤ largestLag(T, blocks)
+    int blocks = 8;        // B
+    int lagsPerLevel = 16; // p, even, ≥ 4
+    int followBodies = 0;  // 0: all
+};
+
+class StreamingCorrelations {
+public:
+    StreamingCorrelations(int bodies, double sampleIntervalPs,
+                          const StreamingCorrelationPlan& plan);
+
+    /// The next sample (time must follow the previous one by the sample interval).
+    void add(const Snapshot& frame);
+    long samples() const { return seen_; }
+    int followed() const { return static_cast<int>(follow_.size()); }
+    int levels() const { return levels_; }
+    /// The lags (in samples) of the grid, up to the plan's maxLag.
+    const std::vector<int>& lags() const { return lag_; }
+
+    /// Some body's axis changed since the first sample (orientational curves mean something).
+    bool rotating() const { return rotating_; }
+    /// Curves over the grid's lags that have origins; throws std::invalid_argument with fewer
+    /// than two samples or with all velocities zero.
+    SampledCurve velocity(double* meanSquareVelocity = nullptr) const;
+    OrientationalCorrelation orientation() const;
+    SampledCurve displacement() const;
+    std::size_t bytes() const;
+
+private:
+    int fineBlockOf(long sample) const;
+    void correlate(int level, int slot, int originSlot, int lagIndex);
+    SampledCurve emptyCurve() const;
+    int usedLags() const;
+
+    int bodies_, p_, levels_ = 1, fine_, blocks_, groups_;
+    long planned_;
+    double dtPs_;
+    std::vector<int> follow_;                // followed body indices
+    std::vector<int> lag_, lagLevel_, lagJ_; // grid
+    std::vector<int> firstLagOfLevel_;       // index into the grid
+    // ring_[level]: p slots × 9 rows × M followed bodies, structure of arrays per slot
+    // (vx vy vz sx sy sz rx ry rz), so the sums over bodies stream through memory.
+    std::vector<std::vector<double>> ring_;
+    std::vector<std::vector<int>> slotFine_; // fine block of the sample in each slot
+    std::vector<std::vector<double>> vv_, ss_, s2_, origins_; // [fine block][lag]
+    std::vector<std::vector<double>> msd_;                    // [group][lag]
+    std::vector<double> msdOrigins_;                          // [lag]
+    std::vector<Vec3> firstAxis_;
+    double firstTime_ = 0.0, dtUnits_ = 0.0;
+    long seen_ = 0;
+    bool rotating_ = false;
+};
+
+} // namespace terrace::analysis

@@ -1,0 +1,259 @@
+// The streaming analysis against the post-hoc one it replaces in runs: g(r) count for count, the
+// time correlations within round-off on the lags where both use every origin, exact sums over the
+// origins they use on the coarser levels, and agreement within error of what both estimate.
+#include "analysis/correlations.hpp"
+#include "analysis/csv.hpp"
+#include "analysis/dynamic_correlations.hpp"
+#include "analysis/rdf.hpp"
+#include "analysis/rdf_accumulator.hpp"
+#include "analysis/run_analysis.hpp"
+#include "analysis/streaming_correlations.hpp"
+#include "core/units.hpp"
+#include "synthetic_samples.hpp"
+#include <cmath>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+using namespace terrace;
+using namespace terrace::analysis;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Sums of the same terms in another order.
+constexpr double roundOff = 1e-12;
+
+bool near(double a, double b, double relative) {
+    return std::abs(a - b) <= relative * std::max({1.0, std::abs(a), std::abs(b)});
+}
+
+StreamingCorrelations fed(const std::vector<Snapshot>& samples, int maxLag, int blocks,
+                          int lagsPerLevel = 16, int follow = 0) {
+    StreamingCorrelationPlan plan;
+    plan.samples = static_cast<long>(samples.size());
+    plan.maxLag = maxLag;
+    plan.blocks = blocks;
+    plan.lagsPerLevel = lagsPerLevel;
+    plan.followBodies = follow;
+    StreamingCorrelations c(samples.front().size(), sampleIntervalPs(samples), plan);
+    for (const auto& s : samples)
+        c.add(s);
+    return c;
+}
+
+struct ScratchDirectory {
+    fs::path path;
+    explicit ScratchDirectory(const std::string& name)
+        : path(fs::temp_directory_path() /
+               ("terrace_streaming_" + name + "_" + std::to_string(::getpid()))) {
+        fs::remove_all(path);
+    }
+    ~ScratchDirectory() { fs::remove_all(path); }
+};
+
+} // namespace
+
+TEST(RdfAccumulator, OutToHalfTheBoxCountsWhatThePostHocAnalysisCounts) {
+    const auto samples = synthetic::freeRotors(40, 300, 0.1, 20.0, 4.2, 18.0, 1.154, 3);
+    const RadialDistribution posthoc = radialDistribution(samples, 0.1, 8);
+    RdfAccumulator acc(300, 20.0, 0.1, 10.0, 40, 8);
+    for (const auto& s : samples)
+        acc.add(s);
+    const RadialDistribution streamed = acc.result();
+    ASSERT_EQ(streamed.r.size(), posthoc.r.size());
+    for (std::size_t k = 0; k < posthoc.r.size(); ++k) {
+        EXPECT_EQ(streamed.g[k], posthoc.g[k]) << "bin " << k;
+        EXPECT_EQ(streamed.err[k], posthoc.err[k]) << "bin " << k;
+    }
+}
+
+TEST(RdfAccumulator, CellListFindsEveryPairWithinItsRange) {
+    // r_max = L/5: five cells per side, so pairs are found through neighbouring cells only;
+    // every bin must hold what the all-pairs count puts there.
+    const auto samples = synthetic::freeRotors(12, 2000, 0.1, 30.0, 4.2, 18.0, 1.154, 5);
+    const RadialDistribution all = radialDistribution(samples, 0.05, 4);
+    RdfAccumulator acc(2000, 30.0, 0.05, 6.0, 12, 4);
+    for (const auto& s : samples)
+        acc.add(s);
+    const RadialDistribution near6 = acc.result();
+    ASSERT_EQ(near6.r.size(), 120u);
+    EXPECT_DOUBLE_EQ(acc.rMax(), 6.0);
+    for (std::size_t k = 0; k < near6.r.size(); ++k) {
+        EXPECT_TRUE(near(near6.g[k], all.g[k], roundOff)) << "bin " << k;
+        EXPECT_TRUE(near(near6.err[k], all.err[k], 1e-9)) << "bin " << k;
+    }
+}
+
+TEST(RdfAccumulator, FramesBeyondThoseCountedLeaveLaterBlocksOut) {
+    const auto samples = synthetic::freeRotors(8, 100, 0.1, 15.0, 4.2, 18.0, 1.154, 7);
+    RdfAccumulator acc(100, 15.0, 0.1, 7.5, 16, 4); // planned 16 frames, 8 arrive: 2 blocks
+    for (const auto& s : samples)
+        acc.add(s);
+    const RadialDistribution part = acc.result();
+    const RadialDistribution posthoc = radialDistribution(samples, 0.1, 2);
+    for (std::size_t k = 0; k < part.r.size(); ++k)
+        EXPECT_TRUE(near(part.g[k], posthoc.g[k], roundOff)) << "bin " << k;
+    EXPECT_THROW(RdfAccumulator(100, 15.0, 0.1, 7.6, 16, 4), std::invalid_argument);
+    EXPECT_THROW(RdfAccumulator(100, 15.0, 0.0, 7.0, 16, 4), std::invalid_argument);
+    EXPECT_THROW(RdfAccumulator(100, 15.0, 0.1, 7.0, 3, 4), std::invalid_argument);
+}
+
+TEST(StreamingCorrelations, LagsBelowTheFirstLevelMatchThePostHocCurvesToRoundOff) {
+    const auto samples = synthetic::freeRotors(120, 50, 0.05, 25.0, 4.2, 18.0, 1.154, 21);
+    const int maxLag = 59, blocks = 4;
+    const auto streamed = fed(samples, maxLag, blocks);
+    double v2a = 0.0, v2b = 0.0;
+    const SampledCurve vacf = streamed.velocity(&v2a),
+                       vacfPost = velocityAutocorrelation(samples, maxLag, blocks, &v2b);
+    const auto oacf = streamed.orientation();
+    const auto oacfPost = orientationalAutocorrelation(samples, maxLag, blocks);
+    const SampledCurve msd = streamed.displacement(),
+                       msdPost = meanSquaredDisplacement(samples, maxLag, blocks);
+    EXPECT_TRUE(near(v2a, v2b, roundOff));
+    ASSERT_TRUE(streamed.rotating());
+    for (int k = 0; k < 16; ++k) {
+        EXPECT_DOUBLE_EQ(vacf.tPs[k], vacfPost.tPs[k]);
+        EXPECT_TRUE(near(vacf.value[k], vacfPost.value[k], roundOff)) << "lag " << k;
+        EXPECT_TRUE(near(vacf.err[k], vacfPost.err[k], 1e-9)) << "lag " << k;
+        EXPECT_TRUE(near(oacf.c1.value[k], oacfPost.c1.value[k], roundOff)) << "lag " << k;
+        EXPECT_TRUE(near(oacf.c2.value[k], oacfPost.c2.value[k], roundOff)) << "lag " << k;
+        EXPECT_TRUE(near(oacf.c2.err[k], oacfPost.c2.err[k], 1e-9)) << "lag " << k;
+        // The post-hoc MSD goes through FFTs of positions ~25 Å: round-off ~1e-13 Å² of 25².
+        EXPECT_NEAR(msd.value[k], msdPost.value[k], 1e-9) << "lag " << k;
+    }
+}
+
+TEST(StreamingCorrelations, CoarseLevelsAreExactSumsOverEveryTwoToTheLthOrigin) {
+    const auto samples = synthetic::freeRotors(200, 30, 0.05, 25.0, 4.2, 18.0, 1.154, 8);
+    const int p = 8, maxLag = 99;
+    const auto streamed = fed(samples, maxLag, 4, p);
+    const auto oacf = streamed.orientation();
+    const SampledCurve msd = streamed.displacement();
+    const auto& lags = streamed.lags();
+    ASSERT_EQ(lags.back(), 96); // level 4: j·16, j = 4 … 7 up to 99
+    ASSERT_EQ(oacf.c1.tPs.size(), lags.size());
+    for (std::size_t g = 0; g < lags.size(); ++g) {
+        const int k = lags[g];
+        int level = 0;
+        while (k >= (p << level))
+            ++level;
+        const int stride = 1 << level;
+        double c1 = 0.0, d2 = 0.0, count = 0.0;
+        for (int t0 = 0; t0 + k < 200; t0 += stride) {
+            for (int i = 0; i < 30; ++i) {
+                c1 += samples[t0].axis[i].dot(samples[t0 + k].axis[i]);
+                d2 += (samples[t0 + k].position[i] - samples[t0].position[i]).squaredNorm();
+            }
+            count += 30.0;
+        }
+        EXPECT_TRUE(near(oacf.c1.value[g], c1 / count, roundOff)) << "lag " << k;
+        EXPECT_TRUE(near(msd.value[g], d2 / count, roundOff)) << "lag " << k;
+    }
+}
+
+TEST(StreamingCorrelations, DiffusionAgreesWithThePostHocEstimateWithinError) {
+    // Brownian walkers, D = 0.5 Å² per time unit: the Einstein fit of both analyses must agree
+    // with each other and with D within their block errors.
+    const double d = 0.5, h = 0.1;
+    const auto samples = synthetic::randomWalk(800, 200, h, 40.0, d, 13);
+    const int blocks = 8, maxLag = lagFor(0.0, units::toPs(h), 800, blocks);
+    const auto streamed = fed(samples, maxLag, blocks);
+    const Diffusion a = diffusionFromMsd(streamed.displacement());
+    const Diffusion b = diffusionFromMsd(meanSquaredDisplacement(samples, maxLag, blocks));
+    const double expected = d / units::psPerTimeUnit; // Å²/ps
+    EXPECT_GT(a.err, 0.0);
+    EXPECT_NEAR(a.coefficient, expected, 4.0 * a.err);
+    EXPECT_NEAR(a.coefficient, b.coefficient, 4.0 * std::hypot(a.err, b.err));
+}
+
+TEST(StreamingCorrelations, GreenKuboDiffusionHasAnErrorBarThatCoversTheKnownValue) {
+    // Ornstein–Uhlenbeck velocities: ∫ c dt = 1/γ, so D = kT/(mγ) exactly.
+    const double kT = 2.0, mass = 18.0, gamma = 2.0, h = 0.05;
+    const auto samples = synthetic::ornsteinUhlenbeck(2000, 100, h, 30.0, kT, mass, gamma, 17);
+    const int blocks = 8;
+    const auto streamed = fed(samples, 200, blocks);
+    double v2 = 0.0;
+    const SampledCurve vacf = streamed.velocity(&v2);
+    const Diffusion gk = greenKuboDiffusion(vacf, v2);
+    const double expected = 3.0 * kT / mass /
+                            (gamma * units::psPerTimeUnit * units::psPerTimeUnit) *
+                            units::psPerTimeUnit / 3.0; // ⟨v²⟩/3 · 1/γ in Å²/ps
+    EXPECT_GT(gk.err, 0.0);
+    EXPECT_LT(gk.err, 0.2 * expected);
+    EXPECT_NEAR(gk.coefficient, expected, 4.0 * gk.err);
+}
+
+TEST(StreamingCorrelations, MemoryDoesNotGrowWithTheSamplesAddedAndFollowsTheCap) {
+    const auto samples = synthetic::freeRotors(300, 500, 0.05, 25.0, 4.2, 18.0, 1.154, 2);
+    StreamingCorrelationPlan plan{300, 100, 4, 16, 64};
+    StreamingCorrelations c(500, sampleIntervalPs(samples), plan);
+    const std::size_t before = c.bytes();
+    for (const auto& s : samples)
+        c.add(s);
+    EXPECT_EQ(c.bytes(), before);
+    EXPECT_EQ(c.followed(), 64);
+    StreamingCorrelationPlan all{300, 100, 4, 16, 0};
+    EXPECT_GT(StreamingCorrelations(500, 0.005, all).bytes(), 6 * before);
+}
+
+TEST(StreamingCorrelations, RefusesUnequalSpacingAndBadPlans) {
+    auto samples = synthetic::freeRotors(20, 10, 0.05, 25.0, 4.2, 18.0, 1.154, 2);
+    StreamingCorrelationPlan plan{20, 5, 2, 16, 0};
+    StreamingCorrelations c(10, sampleIntervalPs(samples), plan);
+    c.add(samples[0]);
+    EXPECT_THROW(c.add(samples[2]), std::invalid_argument);
+    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 5, 2, 7, 0}),
+                 std::invalid_argument);
+    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 5, 11, 16, 0}),
+                 std::invalid_argument);
+    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 20, 2, 16, 0}),
+                 std::invalid_argument);
+}
+
+TEST(RunAnalysis, WritesTheFilesOfThePostHocAnalysisWithTheSameNumbersAtShortLags) {
+    const auto samples = synthetic::freeRotors(64, 200, 0.1, 25.0, 4.2, 18.0, 1.154, 11);
+    const ScratchDirectory a("stream"), b("posthoc");
+    StreamingOptions options;
+    options.rdfBinAngstrom = 0.1;
+    options.rdfMaxAngstrom = 0.0; // L/2, as the post-hoc analysis
+    RunAnalysis run(200, 25.0, sampleIntervalPs(samples), 64, options);
+    for (const auto& s : samples)
+        run.add(s);
+    const auto streamed = run.write(a.path);
+    const auto posthoc = writeCorrelations(samples, b.path, {8, 0.0, 0.1});
+    for (const char* file : {"rdf.csv", "vacf.csv", "oacf.csv", "msd.csv"}) {
+        const CsvTable x = readCsv(a.path / file), y = readCsv(b.path / file);
+        ASSERT_EQ(x.header, y.header) << file;
+        const int rows = std::string(file) == "rdf.csv" ? y.rows() : 16;
+        ASSERT_GE(x.rows(), rows) << file;
+        for (std::size_t c = 0; c < x.columns.size(); ++c)
+            for (int r = 0; r < rows; ++r)
+                EXPECT_NEAR(x.columns[c][r], y.columns[c][r],
+                            1e-9 * std::max(1.0, std::abs(y.columns[c][r])))
+                    << file << " column " << c << " row " << r;
+    }
+    EXPECT_EQ(streamed["samples"], 64);
+    EXPECT_EQ(streamed["rdf"]["g_large_r"], posthoc["rdf"]["g_large_r"]);
+    EXPECT_TRUE(streamed["diffusion"]["green_kubo_err"].is_number());
+    // The grid's last lag at or before the post-hoc one (lags 0 … 15, then 16, 18, … 30).
+    EXPECT_NEAR(streamed["max_lag_ps"].get<double>(), 0.30, 1e-12);
+    EXPECT_NEAR(posthoc["max_lag_ps"].get<double>(), 0.31, 1e-12);
+}
+
+TEST(RunAnalysis, ARunStoppedEarlyIsAnalysedOverTheSamplesItHas) {
+    const auto samples = synthetic::freeRotors(30, 50, 0.1, 25.0, 4.2, 18.0, 1.154, 4);
+    const ScratchDirectory a("early");
+    RunAnalysis run(50, 25.0, sampleIntervalPs(samples), 1000, StreamingOptions{});
+    for (int k = 0; k < 3; ++k)
+        run.add(samples[k]);
+    EXPECT_THROW(run.write(a.path), std::invalid_argument); // three samples: nothing to say
+    for (int k = 3; k < 30; ++k)
+        run.add(samples[k]);
+    const auto summary = run.write(a.path);
+    EXPECT_EQ(summary["samples"], 30);
+    EXPECT_EQ(summary["samples_planned"], 1000);
+    const CsvTable vacf = readCsv(a.path / "vacf.csv");
+    EXPECT_LE(vacf.columns[0].back(), 29 * 0.01 + 1e-12); // only lags that have origins
+    for (double c : vacf.columns[1])
+        EXPECT_TRUE(std::isfinite(c));
+}
