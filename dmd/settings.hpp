@@ -8,6 +8,8 @@
 //   horizon_fs    virtual-event horizon and largest search step, fs, >= limits::minHorizonFs
 //   hold_screen   whether pairs are screened by their hold time before a search (default true;
 //                 false only to measure what the screen saves: it changes no event)
+//   sort_bodies   whether the engine numbers the bodies in the Morton order of their cells
+//                 (default true; false only to check that the order changes no observable)
 #include "core/scene.hpp"
 #include "core/units.hpp"
 #include "dmd/terrace_design.hpp"
@@ -26,6 +28,7 @@ struct DmdSettings {
     bool eager = false;    // eager invalidation: erase a body's queued events at its event
     double horizon = 0.04; // time units
     bool holdScreen = true;
+    bool sortBodies = true; // bodies numbered in the Morton order of their cells inside the engine
 };
 
 template <PairPotential P>
@@ -71,6 +74,7 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
                          ": a shorter horizon only multiplies virtual events");
     s.horizon = units::fromFs(d.horizon_fs);
     s.holdScreen = d.hold_screen;
+    s.sortBodies = d.sort_bodies;
     s.rm = interactionRange(s.levels, potential);
     if (!(s.rm > 0.0))
         throw SceneError("dmd.dV: no level bounding terrace 0 is ever reached (r_m = 0)");
