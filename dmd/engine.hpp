@@ -102,7 +102,8 @@ public:
 private:
     Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume)
         : Engine(initial,
-                 readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length),
+                 readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length,
+                                 initial.size()),
                  scene, resume) {}
     // The settings are read before anything is built: the prediction base, built first, needs them.
     Engine(System<K, P>& initial, DmdSettings settings, const Scene& scene,

@@ -3,7 +3,7 @@
 // "Interfaces", "Bad input"): every bad value is a SceneError naming its key.
 //   dV            terrace height in units of kT (levels (n − ½) dV kT), > 0
 //   levels        explicit levels in kJ/mol (override dV when non-empty)
-//   queue         heap | bpq
+//   queue         auto | heap | bpq (auto: bpq below autoHeapFromBodies bodies, heap from there on)
 //   invalidation  lazy | eager
 //   horizon_fs    virtual-event horizon and largest search step, fs, >= limits::minHorizonFs
 //   hold_screen   whether pairs are screened by their hold time before a search (default true;
@@ -21,6 +21,13 @@ namespace terrace::dmd {
 
 enum class QueueKind { Heap, BoundedPriority };
 
+/// dmd.queue = auto takes the binary heap from this many bodies on, the bounded priority queue
+/// below: on the dense rods the bounded queue was 3-8 % faster at N 512 to 32 768 and the heap
+/// 10 % faster at 262 144, 35-50 % at 10^6 (docs/PERFORMANCE.md "Where the time goes"), where the
+/// bounded queue's bins, lists threaded through nodes scattered over the pool, miss the cache at
+/// every push and every bin loaded.
+inline constexpr int autoHeapFromBodies = 100000;
+
 struct DmdSettings {
     TerraceLevels levels;
     double rm = 0.0; // interaction range, Å
@@ -31,8 +38,10 @@ struct DmdSettings {
     bool sortBodies = true; // bodies numbered in the Morton order of their cells inside the engine
 };
 
+/// bodies: the system's size, which dmd.queue = auto chooses by (0: not known, bpq).
 template <PairPotential P>
-DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, double boxLength) {
+DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, double boxLength,
+                            int bodies = 0) {
     DmdSettings s;
     if (!d.levels.empty()) {
         s.levels = TerraceLevels::explicitLevels(d.levels, d.values);
@@ -55,12 +64,15 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
         s.levels = TerraceLevels::uniform(d.dV * kT);
         s.levels.checkMinimum(potential.minimumEnergy(), "dmd.dV");
     }
-    if (d.queue == "heap")
+    if (d.queue == "heap" || (d.queue == "auto" && bodies >= autoHeapFromBodies))
         s.queue = QueueKind::Heap;
+    else if (d.queue == "auto")
+        s.queue = QueueKind::BoundedPriority;
     else if (d.queue == "bpq")
         s.queue = QueueKind::BoundedPriority;
     else
-        throw SceneError("dmd.queue: must be \"heap\" or \"bpq\", got \"" + d.queue + "\"");
+        throw SceneError("dmd.queue: must be \"auto\", \"heap\" or \"bpq\", got \"" + d.queue +
+                         "\"");
     if (d.invalidation == "lazy")
         s.eager = false;
     else if (d.invalidation == "eager")

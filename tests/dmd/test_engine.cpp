@@ -115,6 +115,27 @@ TEST(Engine, HoldScreenChangesNoCollision) {
     EXPECT_EQ(count(searched, "searches_screened"), screenedAtStart);
 }
 
+// dmd.queue = auto takes the bounded queue below dmd::autoHeapFromBodies bodies and the heap from
+// there on; an explicit choice stands whatever the size. The engine reports the queue it took.
+TEST(Engine, AutoQueueChoosesByTheNumberOfBodies) {
+    Scene s = denseScene();
+    ASSERT_EQ(s.dmd.queue, "auto");
+    const auto potential = rodPotential(s);
+    const auto kindFor = [&](int bodies) {
+        return dmd::readDmdSettings(s.dmd, potential, s.kT(), s.boxLength(), bodies).queue;
+    };
+    EXPECT_EQ(kindFor(512), dmd::QueueKind::BoundedPriority);
+    EXPECT_EQ(kindFor(dmd::autoHeapFromBodies - 1), dmd::QueueKind::BoundedPriority);
+    EXPECT_EQ(kindFor(dmd::autoHeapFromBodies), dmd::QueueKind::Heap);
+    EXPECT_EQ(kindFor(1000000), dmd::QueueKind::Heap);
+    s.dmd.queue = "bpq";
+    EXPECT_EQ(kindFor(1000000), dmd::QueueKind::BoundedPriority);
+    s.dmd.queue = "heap";
+    EXPECT_EQ(kindFor(512), dmd::QueueKind::Heap);
+    const Scene small = denseScene();
+    EXPECT_EQ(RodEngine(rodSystem(small), small).statistics()["queue"], "bpq");
+}
+
 // Inside the engine the bodies are numbered in the Morton order of their cells (dmd.sort_bodies,
 // for memory locality); outside, they keep the scene's numbering. The order changes only which
 // pair is predicted first, and so which horizon each search draws: with and without it 512 dense
