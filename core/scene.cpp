@@ -494,7 +494,7 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     const auto& dmd = rd.section(j, "dmd");
     rd.onlyKeys(dmd, "dmd",
                 {"dV", "levels", "values", "terraces", "queue", "invalidation", "horizon_fs",
-                 "model", "hold_screen"});
+                 "model", "hold_screen", "sort_bodies"});
     s.dmd.model = rd.choice(dmd, "dmd", "model", s.dmd.model, {"smoothed", "bare"});
     s.dmd.dV = rd.number(dmd, "dmd", "dV", s.dmd.dV, 0.0, 1e6, true);
     if (dmd.contains("levels")) {
@@ -541,7 +541,7 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         if (!s.dmd.levels.empty() && !d.isDefault())
             rd.fail("dmd.terraces", "and dmd.levels both set the levels: give one of them");
     }
-    s.dmd.queue = rd.choice(dmd, "dmd", "queue", s.dmd.queue, {"heap", "bpq"});
+    s.dmd.queue = rd.choice(dmd, "dmd", "queue", s.dmd.queue, {"auto", "heap", "bpq"});
     s.dmd.invalidation =
         rd.choice(dmd, "dmd", "invalidation", s.dmd.invalidation, {"lazy", "eager"});
     s.dmd.horizon_fs = rd.number(dmd, "dmd", "horizon_fs", s.dmd.horizon_fs, 0.0, 1e6, true);
@@ -549,6 +549,11 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         if (!dmd["hold_screen"].is_boolean())
             rd.fail("dmd.hold_screen", "must be true or false, got " + dmd["hold_screen"].dump());
         s.dmd.hold_screen = dmd["hold_screen"].get<bool>();
+    }
+    if (dmd.contains("sort_bodies")) {
+        if (!dmd["sort_bodies"].is_boolean())
+            rd.fail("dmd.sort_bodies", "must be true or false, got " + dmd["sort_bodies"].dump());
+        s.dmd.sort_bodies = dmd["sort_bodies"].get<bool>();
     }
     if (s.dmd.horizon_fs < limits::minHorizonFs)
         rd.fail("dmd.horizon_fs",
@@ -823,6 +828,7 @@ json toJson(const Scene& s) {
     if (!s.dmd.values.empty()) j["dmd"]["values"] = s.dmd.values;
     // Written only when off, so that the resolved scenes of earlier runs are unchanged.
     if (!s.dmd.hold_screen) j["dmd"]["hold_screen"] = false;
+    if (!s.dmd.sort_bodies) j["dmd"]["sort_bodies"] = false;
     if (!s.dmd.terraces.isDefault())
         j["dmd"]["terraces"] = {{"levels", s.dmd.terraces.levels},
                                 {"values", s.dmd.terraces.values},

@@ -105,7 +105,13 @@ struct Scene {
             int n = 0;
             bool isDefault() const { return levels == "energy" && values == "midpoint" && n == 0; }
         } terraces;
-        std::string queue = "bpq";         // heap | bpq
+        // auto | heap | bpq: the calendar. auto takes G. Paul's bounded priority queue below
+        // dmd::autoHeapFromBodies (100 000) bodies and the binary heap from there on: measured on
+        // the dense rods, the bounded queue is 3-8 % faster at N 512 to 32 768, the heap 10 %
+        // at 262 144 and 35-50 % at 10^6, where the bounded queue's lists of scattered nodes miss
+        // the cache (docs/PERFORMANCE.md "Where the time goes"). Every choice gives the same
+        // trajectory.
+        std::string queue = "auto";
         std::string invalidation = "lazy"; // lazy | eager
         double horizon_fs = 4.0;           // virtual-event horizon and largest search step, >= 0.1
         // smoothed: terrace g(r)·U, the model SMD integrates (ΔV → 0 converges to SMD's model);
@@ -114,6 +120,10 @@ struct Scene {
         // Screen pairs by their hold time before searching (dmd/pair_prediction.hpp); off only
         // to measure what the screen saves: the events are the same either way.
         bool hold_screen = true;
+        // Number the bodies inside the engine in the Morton (Z-order) order of their cells, so
+        // that neighbours lie close in memory (dmd/engine.hpp); the bodies keep the scene's
+        // numbering outside it. Off only to check that the order changes no observable.
+        bool sort_bodies = true;
     } dmd;
 
     struct Smd {

@@ -11,6 +11,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 namespace terrace::dmd {
@@ -82,6 +83,13 @@ void heapify(std::vector<HeapEntry>& heap, Before before, Placed placed) {
 
 template <class E> class BinaryHeapQueue {
 public:
+    /// handles: whether erase() is to be used. Without it (the engine's lazy invalidation never
+    /// erases) the heap does not record each node's heap index: a sift then writes only the heap's
+    /// own contiguous entries, not a node of the pool at every level, which in a large calendar is
+    /// a cache miss per level. The order of the events is the same either way.
+    BinaryHeapQueue() = default;
+    explicit BinaryHeapQueue(bool handles) : handles_(handles) {}
+
     QueueHandle push(const E& e) {
         const std::uint32_t slot = pool_.acquire();
         Node& n = pool_[slot];
@@ -105,6 +113,7 @@ public:
     }
 
     bool erase(QueueHandle h) {
+        if (!handles_) throw std::logic_error("BinaryHeapQueue: erase without handles");
         if (!pool_.holds(h)) return false;
         detail::eraseAt(heap_, pool_[h.slot].heapIndex, before(), placed());
         pool_.release(h.slot);
@@ -155,13 +164,14 @@ private:
     }
     auto placed() {
         return [this](const detail::HeapEntry& entry, std::size_t i) {
-            pool_[entry.node].heapIndex = static_cast<std::uint32_t>(i);
+            if (handles_) pool_[entry.node].heapIndex = static_cast<std::uint32_t>(i);
         };
     }
 
     detail::SlotPool<Node, &Node::heapIndex> pool_; // heapIndex links free slots
     std::vector<detail::HeapEntry> heap_;
     std::uint64_t nextSequence_ = 0;
+    bool handles_ = true;
 };
 
 } // namespace terrace::dmd

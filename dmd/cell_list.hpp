@@ -37,6 +37,18 @@ public:
     }
 
     int cellsPerSide() const { return n_; }
+
+    /// The Morton (Z-order) code of the cell holding r (Å, any periodic image): the bits of its
+    /// three wrapped cell coordinates interleaved, so that cells close in space mostly get close
+    /// codes. Bodies numbered by it lie close in memory when they lie close in space.
+    std::uint64_t mortonCode(const Vec3& r) const {
+        std::uint64_t code = 0;
+        for (int a = 0; a < 3; ++a)
+            code |= spreadBits(static_cast<std::uint64_t>(
+                        wrap(static_cast<std::int64_t>(std::floor(r[a] / edge_)))))
+                    << (2 - a);
+        return code;
+    }
     double edge() const { return edge_; }
     bool single() const { return n_ == 1; }
 
@@ -126,6 +138,16 @@ public:
     }
 
 private:
+    /// The low 21 bits of x spread to every third bit (bit k to bit 3k).
+    static std::uint64_t spreadBits(std::uint64_t x) {
+        x &= 0x1fffff;
+        x = (x | x << 32) & 0x1f00000000ffffull;
+        x = (x | x << 16) & 0x1f0000ff0000ffull;
+        x = (x | x << 8) & 0x100f00f00f00f00full;
+        x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+        x = (x | x << 2) & 0x1249249249249249ull;
+        return x;
+    }
     int wrap(std::int64_t c) const { return static_cast<int>(((c % n_) + n_) % n_); }
     int index(std::int64_t x, std::int64_t y, std::int64_t z) const {
         return (wrap(x) * n_ + wrap(y)) * n_ + wrap(z);

@@ -102,7 +102,8 @@ public:
 private:
     Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume)
         : Engine(initial,
-                 readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length),
+                 readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length,
+                                 initial.size()),
                  scene, resume) {}
     // The settings are read before anything is built: the prediction base, built first, needs them.
     Engine(System<K, P>& initial, DmdSettings settings, const Scene& scene,
@@ -115,6 +116,7 @@ private:
           terraces_(sys_.size()), schedule_(sys_.size(), settings_.eager, settings_.horizon),
           listedBefore_(sys_.size(), 0), scanned_(sys_.size()) {
         checkBodies();
+        if (settings_.sortBodies) sortBodiesByCell();
         if (resume) resumeClocks(*resume);
         cacheOrbits();
         schedule_.openCalendar(settings_.queue, settings_.horizon, time_);
@@ -250,23 +252,38 @@ public:
     }
     /// Consecutive events at one instant tolerated before the clock counts as stopped.
     void setStallLimit(std::uint64_t n) { stallWatch_.setLimit(n); }
-    /// The terrace index the engine holds for the pair (i, j).
-    int terrace(int i, int j) const { return terraces_.get(i, j); }
+    /// The terrace index the engine holds for the pair (i, j) (the scene's numbering).
+    int terrace(int i, int j) const { return terraces_.get(engineIndex(i), engineIndex(j)); }
     /// Puts the pair (i, j) on terrace n whatever its U: bookkeeping corrupted on purpose, to test
     /// that the engine reports it.
-    void overrideTerrace(int i, int j, int n) { terraces_.set(i, j, n); }
+    void overrideTerrace(int i, int j, int n) { terraces_.set(engineIndex(i), engineIndex(j), n); }
+    /// The pair terraces and the lists, in the engine's numbering of the bodies (sceneIndex).
     const PairTerraces& pairTerraces() const { return terraces_; }
     const NeighbourLists& neighbourLists() const { return lists_; }
     int cellsPerSide() const { return cells_.cellsPerSide(); }
     const TerraceLevels& levels() const { return settings_.levels; }
     double interactionRange() const { return settings_.rm; }
     const EventCounts& counts() const { return counts_; }
-    /// All bodies brought to time(): the system as it is now.
+    /// All bodies brought to time(): the system as it is now, its bodies in the scene's order.
     System<K, P> synchronisedCopy() const {
         System<K, P> s = sys_;
-        for (int i = 0; i < s.size(); ++i)
-            freeMove<K>(s.bodies[i], s.body, time_ - schedule_.book(i).clock);
+        for (int i = 0; i < s.size(); ++i) {
+            State& b = s.bodies[sceneIndex(i)];
+            b = sys_.bodies[i];
+            freeMove<K>(b, s.body, time_ - schedule_.book(i).clock);
+        }
         return s;
+    }
+    /// The engine's number of the scene's body b, and the scene's number of the engine's body i:
+    /// inside, the bodies are numbered in the Morton order of their cells (sortBodiesByCell).
+    int engineIndex(int b) const { return engineIndex_.empty() ? b : engineIndex_[b]; }
+    int sceneIndex(int i) const { return sceneIndex_.empty() ? i : sceneIndex_[i]; }
+    /// The partners listed for the scene's body b, in the scene's numbering.
+    std::vector<int> listedPartners(int b) const {
+        std::vector<int> p;
+        for (const int j : lists_.partners(engineIndex(b)))
+            p.push_back(sceneIndex(j));
+        return p;
     }
     /// Terraced energy recomputed from scratch from U of every pair (all pairs, O(N²)). On a
     /// level this rounds by U alone, so compare with potentialEnergy() only away from levels.
@@ -289,6 +306,7 @@ public:
                cells_.bytesReserved() + terraces_.bytesReserved() + lists_.bytesReserved() +
                listedBefore_.capacity() * sizeof(std::uint64_t) +
                scanned_.capacity() * sizeof(int) + orbit_.capacity() * sizeof(FreeOrbit<K>) +
+               (sceneIndex_.capacity() + engineIndex_.capacity()) * sizeof(int) +
                this->predictionBytes();
     }
 
@@ -308,6 +326,32 @@ private:
     template <class F> void visitQueue(F&& f) { schedule_.visitQueue(std::forward<F>(f)); }
 
     double terraceHeight() const { return settings_.levels.smallestStep(); }
+
+    /// Numbers the bodies in the Morton (Z-order) order of their cells, those of one cell in the
+    /// scene's order: bodies close in space then lie close in every per-body array (states,
+    /// orbits, books, agendas, lists), and an event's partners are mostly a few cache lines or
+    /// pages apart instead of anywhere in the whole system. Done before anything else is built
+    /// from the bodies, so at every start and every rebuild from a checkpoint (restart points):
+    /// the order follows the liquid as it diffuses from one rebuild to the next. Outside the
+    /// engine the bodies keep the scene's numbering (synchronisedCopy, snapshot, checkpoint,
+    /// terrace, messages).
+    void sortBodiesByCell() {
+        const int n = sys_.size();
+        if (cells_.single() || n < 2) return;
+        std::vector<std::pair<std::uint64_t, int>> key(n);
+        for (int b = 0; b < n; ++b)
+            key[b] = {cells_.mortonCode(sys_.bodies[b].r), b};
+        std::sort(key.begin(), key.end());
+        std::vector<State> sorted(n);
+        sceneIndex_.resize(n);
+        engineIndex_.resize(n);
+        for (int i = 0; i < n; ++i) {
+            sorted[i] = sys_.bodies[key[i].second];
+            sceneIndex_[i] = key[i].second;
+            engineIndex_[key[i].second] = i;
+        }
+        sys_.bodies = std::move(sorted);
+    }
 
     // ---- the event loop: pop → discard if stale → resolve → invalidate → predict ----
 
@@ -330,7 +374,7 @@ private:
                 schedule_.settle(q, time_);
                 continue;
             }
-            stallWatch_.check(time_, e.time, e.i, e.j);
+            stallWatch_.check(time_, e.time, e.i, e.j, [&](int k) { return sceneIndex(k); });
             time_ = e.time;
             switch (e.kind) {
             case EventKind::Collision:
@@ -466,6 +510,9 @@ private:
     Schedule<Engine> schedule_; // each body's book, agenda and calendar entry (dmd/schedule.hpp)
     std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
     std::vector<int> scanned_; // rebuildList: scanned bodies, those within reach first
+    // The scene's number of each body and the engine's number of each scene body (empty: the
+    // same numbering, sortBodiesByCell not applied).
+    std::vector<int> sceneIndex_, engineIndex_;
     std::uint64_t listStamp_ = 0;
     StallWatch stallWatch_;
     double time_ = 0.0;

@@ -39,8 +39,11 @@ public:
             if (engine.schedule_.book(i).clock != engine.time_)
                 throw std::logic_error("dmd: checkpoint with clocks not at one time");
         nlohmann::json pairs = nlohmann::json::array();
+        // In the scene's numbering of the bodies, whatever the engine's own.
         engine.terraces_.forEachPair([&](int i, int j, int n) {
-            if (n != 0) pairs.push_back({i, j, n});
+            if (n == 0) return;
+            const int a = engine.sceneIndex(i), b = engine.sceneIndex(j);
+            pairs.push_back({std::min(a, b), std::max(a, b), n});
         });
         const auto stream = engine.jitter_.position();
         return {{"time", engine.time_},
@@ -78,7 +81,8 @@ protected:
                 if (rij.norm() > engine.settings_.rm) return;
                 const PairForce f =
                     sys.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
-                if (overlapsAtStart(f.U, uMin)) throwOverlap(i, j, f.U);
+                if (overlapsAtStart(f.U, uMin))
+                    throwOverlap(engine.sceneIndex(i), engine.sceneIndex(j), f.U);
                 const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys.body),
                                          K::angularVelocity(bj, sys.body));
                 engine.terraces_.set(
@@ -103,7 +107,8 @@ protected:
     }
 
     /// The terraces of a checkpoint; pairs it does not list are on terrace 0. A pair listed
-    /// beyond r_m, or out of range, means the file does not belong to these bodies.
+    /// beyond r_m, or out of range, means the file does not belong to these bodies. The file
+    /// numbers the bodies as the scene does; the engine's numbering is set before this.
     void resumeTerraces(const nlohmann::json& c) {
         Engine& engine = self();
         const System<K, P>& sys = engine.sys_;
@@ -113,12 +118,13 @@ protected:
                 throw SceneError("restart: terrace of a pair of bodies that do not exist");
             // A pair leaves terrace 0 at r_m exactly: a sample there may read r a round-off
             // beyond it.
-            const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
+            const int a = engine.engineIndex(i), b = engine.engineIndex(j);
+            const Vec3 rij = sys.box.minimumImage(sys.bodies[a].r - sys.bodies[b].r);
             if (rij.norm() > engine.settings_.rm * (1.0 + resumeRangeTolerance))
                 throw SceneError("restart: bodies " + std::to_string(i) + " and " +
                                  std::to_string(j) + " are held on terrace " + std::to_string(n) +
                                  " beyond the interaction range");
-            engine.terraces_.set(std::min(i, j), std::max(i, j), n);
+            engine.terraces_.set(std::min(a, b), std::max(a, b), n);
         }
     }
 

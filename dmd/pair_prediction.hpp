@@ -311,7 +311,8 @@ protected:
         if (U >= engine.settings_.levels.lower(n) - margin &&
             U <= engine.settings_.levels.upper(n) + margin)
             return;
-        throw std::logic_error("dmd: bodies " + std::to_string(i) + " and " + std::to_string(j) +
+        throw std::logic_error("dmd: bodies " + std::to_string(engine.sceneIndex(i)) + " and " +
+                               std::to_string(engine.sceneIndex(j)) +
                                " have U = " + std::to_string(U) +
                                " kJ/mol at t = " + std::to_string(units::toFs(engine.time_)) +
                                " fs, beyond the levels of " + "their terrace " + std::to_string(n) +

@@ -78,7 +78,7 @@ public:
     /// The calendar of the kind the settings name, starting at now.
     void openCalendar(QueueKind kind, double horizon, double now) {
         if (kind == QueueKind::Heap)
-            queue_.emplace<BinaryHeapQueue<Event>>();
+            queue_.emplace<BinaryHeapQueue<Event>>(eager_); // handles only to erase (eager)
         else
             queue_.emplace<BoundedPriorityQueue<Event>>(horizon / 16.0, 1024, now);
     }

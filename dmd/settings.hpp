@@ -3,11 +3,13 @@
 // "Interfaces", "Bad input"): every bad value is a SceneError naming its key.
 //   dV            terrace height in units of kT (levels (n − ½) dV kT), > 0
 //   levels        explicit levels in kJ/mol (override dV when non-empty)
-//   queue         heap | bpq
+//   queue         auto | heap | bpq (auto: bpq below autoHeapFromBodies bodies, heap from there on)
 //   invalidation  lazy | eager
 //   horizon_fs    virtual-event horizon and largest search step, fs, >= limits::minHorizonFs
 //   hold_screen   whether pairs are screened by their hold time before a search (default true;
 //                 false only to measure what the screen saves: it changes no event)
+//   sort_bodies   whether the engine numbers the bodies in the Morton order of their cells
+//                 (default true; false only to check that the order changes no observable)
 #include "core/scene.hpp"
 #include "core/units.hpp"
 #include "dmd/terrace_design.hpp"
@@ -19,6 +21,13 @@ namespace terrace::dmd {
 
 enum class QueueKind { Heap, BoundedPriority };
 
+/// dmd.queue = auto takes the binary heap from this many bodies on, the bounded priority queue
+/// below: on the dense rods the bounded queue was 3-8 % faster at N 512 to 32 768 and the heap
+/// 10 % faster at 262 144, 35-50 % at 10^6 (docs/PERFORMANCE.md "Where the time goes"), where the
+/// bounded queue's bins, lists threaded through nodes scattered over the pool, miss the cache at
+/// every push and every bin loaded.
+inline constexpr int autoHeapFromBodies = 100000;
+
 struct DmdSettings {
     TerraceLevels levels;
     double rm = 0.0; // interaction range, Å
@@ -26,10 +35,13 @@ struct DmdSettings {
     bool eager = false;    // eager invalidation: erase a body's queued events at its event
     double horizon = 0.04; // time units
     bool holdScreen = true;
+    bool sortBodies = true; // bodies numbered in the Morton order of their cells inside the engine
 };
 
+/// bodies: the system's size, which dmd.queue = auto chooses by (0: not known, bpq).
 template <PairPotential P>
-DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, double boxLength) {
+DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, double boxLength,
+                            int bodies = 0) {
     DmdSettings s;
     if (!d.levels.empty()) {
         s.levels = TerraceLevels::explicitLevels(d.levels, d.values);
@@ -52,12 +64,15 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
         s.levels = TerraceLevels::uniform(d.dV * kT);
         s.levels.checkMinimum(potential.minimumEnergy(), "dmd.dV");
     }
-    if (d.queue == "heap")
+    if (d.queue == "heap" || (d.queue == "auto" && bodies >= autoHeapFromBodies))
         s.queue = QueueKind::Heap;
+    else if (d.queue == "auto")
+        s.queue = QueueKind::BoundedPriority;
     else if (d.queue == "bpq")
         s.queue = QueueKind::BoundedPriority;
     else
-        throw SceneError("dmd.queue: must be \"heap\" or \"bpq\", got \"" + d.queue + "\"");
+        throw SceneError("dmd.queue: must be \"auto\", \"heap\" or \"bpq\", got \"" + d.queue +
+                         "\"");
     if (d.invalidation == "lazy")
         s.eager = false;
     else if (d.invalidation == "eager")
@@ -71,6 +86,7 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
                          ": a shorter horizon only multiplies virtual events");
     s.horizon = units::fromFs(d.horizon_fs);
     s.holdScreen = d.hold_screen;
+    s.sortBodies = d.sort_bodies;
     s.rm = interactionRange(s.levels, potential);
     if (!(s.rm > 0.0))
         throw SceneError("dmd.dV: no level bounding terrace 0 is ever reached (r_m = 0)");

@@ -23,7 +23,9 @@ public:
 
     /// Called with every event about to run at `next` while the clock reads `now` (time unit 100
     /// fs); throws std::runtime_error naming the time and the bodies once the clock has stopped.
-    void check(double now, double next, int i, int j) {
+    /// name(i): the number by which the message names body i (the engine's own numbering may
+    /// differ from the scene's; only a report pays for the translation).
+    template <class Name> void check(double now, double next, int i, int j, Name&& name) {
         const double roundOff =
             64.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(next));
         if (next - now > roundOff) {
@@ -33,9 +35,12 @@ public:
         if (++stalled_ <= limit_) return;
         std::ostringstream msg;
         msg << "dmd: the clock stopped at t = " << units::toFs(next) << " fs: " << stalled_
-            << " consecutive events without time advancing (last: bodies " << i << " and " << j
-            << "); the terraced dynamics is stuck";
+            << " consecutive events without time advancing (last: bodies " << name(i) << " and "
+            << (j >= 0 ? name(j) : j) << "); the terraced dynamics is stuck";
         throw std::runtime_error(msg.str());
+    }
+    void check(double now, double next, int i, int j) {
+        check(now, next, i, j, [](int k) { return k; });
     }
 
 private:

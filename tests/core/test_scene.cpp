@@ -82,6 +82,9 @@ TEST(Scene, BadValuesAreNamed) {
     EXPECT_NE(errorOf({{"engine", "lammps"}}).find("engine: must be one of dmd | smd"),
               std::string::npos);
     EXPECT_NE(errorOf({{"dmd", {{"queue", "tree"}}}}).find("dmd.queue"), std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"queue", "tree"}}}}).find("auto | bpq | heap"), std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"sort_bodies", "yes"}}}}).find("dmd.sort_bodies"),
+              std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", {3.0, 2.5}}}}}).find("potential.cutoff: must be"),
               std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", {0.0, 2.5}}}}}).find("potential.cutoff"),
@@ -109,6 +112,11 @@ TEST(Scene, OverridesByDottedPath) {
     EXPECT_DOUBLE_EQ(s.dmd.dV, 0.125);
     EXPECT_EQ(s.engine, "smd");
     EXPECT_EQ(s.dmd.queue, "heap");
+    EXPECT_EQ(defaultScene().dmd.queue, "auto"); // chosen by N (dmd/settings.hpp)
+    EXPECT_EQ(sceneFromJson(json::object(), "t", {"dmd.queue=bpq"}).dmd.queue, "bpq");
+    EXPECT_EQ(sceneFromJson(json::object(), "t", {"dmd.queue=auto"}).dmd.queue, "auto");
+    EXPECT_TRUE(defaultScene().dmd.sort_bodies);
+    EXPECT_FALSE(sceneFromJson(json::object(), "t", {"dmd.sort_bodies=false"}).dmd.sort_bodies);
     EXPECT_EQ(s.name, "x y");
     EXPECT_NE(errorOf(json::object(), {"dmd.dV"}).find("key.path=value"), std::string::npos);
     EXPECT_NE(errorOf(json::object(), {"dmd.nope=1"}).find("dmd.nope: unknown key"),

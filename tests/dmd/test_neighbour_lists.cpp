@@ -11,7 +11,7 @@ using namespace terrace::dmdtest;
 namespace {
 
 bool listed(const RodEngine& e, int i, int j) {
-    const auto& p = e.neighbourLists().partners(i);
+    const auto p = e.listedPartners(i); // in the scene's numbering, as synchronisedCopy's
     return std::find(p.begin(), p.end(), j) != p.end();
 }
 
