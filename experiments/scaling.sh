@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Cost and memory from 512 to a million bodies, both engines, rods and LJ spheres (issue of
 # scaling; results/scaling/README.md). One whole `terrace run` per row, started from the lattice,
-# 0.09 ps of equilibration and PROD_PS of production at 9 fs samples, the default analysis on:
+# 0.09 ps of equilibration, then about 921.6 body-ps / N of production (1.8 ps at N 512, at
+# least 5 sample intervals: 0.045 ps) at 9 fs samples, with the default analysis:
 #   DMD    µs of engine CPU per event          (cpu_seconds / events.total)
 #   SMD    µs of engine CPU per body-step      (cpu_seconds / (steps · N))
 #   both   analysis CPU per sample (ms) and its share of engine + analysis CPU,
@@ -15,7 +16,8 @@ terrace=${1:-$here/../build/terrace}
 out=${2:-$here/../results/scaling}
 shift $(($# < 2 ? $# : 2))
 sizes=${*:-512 4096 32768 262144 1000000}
-PROD_PS=${PROD_PS:-0.045}
+# Production in ps for N bodies: whole 9 fs samples, about 921.6 body-ps, at least 5 intervals.
+prod_ps() { awk -v n="$1" 'BEGIN { s = int(921.6 / n / 0.009); if (s < 5) s = 5; printf "%.3f", s * 0.009 }'; }
 [ -x /usr/bin/time ] || { echo "scaling.sh needs GNU time (apt-get install time)" >&2; exit 1; }
 mkdir -p "$out"
 work=$(mktemp -d)
@@ -28,7 +30,7 @@ row() { # model scene engine queue n
     rm -rf "$dir"
     /usr/bin/time -f "%M %e" -o "$work/time" "$terrace" run "$here/scenes/$scene" --quiet \
         --set engine="$engine" --set dmd.queue="$queue" --set state.n="$n" \
-        --set run.equilibrate_ps=0.09 --set run.time_ps="$PROD_PS" --set run.sample_fs=9 \
+        --set run.equilibrate_ps=0.09 --set run.time_ps="$(prod_ps "$n")" --set run.sample_fs=9 \
         --set run.thermostat_fs=9 --out "$dir" >/dev/null
     read -r rss wall <"$work/time"
     python3 - "$dir/summary.json" "$model" "$engine" "$queue" "$n" "$rss" "$wall" >>"$csv" <<'PY'
