@@ -119,7 +119,15 @@ end_to_end_smd)
 analyse_compare)
     short_run dmd --set output.trajectory_every_fs=9 # every sample: the same data both ways
     cp "$work/dmd/vacf.csv" "$work/vacf-run.csv"
+    cp "$work/dmd/rdf.csv" "$work/rdf-run.csv"
     "$terrace" analyse "$work/dmd" >/dev/null || fail "analyse failed"
+    # The same accumulators and settings: g(r) count for count (positions read back bit for bit),
+    # the time curves to the round-off of the velocities' unit conversion.
+    cmp -s "$work/rdf-run.csv" "$work/dmd/rdf.csv" || fail "analyse gives another g(r) than the run"
+    paste -d, "$work/vacf-run.csv" "$work/dmd/vacf.csv" |
+        awk -F, 'function abs(x) { return x < 0 ? -x : x }
+            NR > 1 && (abs($1 - $4) > 1e-12 || abs($2 - $5) > 1e-12) { exit 1 }' ||
+        fail "analyse gives another VACF than the run"
     "$terrace" compare "$work/vacf-run.csv" "$work/dmd/vacf.csv" >/dev/null ||
         fail "compare rejects a curve recomputed from the trajectory"
     awk -F, 'NR == 1 { print; next } { $2 = $2 + 0.5; print }' OFS=, "$work/dmd/vacf.csv" \
