@@ -24,8 +24,9 @@ extern "C" void onSignal(int sig) {
     if (n >= 3) _exit(128 + firstSignal.load());
     static const char first[] =
         "\nterrace: signal received: stopping at the next sample and writing the output "
-        "(again: skip the analysis; a third time: exit at once)\n";
-    static const char second[] = "\nterrace: second signal: skipping the analysis\n";
+        "(a third time: exit at once)\n";
+    static const char second[] =
+        "\nterrace: second signal: the output is being written (a third signal exits at once)\n";
     if (n == 1)
         say(first, sizeof first - 1);
     else

@@ -77,7 +77,8 @@ Usage:
   terrace --help
 
 SIGINT, SIGTERM and SIGHUP end a run at the next sample with its output written (exit
-status 128 + the signal's number); a second signal skips the analysis.
+status 128 + the signal's number; the analysis, accumulated as the run went, is written
+too); a third signal ends the process at once.
 Units: lengths in Angstrom, masses g/mol, energies kJ/mol, times fs/ps on input and output.
 )";
 

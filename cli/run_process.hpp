@@ -4,7 +4,7 @@
 // A process of its own keeps a run's CPU clock, its memory and a crash to itself, and makes a
 // run's output the same whoever started it (a sweep with -j 1, -j 8 or under mpirun on any rank).
 // The child gets a process group of its own, so that a terminal's Ctrl-C reaches the sweep alone
-// and the sweep passes it on once (a second signal would cancel the child's analysis). Its
+// and the sweep passes it on once (the child then stops at its next sample and writes). Its
 // standard output and error go to DIR/run.log.
 #include "cli/sweep_plan.hpp"
 #include <chrono>
