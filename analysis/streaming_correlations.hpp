@@ -24,8 +24,8 @@
 // MSD's B blocks are groups of bodies.
 //
 // Large systems: the time correlations follow at most `followBodies` bodies, evenly spread over
-// the index range (all when N is no larger). Averages over 4096 bodies and every origin leave the
-// statistical error far below that of the time origins; the memory stays fixed as N grows.
+// the index range (all when N is no larger), so that their memory stays fixed as N grows. The
+// curves are then averages over those bodies, and their block errors say what that leaves.
 // Memory: levels × p × 9 doubles per followed body.
 #include "analysis/dynamic_correlations.hpp"
 #include "core/snapshot.hpp"
