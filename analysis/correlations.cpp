@@ -35,6 +35,23 @@ nlohmann::json rdfSummary(const RadialDistribution& rdf, double from) {
     return j;
 }
 
+void writeCurveFiles(const std::filesystem::path& dir, const RadialDistribution& rdf,
+                     const SampledCurve& vacf, const OrientationalCorrelation* oacf,
+                     const SampledCurve& msd) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throwIoError("create the directory", dir, ec.value());
+    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
+    if (oacf)
+        writeCsv(dir / "oacf.csv",
+                 {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
+                  {oacf->c1.tPs, oacf->c1.value, oacf->c1.err, oacf->c2.value, oacf->c2.err}});
+    else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
+        throwIoError("remove", dir / "oacf.csv", ec.value());
+    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+}
+
 double greenKuboDiffusion(const std::vector<double>& tPs, const std::vector<double>& c,
                           double meanSquareVelocity) {
     double integral = 0.0; // ∫ c dt in ps
@@ -75,18 +92,7 @@ nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
     const SampledCurve msd = meanSquaredDisplacement(samples, maxLag, msdBlocks);
     const Diffusion d = diffusionFromMsd(msd);
 
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throwIoError("create the directory", dir, ec.value());
-    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
-    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
-    if (rotating)
-        writeCsv(dir / "oacf.csv",
-                 {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
-                  {oacf.c1.tPs, oacf.c1.value, oacf.c1.err, oacf.c2.value, oacf.c2.err}});
-    else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
-        throwIoError("remove", dir / "oacf.csv", ec.value());
-    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+    detail::writeCurveFiles(dir, rdf, vacf, rotating ? &oacf : nullptr, msd);
 
     const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
     nlohmann::json summary{

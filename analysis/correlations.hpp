@@ -36,12 +36,19 @@ struct Options {
 nlohmann::json writeCorrelations(const std::vector<Snapshot>& samples,
                                  const std::filesystem::path& dir, const Options& options = {});
 
-struct RadialDistribution; // rdf.hpp
+struct RadialDistribution;       // rdf.hpp
+struct SampledCurve;             // dynamic_correlations.hpp
+struct OrientationalCorrelation; // dynamic_correlations.hpp
 
 namespace detail {
 /// Summary entries of a g(r): bins, and g averaged over r ≥ largeRFrom (Å) with a rough error
 /// (writeCorrelations: the outer fifth of its range, [0.4, 0.5] L).
 nlohmann::json rdfSummary(const RadialDistribution& rdf, double largeRFrom);
+/// Writes rdf.csv, vacf.csv, msd.csv and, for rotating bodies, oacf.csv (else removes a stale
+/// one) into dir, created if needed: the files of both writeCorrelations and RunAnalysis.
+void writeCurveFiles(const std::filesystem::path& dir, const RadialDistribution& rdf,
+                     const SampledCurve& vacf, const OrientationalCorrelation* oacf,
+                     const SampledCurve& msd);
 /// D = (1/3) ∫₀^tmax ⟨v(0)·v(t)⟩ dt (trapezoid rule, truncated at the last lag), Å²/ps, from
 /// the normalised VACF on its lag grid (ps) and ⟨v²⟩ in Å² per time unit².
 double greenKuboDiffusion(const std::vector<double>& tPs, const std::vector<double>& c,

@@ -63,9 +63,6 @@ RadialDistribution radialDistribution(const std::vector<Snapshot>& frames, doubl
 
     const int bins = static_cast<int>(std::floor(0.5 * length / binWidth));
     if (bins < 1) throw std::invalid_argument("radialDistribution: bin wider than L/2");
-    const double volume = length * length * length;
-    const double pairs = 0.5 * n * (n - 1.0);
-
     // Per-block histograms, then g per block and pooled.
     std::vector<std::vector<double>> histogram(blocks, std::vector<double>(bins, 0.0));
     std::vector<double> framesInBlock(blocks, 0.0);
@@ -77,13 +74,22 @@ RadialDistribution radialDistribution(const std::vector<Snapshot>& frames, doubl
         framesInBlock[b] = end - begin;
     }
 
+    return distributionFromHistograms(histogram, framesInBlock, n, length, binWidth);
+}
+
+RadialDistribution distributionFromHistograms(const std::vector<std::vector<double>>& histogram,
+                                              const std::vector<double>& framesInBlock, int bodies,
+                                              double length, double binWidth) {
+    const double volume = length * length * length;
+    const double pairs = 0.5 * bodies * (bodies - 1.0);
+    const std::size_t blocks = histogram.size(), bins = histogram.front().size();
     RadialDistribution rdf;
     rdf.binWidth = binWidth;
-    rdf.partnerDensity = (n - 1.0) / volume;
+    rdf.partnerDensity = (bodies - 1.0) / volume;
     std::vector<double> sums(blocks);
-    for (int k = 0; k < bins; ++k) {
+    for (std::size_t k = 0; k < bins; ++k) {
         const double ideal = pairs * shellVolume(k * binWidth, (k + 1) * binWidth) / volume;
-        for (int b = 0; b < blocks; ++b)
+        for (std::size_t b = 0; b < blocks; ++b)
             sums[b] = histogram[b][k] / ideal;
         const Estimate e = blockRatio(sums, framesInBlock);
         rdf.r.push_back((k + 0.5) * binWidth);

@@ -27,6 +27,12 @@ struct RadialDistribution {
 RadialDistribution radialDistribution(const std::vector<Snapshot>& frames, double binWidth,
                                       int blocks);
 
+/// g(r) from per-block pair histograms (h[b][k] over framesInBlock[b] frames of N bodies in a box
+/// of edge length Å): the normalisation and block errors above, shared by rdf_accumulator.hpp.
+RadialDistribution distributionFromHistograms(const std::vector<std::vector<double>>& histogram,
+                                              const std::vector<double>& framesInBlock, int bodies,
+                                              double length, double binWidth);
+
 /// Mean number of neighbours within rMax of a body: 4π ρ' ∫₀^rMax g r² dr over whole bins
 /// (bins whose upper edge ≤ rMax), ρ' = (N−1)/V.
 double coordinationNumber(const RadialDistribution& rdf, double rMax);

@@ -1,19 +1,13 @@
 #include "analysis/rdf_accumulator.hpp"
-#include "analysis/block_average.hpp"
 #include "analysis/cancellation.hpp"
 #include "core/box.hpp"
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace terrace::analysis {
 
 namespace {
-
-double shellVolume(double lo, double hi) {
-    return 4.0 / 3.0 * std::numbers::pi * (hi * hi * hi - lo * lo * lo);
-}
 
 /// First frame of block b of B over F planned frames: rdf.hpp's contiguous blocks.
 long blockBegin(long b, long planned, int blocks) {
@@ -65,17 +59,18 @@ void RdfAccumulator::add(const Snapshot& frame) {
         const double perCell = m / length_;
         std::fill(cellStart_.begin(), cellStart_.end(), 0);
         auto index = [m, perCell](double c) { return std::min(m - 1, int(c * perCell)); };
+        wrapped_.resize(bodies_);
         for (int i = 0; i < bodies_; ++i) {
-            const Vec3 r = box.wrap(frame.position[i]);
+            const Vec3 r = wrapped_[i] = box.wrap(frame.position[i]);
             cellOf_[i] = (index(r.x()) * m + index(r.y())) * m + index(r.z());
             ++cellStart_[cellOf_[i] + 1];
         }
         for (std::size_t c = 1; c < cellStart_.size(); ++c)
             cellStart_[c] += cellStart_[c - 1];
-        std::vector<int> fill(cellStart_.begin(), cellStart_.end() - 1);
+        fill_.assign(cellStart_.begin(), cellStart_.end() - 1);
         for (int i = 0; i < bodies_; ++i) {
-            const Vec3 r = box.wrap(frame.position[i]);
-            const int k = fill[cellOf_[i]]++;
+            const Vec3& r = wrapped_[i];
+            const int k = fill_[cellOf_[i]]++;
             x_[k] = r.x(), y_[k] = r.y(), z_[k] = r.z();
         }
         countByCells(histogram_[block_]);
@@ -143,27 +138,13 @@ void RdfAccumulator::countByCells(std::vector<double>& histogram) {
 
 RadialDistribution RdfAccumulator::result() const {
     if (frames_ < 1) throw std::invalid_argument("g(r): no frames");
-    const double volume = length_ * length_ * length_;
-    const double pairs = 0.5 * bodies_ * (bodies_ - 1.0);
-    RadialDistribution rdf;
-    rdf.binWidth = binWidth_;
-    rdf.partnerDensity = (bodies_ - 1.0) / volume;
-    std::vector<double> sums(blocks_);
-    for (int k = 0; k < bins_; ++k) {
-        const double ideal = pairs * shellVolume(k * binWidth_, (k + 1) * binWidth_) / volume;
-        for (int b = 0; b < blocks_; ++b)
-            sums[b] = histogram_[b][k] / ideal;
-        const Estimate e = blockRatio(sums, framesInBlock_);
-        rdf.r.push_back((k + 0.5) * binWidth_);
-        rdf.g.push_back(e.mean);
-        rdf.err.push_back(e.err);
-    }
-    return rdf;
+    return distributionFromHistograms(histogram_, framesInBlock_, bodies_, length_, binWidth_);
 }
 
 std::size_t RdfAccumulator::bytes() const {
     return sizeof(double) * (std::size_t(blocks_) * bins_ + 3 * x_.size()) +
-           sizeof(int) * (cellOf_.size() + cellStart_.size());
+           sizeof(Vec3) * wrapped_.capacity() +
+           sizeof(int) * (cellOf_.size() + cellStart_.size() + fill_.capacity());
 }
 
 } // namespace terrace::analysis

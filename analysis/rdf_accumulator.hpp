@@ -41,7 +41,8 @@ private:
     std::vector<double> framesInBlock_;
     // Scratch, reused frame after frame: wrapped coordinates sorted by cell, cell starts.
     std::vector<double> x_, y_, z_;
-    std::vector<int> cellOf_, cellStart_;
+    std::vector<int> cellOf_, cellStart_, fill_;
+    std::vector<Vec3> wrapped_;
 };
 
 } // namespace terrace::analysis

@@ -1,10 +1,8 @@
 #include "analysis/run_analysis.hpp"
 #include "analysis/correlations.hpp"
-#include "analysis/csv.hpp"
 #include "analysis/dynamic_correlations.hpp"
 #include "analysis/rdf_accumulator.hpp"
 #include "analysis/streaming_correlations.hpp"
-#include "core/output_file.hpp"
 #include "core/units.hpp"
 #include <algorithm>
 #include <cmath>
@@ -70,18 +68,7 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir) const {
     const Diffusion d = diffusionFromMsd(msd);
     const Diffusion gk = greenKuboDiffusion(vacf, v2);
 
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throwIoError("create the directory", dir, ec.value());
-    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
-    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
-    if (rotating)
-        writeCsv(dir / "oacf.csv",
-                 {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
-                  {oacf.c1.tPs, oacf.c1.value, oacf.c1.err, oacf.c2.value, oacf.c2.err}});
-    else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
-        throwIoError("remove", dir / "oacf.csv", ec.value());
-    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+    detail::writeCurveFiles(dir, rdf, vacf, rotating ? &oacf : nullptr, msd);
 
     const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
     nlohmann::json rdfEntry = detail::rdfSummary(rdf, largeRFraction * rdf_->rMax());
