@@ -19,22 +19,36 @@ struct Snapshot {
     int size() const { return static_cast<int>(position.size()); }
 };
 
-template <BodyKind K, PairPotential P> Snapshot makeSnapshot(const System<K, P>& sys, double t) {
+/// An empty snapshot at time t with room for n bodies.
+inline Snapshot emptySnapshot(double t, double boxLength, std::size_t n, bool withOrientation) {
     Snapshot s;
     s.time = t;
-    s.boxLength = sys.box.length;
-    const auto n = sys.bodies.size();
+    s.boxLength = boxLength;
     s.position.reserve(n);
     s.velocity.reserve(n);
     s.axis.reserve(n);
     s.omega.reserve(n);
-    for (const auto& b : sys.bodies) {
-        s.position.push_back(b.r);
-        s.velocity.push_back(b.v);
-        s.axis.push_back(K::axis(b));
-        s.omega.push_back(K::angularVelocity(b, sys.body));
-        if constexpr (requires { b.A; }) s.orientation.emplace_back(Mat3(b.A.transpose()));
-    }
+    if (withOrientation) s.orientation.reserve(n);
+    return s;
+}
+
+/// Appends body b (params: the body's mass and inertia) to s.
+template <BodyKind K>
+void appendBody(Snapshot& s, const typename K::State& b, const BodyParams& params) {
+    s.position.push_back(b.r);
+    s.velocity.push_back(b.v);
+    s.axis.push_back(K::axis(b));
+    s.omega.push_back(K::angularVelocity(b, params));
+    if constexpr (requires { b.A; }) s.orientation.emplace_back(Mat3(b.A.transpose()));
+}
+
+template <BodyKind K, PairPotential P> Snapshot makeSnapshot(const System<K, P>& sys, double t) {
+    constexpr bool withOrientation = requires(const typename K::State& b) {
+        b.A;
+    };
+    Snapshot s = emptySnapshot(t, sys.box.length, sys.bodies.size(), withOrientation);
+    for (const auto& b : sys.bodies)
+        appendBody<K>(s, b, sys.body);
     return s;
 }
 

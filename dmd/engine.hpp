@@ -150,7 +150,23 @@ public:
         ++counts_.sample;
     }
     double time() const { return time_; }
-    Snapshot snapshot() const { return makeSnapshot(synchronisedCopy(), time_); }
+    /// The bodies as they are now, in the scene's order; built body by body, without a copy of
+    /// the whole system (a sample of 10⁶ bodies would hold both at once).
+    Snapshot snapshot() const {
+        constexpr bool withOrientation = requires(const State& b) {
+            b.A;
+        };
+        const int n = sys_.size();
+        Snapshot s =
+            emptySnapshot(time_, sys_.box.length, static_cast<std::size_t>(n), withOrientation);
+        for (int b = 0; b < n; ++b) {
+            const int i = engineIndex(b);
+            State now = sys_.bodies[i];
+            freeMove<K>(now, sys_.body, time_ - schedule_.book(i).clock);
+            appendBody<K>(s, now, sys_.body);
+        }
+        return s;
+    }
     double kineticEnergy() const { return totalKinetic(sys_); } // constant in free flight
     double potentialEnergy() const {
         if (settings_.levels.isUniform()) {
@@ -228,6 +244,11 @@ public:
         j["stale_events"] = staleEvents_;
         j["stale_in_agendas"] = schedule_.staleInAgendas();
         j["cells_per_side"] = cells_.cellsPerSide();
+        const double n = static_cast<double>(sys_.bodies.size());
+        j["agenda_events_per_body"] = static_cast<double>(schedule_.memory().agendaEvents) / n;
+        // What a body costs in memory now, by part (bytes per body).
+        for (const auto& [part, bytes] : memoryByPart())
+            j["memory_bytes_per_body"][part] = static_cast<double>(bytes) / n;
         j["search_evaluations"] = evaluations_;
         j["searches_screened"] = screened_;
         return j;
@@ -301,13 +322,28 @@ public:
         return e;
     }
     std::size_t queueSize() const { return schedule_.queueSize(); }
+    /// Bytes the engine holds, by part (the heap blocks' own overhead not counted).
+    std::vector<std::pair<const char*, std::size_t>> memoryByPart() const {
+        const auto sched = schedule_.memory();
+        return {{"states", sys_.bodies.capacity() * sizeof(State)},
+                {"orbits", orbit_.capacity() * sizeof(FreeOrbit<K>)},
+                {"books", sched.books},
+                {"agendas", sched.agendas},
+                {"calendar", sched.calendar},
+                {"about", sched.about},
+                {"lists", lists_.bytesReserved()},
+                {"terraces", terraces_.bytesReserved()},
+                {"cells", cells_.bytesReserved()},
+                {"other", listedBefore_.capacity() * sizeof(std::uint64_t) +
+                              scanned_.capacity() * sizeof(int) +
+                              (sceneIndex_.capacity() + engineIndex_.capacity()) * sizeof(int) +
+                              this->predictionBytes()}};
+    }
     std::size_t bytesReserved() const {
-        return schedule_.bytesReserved() + sys_.bodies.capacity() * sizeof(State) +
-               cells_.bytesReserved() + terraces_.bytesReserved() + lists_.bytesReserved() +
-               listedBefore_.capacity() * sizeof(std::uint64_t) +
-               scanned_.capacity() * sizeof(int) + orbit_.capacity() * sizeof(FreeOrbit<K>) +
-               (sceneIndex_.capacity() + engineIndex_.capacity()) * sizeof(int) +
-               this->predictionBytes();
+        std::size_t b = 0;
+        for (const auto& part : memoryByPart())
+            b += part.second;
+        return b;
     }
 
 private:
@@ -449,10 +485,9 @@ private:
         // A pair dropped from the lists since: relist predicts it afresh if it comes back.
         const auto& listed = lists_.partners(e.i);
         if (std::find(listed.begin(), listed.end(), e.j) == listed.end()) return;
-        const PairSample start{0.0, e.U, e.dUdt};
-        const double entry =
-            predictPair(movingNow(e.i), e.i, e.j, std::isnan(e.U) ? nullptr : &start);
-        if (std::isfinite(entry)) schedule(pairEvent(EventKind::Virtual, e.i, e.j, entry));
+        // The search starts afresh here (dmd/event.hpp: a virtual event keeps no U).
+        const double entry = predictPair(movingNow(e.i), e.i, e.j, nullptr);
+        if (std::isfinite(entry)) schedule(e.i, pairEvent(EventKind::Virtual, e.j, entry));
     }
 
     /// The cell only serves list rebuilds: nothing about i's pairs changes.
@@ -478,7 +513,7 @@ private:
         for (const int j : lists_.partners(i)) {
             if (listedBefore_[j] == listStamp_) continue;
             const double entry = predictPair(mi, i, j, nullptr);
-            if (std::isfinite(entry)) schedule(pairEvent(EventKind::Virtual, i, j, entry));
+            if (std::isfinite(entry)) schedule(i, pairEvent(EventKind::Virtual, j, entry));
         }
         planRelist(i);
         scheduleBodyEvent(i);

@@ -179,13 +179,13 @@ protected:
         const BodyPlan& p = plans_[i];
         if (p.cell <= p.relist && p.cell <= p.entry) {
             if (!std::isfinite(p.cell)) return;
-            Event e = bodyEvent(EventKind::CellCrossing, i, p.cell);
+            PendingEvent e = bodyEvent(EventKind::CellCrossing, p.cell);
             e.side = p.cellSide;
-            schedule(e);
+            schedule(i, e);
         } else if (p.relist <= p.entry) {
-            schedule(bodyEvent(EventKind::Relist, i, p.relist));
+            schedule(i, bodyEvent(EventKind::Relist, p.relist));
         } else {
-            schedule(bodyEvent(EventKind::Virtual, i, p.entry));
+            schedule(i, bodyEvent(EventKind::Virtual, p.entry));
         }
     }
 
@@ -256,7 +256,7 @@ protected:
                 const double hold = holdOnTerrace(now, i, j, r0, w, n, horizon, win.exit);
                 if (hold == none) return none; // out of r_m before it could change terrace
                 if (hold > 0.0) {
-                    schedule(pairEvent(EventKind::Virtual, i, j, engine.time_ + hold));
+                    schedule(i, pairEvent(EventKind::Virtual, j, engine.time_ + hold));
                     ++screened_;
                     return none;
                 }
@@ -266,7 +266,7 @@ protected:
                 const double hold = holdInRange(now, i, j, r0, w, n, horizon, win.exit);
                 if (hold == none) return none;
                 if (hold > 0.0) {
-                    schedule(pairEvent(EventKind::Virtual, i, j, engine.time_ + hold));
+                    schedule(i, pairEvent(EventKind::Virtual, j, engine.time_ + hold));
                     ++screened_;
                     return none;
                 }
@@ -288,14 +288,11 @@ protected:
             afterEvent);
         evaluations_ += r.evaluations;
         if (r.side != ExitSide::None) {
-            Event e = pairEvent(EventKind::Collision, i, j, engine.time_ + r.t);
+            PendingEvent e = pairEvent(EventKind::Collision, j, engine.time_ + r.t);
             e.side = static_cast<std::int8_t>(r.side);
-            schedule(e);
+            schedule(i, e);
         } else if (win.exit > horizon) {
-            Event e = pairEvent(EventKind::Virtual, i, j, engine.time_ + r.end.t);
-            e.U = r.end.U;
-            e.dUdt = r.end.dUdt;
-            schedule(e);
+            schedule(i, pairEvent(EventKind::Virtual, j, engine.time_ + r.end.t));
         }
         return none;
     }
@@ -414,24 +411,23 @@ protected:
         return m;
     }
 
-    Event bodyEvent(EventKind kind, int i, double t) const {
-        Event e;
+    PendingEvent bodyEvent(EventKind kind, double t) const {
+        PendingEvent e;
         e.time = t;
         e.kind = kind;
-        e.i = i;
         return e;
     }
 
-    Event pairEvent(EventKind kind, int i, int j, double t) const {
-        const Engine& engine = self();
-        Event e = bodyEvent(kind, i, t);
+    /// An event of a pair with partner j, stamped with j's counter as of now.
+    PendingEvent pairEvent(EventKind kind, int j, double t) const {
+        PendingEvent e = bodyEvent(kind, t);
         e.j = j;
-        e.countJ = engine.schedule_.book(j).counter;
+        e.countJ = self().schedule_.book(j).counter;
         return e;
     }
 
-    /// Files e in its owner's agenda (dmd/schedule.hpp).
-    void schedule(const Event& e) { self().schedule_.schedule(e); }
+    /// Files e in the agenda of its owner i (dmd/schedule.hpp).
+    void schedule(int i, const PendingEvent& e) { self().schedule_.schedule(i, e); }
 
     std::size_t predictionBytes() const {
         return plans_.capacity() * sizeof(BodyPlan) + bands_.bytesReserved();

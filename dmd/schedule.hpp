@@ -19,6 +19,7 @@
 // of its fields are the schedule's, and the clock and axis rate that the engine and the searches
 // read share its cache line. Times in the engine's unit (100 fs).
 #include "core/branch_free.hpp"
+#include "dmd/agendas.hpp"
 #include "dmd/bin_tuning.hpp"
 #include "dmd/binary_heap_queue.hpp"
 #include "dmd/bounded_priority_queue.hpp"
@@ -42,8 +43,6 @@ namespace terrace::dmd {
 /// cleanup (and at least cleanupMinimumPerBody entries per body).
 inline constexpr double cleanupGrowth = 3.0;
 inline constexpr double cleanupMinimumPerBody = 16.0;
-/// A body's list of the owners of calendar entries about it is pruned from this size on.
-inline constexpr std::size_t aboutPruneSize = 32;
 
 /// A body's scalars, in one cache line: an event reads most of them for its own body, and
 /// clock, axis rate and counter for each partner; in a large system, where an event's bodies
@@ -58,8 +57,10 @@ struct alignas(64) BodyBook {
     std::uint64_t unsettledRound = 0; // round in which it was last marked unsettled
     std::uint32_t counter = 0;        // bumped whenever its velocities change
     std::uint32_t entryStamp = 0;     // stamp of its current calendar entry
-    std::int32_t entryPartner = -1;   // the partner of that entry (−1: a body event)
-    std::uint16_t agendaFirst = 0;    // index of its earliest event (unknownFirst: scan)
+    std::int32_t entryPartner = -1;   // the partner of that entry (−1: a body event, or none)
+    // Neighbours in the list of the owners whose entry is about that partner (−1: none).
+    std::int32_t aboutPrev = -1, aboutNext = -1;
+    std::uint16_t agendaFirst = 0; // index of its earliest event (unknownFirst: scan)
 };
 static_assert(sizeof(BodyBook) == 64, "a body's scalars fill one cache line");
 
@@ -72,8 +73,8 @@ public:
     using Queue = std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>>;
 
     Schedule(int bodies, bool eager, double horizon)
-        : book_(bodies), agenda_(bodies), entry_(eager ? bodies : 0), about_(bodies), eager_(eager),
-          tuning_(horizon) {}
+        : book_(bodies), agendas_(bodies), entry_(eager ? bodies : 0), aboutFirst_(bodies, -1),
+          eager_(eager), tuning_(horizon) {}
 
     /// The calendar of the kind the settings name, starting at now.
     void openCalendar(QueueKind kind, double horizon, double now) {
@@ -99,19 +100,33 @@ public:
     /// earliest event of its agenda, put there by settle() once the body's predictions are done.
     /// A collision invalidates some 20 events of its two bodies; with one entry per body they
     /// mostly never reach the calendar, which then pushes and pops a third as many entries.
-    [[gnu::flatten]] void schedule(const Event& e) { // (flat: push_back was a call per event)
-        auto& agenda = agenda_[e.i];
-        if (agenda.size() >= std::numeric_limits<std::uint16_t>::max())
-            throw std::logic_error("dmd: a body's agenda overflowed");
-        agenda.push_back(e);
+    [[gnu::flatten]] void schedule(int i, const PendingEvent& e) {
+        // (flat: the filing was a call per event)
+        if (agendas_.size(i) == Agendas::inlineEvents) dropStale(i);
+        const int last = agendas_.push(i, e);
         // The earliest is kept as events arrive, so that settling a body just refilled needs no
         // scan; ties keep the first, as the scan does. By a select, not a branch (whether it is
         // earlier is a coin toss); an unknown earliest has time −∞ and stays unknown.
-        const bool earlier = e.time < book_[e.i].agendaFirstTime;
-        const auto last = static_cast<std::uint16_t>(agenda.size() - 1);
-        book_[e.i].agendaFirst = earlier ? last : book_[e.i].agendaFirst;
-        book_[e.i].agendaFirstTime = lesser(e.time, book_[e.i].agendaFirstTime);
-        if (e.time < book_[e.i].queuedAt) markUnsettled(e.i);
+        const bool earlier = e.time < book_[i].agendaFirstTime;
+        book_[i].agendaFirst = earlier ? static_cast<std::uint16_t>(last) : book_[i].agendaFirst;
+        book_[i].agendaFirstTime = lesser(e.time, book_[i].agendaFirstTime);
+        if (e.time < book_[i].queuedAt) markUnsettled(i);
+    }
+
+    /// Drops the stale events of i's agenda (partner moved on since), so that a full block need
+    /// not spill (a quarter of the events waiting are stale). Events move, so i's calendar entry,
+    /// which records its event's slot, is renewed.
+    void dropStale(int i) {
+        const int dropped = agendas_.keepIf(
+            i, [&](const PendingEvent& a) { return a.j < 0 || book_[a.j].counter == a.countJ; });
+        if (dropped == 0) return;
+        staleInAgendas_ += static_cast<std::uint64_t>(dropped);
+        book_[i].agendaFirst = unknownFirst;
+        book_[i].agendaFirstTime = -std::numeric_limits<double>::infinity();
+        if (std::isfinite(book_[i].queuedAt)) {
+            visitQueue([&](auto& q) { dropEntry(q, i); });
+            markUnsettled(i);
+        }
     }
 
     void markUnsettled(int i) {
@@ -127,33 +142,37 @@ public:
     /// now: the engine's time, from which the bin tuning measures the lead of each push.
     template <class Q> void settle(Q& q, double now) {
         for (const int i : unsettled_) {
-            auto& agenda = agenda_[i];
             bool moved = false;
-            std::size_t best = 0;
+            int best = 0;
             for (;;) {
-                if (agenda.empty()) break;
+                if (agendas_.empty(i)) break;
                 best = earliestInAgenda(i);
-                const Event& a = agenda[best];
+                const PendingEvent a = agendas_.at(i, best);
                 if (a.j < 0 || book_[a.j].counter == a.countJ) break;
                 ++staleInAgendas_;
                 removeFromAgenda(i, best);
                 moved = true;
             }
-            if (agenda.empty()) {
+            if (agendas_.empty(i)) {
                 dropEntry(q, i);
                 continue;
             }
-            if (!moved && agenda[best].time >= book_[i].queuedAt)
+            if (!moved && agendas_.time(i, best) >= book_[i].queuedAt)
                 continue; // the queued entry stands
             dropEntry(q, i);
-            Event entry = agenda[best];
-            entry.stamp = ++book_[i].entryStamp;
-            entry.slot = static_cast<std::uint16_t>(best);
+            const PendingEvent a = agendas_.at(i, best);
+            const Event entry{a.time,
+                              i,
+                              a.j,
+                              a.countJ,
+                              ++book_[i].entryStamp,
+                              static_cast<std::uint16_t>(best),
+                              a.kind,
+                              a.side};
             book_[i].queuedAt = entry.time;
             const QueueHandle h = q.push(entry);
             if (eager_) entry_[i] = h;
-            book_[i].entryPartner = entry.j;
-            if (entry.j >= 0) keepAbout(entry.j, i);
+            if (entry.j >= 0) linkAbout(i, entry.j);
             maxQueueSize_ = std::max<std::uint64_t>(maxQueueSize_, q.size());
             tuning_.pushed(entry.time - now);
         }
@@ -165,6 +184,7 @@ public:
     /// (eager).
     template <class Q> void dropEntry(Q& q, int i) {
         if (!std::isfinite(book_[i].queuedAt)) return;
+        unlinkAbout(i);
         ++book_[i].entryStamp;
         book_[i].queuedAt = std::numeric_limits<double>::infinity();
         if (eager_) q.erase(entry_[i]);
@@ -177,55 +197,66 @@ public:
     /// The entry just popped leaves its owner's agenda; the owner needs a new one.
     void takeFromAgenda(const Event& e) {
         removeFromAgenda(e.i, e.slot);
+        unlinkAbout(e.i);
         ++book_[e.i].entryStamp;
         book_[e.i].queuedAt = std::numeric_limits<double>::infinity();
         markUnsettled(e.i);
     }
 
-    /// Bodies whose calendar entry is about i (a pair event with partner i) are listed with i, so
-    /// that invalidating i renews those entries at once. A body that rarely collides would pile
-    /// up owners whose entries have moved on, and the same owner once per entry it renewed (a
-    /// chain of virtual events); when its list reaches 32, 64, 128, … entries, it keeps only the
-    /// owners whose entry is about i now, each once (amortised O(1) per entry).
-    void keepAbout(int i, int owner) {
-        auto& list = about_[i];
-        if (list.size() >= aboutPruneSize && (list.size() & (list.size() - 1)) == 0) {
-            std::erase_if(list, [&](int k) { return !entryIsAbout(k, i); });
-            std::sort(list.begin(), list.end());
-            list.erase(std::unique(list.begin(), list.end()), list.end());
-        }
-        list.push_back(owner);
+    /// The owners whose calendar entry is about i (a pair event with partner i) are listed with i,
+    /// so that invalidating i renews those entries at once. Each body has at most one entry, so
+    /// the lists are threaded through the books (aboutPrev, aboutNext) from a first owner per
+    /// body: 4 B a body, and an owner leaves its list the moment its entry stops standing.
+    void linkAbout(int owner, int i) {
+        BodyBook& b = book_[owner];
+        b.entryPartner = i;
+        b.aboutPrev = -1;
+        b.aboutNext = aboutFirst_[i];
+        if (b.aboutNext >= 0) book_[b.aboutNext].aboutPrev = owner;
+        aboutFirst_[i] = owner;
     }
-    bool entryIsAbout(int owner, int i) const {
-        return std::isfinite(book_[owner].queuedAt) && book_[owner].entryPartner == i;
+    void unlinkAbout(int owner) {
+        BodyBook& b = book_[owner];
+        if (b.entryPartner < 0) return;
+        if (b.aboutPrev >= 0)
+            book_[b.aboutPrev].aboutNext = b.aboutNext;
+        else
+            aboutFirst_[b.entryPartner] = b.aboutNext;
+        if (b.aboutNext >= 0) book_[b.aboutNext].aboutPrev = b.aboutPrev;
+        b.entryPartner = b.aboutPrev = b.aboutNext = -1;
     }
 
     /// Index of the earliest event of i's non-empty agenda (the first of equals).
-    std::size_t earliestInAgenda(int i) {
+    int earliestInAgenda(int i) {
         auto& first = book_[i].agendaFirst;
         if (first == unknownFirst) {
-            const auto& agenda = agenda_[i];
-            std::size_t best = 0;
-            for (std::size_t k = 1; k < agenda.size(); ++k)
-                if (agenda[k].time < agenda[best].time) best = k;
+            const int n = agendas_.size(i);
+            int best = 0;
+            double bestTime = agendas_.time(i, 0);
+            for (int k = 1; k < n; ++k) {
+                const double t = agendas_.time(i, k);
+                if (t < bestTime) {
+                    best = k;
+                    bestTime = t;
+                }
+            }
             first = static_cast<std::uint16_t>(best);
-            book_[i].agendaFirstTime = agenda[best].time;
+            book_[i].agendaFirstTime = bestTime;
         }
         return first;
     }
     /// Removes one event by moving the last into its place: the earliest must be found again.
-    void removeFromAgenda(int i, std::size_t slot) {
-        auto& agenda = agenda_[i];
-        agenda[slot] = agenda.back();
-        agenda.pop_back();
+    void removeFromAgenda(int i, int slot) {
+        agendas_.remove(i, slot);
         book_[i].agendaFirst = unknownFirst;
         book_[i].agendaFirstTime = -std::numeric_limits<double>::infinity();
     }
 
     void forgetAgenda(int i) {
-        agenda_[i].clear();
+        agendas_.clear(i);
         book_[i].agendaFirst = 0; // the next event scheduled is the earliest
         book_[i].agendaFirstTime = std::numeric_limits<double>::infinity();
+        unlinkAbout(i);
         ++book_[i].entryStamp;
         book_[i].queuedAt = std::numeric_limits<double>::infinity();
     }
@@ -239,12 +270,12 @@ public:
     template <class Q> void invalidate(Q& q, int i) {
         ++book_[i].counter;
         dropEntry(q, i);
-        for (const int k : about_[i])
-            if (entryIsAbout(k, i)) {
-                dropEntry(q, k);
-                markUnsettled(k);
-            }
-        about_[i].clear();
+        for (int k = aboutFirst_[i]; k >= 0;) {
+            const int next = book_[k].aboutNext;
+            dropEntry(q, k); // leaves i's list
+            markUnsettled(k);
+            k = next;
+        }
         forgetAgenda(i);
     }
 
@@ -254,10 +285,8 @@ public:
         q.clear();
         for (int i = 0; i < static_cast<int>(book_.size()); ++i) {
             ++book_[i].counter;
-            forgetAgenda(i);
+            forgetAgenda(i); // leaves the list it was in
         }
-        for (auto& h : about_)
-            h.clear();
     }
 
     /// After every processed event: with lazy invalidation, the calendar is cleaned of stale
@@ -282,16 +311,25 @@ public:
     std::size_t queueSize() const {
         return std::visit([](const auto& q) { return q.size(); }, queue_);
     }
+    /// Bytes held, by part: the calendar, the books, the agendas and the lists of owners whose
+    /// entry is about each body; and the events waiting in agendas.
+    struct Memory {
+        std::size_t calendar = 0, books = 0, agendas = 0, about = 0; // about: first owners
+        std::size_t agendaEvents = 0;                                // events, not bytes
+    };
+    Memory memory() const {
+        Memory m;
+        m.calendar = std::visit([](const auto& q) { return q.bytesReserved(); }, queue_) +
+                     entry_.capacity() * sizeof(QueueHandle) + unsettled_.capacity() * sizeof(int);
+        m.books = book_.capacity() * sizeof(BodyBook);
+        m.agendas = agendas_.bytesReserved();
+        m.agendaEvents = agendas_.events();
+        m.about = aboutFirst_.capacity() * sizeof(std::int32_t);
+        return m;
+    }
     std::size_t bytesReserved() const {
-        std::size_t b = std::visit([](const auto& q) { return q.bytesReserved(); }, queue_);
-        b += book_.capacity() * sizeof(BodyBook);
-        b += agenda_.capacity() * sizeof(agenda_[0]) + entry_.capacity() * sizeof(QueueHandle) +
-             about_.capacity() * sizeof(about_[0]);
-        for (const auto& a : agenda_)
-            b += a.capacity() * sizeof(Event);
-        for (const auto& h : about_)
-            b += h.capacity() * sizeof(int);
-        return b;
+        const Memory m = memory();
+        return m.calendar + m.books + m.agendas + m.about;
     }
     std::uint64_t maxQueueSize() const { return maxQueueSize_; }
     std::uint64_t cleanups() const { return cleanups_; }
@@ -301,10 +339,10 @@ private:
     static constexpr std::uint16_t unknownFirst = std::numeric_limits<std::uint16_t>::max();
 
     std::vector<BodyBook> book_;
-    std::vector<std::vector<Event>> agenda_; // each body's pending events (e.i = the body)
-    std::vector<QueueHandle> entry_;         // eager: the handle of each body's calendar entry
-    std::vector<std::vector<int>> about_;    // owners whose entry is about the body
-    std::vector<int> unsettled_;             // bodies whose entry settle() must renew
+    Agendas agendas_;                      // each body's pending events
+    std::vector<QueueHandle> entry_;       // eager: the handle of each body's calendar entry
+    std::vector<std::int32_t> aboutFirst_; // first owner whose entry is about the body (−1: none)
+    std::vector<int> unsettled_;           // bodies whose entry settle() must renew
     std::uint64_t settleRound_ = 1;
     bool eager_;
     Queue queue_;
