@@ -1,10 +1,9 @@
 #pragma once
 // Run-time choice of the AVX2 loops (smd/lj_pairs_avx2.hpp, the cell scan of
-// smd/neighbour_list.hpp): they
-// are compiled for AVX2 alone, function by function (target attribute), not for FMA, so that no
-// multiply-add is fused (the build's -ffp-contract=off holds there too) and the rest of the
-// binary keeps the baseline x86-64 target. A processor without AVX2, or a build for another
-// architecture, runs the portable scalar loops.
+// smd/neighbour_list.hpp): they are compiled for AVX2 alone, function by function (target
+// attribute), not for FMA, so that no multiply-add is fused (the build's -ffp-contract=off holds
+// there too) and the rest of the binary keeps the baseline x86-64 target. A processor without AVX2,
+// or a build for another architecture, runs the portable scalar loops.
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define TERRACE_SMD_AVX2 1
