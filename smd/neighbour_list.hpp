@@ -211,7 +211,12 @@ TERRACE_AVX2 inline void listCellPairsAvx2(NeighbourList& list, int m, std::span
                 for (const auto& [cell, image] : stencil)
                     candidates += first[cell + 1] - first[cell];
                 const std::size_t need = used + (first[c + 1] - first[c]) * candidates;
-                if (list.entry.size() < need) list.entry.resize(std::max(need, 2 * used));
+                if (list.entry.size() < need) {
+                    // Grown by an eighth, not doubled as resize() would: the buffer is the
+                    // list, kept from build to build, and only its growth is zero-filled.
+                    if (list.entry.capacity() < need) list.entry.reserve(need + need / 8);
+                    list.entry.resize(need);
+                }
                 // Stencil cells that follow each other in memory with one image code (the five
                 // along z at each (x, y) offset, unless they wrap) are one run of slots: one
                 // scan, fewer loop exits to mispredict. The run after the own cell, (0, 0, 1..2),
