@@ -2,7 +2,8 @@
 // called explicitly, against the O(N²) minimum-image reference allPairsForces: forces, energy,
 // virial and the count of pairs within r_u, for an LJ liquid whose list holds pairs inside r_l,
 // in the switch shell and beyond r_u, and for boxes of few bodies (list tails of one to three
-// partners, bodies with none). The AVX2 test is skipped only on a processor without AVX2.
+// partners, bodies with none). The AVX2 tests are skipped only where those loops cannot run (a
+// processor without AVX2, or a build with -DTERRACE_NO_AVX2).
 #include "smd/lj_pairs_avx2.hpp"
 #include "smd/neighbour_list.hpp"
 #include "smd/pair_forces.hpp"
@@ -123,13 +124,15 @@ TEST(LJPairLoops, ScalarEqualsAllPairs) {
 }
 
 TEST(LJPairLoops, Avx2EqualsAllPairs) {
-    if (skipWithoutAvx2()) GTEST_SKIP() << "this processor has no AVX2";
+    if (skipWithoutAvx2())
+        GTEST_SKIP() << "no AVX2 loops: the processor lacks AVX2 or the build left them out";
     for (const Case& c : cases())
         expectEqualsAllPairs(c, Loop::avx2);
 }
 
 TEST(LJPairLoops, Avx2FewBodies) {
-    if (skipWithoutAvx2()) GTEST_SKIP() << "this processor has no AVX2";
+    if (skipWithoutAvx2())
+        GTEST_SKIP() << "no AVX2 loops: the processor lacks AVX2 or the build left them out";
     // Two to eight bodies in a box of 7σ: each body's partners are fewer than four (list tails
     // only) or none; every N from 2 to 8 gives other tail lengths.
     for (int n = 2; n <= 8; ++n) {
@@ -163,7 +166,8 @@ TEST(LJPairLoops, Avx2FewBodies) {
 }
 
 TEST(LJPairLoops, Avx2AgreesWithScalarPerBody) {
-    if (skipWithoutAvx2()) GTEST_SKIP() << "this processor has no AVX2";
+    if (skipWithoutAvx2())
+        GTEST_SKIP() << "no AVX2 loops: the processor lacks AVX2 or the build left them out";
     const Case c = liquid(12, 0.8, 0.15, 4);
     const Forces a = listForces(c, Loop::avx2), s = listForces(c, Loop::scalar);
     EXPECT_EQ(a.evaluations, s.evaluations);

@@ -134,7 +134,8 @@ TEST(NeighbourList, EachPairListedOnce) {
 }
 
 TEST(NeighbourList, Avx2BuildListsTheScalarBuildsEntries) {
-    if (!avx2Available()) GTEST_SKIP() << "this processor has no AVX2";
+    if (!avx2Available())
+        GTEST_SKIP() << "no AVX2 loops: the processor lacks AVX2 or the build left them out";
     // Cell counts from five per edge up, cells of one to a dozen bodies, unwrapped positions.
     for (auto [perEdge, density] : {std::pair{7, 0.5}, {8, 0.5}, {10, 0.3}, {12, 0.9}}) {
         auto sys = scatteredRods(perEdge, density, 0.8, 30 + perEdge);
