@@ -5,7 +5,10 @@
 //     skin 0.3σ, dt = 0.005τ), N = 512, 32000, with the cutoff ending at r_u = 2.5σ (switched
 //     from 2σ, so that the same pairs interact as under a plain 2.5σ cut);
 //   - the LAMMPS comparison input: LJ spheres, N = 512, ρ* = 0.5, T* = 1.4, smoothed 2.5-3σ,
-//     dt = 0.005τ (experiments/lammps/ runs LAMMPS on it side by side).
+//     dt = 0.005τ (experiments/lammps/ runs LAMMPS on it side by side);
+//   - the LJ pair loop alone, scalar against AVX2 (smd/lj_pairs_avx2.hpp), and the list build
+//     alone, on the liquid of experiments/lammps/tabulated.sh (ρ* = 0.8, T* = 0.9, smoothed
+//     2.5-3σ, skin 0.3σ) melted from the lattice: listed pairs per second.
 // LJ runs in reduced units: ε = 1 kJ/mol, σ = 1 Å, m = 1 g/mol, so τ = 1 time unit = 100 fs.
 // Every run first melts the lattice start (warm-up steps, not timed).
 #include "core/initial_state.hpp"
@@ -75,8 +78,81 @@ void ljLammpsInput(benchmark::State& state) {
     runSteps<Sphere>(state, tuned, ljPotential(tuned), 500);
 }
 
+/// The liquid of experiments/lammps/tabulated.sh after `warmup` steps from the lattice, with its
+/// Verlet list and the positions per list slot.
+struct ListedLiquid {
+    System<Sphere, Smoothed<LJPotential>> sys;
+    smd::NeighbourList list;
+    std::vector<Vec3> r, x; // per body; per slot (r - offset)
+};
+
+ListedLiquid listedLiquid(int n, int warmup) {
+    const Scene sc = ljScene(n, 0.8, 0.9, 2.5, 3.0);
+    const Smoothed<LJPotential> model{ljPotential(sc), sceneCutoff(sc)};
+    smd::Engine<Sphere, Smoothed<LJPotential>> engine(
+        buildInitialState<Sphere, Smoothed<LJPotential>>(sc, model), sc);
+    for (int k = 0; k < warmup; ++k)
+        engine.step();
+    ListedLiquid liquid{engine.system(), {}, {}, {}};
+    liquid.list.skin = engine.parameters().skin;
+    liquid.list.reach = model.range() + liquid.list.skin;
+    for (const auto& b : liquid.sys.bodies)
+        liquid.r.push_back(b.r);
+    smd::build(liquid.list, liquid.sys.box, liquid.r);
+    for (std::size_t a = 0; a < liquid.r.size(); ++a)
+        liquid.x.push_back(liquid.r[liquid.list.order[a]] - liquid.list.offset[a]);
+    return liquid;
+}
+
+/// Arg 0: the scalar loop, 1: the AVX2 loop (skipped without AVX2).
+void ljPairLoop(benchmark::State& state) {
+    const bool avx2 = state.range(1) == 1;
+    if (avx2 && !smd::avx2Available()) return state.SkipWithError("no AVX2 loops");
+    const ListedLiquid liquid = listedLiquid(int(state.range(0)), 400);
+    smd::Forces f;
+    for (auto _ : state) {
+        f.reset(liquid.x.size());
+        if (avx2)
+            smd::accumulateListedPairs<LJPotential>(f, liquid.sys.potential, liquid.list, liquid.x,
+                                                    liquid.x);
+        else
+            smd::accumulateListedPairsScalar<LJPotential>(f, liquid.sys.potential, liquid.list,
+                                                          liquid.x, liquid.x);
+        benchmark::DoNotOptimize(f.potential);
+    }
+    using C = benchmark::Counter;
+    state.counters["listed_pairs/s"] =
+        C(double(liquid.list.pairCount()) * double(state.iterations()), C::kIsRate);
+}
+
+/// Arg 0: the scalar cell scan, 1: the AVX2 one.
+void ljListBuild(benchmark::State& state) {
+    const bool avx2 = state.range(1) == 1;
+    if (avx2 && !smd::avx2Available()) return state.SkipWithError("no AVX2 loops");
+    ListedLiquid liquid = listedLiquid(int(state.range(0)), 400);
+    for (auto _ : state)
+        smd::build(liquid.list, liquid.sys.box, liquid.r, avx2);
+    using C = benchmark::Counter;
+    state.counters["listed_pairs/s"] =
+        C(double(liquid.list.pairCount()) * double(state.iterations()), C::kIsRate);
+}
+
 } // namespace
 
+BENCHMARK(ljPairLoop)
+    ->Args({512, 0})
+    ->Args({512, 1})
+    ->Args({32000, 0})
+    ->Args({32000, 1})
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(1.0);
+BENCHMARK(ljListBuild)
+    ->Args({512, 0})
+    ->Args({512, 1})
+    ->Args({32000, 0})
+    ->Args({32000, 1})
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(1.0);
 BENCHMARK(denseRods)->Arg(512)->Arg(4096)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
 BENCHMARK(ljStandard)->Arg(512)->Arg(32000)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
 BENCHMARK(ljLammpsInput)->Arg(30)->Unit(benchmark::kMicrosecond)->MinTime(2.0);

@@ -6,13 +6,16 @@
 // rigid-body fluid is P = (2 K_trans + W)/(3V) (Allen & Tildesley, 2nd ed., sec. 2.4), torques do
 // no work on the volume. Units: kJ/mol/Å, kJ/mol, kJ/mol, kJ/mol.
 // allPairsForces() is the slow, obviously correct O(N²) minimum-image path the list is tested
-// against.
+// against. Lennard-Jones spheres take the four-lane loop of smd/lj_pairs_avx2.hpp where the
+// processor has AVX2, the scalar loop here otherwise.
 #include "core/smoothed_potential.hpp"
 #include "core/system.hpp"
+#include "smd/lj_pairs_avx2.hpp"
 #include "smd/neighbour_list.hpp"
 #include "smd/pair_kernels.hpp"
 #include <array>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace terrace::smd {
@@ -36,11 +39,12 @@ struct Forces {
 
 /// Accumulates every listed pair within r_u into out, per list slot. x[a] = r - list.offset[a]
 /// for the body in slot a; orientation[a] its orientation (core/body_orientation.hpp), read only
-/// for orientational potentials.
+/// for orientational potentials. The portable loop, one pair at a time.
 template <PairPotential P>
-[[gnu::flatten]] void accumulateListedPairs(Forces& out, const Smoothed<P>& potentialIn,
-                                            const NeighbourList& list, std::span<const Vec3> x,
-                                            std::span<const typename P::Orientation> orientation) {
+[[gnu::flatten]] void
+accumulateListedPairsScalar(Forces& out, const Smoothed<P>& potentialIn, const NeighbourList& list,
+                            std::span<const Vec3> x,
+                            std::span<const typename P::Orientation> orientation) {
     using Orientation = typename P::Orientation;
     using Kernel = PairKernel<Smoothed<P>>;
     // Local copies and raw pointers: the force stores below could otherwise alias the parameters
@@ -91,6 +95,26 @@ template <PairPotential P>
     out.potential += u;
     out.virial += w;
     out.evaluations += evaluations;
+}
+
+/// accumulateListedPairsScalar, or for Lennard-Jones spheres on a processor with AVX2 the
+/// four-lane loop: the same pairs and per-pair values, summed in another order.
+template <PairPotential P>
+void accumulateListedPairs(Forces& out, const Smoothed<P>& potential, const NeighbourList& list,
+                           std::span<const Vec3> x,
+                           std::span<const typename P::Orientation> orientation) {
+#if TERRACE_SMD_AVX2
+    if constexpr (std::is_same_v<P, LJPotential>) {
+        if (avx2Available()) {
+            const PairSums sums = accumulateLJPairsAvx2(potential, list, x, out.force);
+            out.potential += sums.potential;
+            out.virial += sums.virial;
+            out.evaluations += sums.evaluations;
+            return;
+        }
+    }
+#endif
+    accumulateListedPairsScalar(out, potential, list, x, orientation);
 }
 
 /// Reference: every pair, minimum image by PeriodicBox, same smoothed interaction.

@@ -132,3 +132,28 @@ TEST(NeighbourList, EachPairListedOnce) {
     }
     EXPECT_EQ(seen.size(), expected);
 }
+
+TEST(NeighbourList, Avx2BuildListsTheScalarBuildsEntries) {
+    if (!avx2Available())
+        GTEST_SKIP() << "no AVX2 loops: the processor lacks AVX2 or the build left them out";
+    // Cell counts from five per edge up, cells of one to a dozen bodies, unwrapped positions.
+    for (auto [perEdge, density] : {std::pair{7, 0.5}, {8, 0.5}, {10, 0.3}, {12, 0.9}}) {
+        auto sys = scatteredRods(perEdge, density, 0.8, 30 + perEdge);
+        std::vector<Vec3> r;
+        for (const auto& b : sys.bodies)
+            r.push_back(b.r);
+        NeighbourList scalar, avx2;
+        scalar.skin = avx2.skin = 0.3 * sys.potential.bare.sigma;
+        scalar.reach = avx2.reach = sys.potential.range() + scalar.skin;
+        for (int rebuild = 0; rebuild < 2; ++rebuild) { // the second reuses the entry buffer
+            build(scalar, sys.box, r, false);
+            build(avx2, sys.box, r, true);
+            ASSERT_GT(scalar.pairCount(), 0u);
+            EXPECT_EQ(avx2.order, scalar.order);
+            EXPECT_EQ(avx2.start, scalar.start);
+            EXPECT_EQ(avx2.entry, scalar.entry);
+            for (auto& x : r)
+                x += Vec3(0.7, -0.3, 0.2); // a new arrangement for the second build
+        }
+    }
+}
