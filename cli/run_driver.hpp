@@ -215,7 +215,10 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     Resumed at;
     if (!target.resume) {
         writeFileAtomically(dir / "scene.json", toJson(scene).dump(2) + "\n");
-        writeFileAtomically(dir / "initial.xyz", formatXyzFrame(engine->snapshot(), layout));
+        // In pieces: at 10⁶ bodies the frame's text alone is ~0.3 GB.
+        writeFileAtomically(dir / "initial.xyz", [&](const PieceSink& sink) {
+            writeXyzFramePieces(engine->snapshot(), layout, sink);
+        });
     } else {
         at = resumeRun(*target.resume, plan, dir, run.bodies, rotationalDof == 3,
                        engine->snapshot().boxLength, run);
@@ -244,7 +247,8 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
         e.time = engine->time();
         if (restarts) samplesFile.append(encodeSample(s, e));
         if (plan.trajectoryEvery > 0 && sample % plan.trajectoryEvery == 0)
-            trajectory.append(formatXyzFrame(s, layout));
+            trajectory.appendPieces(
+                [&](const PieceSink& sink) { writeXyzFramePieces(s, layout, sink); });
         if (plan.thermoEvery > 0 && sample % plan.thermoEvery == 0) {
             const SampleRecord* before =
                 sample > 0 ? &run.records[sample - plan.thermoEvery] : nullptr;

@@ -33,6 +33,11 @@ bool writeAll(int fd, std::string_view data) {
 } // namespace
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
+    writeFileAtomically(path, [content](const PieceSink& sink) { sink(content); });
+}
+
+void writeFileAtomically(const std::filesystem::path& path,
+                         const std::function<void(const PieceSink&)>& produce) {
     // The temporary sits in the target's directory (a rename does not cross file systems) and
     // carries the process id, so that two writers never share one.
     const std::filesystem::path temporary =
@@ -41,7 +46,16 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view con
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) throwIoError("write", path, errno);
     int err = 0;
-    if (!writeAll(fd, content) || ::fsync(fd) != 0) err = errno;
+    try {
+        produce([&](std::string_view piece) {
+            if (err == 0 && !writeAll(fd, piece)) err = errno;
+        });
+    } catch (...) {
+        ::close(fd);
+        ::unlink(temporary.c_str());
+        throw;
+    }
+    if (err == 0 && ::fsync(fd) != 0) err = errno;
     if (::close(fd) != 0 && err == 0) err = errno;
     if (err == 0 && ::rename(temporary.c_str(), path.c_str()) != 0) err = errno;
     if (err != 0) {
@@ -148,6 +162,21 @@ void AppendFile::append(std::string_view record) {
     // whole record (a full device frees the space of the part it took).
     if (::ftruncate(fd_, size_) == 0) ::lseek(fd_, size_, SEEK_SET);
     throwIoError("write", path_, err);
+}
+
+void AppendFile::appendPieces(const std::function<void(const PieceSink&)>& produce) {
+    if (fd_ < 0) throw IoError("cannot write " + path_.string() + ": the file is not open");
+    const std::int64_t start = size_;
+    try {
+        produce([&](std::string_view piece) {
+            if (!writeAll(fd_, piece)) throwIoError("write", path_, errno);
+            size_ += static_cast<std::int64_t>(piece.size());
+        });
+    } catch (...) {
+        if (::ftruncate(fd_, start) == 0) ::lseek(fd_, start, SEEK_SET);
+        size_ = start;
+        throw;
+    }
 }
 
 } // namespace terrace

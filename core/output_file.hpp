@@ -10,6 +10,7 @@
 // "cannot write out/x/summary.json: No space left on device".
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -26,6 +27,12 @@ public:
 
 /// Replaces `path` with `content` atomically (temporary file, fsync, rename).
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content);
+/// Hands each piece of a content to the file being written.
+using PieceSink = std::function<void(std::string_view)>;
+/// The same, for a content too large to hold whole: `produce` hands it over piece by piece, in
+/// order, to the sink it is given. Should `produce` throw, the target is left as it was.
+void writeFileAtomically(const std::filesystem::path& path,
+                         const std::function<void(const PieceSink&)>& produce);
 
 /// The whole content of a file; IoError naming the cause if it cannot be read.
 std::string readWholeFile(const std::filesystem::path& path);
@@ -46,6 +53,10 @@ public:
     bool isOpen() const { return fd_ >= 0; }
     /// Appends the record whole, or throws IoError with the file cut back to where it was.
     void append(std::string_view record);
+    /// The same for a record handed over in pieces by `produce` (a frame too large to hold
+    /// whole): should a piece fail to be written, or `produce` throw, the file is cut back to
+    /// where the record began.
+    void appendPieces(const std::function<void(const PieceSink&)>& produce);
     /// Flushes what was appended to the disk (fdatasync): done before a restart file that counts
     /// these bytes is written, so that it never points past data the disk does not hold.
     void sync();

@@ -1,5 +1,6 @@
 #include "core/xyz.hpp"
 #include "core/units.hpp"
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <iomanip>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 
 namespace terrace {
 
@@ -63,15 +65,21 @@ std::string field(const std::string& line, const std::string& key) {
 
 } // namespace
 
-void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout) {
+namespace {
+
+void writeXyzHeader(std::ostream& out, const Snapshot& f, TrajectoryLayout layout) {
     const double L = f.boxLength;
-    const auto precision = out.precision(17);
     out << f.size() << '\n';
     out << "Lattice=\"" << L << " 0 0 0 " << L << " 0 0 0 " << L
         << "\" Properties=" << columns(layout) << " Time=" << units::toFs(f.time)
         << " pbc=\"T T T\" units=\"pos:A velo:A/ps omega:rad/ps Time:fs\"\n";
+}
+
+/// The lines of bodies [begin, end).
+void writeXyzBodies(std::ostream& out, const Snapshot& f, TrajectoryLayout layout, int begin,
+                    int end) {
     const double perPs = 1.0 / units::psPerTimeUnit; // time units -> ps
-    for (int i = 0; i < f.size(); ++i) {
+    for (int i = begin; i < end; ++i) {
         out << 'X'; // ASE's dummy element (readers take species for elements); kind: body
         put(out, f.position[i]);
         put(out, f.velocity[i] * perPs);
@@ -83,7 +91,29 @@ void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout
         if (layout != TrajectoryLayout::Sphere) put(out, f.omega[i] * perPs);
         out << ' ' << bodyCode(layout) << '\n';
     }
+}
+
+} // namespace
+
+void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout) {
+    const auto precision = out.precision(17);
+    writeXyzHeader(out, f, layout);
+    writeXyzBodies(out, f, layout, 0, f.size());
     out.precision(precision);
+}
+
+void writeXyzFramePieces(const Snapshot& f, TrajectoryLayout layout,
+                         const std::function<void(std::string_view)>& sink, int bodiesPerPiece) {
+    if (bodiesPerPiece < 1) throw std::invalid_argument("writeXyzFramePieces: no bodies per piece");
+    std::ostringstream out;
+    out.precision(17);
+    writeXyzHeader(out, f, layout);
+    sink(out.view());
+    for (int begin = 0; begin < f.size(); begin += bodiesPerPiece) {
+        out.str(std::string()); // empties the buffer; the stream keeps its precision
+        writeXyzBodies(out, f, layout, begin, std::min(f.size(), begin + bodiesPerPiece));
+        sink(out.view());
+    }
 }
 
 std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout) {

@@ -24,6 +24,7 @@
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace terrace {
@@ -45,6 +46,11 @@ constexpr TrajectoryLayout layoutFor(int rotationalDof) {
 void writeXyzFrame(std::ostream& out, const Snapshot& frame, TrajectoryLayout layout);
 /// The frame as writeXyzFrame writes it, as one string: one record for an AppendFile.
 std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout);
+/// The same bytes handed to `sink` in pieces of at most `bodiesPerPiece` bodies (the header
+/// first), so that a frame of 10⁶ bodies (~0.3 GB of text) is never held whole.
+void writeXyzFramePieces(const Snapshot& frame, TrajectoryLayout layout,
+                         const std::function<void(std::string_view)>& sink,
+                         int bodiesPerPiece = 4096);
 
 /// Every frame of an extended XYZ file written by writeXyzFrame. Throws TrajectoryError naming the
 /// file and line on anything malformed. A last frame cut short by the end of the file (a run

@@ -2,6 +2,8 @@
 // (/dev/full for a full device, a file-size limit, a directory that does not exist).
 #include "core/output_file.hpp"
 #include <csignal>
+#include <stdexcept>
+#include <string>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -116,4 +118,74 @@ TEST(OutputFile, ReadingADirectoryOrAMissingFileNamesTheCause) {
     EXPECT_NE(messageOf([&] { readWholeFile(dir); }).find("Is a directory"), std::string::npos);
     EXPECT_NE(messageOf([&] { readWholeFile(dir / "nothing"); }).find("No such file"),
               std::string::npos);
+}
+
+// A content handed over in pieces lands whole, and a producer that fails half way leaves the
+// target as it was and no temporary beside it.
+TEST(OutputFile, AtomicWriteInPiecesIsWholeOrAbsent) {
+    const fs::path dir = freshDirectory("pieces");
+    writeFileAtomically(dir / "f.xyz", [](const PieceSink& sink) {
+        sink("2\n");
+        sink("header\n");
+        sink("");
+        sink("X 1\nX 2\n");
+    });
+    EXPECT_EQ(readWholeFile(dir / "f.xyz"), "2\nheader\nX 1\nX 2\n");
+    EXPECT_THROW(writeFileAtomically(dir / "f.xyz",
+                                     [](const PieceSink& sink) {
+                                         sink("half a frame\n");
+                                         throw std::runtime_error("the frame failed");
+                                     }),
+                 std::runtime_error);
+    EXPECT_EQ(readWholeFile(dir / "f.xyz"), "2\nheader\nX 1\nX 2\n");
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir))
+        ++entries;
+    EXPECT_EQ(entries, 1);
+}
+
+// A record appended in pieces is cut back whole when one of its pieces fails (a file-size
+// limit here) or its producer throws: the file keeps ending on a record.
+TEST(OutputFile, ARecordInPiecesIsCutBackWhole) {
+    const fs::path dir = freshDirectory("append-pieces");
+    {
+        AppendFile file(dir / "t.xyz", 0);
+        file.appendPieces([](const PieceSink& sink) {
+            sink("one ");
+            sink("record\n");
+        });
+        EXPECT_THROW(file.appendPieces([](const PieceSink& sink) {
+            sink("a piece that reaches the file\n");
+            throw std::runtime_error("then the frame failed");
+        }),
+                     std::runtime_error);
+        EXPECT_EQ(file.size(), 11);
+        file.append("two\n");
+    }
+    EXPECT_EQ(readWholeFile(dir / "t.xyz"), "one record\ntwo\n");
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        std::signal(SIGXFSZ, SIG_IGN);
+        rlimit limit{4096, 4096};
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(3);
+        AppendFile file(dir / "limited.xyz", 0);
+        const std::string piece(1000, 'x');
+        try {
+            file.appendPieces([&](const PieceSink& sink) { sink(piece); });
+            file.appendPieces([&](const PieceSink& sink) {
+                for (int k = 0; k < 5; ++k) // the fourth piece meets the limit
+                    sink(piece);
+            });
+        } catch (const IoError& e) {
+            const bool named = std::string(e.what()).find("File too large") != std::string::npos;
+            ::_exit(file.size() == 1000 && named ? 0 : 2);
+        }
+        ::_exit(1);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error; 2: wrong size or message; 3: no limit";
+    EXPECT_EQ(fs::file_size(dir / "limited.xyz"), 1000u);
 }

@@ -104,6 +104,39 @@ TEST(Xyz, EveryKindIsSpeciesXWithItsBodyColumn) {
     }
 }
 
+// A frame written in pieces (initial.xyz, trajectory frames of large systems) is the same bytes
+// as the frame written whole, whatever the piece size and layout.
+TEST(Xyz, AFrameInPiecesIsTheFrameWhole) {
+    Scene scene = defaultScene();
+    scene.state.n = 27;
+    const Snapshot rods =
+        makeSnapshot(buildInitialState<LinearRotor>(scene, rodPotential(scene)), 0.3);
+    scene.body.inertia = Vec3(1.0, 1.0, 0.4);
+    const Snapshot tops =
+        makeSnapshot(buildInitialState<SymmetricTop>(scene, rodPotential(scene)), 0.3);
+    const std::pair<const Snapshot*, TrajectoryLayout> frames[] = {
+        {&rods, TrajectoryLayout::Rod},
+        {&rods, TrajectoryLayout::Sphere},
+        {&tops, TrajectoryLayout::Top}};
+    for (const auto& [frame, layout] : frames)
+        for (const int perPiece : {1, 4, 26, 27, 1000}) {
+            std::string pieces;
+            int count = 0;
+            writeXyzFramePieces(
+                *frame, layout,
+                [&](std::string_view piece) {
+                    pieces += piece;
+                    ++count;
+                },
+                perPiece);
+            EXPECT_EQ(pieces, formatXyzFrame(*frame, layout)) << perPiece;
+            EXPECT_EQ(count, 1 + (27 + perPiece - 1) / perPiece) << perPiece; // header first
+        }
+    EXPECT_THROW(writeXyzFramePieces(
+                     rods, TrajectoryLayout::Rod, [](std::string_view) {}, 0),
+                 std::invalid_argument);
+}
+
 // Files written before the body column (species S, R, T) still read, `terrace analyse` on old
 // output included; a body column that disagrees with the layout is an error.
 TEST(Xyz, FilesWithoutTheBodyColumnStillRead) {
