@@ -152,16 +152,7 @@ void AppendFile::sync() {
 }
 
 void AppendFile::append(std::string_view record) {
-    if (fd_ < 0) throw IoError("cannot write " + path_.string() + ": the file is not open");
-    if (writeAll(fd_, record)) {
-        size_ += static_cast<std::int64_t>(record.size());
-        return;
-    }
-    const int err = errno;
-    // Whatever part of the record reached the file is cut off again: the file keeps ending on a
-    // whole record (a full device frees the space of the part it took).
-    if (::ftruncate(fd_, size_) == 0) ::lseek(fd_, size_, SEEK_SET);
-    throwIoError("write", path_, err);
+    appendPieces([record](const PieceSink& sink) { sink(record); });
 }
 
 void AppendFile::appendPieces(const std::function<void(const PieceSink&)>& produce) {
@@ -173,6 +164,8 @@ void AppendFile::appendPieces(const std::function<void(const PieceSink&)>& produ
             size_ += static_cast<std::int64_t>(piece.size());
         });
     } catch (...) {
+        // Whatever part of the record reached the file is cut off again: the file keeps ending
+        // on a whole record (a full device frees the space of the part it took).
         if (::ftruncate(fd_, start) == 0) ::lseek(fd_, start, SEEK_SET);
         size_ = start;
         throw;

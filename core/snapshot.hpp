@@ -19,8 +19,11 @@ struct Snapshot {
     int size() const { return static_cast<int>(position.size()); }
 };
 
-/// An empty snapshot at time t with room for n bodies.
-inline Snapshot emptySnapshot(double t, double boxLength, std::size_t n, bool withOrientation) {
+/// An empty snapshot at time t with room for n bodies of kind K.
+template <BodyKind K> Snapshot emptySnapshot(double t, double boxLength, std::size_t n) {
+    constexpr bool withOrientation = requires(const typename K::State& b) {
+        b.A;
+    };
     Snapshot s;
     s.time = t;
     s.boxLength = boxLength;
@@ -43,10 +46,7 @@ void appendBody(Snapshot& s, const typename K::State& b, const BodyParams& param
 }
 
 template <BodyKind K, PairPotential P> Snapshot makeSnapshot(const System<K, P>& sys, double t) {
-    constexpr bool withOrientation = requires(const typename K::State& b) {
-        b.A;
-    };
-    Snapshot s = emptySnapshot(t, sys.box.length, sys.bodies.size(), withOrientation);
+    Snapshot s = emptySnapshot<K>(t, sys.box.length, sys.bodies.size());
     for (const auto& b : sys.bodies)
         appendBody<K>(s, b, sys.body);
     return s;

@@ -153,18 +153,10 @@ public:
     /// The bodies as they are now, in the scene's order; built body by body, without a copy of
     /// the whole system (a sample of 10⁶ bodies would hold both at once).
     Snapshot snapshot() const {
-        constexpr bool withOrientation = requires(const State& b) {
-            b.A;
-        };
         const int n = sys_.size();
-        Snapshot s =
-            emptySnapshot(time_, sys_.box.length, static_cast<std::size_t>(n), withOrientation);
-        for (int b = 0; b < n; ++b) {
-            const int i = engineIndex(b);
-            State now = sys_.bodies[i];
-            freeMove<K>(now, sys_.body, time_ - schedule_.book(i).clock);
-            appendBody<K>(s, now, sys_.body);
-        }
+        Snapshot s = emptySnapshot<K>(time_, sys_.box.length, static_cast<std::size_t>(n));
+        for (int b = 0; b < n; ++b)
+            appendBody<K>(s, stateNow(engineIndex(b)), sys_.body);
         return s;
     }
     double kineticEnergy() const { return totalKinetic(sys_); } // constant in free flight
@@ -245,9 +237,10 @@ public:
         j["stale_in_agendas"] = schedule_.staleInAgendas();
         j["cells_per_side"] = cells_.cellsPerSide();
         const double n = static_cast<double>(sys_.bodies.size());
-        j["agenda_events_per_body"] = static_cast<double>(schedule_.memory().agendaEvents) / n;
+        const auto sched = schedule_.memory(); // one pass over the agendas
+        j["agenda_events_per_body"] = static_cast<double>(sched.agendaEvents) / n;
         // What a body costs in memory now, by part (bytes per body).
-        for (const auto& [part, bytes] : memoryByPart())
+        for (const auto& [part, bytes] : memoryByPart(sched))
             j["memory_bytes_per_body"][part] = static_cast<double>(bytes) / n;
         j["search_evaluations"] = evaluations_;
         j["searches_screened"] = screened_;
@@ -288,12 +281,15 @@ public:
     /// All bodies brought to time(): the system as it is now, its bodies in the scene's order.
     System<K, P> synchronisedCopy() const {
         System<K, P> s = sys_;
-        for (int i = 0; i < s.size(); ++i) {
-            State& b = s.bodies[sceneIndex(i)];
-            b = sys_.bodies[i];
-            freeMove<K>(b, s.body, time_ - schedule_.book(i).clock);
-        }
+        for (int i = 0; i < s.size(); ++i)
+            s.bodies[sceneIndex(i)] = stateNow(i);
         return s;
+    }
+    /// The engine's body i as it is at time(), its stored state moved freely from its clock.
+    State stateNow(int i) const {
+        State b = sys_.bodies[i];
+        freeMove<K>(b, sys_.body, time_ - schedule_.book(i).clock);
+        return b;
     }
     /// The engine's number of the scene's body b, and the scene's number of the engine's body i:
     /// inside, the bodies are numbered in the Morton order of their cells (sortBodiesByCell).
@@ -324,7 +320,10 @@ public:
     std::size_t queueSize() const { return schedule_.queueSize(); }
     /// Bytes the engine holds, by part (the heap blocks' own overhead not counted).
     std::vector<std::pair<const char*, std::size_t>> memoryByPart() const {
-        const auto sched = schedule_.memory();
+        return memoryByPart(schedule_.memory());
+    }
+    std::vector<std::pair<const char*, std::size_t>>
+    memoryByPart(const typename Schedule<Engine>::Memory& sched) const {
         return {{"states", sys_.bodies.capacity() * sizeof(State)},
                 {"orbits", orbit_.capacity() * sizeof(FreeOrbit<K>)},
                 {"books", sched.books},

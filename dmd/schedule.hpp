@@ -144,10 +144,11 @@ public:
         for (const int i : unsettled_) {
             bool moved = false;
             int best = 0;
+            PendingEvent a; // the earliest valid event, once found
             for (;;) {
                 if (agendas_.empty(i)) break;
                 best = earliestInAgenda(i);
-                const PendingEvent a = agendas_.at(i, best);
+                a = agendas_.at(i, best);
                 if (a.j < 0 || book_[a.j].counter == a.countJ) break;
                 ++staleInAgendas_;
                 removeFromAgenda(i, best);
@@ -157,10 +158,8 @@ public:
                 dropEntry(q, i);
                 continue;
             }
-            if (!moved && agendas_.time(i, best) >= book_[i].queuedAt)
-                continue; // the queued entry stands
+            if (!moved && a.time >= book_[i].queuedAt) continue; // the queued entry stands
             dropEntry(q, i);
-            const PendingEvent a = agendas_.at(i, best);
             const Event entry{a.time,
                               i,
                               a.j,

@@ -2,11 +2,13 @@
 // (/dev/full for a full device, a file-size limit, a directory that does not exist).
 #include "core/output_file.hpp"
 #include <csignal>
-#include <stdexcept>
-#include <string>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <gtest/gtest.h>
+#include <stdexcept>
+#include <string>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -31,6 +33,33 @@ std::string messageOf(const std::function<void()>& f) {
         return e.what();
     }
     return "";
+}
+
+/// Runs `appendRecords` on a fresh AppendFile at `path` in a child process under a 4096-byte
+/// file-size limit (SIGXFSZ ignored, as the run driver does, so a write fails with EFBIG; a child,
+/// so that the limit does not bind the test runner). The child's exit status: 0 when the appends
+/// failed with "File too large" and the file was left at `expectedSize` bytes, 1 when no append
+/// failed, 2 for another size or message, 3 when the limit could not be set.
+int appendUnderFileLimit(const fs::path& path, std::int64_t expectedSize,
+                         const std::function<void(AppendFile&)>& appendRecords) {
+    const pid_t child = ::fork();
+    if (child < 0) return -1;
+    if (child == 0) {
+        std::signal(SIGXFSZ, SIG_IGN);
+        rlimit limit{4096, 4096};
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(3);
+        AppendFile file(path, 0);
+        try {
+            appendRecords(file);
+        } catch (const IoError& e) {
+            const bool named = std::string(e.what()).find("File too large") != std::string::npos;
+            ::_exit(file.size() == expectedSize && named ? 0 : 2);
+        }
+        ::_exit(1);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 } // namespace
@@ -73,27 +102,14 @@ TEST(OutputFile, AppendingToAFullDeviceIsAnError) {
 // last whole record (SIGXFSZ ignored, as the run driver does, so the write fails with EFBIG).
 TEST(OutputFile, ARecordThatDoesNotFitIsCutOffAgain) {
     const fs::path dir = freshDirectory("limit");
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) { // a child, so that the limit does not bind the test runner
-        std::signal(SIGXFSZ, SIG_IGN);
-        rlimit limit{4096, 4096};
-        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(3);
-        AppendFile file(dir / "trajectory.xyz", 0);
-        const std::string record(1000, 'x');
-        try {
-            for (int k = 0; k < 10; ++k)
-                file.append(record);
-        } catch (const IoError& e) {
-            const bool named = std::string(e.what()).find("File too large") != std::string::npos;
-            ::_exit(file.size() == 4000 && named ? 0 : 2);
-        }
-        ::_exit(1);
-    }
-    int status = 0;
-    ::waitpid(child, &status, 0);
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error; 2: wrong size or message; 3: no limit";
+    const std::string record(1000, 'x');
+    EXPECT_EQ(appendUnderFileLimit(dir / "trajectory.xyz", 4000,
+                                   [&](AppendFile& file) {
+                                       for (int k = 0; k < 10; ++k)
+                                           file.append(record);
+                                   }),
+              0)
+        << "1: no error; 2: wrong size or message; 3: no limit";
     EXPECT_EQ(fs::file_size(dir / "trajectory.xyz"), 4000u);
 }
 
@@ -163,29 +179,17 @@ TEST(OutputFile, ARecordInPiecesIsCutBackWhole) {
         file.append("two\n");
     }
     EXPECT_EQ(readWholeFile(dir / "t.xyz"), "one record\ntwo\n");
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-        std::signal(SIGXFSZ, SIG_IGN);
-        rlimit limit{4096, 4096};
-        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(3);
-        AppendFile file(dir / "limited.xyz", 0);
-        const std::string piece(1000, 'x');
-        try {
-            file.appendPieces([&](const PieceSink& sink) { sink(piece); });
-            file.appendPieces([&](const PieceSink& sink) {
-                for (int k = 0; k < 5; ++k) // the fourth piece meets the limit
-                    sink(piece);
-            });
-        } catch (const IoError& e) {
-            const bool named = std::string(e.what()).find("File too large") != std::string::npos;
-            ::_exit(file.size() == 1000 && named ? 0 : 2);
-        }
-        ::_exit(1);
-    }
-    int status = 0;
-    ::waitpid(child, &status, 0);
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error; 2: wrong size or message; 3: no limit";
+    const std::string piece(1000, 'x');
+    EXPECT_EQ(appendUnderFileLimit(dir / "limited.xyz", 1000,
+                                   [&](AppendFile& file) {
+                                       file.appendPieces(
+                                           [&](const PieceSink& sink) { sink(piece); });
+                                       file.appendPieces([&](const PieceSink& sink) {
+                                           for (int k = 0; k < 5; ++k) // the fourth meets the limit
+                                               sink(piece);
+                                       });
+                                   }),
+              0)
+        << "1: no error; 2: wrong size or message; 3: no limit";
     EXPECT_EQ(fs::file_size(dir / "limited.xyz"), 1000u);
 }

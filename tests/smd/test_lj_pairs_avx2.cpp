@@ -29,6 +29,18 @@ struct Case {
     std::vector<Vec3> x; // per list slot
 };
 
+/// Lists c's bodies with a 0.3σ skin and fills the slot positions the loops take.
+void listWithSkin(Case& c) {
+    c.list.skin = 0.3;
+    c.list.reach = c.sys.potential.range() + c.list.skin;
+    std::vector<Vec3> r;
+    for (const auto& b : c.sys.bodies)
+        r.push_back(b.r);
+    build(c.list, c.sys.box, r);
+    for (std::size_t a = 0; a < r.size(); ++a)
+        c.x.push_back(r[c.list.order[a]] - c.list.offset[a]);
+}
+
 /// LJ spheres on a lattice of perEdge³ sites at density ρ*, each displaced by up to `jitter` σ
 /// and some by whole box lengths (unwrapped, as after diffusion), listed with a 0.3σ skin.
 Case liquid(int perEdge, double density, double jitter, std::uint64_t seed) {
@@ -38,14 +50,7 @@ Case liquid(int perEdge, double density, double jitter, std::uint64_t seed) {
     for (auto& b : c.sys.bodies)
         b.r += Vec3(u(rng), u(rng), u(rng)) +
                c.sys.box.length * Vec3(int(rng() % 3) - 1, int(rng() % 5) - 2, 0);
-    c.list.skin = 0.3;
-    c.list.reach = c.sys.potential.range() + c.list.skin;
-    std::vector<Vec3> r;
-    for (const auto& b : c.sys.bodies)
-        r.push_back(b.r);
-    build(c.list, c.sys.box, r);
-    for (std::size_t a = 0; a < r.size(); ++a)
-        c.x.push_back(r[c.list.order[a]] - c.list.offset[a]);
+    listWithSkin(c);
     return c;
 }
 
@@ -151,14 +156,7 @@ TEST(LJPairLoops, Avx2FewBodies) {
                 c.sys.bodies[i].r = i == 1 ? c.sys.bodies[0].r + Vec3(1.1, u(rng) / 10, 0.0)
                                            : Vec3(u(rng), u(rng), u(rng)); // 0-1: inside r_l
             while (closeToEarlier(i));
-        c.list.skin = 0.3;
-        c.list.reach = c.sys.potential.range() + c.list.skin;
-        std::vector<Vec3> r;
-        for (const auto& b : c.sys.bodies)
-            r.push_back(b.r);
-        build(c.list, c.sys.box, r);
-        for (std::size_t a = 0; a < r.size(); ++a)
-            c.x.push_back(r[c.list.order[a]] - c.list.offset[a]);
+        listWithSkin(c);
         SCOPED_TRACE("n = " + std::to_string(n));
         expectEqualsAllPairs(c, Loop::avx2);
         expectEqualsAllPairs(c, Loop::scalar);
