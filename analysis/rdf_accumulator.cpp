@@ -59,9 +59,9 @@ void RdfAccumulator::add(const Snapshot& frame) {
         const double perCell = m / length_;
         std::fill(cellStart_.begin(), cellStart_.end(), 0);
         auto index = [m, perCell](double c) { return std::min(m - 1, int(c * perCell)); };
-        wrapped_.resize(bodies_);
+        // The wrap is done twice rather than kept (24 B a body at the run's peak).
         for (int i = 0; i < bodies_; ++i) {
-            const Vec3 r = wrapped_[i] = box.wrap(frame.position[i]);
+            const Vec3 r = box.wrap(frame.position[i]);
             cellOf_[i] = (index(r.x()) * m + index(r.y())) * m + index(r.z());
             ++cellStart_[cellOf_[i] + 1];
         }
@@ -69,7 +69,7 @@ void RdfAccumulator::add(const Snapshot& frame) {
             cellStart_[c] += cellStart_[c - 1];
         fill_.assign(cellStart_.begin(), cellStart_.end() - 1);
         for (int i = 0; i < bodies_; ++i) {
-            const Vec3& r = wrapped_[i];
+            const Vec3 r = box.wrap(frame.position[i]);
             const int k = fill_[cellOf_[i]]++;
             x_[k] = r.x(), y_[k] = r.y(), z_[k] = r.z();
         }
@@ -143,7 +143,6 @@ RadialDistribution RdfAccumulator::result() const {
 
 std::size_t RdfAccumulator::bytes() const {
     return sizeof(double) * (std::size_t(blocks_) * bins_ + 3 * x_.size()) +
-           sizeof(Vec3) * wrapped_.capacity() +
            sizeof(int) * (cellOf_.size() + cellStart_.size() + fill_.capacity());
 }
 

@@ -42,7 +42,6 @@ private:
     // Scratch, reused frame after frame: wrapped coordinates sorted by cell, cell starts.
     std::vector<double> x_, y_, z_;
     std::vector<int> cellOf_, cellStart_, fill_;
-    std::vector<Vec3> wrapped_;
 };
 
 } // namespace terrace::analysis

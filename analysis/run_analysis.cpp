@@ -56,6 +56,20 @@ void RunAnalysis::add(const Snapshot& sample) {
     ++samples_;
 }
 
+void RunAnalysis::add(const Snapshot& followed, const Snapshot* positions) {
+    if (followed.boxLength != boxLength_ || (positions && positions->boxLength != boxLength_))
+        throw std::invalid_argument("analysis: the box length must not change");
+    if (wantsPositions() && !positions)
+        throw std::invalid_argument("analysis: a g(r) frame needs every body's position");
+    correlations_->addFollowed(followed);
+    if (wantsPositions()) rdf_->add(*positions);
+    ++samples_;
+}
+
+const std::vector<int>& RunAnalysis::followedBodies() const {
+    return correlations_->followedBodies();
+}
+
 nlohmann::json RunAnalysis::write(const std::filesystem::path& dir) const {
     if (samples_ < 4) throw std::invalid_argument("analysis: need at least 4 samples");
     const RadialDistribution rdf = rdf_->result();

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 namespace terrace::analysis {
 
@@ -43,6 +44,15 @@ public:
     RunAnalysis& operator=(const RunAnalysis&) = delete;
 
     void add(const Snapshot& sample);
+    /// The next sample in parts, so that a large system's sample is never held whole: the
+    /// followed bodies alone (followedBodies(), in that order) and, when the sample is a g(r)
+    /// frame (wantsPositions()), every body's position (a snapshot of positions only; else null).
+    /// The same numbers as add() of the whole sample.
+    void add(const Snapshot& followed, const Snapshot* positions);
+    /// The bodies the time correlations follow (indices into a whole sample), in order.
+    const std::vector<int>& followedBodies() const;
+    /// Whether the next sample is a g(r) frame, which needs every body's position.
+    bool wantsPositions() const { return samples_ % options_.rdfEvery == 0; }
     long samples() const { return samples_; }
     /// Writes the CSVs into dir (created if needed) and returns the summary entries; needs at
     /// least 4 samples (std::invalid_argument). Everything is computed before anything is written.

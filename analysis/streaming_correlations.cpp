@@ -77,10 +77,25 @@ void StreamingCorrelations::add(const Snapshot& frame) {
         static_cast<int>(frame.axis.size()) != bodies_)
         throw std::invalid_argument("sample " + std::to_string(seen_) +
                                     ": number of bodies, velocities or axes differs");
+    record(frame, follow_.data());
+}
+
+void StreamingCorrelations::addFollowed(const Snapshot& followed) {
+    const int m = this->followed();
+    if (followed.size() != m || static_cast<int>(followed.velocity.size()) != m ||
+        static_cast<int>(followed.axis.size()) != m)
+        throw std::invalid_argument("sample " + std::to_string(seen_) +
+                                    ": not the followed bodies' positions, velocities and axes");
+    record(followed, nullptr);
+}
+
+void StreamingCorrelations::record(const Snapshot& frame, const int* index) {
+    const int m = followed();
+    auto entry = [index](int k) { return index ? index[k] : k; };
     if (seen_ == 0) {
         firstTime_ = frame.time;
-        for (int i : follow_)
-            firstAxis_.push_back(frame.axis[i]);
+        for (int k = 0; k < m; ++k)
+            firstAxis_.push_back(frame.axis[entry(k)]);
     } else {
         const double expected = firstTime_ + double(seen_) * dtUnits_;
         if (std::abs(frame.time - expected) >
@@ -88,10 +103,9 @@ void StreamingCorrelations::add(const Snapshot& frame) {
             throw std::invalid_argument("samples are not equally spaced in time (sample " +
                                         std::to_string(seen_) + ")");
     }
-    const int m = followed();
     if (!rotating_)
         for (int k = 0; k < m && !rotating_; ++k)
-            rotating_ = frame.axis[follow_[k]] != firstAxis_[k];
+            rotating_ = frame.axis[entry(k)] != firstAxis_[k];
 
     const long t = seen_;
     const int fine = fineBlockOf(t);
@@ -101,7 +115,7 @@ void StreamingCorrelations::add(const Snapshot& frame) {
         const int slot = static_cast<int>(index % p_);
         double* row = ring_[l].data() + std::size_t(slot) * rows * m;
         for (int k = 0; k < m; ++k) {
-            const int i = follow_[k];
+            const int i = entry(k);
             for (int a = 0; a < 3; ++a) {
                 row[(0 + a) * m + k] = frame.velocity[i][a];
                 row[(3 + a) * m + k] = frame.axis[i][a];

@@ -49,6 +49,10 @@ public:
 
     /// The next sample (time must follow the previous one by the sample interval).
     void add(const Snapshot& frame);
+    /// The next sample, given as the followed bodies alone (followedBodies(), in that order).
+    void addFollowed(const Snapshot& followed);
+    /// The bodies followed (indices into a whole sample), in order.
+    const std::vector<int>& followedBodies() const { return follow_; }
     long samples() const { return seen_; }
     int followed() const { return static_cast<int>(follow_.size()); }
     int levels() const { return levels_; }
@@ -66,6 +70,8 @@ public:
 
 private:
     int fineBlockOf(long sample) const;
+    /// frame's entry for followed body k: index[k], or k when index is null.
+    void record(const Snapshot& frame, const int* index);
     void correlate(int level, int slot, int originSlot, int lagIndex);
     SampledCurve emptyCurve() const;
     int usedLags() const;

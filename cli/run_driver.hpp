@@ -35,6 +35,8 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numeric>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -124,6 +126,23 @@ struct RunRecord {
         analysis->add(s);
         analysisClock.stop();
     }
+    /// A sample that nothing else needs whole: the analysis gets only what it reads (the
+    /// followed bodies, and every position on a g(r) frame), so that a large system's sample
+    /// is never held whole beside the engine (~0.1 GB at 10⁶ rods).
+    template <class E> void addParts(const SampleRecord& e, const E& engine) {
+        records.push_back(e);
+        if (!analysis) return;
+        const Snapshot followed = engine.snapshot(analysis->followedBodies());
+        if (analysis->wantsPositions()) {
+            const Snapshot where = engine.positions();
+            analysisClock.start();
+            analysis->add(followed, &where);
+        } else {
+            analysisClock.start();
+            analysis->add(followed, nullptr);
+        }
+        analysisClock.stop();
+    }
 };
 
 /// Writes summary.json, then the correlation analysis (cancelled by a signal that arrives
@@ -182,6 +201,23 @@ Resumed resumeRun(const nlohmann::json& restart, const RunPlan& plan,
 /// (cli/output_dir.hpp). `engine` holds the engine built from the scene's initial state, or from
 /// the restart file when continuing; every restart point replaces it by one rebuilt from its
 /// bodies and checkpoint (the old one stays should the rebuild fail).
+/// The engine's bodies as one trajectory frame, handed to `sink` piece by piece, each piece's
+/// bodies taken from the engine as it is written: at 10⁶ bodies neither the frame's text nor its
+/// snapshot is held whole.
+template <class E>
+void writeFrame(const E& engine, int n, TrajectoryLayout layout, const PieceSink& sink) {
+    std::vector<int> bodies;
+    const Snapshot none = engine.snapshot(std::span<const int>(bodies)); // its time and box
+    writeXyzFramePieces(
+        n, none.time, none.boxLength, layout,
+        [&](int begin, int end) {
+            bodies.resize(static_cast<std::size_t>(end - begin));
+            std::iota(bodies.begin(), bodies.end(), begin);
+            return engine.snapshot(std::span<const int>(bodies));
+        },
+        sink);
+}
+
 template <class E>
 RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget& target,
                  int rotationalDof) {
@@ -192,15 +228,19 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     RunRecord run;
     run.kT = scene.kT();
     run.sampleInterval = plan.sampleInterval;
-    run.bodies = engine->snapshot().size();
+    const auto [bodies, boxLength] = [&] { // without a whole sample
+        const Snapshot where = engine->positions();
+        return std::pair{where.size(), where.boxLength};
+    }();
+    run.bodies = bodies;
     run.dof = degreesOfFreedom(rotationalDof, run.bodies);
-    run.volume = std::pow(engine->snapshot().boxLength, 3);
+    run.volume = std::pow(boxLength, 3);
     run.virialKind = virialKindOf<E>();
     const ThermoLayout thermoLayout{run.virialKind, run.volume, run.dof, run.bodies};
     if (plan.productionSamples + 1 >= 4)
         run.analysis = std::make_unique<analysis::RunAnalysis>(
-            run.bodies, engine->snapshot().boxLength, units::toPs(plan.sampleInterval),
-            plan.productionSamples + 1, streamingOptions(scene));
+            run.bodies, boxLength, units::toPs(plan.sampleInterval), plan.productionSamples + 1,
+            streamingOptions(scene));
     run.restartEveryPs = scene.output.restart_every_ps;
     run.warnings = sceneWarnings(scene);
     for (const auto& w : run.warnings)
@@ -217,11 +257,10 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
         writeFileAtomically(dir / "scene.json", toJson(scene).dump(2) + "\n");
         // In pieces: at 10⁶ bodies the frame's text alone is ~0.3 GB.
         writeFileAtomically(dir / "initial.xyz", [&](const PieceSink& sink) {
-            writeXyzFramePieces(engine->snapshot(), layout, sink);
+            writeFrame(*engine, run.bodies, layout, sink);
         });
     } else {
-        at = resumeRun(*target.resume, plan, dir, run.bodies, rotationalDof == 3,
-                       engine->snapshot().boxLength, run);
+        at = resumeRun(*target.resume, plan, dir, run.bodies, rotationalDof == 3, boxLength, run);
     }
     bool& inProduction = at.inProduction;
     long &tick = at.tick, &sample = at.sample;
@@ -238,22 +277,30 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
             return 0.0;
     };
     auto record = [&] {
-        Snapshot s = engine->snapshot();
+        const bool frameDue = plan.trajectoryEvery > 0 && sample % plan.trajectoryEvery == 0;
         const double u = engine->potentialEnergy(), kin = engine->kineticEnergy();
         SampleRecord e{units::toPs(engine->time() - at.tStart), u + kin, u, kin};
         e.kineticTranslational = engine->translationalKineticEnergy();
         e.virial = virialOf(*engine);
         e.collisions = productionCollisions();
         e.time = engine->time();
-        if (restarts) samplesFile.append(encodeSample(s, e));
-        if (plan.trajectoryEvery > 0 && sample % plan.trajectoryEvery == 0)
-            trajectory.appendPieces(
-                [&](const PieceSink& sink) { writeXyzFramePieces(s, layout, sink); });
         if (plan.thermoEvery > 0 && sample % plan.thermoEvery == 0) {
             const SampleRecord* before =
                 sample > 0 ? &run.records[sample - plan.thermoEvery] : nullptr;
             thermo.append(thermoRow(e, before, continuousPotentialOf(*engine), thermoLayout));
         }
+        if (!restarts) { // nothing needs the sample whole
+            if (frameDue)
+                trajectory.appendPieces(
+                    [&](const PieceSink& sink) { writeFrame(*engine, run.bodies, layout, sink); });
+            run.addParts(e, *engine);
+            return;
+        }
+        const Snapshot s = engine->snapshot();
+        samplesFile.append(encodeSample(s, e));
+        if (frameDue)
+            trajectory.appendPieces(
+                [&](const PieceSink& sink) { writeXyzFramePieces(s, layout, sink); });
         run.add(e, s);
     };
     // A restart point: the engine is rebuilt from its bodies and checkpoint, exactly as a run

@@ -45,6 +45,15 @@ void appendBody(Snapshot& s, const typename K::State& b, const BodyParams& param
     if constexpr (requires { b.A; }) s.orientation.emplace_back(Mat3(b.A.transpose()));
 }
 
+/// Only the positions of every body (the other fields empty): what a g(r) frame needs.
+inline Snapshot positionsOnly(double t, double boxLength, std::size_t n) {
+    Snapshot s;
+    s.time = t;
+    s.boxLength = boxLength;
+    s.position.reserve(n);
+    return s;
+}
+
 template <BodyKind K, PairPotential P> Snapshot makeSnapshot(const System<K, P>& sys, double t) {
     Snapshot s = emptySnapshot<K>(t, sys.box.length, sys.bodies.size());
     for (const auto& b : sys.bodies)

@@ -67,11 +67,10 @@ std::string field(const std::string& line, const std::string& key) {
 
 namespace {
 
-void writeXyzHeader(std::ostream& out, const Snapshot& f, TrajectoryLayout layout) {
-    const double L = f.boxLength;
-    out << f.size() << '\n';
+void writeXyzHeader(std::ostream& out, int bodies, double time, double L, TrajectoryLayout layout) {
+    out << bodies << '\n';
     out << "Lattice=\"" << L << " 0 0 0 " << L << " 0 0 0 " << L
-        << "\" Properties=" << columns(layout) << " Time=" << units::toFs(f.time)
+        << "\" Properties=" << columns(layout) << " Time=" << units::toFs(time)
         << " pbc=\"T T T\" units=\"pos:A velo:A/ps omega:rad/ps Time:fs\"\n";
 }
 
@@ -97,7 +96,7 @@ void writeXyzBodies(std::ostream& out, const Snapshot& f, TrajectoryLayout layou
 
 void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout) {
     const auto precision = out.precision(17);
-    writeXyzHeader(out, f, layout);
+    writeXyzHeader(out, f.size(), f.time, f.boxLength, layout);
     writeXyzBodies(out, f, layout, 0, f.size());
     out.precision(precision);
 }
@@ -107,11 +106,30 @@ void writeXyzFramePieces(const Snapshot& f, TrajectoryLayout layout,
     if (bodiesPerPiece < 1) throw std::invalid_argument("writeXyzFramePieces: no bodies per piece");
     std::ostringstream out;
     out.precision(17);
-    writeXyzHeader(out, f, layout);
+    writeXyzHeader(out, f.size(), f.time, f.boxLength, layout);
     sink(out.view());
     for (int begin = 0; begin < f.size(); begin += bodiesPerPiece) {
         out.str(std::string()); // empties the buffer; the stream keeps its precision
         writeXyzBodies(out, f, layout, begin, std::min(f.size(), begin + bodiesPerPiece));
+        sink(out.view());
+    }
+}
+
+void writeXyzFramePieces(int bodies, double time, double boxLength, TrajectoryLayout layout,
+                         const std::function<Snapshot(int, int)>& bodiesOf,
+                         const std::function<void(std::string_view)>& sink, int bodiesPerPiece) {
+    if (bodiesPerPiece < 1) throw std::invalid_argument("writeXyzFramePieces: no bodies per piece");
+    std::ostringstream out;
+    out.precision(17);
+    writeXyzHeader(out, bodies, time, boxLength, layout);
+    sink(out.view());
+    for (int begin = 0; begin < bodies; begin += bodiesPerPiece) {
+        const int end = std::min(bodies, begin + bodiesPerPiece);
+        const Snapshot piece = bodiesOf(begin, end);
+        if (piece.size() != end - begin)
+            throw std::logic_error("writeXyzFramePieces: a piece of the wrong size");
+        out.str(std::string());
+        writeXyzBodies(out, piece, layout, 0, piece.size());
         sink(out.view());
     }
 }

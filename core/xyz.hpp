@@ -51,6 +51,13 @@ std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout);
 void writeXyzFramePieces(const Snapshot& frame, TrajectoryLayout layout,
                          const std::function<void(std::string_view)>& sink,
                          int bodiesPerPiece = 4096);
+/// The same bytes for a frame of `bodies` bodies at `time` (time units) in a box of `boxLength`
+/// (Å) whose bodies come piece by piece from bodiesOf(begin, end), a snapshot of bodies
+/// begin … end−1 alone: not even the frame's snapshot is held whole.
+void writeXyzFramePieces(int bodies, double time, double boxLength, TrajectoryLayout layout,
+                         const std::function<Snapshot(int, int)>& bodiesOf,
+                         const std::function<void(std::string_view)>& sink,
+                         int bodiesPerPiece = 4096);
 
 /// Every frame of an extended XYZ file written by writeXyzFrame. Throws TrajectoryError naming the
 /// file and line on anything malformed. A last frame cut short by the end of the file (a run

@@ -89,6 +89,13 @@ public:
 
     void clear(int i) { truncate(i, 0); }
 
+    /// Asks the caches for i's block (an event about to be taken from it).
+    [[gnu::always_inline]] void prefetch(int i) const {
+        const char* b = reinterpret_cast<const char*>(&block_[i]);
+        for (std::size_t line = 0; line < sizeof(Block); line += 64)
+            __builtin_prefetch(b + line);
+    }
+
     /// Events waiting, over all agendas.
     std::size_t events() const {
         std::size_t n = 0;

@@ -46,7 +46,6 @@
 #include "dmd/event.hpp"
 #include "dmd/neighbour_lists.hpp"
 #include "dmd/pair_prediction.hpp"
-#include "dmd/pair_terraces.hpp"
 #include "dmd/root_search.hpp"
 #include "dmd/schedule.hpp"
 #include "dmd/settings.hpp"
@@ -55,6 +54,7 @@
 #include <cmath>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -68,6 +68,10 @@ struct EventCounts {
         return up + down + reflect + virtualEvents + cell + relist + sample;
     }
 };
+
+/// From this many bodies on, the engine's data (~1 KB a body) outgrow the caches, and the engine
+/// asks for bodies ahead of their use.
+inline constexpr int prefetchFromBodies = 16384;
 
 template <BodyKind K, PairPotential P>
 class Engine : private PairPrediction<K, P, Engine<K, P>>,
@@ -110,11 +114,10 @@ private:
            const nlohmann::json* resume)
         : Prediction(settings, initial.potential, scene.seed, initial.size()),
           sys_(std::move(initial)), settings_(std::move(settings)),
-          lists_(sys_.size(),
-                 listSkin(settings_.rm, sys_.size() / sys_.box.volume(), sys_.box.length)),
+          lists_(makeLists(settings_.rm, sys_)),
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
-          terraces_(sys_.size()), schedule_(sys_.size(), settings_.eager, settings_.horizon),
-          listedBefore_(sys_.size(), 0), scanned_(sys_.size()) {
+          schedule_(sys_.size(), settings_.eager, settings_.horizon), listedBefore_(sys_.size(), 0),
+          scanned_(64) {
         checkBodies();
         if (settings_.sortBodies) sortBodiesByCell();
         if (resume) resumeClocks(*resume);
@@ -128,6 +131,7 @@ private:
             resumeTerraces(*resume);
         else
             assignInitialTerraces();
+        countTerraces();
         visitQueue([&](auto& q) { this->predictAll(q); }); // (this->: g++ 12 needs it here)
         schedule_.retuneBins(time_);
     }
@@ -159,22 +163,32 @@ public:
             appendBody<K>(s, stateNow(engineIndex(b)), sys_.body);
         return s;
     }
+    /// The bodies `bodies` (the scene's numbers) as they are now, in that order.
+    Snapshot snapshot(std::span<const int> bodies) const {
+        Snapshot s = emptySnapshot<K>(time_, sys_.box.length, bodies.size());
+        for (const int b : bodies)
+            appendBody<K>(s, stateNow(engineIndex(b)), sys_.body);
+        return s;
+    }
+    /// Every body's position now, in the scene's order (the snapshot's other fields empty).
+    Snapshot positions() const {
+        const int n = sys_.size();
+        Snapshot s = positionsOnly(time_, sys_.box.length, static_cast<std::size_t>(n));
+        for (int b = 0; b < n; ++b)
+            s.position.push_back(positionNow(engineIndex(b)));
+        return s;
+    }
     double kineticEnergy() const { return totalKinetic(sys_); } // constant in free flight
     double potentialEnergy() const {
-        if (settings_.levels.isUniform()) {
-            std::int64_t sum = 0; // an integer sum: exact however many events
-            terraces_.forEachPair([&](int, int, int n) { sum += n; });
-            return static_cast<double>(sum) * settings_.levels.step();
-        }
-        // Explicit levels: pairs counted per terrace, then Σ count × V, so that the sum is the
-        // same whatever order the pairs are visited in.
+        if (settings_.levels.isUniform())
+            return static_cast<double>(terraceSum_) * settings_.levels.step();
+        // Explicit levels: Σ count × V over the terraces, the same sum whatever the order in
+        // which the pairs reached them.
         const auto& L = settings_.levels;
-        std::vector<std::int64_t> count(L.highestTerrace() - L.lowestTerrace() + 1, 0);
-        terraces_.forEachPair([&](int, int, int n) { ++count[n - L.lowestTerrace()]; });
         double e = 0.0;
-        for (std::size_t s = 0; s < count.size(); ++s)
-            if (count[s] != 0)
-                e += static_cast<double>(count[s]) * L.energy(L.lowestTerrace() + int(s));
+        for (std::size_t s = 0; s < terraceCount_.size(); ++s)
+            if (terraceCount_[s] != 0)
+                e += static_cast<double>(terraceCount_[s]) * L.energy(L.lowestTerrace() + int(s));
         return e;
     }
     Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }
@@ -239,6 +253,16 @@ public:
         const double n = static_cast<double>(sys_.bodies.size());
         const auto sched = schedule_.memory(); // one pass over the agendas
         j["agenda_events_per_body"] = static_cast<double>(sched.agendaEvents) / n;
+        std::size_t listed = 0;
+        int longest = 0;
+        for (int i = 0; i < sys_.size(); ++i) {
+            listed += static_cast<std::size_t>(lists_.size(i));
+            longest = std::max(longest, lists_.size(i));
+        }
+        j["list_partners_per_body"] = static_cast<double>(listed) / n;
+        j["list_partners_max"] = longest;
+        j["list_capacity"] = lists_.capacity();
+        j["lists_spilled"] = lists_.spilled();
         // What a body costs in memory now, by part (bytes per body).
         for (const auto& [part, bytes] : memoryByPart(sched))
             j["memory_bytes_per_body"][part] = static_cast<double>(bytes) / n;
@@ -267,12 +291,11 @@ public:
     /// Consecutive events at one instant tolerated before the clock counts as stopped.
     void setStallLimit(std::uint64_t n) { stallWatch_.setLimit(n); }
     /// The terrace index the engine holds for the pair (i, j) (the scene's numbering).
-    int terrace(int i, int j) const { return terraces_.get(engineIndex(i), engineIndex(j)); }
+    int terrace(int i, int j) const { return lists_.terrace(engineIndex(i), engineIndex(j)); }
     /// Puts the pair (i, j) on terrace n whatever its U: bookkeeping corrupted on purpose, to test
     /// that the engine reports it.
-    void overrideTerrace(int i, int j, int n) { terraces_.set(engineIndex(i), engineIndex(j), n); }
-    /// The pair terraces and the lists, in the engine's numbering of the bodies (sceneIndex).
-    const PairTerraces& pairTerraces() const { return terraces_; }
+    void overrideTerrace(int i, int j, int n) { moveTerrace(engineIndex(i), engineIndex(j), n); }
+    /// The lists and the pairs' terraces, in the engine's numbering of the bodies (sceneIndex).
     const NeighbourLists& neighbourLists() const { return lists_; }
     int cellsPerSide() const { return cells_.cellsPerSide(); }
     const TerraceLevels& levels() const { return settings_.levels; }
@@ -330,11 +353,10 @@ public:
                 {"agendas", sched.agendas},
                 {"calendar", sched.calendar},
                 {"about", sched.about},
-                {"lists", lists_.bytesReserved()},
-                {"terraces", terraces_.bytesReserved()},
+                {"lists", lists_.bytesReserved()}, // and the pairs' terraces
                 {"cells", cells_.bytesReserved()},
-                {"other", listedBefore_.capacity() * sizeof(std::uint64_t) +
-                              scanned_.capacity() * sizeof(int) +
+                {"other", (listedBefore_.capacity() + scanned_.capacity()) * sizeof(int) +
+                              terraceCount_.capacity() * sizeof(std::int64_t) +
                               (sceneIndex_.capacity() + engineIndex_.capacity()) * sizeof(int) +
                               this->predictionBytes()}};
     }
@@ -397,6 +419,7 @@ private:
             if (q.empty()) throw std::logic_error("dmd: no event left (nothing moves)");
             const Event e = q.top();
             q.pop();
+            if (prefetching_ && !q.empty()) prefetchEvent(q.top());
             if (e.kind == EventKind::Sample) return false;
             if (!schedule_.isCurrentEntry(e)) { // superseded, or its owner has been invalidated
                 ++staleEvents_;
@@ -436,6 +459,20 @@ private:
         }
     }
 
+    /// Asks the caches for what the next event reads first of its bodies. It is known (the
+    /// calendar's top) while this one is resolved, and in a large system its bodies are anywhere
+    /// in memory: without this, each of its first reads would wait for memory in turn.
+    [[gnu::always_inline]] void prefetchEvent(const Event& next) const {
+        if (next.kind == EventKind::Sample) return;
+        schedule_.prefetch(next.i);
+        this->prefetchBody(next.i);
+        lists_.prefetch(next.i);
+        if (next.j < 0) return;
+        schedule_.prefetch(next.j);
+        this->prefetchBody(next.j);
+        lists_.prefetch(next.j);
+    }
+
     template <class Q> void collide(Q& q, const Event& e) {
         const int i = e.i, j = e.j;
         bringToNow(i);
@@ -444,7 +481,7 @@ private:
         const Vec3 rij = sys_.box.minimumImage(bi.r - bj.r);
         const PairForce f =
             sys_.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
-        const int n = terraces_.get(i, j);
+        const int n = lists_.terrace(i, j);
         const int target = n + (e.side > 0 ? 1 : -1);
         const double dE = settings_.levels.energy(target) - settings_.levels.energy(n);
         const Impulse impulse = solveImpulse(impulseCoefficients<K>(f, bi, bj, sys_.body), dE);
@@ -463,7 +500,7 @@ private:
             ++counts_.reflect;
             break;
         }
-        if (impulse.outcome != Outcome::Reflect) terraces_.set(i, j, target);
+        if (impulse.outcome != Outcome::Reflect) moveTerrace(i, j, target);
         schedule_.invalidate(q, i);
         schedule_.invalidate(q, j);
         // The pair's own search starts from the evaluation above: U and the force are those of
@@ -504,7 +541,10 @@ private:
     /// remain true to the motion, but its chain of virtual events ends (resume).
     void relist(int i) {
         bringToNow(i);
-        ++listStamp_;
+        if (++listStamp_ == 0) { // wrapped: no stamp of an earlier rebuild may match
+            std::fill(listedBefore_.begin(), listedBefore_.end(), 0u);
+            listStamp_ = 1;
+        }
         for (const int j : lists_.partners(i))
             listedBefore_[j] = listStamp_;
         rebuildList(i);
@@ -520,34 +560,87 @@ private:
 
     /// i's list from the cells: every j within r_m + skin now, listed on both sides.
     void rebuildList(int i) {
-        lists_.detach(i);
         const Vec3 ri = positionNow(i);
         const double reach = settings_.rm + lists_.skin();
-        // Every scanned body is written and the count advanced by the test, without a branch:
-        // about one in eight is within reach, at random.
-        std::size_t within = 0;
+        // First the candidates (~110 in the dense rods, one in eight within reach), then their
+        // distances, each body's position and clock asked of the caches `ahead` bodies early:
+        // a cell's bodies are a chain through memory, and one body fetched at a time would keep
+        // every miss of a large system waiting on the one before.
+        std::size_t scanned = 0;
         cells_.forEachNeighbourWithin(i, &ri, reach, [&](int j) {
+            if (scanned == scanned_.size()) scanned_.resize(2 * scanned);
+            scanned_[scanned++] = j;
+        });
+        constexpr std::size_t ahead = 8;
+        for (std::size_t k = 0; prefetching_ && k < std::min(ahead, scanned); ++k)
+            prefetchWhere(scanned_[k]);
+        // Every candidate is written and the count advanced by the test, without a branch:
+        // whether one is within reach is a coin toss. The order is the scan's.
+        std::size_t within = 0;
+        for (std::size_t k = 0; k < scanned; ++k) {
+            if (prefetching_ && k + ahead < scanned) prefetchWhere(scanned_[k + ahead]);
+            const int j = scanned_[k];
             scanned_[within] = j;
             within += sys_.box.minimumImage(ri - positionNow(j), inverseBox_).squaredNorm() <=
                       reach * reach;
+        }
+        lists_.rebuild(i, std::span<const int>(scanned_.data(), within), ri);
+    }
+
+    /// Puts the pair (i, j) on terrace n, keeping the energy's sums.
+    void moveTerrace(int i, int j, int n) {
+        const int was = lists_.terrace(i, j);
+        lists_.setTerrace(i, j, n);
+        terraceSum_ += n - was;
+        if (!terraceCount_.empty()) {
+            const int lowest = settings_.levels.lowestTerrace();
+            if (was != 0) --terraceCount_[was - lowest];
+            if (n != 0) ++terraceCount_[n - lowest];
+        }
+    }
+    /// The energy's sums from every pair's terrace (the start, a resumption): kept since by
+    /// moveTerrace, so that a sample does not visit every list.
+    void countTerraces() {
+        terraceSum_ = 0; // an integer sum: exact however many events
+        const auto& L = settings_.levels;
+        if (!L.isUniform()) terraceCount_.assign(L.highestTerrace() - L.lowestTerrace() + 1, 0);
+        lists_.forEachPairOffZero([&](int, int, int n) {
+            terraceSum_ += n;
+            if (!terraceCount_.empty()) ++terraceCount_[n - L.lowestTerrace()];
         });
-        for (std::size_t k = 0; k < within; ++k)
-            lists_.link(i, scanned_[k]);
-        lists_.setAnchor(i, ri);
+    }
+
+    /// Asks the caches for what positionNow(j) reads: its position, velocity and clock.
+    [[gnu::always_inline]] void prefetchWhere(int j) const {
+        const char* state = reinterpret_cast<const char*>(&sys_.bodies[j]);
+        __builtin_prefetch(state);
+        __builtin_prefetch(state + 2 * sizeof(Vec3) - 1);
+        schedule_.prefetchBook(j);
+    }
+
+    static NeighbourLists makeLists(double rm, const System<K, P>& sys) {
+        const double density = sys.size() / sys.box.volume();
+        const double skin = listSkin(rm, density, sys.box.length);
+        return NeighbourLists(sys.size(), skin, listCapacity(rm + skin, density, sys.size()));
     }
 
     System<K, P> sys_;
     DmdSettings settings_;
-    NeighbourLists lists_; // before cells_: the cell width follows the skin
+    NeighbourLists
+        lists_; // and the pairs' terraces; before cells_: the cell width follows the skin
     CellList cells_;
-    PairTerraces terraces_;
-    Schedule<Engine> schedule_; // each body's book, agenda and calendar entry (dmd/schedule.hpp)
-    std::vector<std::uint64_t> listedBefore_; // relist: stamp of the list being rebuilt
+    Schedule<Engine> schedule_;   // each body's book, agenda and calendar entry (dmd/schedule.hpp)
+    std::int64_t terraceSum_ = 0; // Σ of the pairs' terrace indices
+    std::vector<std::int64_t> terraceCount_;  // pairs per terrace (explicit levels only)
+    std::vector<std::uint32_t> listedBefore_; // relist: stamp of the list being rebuilt
     std::vector<int> scanned_; // rebuildList: scanned bodies, those within reach first
+    std::uint32_t listStamp_ = 0;
+    // Whether the engine asks the caches for bodies ahead of their use: only where its data
+    // outgrow them (at N = 512, where everything is cached, the prefetches cost ~2 %).
+    bool prefetching_ = sys_.size() >= prefetchFromBodies;
     // The scene's number of each body and the engine's number of each scene body (empty: the
     // same numbering, sortBodiesByCell not applied).
     std::vector<int> sceneIndex_, engineIndex_;
-    std::uint64_t listStamp_ = 0;
     StallWatch stallWatch_;
     double time_ = 0.0;
     double impulseVirial_ = 0.0; // Σ r_ij·Δp_i over collisions, kJ/mol × time unit

@@ -40,8 +40,7 @@ public:
                 throw std::logic_error("dmd: checkpoint with clocks not at one time");
         nlohmann::json pairs = nlohmann::json::array();
         // In the scene's numbering of the bodies, whatever the engine's own.
-        engine.terraces_.forEachPair([&](int i, int j, int n) {
-            if (n == 0) return;
+        engine.lists_.forEachPairOffZero([&](int i, int j, int n) {
             const int a = engine.sceneIndex(i), b = engine.sceneIndex(j);
             pairs.push_back({std::min(a, b), std::max(a, b), n});
         });
@@ -85,7 +84,7 @@ protected:
                     throwOverlap(engine.sceneIndex(i), engine.sceneIndex(j), f.U);
                 const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys.body),
                                          K::angularVelocity(bj, sys.body));
-                engine.terraces_.set(
+                engine.lists_.setTerrace(
                     i, j,
                     engine.settings_.levels.terraceOf(f.U, rate, engine.search_.levelTolerance));
             });
@@ -124,7 +123,7 @@ protected:
                 throw SceneError("restart: bodies " + std::to_string(i) + " and " +
                                  std::to_string(j) + " are held on terrace " + std::to_string(n) +
                                  " beyond the interaction range");
-            engine.terraces_.set(std::min(a, b), std::max(a, b), n);
+            engine.lists_.setTerrace(std::min(a, b), std::max(a, b), n);
         }
     }
 

@@ -26,7 +26,6 @@
 #include "dmd/event.hpp"
 #include "dmd/horizon_jitter.hpp"
 #include "dmd/neighbour_lists.hpp"
-#include "dmd/pair_terraces.hpp"
 #include "dmd/root_search.hpp"
 #include "dmd/schedule.hpp"
 #include "dmd/settings.hpp"
@@ -137,21 +136,22 @@ protected:
         const Engine& engine = self();
         double entry = std::numeric_limits<double>::infinity();
         const Moving mi = movingNow(i);
-        const std::vector<int>& partners = engine.lists_.partners(i);
+        const auto partners = engine.lists_.partners(i);
         for (std::size_t k = 0; k < partners.size(); ++k) {
             // The next partner's state is fetched while this one is predicted: the partners are
             // scattered in memory, and each prediction starts by reading its partner.
-            if (k + 1 < partners.size()) prefetchBody(partners[k + 1]);
+            if (engine.prefetching_ && k + 1 < partners.size()) prefetchBody(partners[k + 1]);
             const int j = partners[k];
             if (j != exclude)
-                entry = std::min(entry, j == partner ? predictPair(mi, i, j, partnerStart, true)
-                                                     : predictPair(mi, i, j, nullptr));
+                entry =
+                    std::min(entry, j == partner ? predictPair(mi, i, j, partnerStart, true, int(k))
+                                                 : predictPair(mi, i, j, nullptr, false, int(k)));
         }
         scheduleBodyEvents(i, entry);
     }
 
     /// Asks the caches for what predictPair reads of body j first.
-    void prefetchBody(int j) const {
+    [[gnu::always_inline]] void prefetchBody(int j) const {
         const Engine& engine = self();
         const char* state = reinterpret_cast<const char*>(&engine.sys_.bodies[j]);
         const char* orbit = reinterpret_cast<const char*>(&engine.orbit_[j]);
@@ -215,9 +215,10 @@ protected:
     /// the jittered horizon; a truncated search leaves a virtual event holding its end point.
     /// A pair entering r_m only beyond the horizon is not searched: its entry time (absolute) is
     /// returned for the caller to schedule; +∞ otherwise.
-    /// mi is body i brought to now (movingNow(i)), prepared once for all pairs of i.
+    /// mi is body i brought to now (movingNow(i)), prepared once for all pairs of i; slot: where j
+    /// likely sits in i's list (−1: unknown).
     double predictPair(const Moving& mi, int i, int j, const PairSample* resumeFrom,
-                       bool afterEvent = false) {
+                       bool afterEvent = false, int slot = -1) {
         Engine& engine = self();
         constexpr double none = std::numeric_limits<double>::infinity();
         const State& bj0 = engine.sys_.bodies[j];
@@ -229,7 +230,7 @@ protected:
         constexpr double boundSlack = 1.0 + 1e-6;
         const bool maybeBound =
             r0.squaredNorm() <= engine.settings_.rm * engine.settings_.rm * boundSlack;
-        const int n = maybeBound ? engine.terraces_.get(i, j) : 0;
+        const int n = maybeBound ? engine.lists_.terrace(i, j, slot) : 0;
         // A bound pair must reach a level before |r_ij| = r_m; in the worst orientation it does
         // so exactly there, so the shell must not cut its search short.
         const ShellWindow win = n != 0 ? ShellWindow{0.0, std::numeric_limits<double>::infinity()}

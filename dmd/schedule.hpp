@@ -93,6 +93,12 @@ public:
     }
 
     BodyBook& book(int i) { return book_[i]; }
+    /// Asks the caches for i's book and agenda.
+    [[gnu::always_inline]] void prefetch(int i) const {
+        __builtin_prefetch(&book_[i]);
+        agendas_.prefetch(i);
+    }
+    [[gnu::always_inline]] void prefetchBook(int i) const { __builtin_prefetch(&book_[i]); }
     const BodyBook& book(int i) const { return book_[i]; }
 
     /// Every event is filed in the agenda of the body it belongs to (e.i: the body whose

@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <sstream>
 #include <vector>
 
@@ -126,6 +127,20 @@ public:
 
     double time() const { return steps_ * par_.dt; }
     Snapshot snapshot() const { return makeSnapshot(sys_, time()); }
+    /// The bodies `bodies` (the scene's numbers) at time(), in that order.
+    Snapshot snapshot(std::span<const int> bodies) const {
+        Snapshot s = emptySnapshot<K>(time(), sys_.box.length, bodies.size());
+        for (const int b : bodies)
+            appendBody<K>(s, sys_.bodies[b], sys_.body);
+        return s;
+    }
+    /// Every body's position at time(), in the scene's order (the snapshot's other fields empty).
+    Snapshot positions() const {
+        Snapshot s = positionsOnly(time(), sys_.box.length, sys_.bodies.size());
+        for (const auto& b : sys_.bodies)
+            s.position.push_back(b.r);
+        return s;
+    }
     double kineticEnergy() const { return totalKinetic(sys_); }
     /// The smoothed continuous potential energy at time().
     double potentialEnergy() const { return forces_.potential; }

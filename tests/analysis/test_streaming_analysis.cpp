@@ -257,3 +257,45 @@ TEST(RunAnalysis, ARunStoppedEarlyIsAnalysedOverTheSamplesItHas) {
     for (double c : vacf.columns[1])
         EXPECT_TRUE(std::isfinite(c));
 }
+
+// What the run driver hands over when nothing else needs a sample whole: the followed bodies
+// alone, and every position on g(r) frames only. The same numbers as the whole samples.
+TEST(RunAnalysis, ASampleInPartsGivesTheNumbersOfTheWholeSample) {
+    const auto samples = synthetic::freeRotors(64, 200, 0.1, 25.0, 4.2, 18.0, 1.154, 5);
+    const ScratchDirectory a("whole"), b("parts");
+    StreamingOptions options;
+    options.rdfEvery = 3;
+    options.followBodies = 50;
+    RunAnalysis whole(200, 25.0, sampleIntervalPs(samples), 64, options);
+    RunAnalysis parts(200, 25.0, sampleIntervalPs(samples), 64, options);
+    ASSERT_EQ(parts.followedBodies().size(), 50u);
+    int framesWithPositions = 0;
+    for (const auto& s : samples) {
+        whole.add(s);
+        Snapshot followed = s, where = s;
+        followed.position.clear(), followed.velocity.clear(), followed.axis.clear();
+        followed.omega.clear();
+        for (const int i : parts.followedBodies()) {
+            followed.position.push_back(s.position[i]);
+            followed.velocity.push_back(s.velocity[i]);
+            followed.axis.push_back(s.axis[i]);
+            followed.omega.push_back(s.omega[i]);
+        }
+        where.velocity.clear(), where.axis.clear(), where.omega.clear();
+        if (parts.wantsPositions()) {
+            ++framesWithPositions;
+            EXPECT_THROW(parts.add(followed, nullptr), std::invalid_argument);
+            parts.add(followed, &where);
+        } else {
+            parts.add(followed, nullptr);
+        }
+    }
+    EXPECT_EQ(framesWithPositions, 22); // samples 0, 3, …, 63
+    EXPECT_EQ(whole.write(a.path), parts.write(b.path));
+    for (const char* file : {"rdf.csv", "vacf.csv", "oacf.csv", "msd.csv"}) {
+        const CsvTable x = readCsv(a.path / file), y = readCsv(b.path / file);
+        EXPECT_EQ(x.columns, y.columns) << file;
+    }
+    Snapshot notFollowed = samples.front();
+    EXPECT_THROW(parts.add(notFollowed, &notFollowed), std::invalid_argument); // 200 bodies, not 50
+}

@@ -131,6 +131,23 @@ TEST(Xyz, AFrameInPiecesIsTheFrameWhole) {
                 perPiece);
             EXPECT_EQ(pieces, formatXyzFrame(*frame, layout)) << perPiece;
             EXPECT_EQ(count, 1 + (27 + perPiece - 1) / perPiece) << perPiece; // header first
+            // The same frame with each piece's bodies made only when it is written.
+            std::string sourced;
+            writeXyzFramePieces(
+                frame->size(), frame->time, frame->boxLength, layout,
+                [&](int begin, int end) {
+                    Snapshot piece = *frame;
+                    auto cut = [&](auto& v) {
+                        if (v.empty()) return;
+                        v.erase(v.begin() + end, v.end());
+                        v.erase(v.begin(), v.begin() + begin);
+                    };
+                    cut(piece.position), cut(piece.velocity), cut(piece.axis), cut(piece.omega);
+                    cut(piece.orientation);
+                    return piece;
+                },
+                [&](std::string_view piece) { sourced += piece; }, perPiece);
+            EXPECT_EQ(sourced, formatXyzFrame(*frame, layout)) << perPiece;
         }
     EXPECT_THROW(writeXyzFramePieces(
                      rods, TrajectoryLayout::Rod, [](std::string_view) {}, 0),
