@@ -574,10 +574,15 @@ Scene sceneFromJson(const json& input, const std::string& origin,
             rd.fail(std::string("smd.") + moved,
                     "has moved to potential.cutoff = [r_l, r_u] (σ), the cutoff of the model both "
                     "engines simulate");
-    rd.onlyKeys(smd, "smd", {"dt_fs", "skin", "scheme"});
+    rd.onlyKeys(smd, "smd", {"dt_fs", "skin", "scheme", "sort_bodies"});
     s.smd.dt_fs = rd.number(smd, "smd", "dt_fs", s.smd.dt_fs, 0.0, 1e3, true);
     s.smd.skin = rd.number(smd, "smd", "skin", s.smd.skin, 0.0, 10.0);
     s.smd.scheme = rd.choice(smd, "smd", "scheme", s.smd.scheme, {"verlet", "omelyan", "yoshida4"});
+    if (smd.contains("sort_bodies")) {
+        if (!smd["sort_bodies"].is_boolean())
+            rd.fail("smd.sort_bodies", "must be true or false, got " + smd["sort_bodies"].dump());
+        s.smd.sort_bodies = smd["sort_bodies"].get<bool>();
+    }
 
     const auto& run = rd.section(j, "run");
     rd.onlyKeys(run, "run", {"equilibrate_ps", "time_ps", "sample_fs", "thermostat_fs"});
@@ -834,6 +839,7 @@ json toJson(const Scene& s) {
                                 {"values", s.dmd.terraces.values},
                                 {"n", s.dmd.terraces.n}};
     j["smd"] = {{"dt_fs", s.smd.dt_fs}, {"skin", s.smd.skin}, {"scheme", s.smd.scheme}};
+    if (!s.smd.sort_bodies) j["smd"]["sort_bodies"] = false;
     j["run"] = {{"equilibrate_ps", s.run.equilibrate_ps},
                 {"time_ps", s.run.time_ps},
                 {"sample_fs", s.run.sample_fs},

@@ -131,6 +131,10 @@ struct Scene {
         double skin = 0.3; // Verlet skin, σ
         // The splitting (smd/splitting.hpp): verlet (the paper's), omelyan, yoshida4.
         std::string scheme = "verlet";
+        // Keep the bodies inside the engine in the neighbour list's cell order, re-sorted at
+        // every list build (smd/engine.hpp); the bodies keep the scene's numbering outside it and
+        // the trajectory is the same bit for bit. Off only to check that.
+        bool sort_bodies = true;
     } smd;
 
     // Every interval is honoured exactly or refused. Intervals must fit in the run and lie on the

@@ -12,6 +12,13 @@
 // drifts of other lengths, a force evaluation after every drift).
 // Time only advances in whole steps: advanceTo(t) stops at the first grid point t0 + k dt >= t,
 // so every step is the same symplectic map (the run driver samples on multiples of dt).
+// Body order (smd.sort_bodies, default on): inside the engine the bodies are kept in the list's
+// slot order (cells, see smd/neighbour_list.hpp) and re-sorted at every list build, so that the
+// kicks, drifts and the gather of positions into slots stream through memory instead of jumping
+// around it as the liquid mixes. The slots are filled in the scene's order within each cell
+// whatever the engine's own order, so the pair sums, and with them the trajectory, are the same
+// bit for bit with and without the sort; outside the engine (snapshot(), system(), the sums
+// over all bodies) everything is in the scene's numbering.
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
 #include "core/engine.hpp"
 #include "core/overlap.hpp"
@@ -25,6 +32,7 @@
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <span>
 #include <sstream>
 #include <vector>
@@ -48,7 +56,8 @@ private:
     Engine(System<K, P> initial, const Scene& scene, bool isStart)
         : sys_(std::move(initial)),
           par_(smd::parameters(scene, sys_.box.length, sys_.potential.range())),
-          scheme_(splitting(scene.smd.scheme)), sigmaUnit_(scene.potential.sigma) {
+          scheme_(splitting(scene.smd.scheme)), sigmaUnit_(scene.potential.sigma),
+          sortBodies_(scene.smd.sort_bodies) {
         for (const auto& b : sys_.bodies)
             if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
                 !K::angularVelocity(b, sys_.body).allFinite())
@@ -61,8 +70,13 @@ private:
         position_.resize(n);
         local_.resize(n);
         if (isOrientational<P>) orientation_.resize(n);
+        if (sortBodies_) {
+            sceneOf_.resize(n);
+            std::iota(sceneOf_.begin(), sceneOf_.end(), 0);
+            engineOf_ = sceneOf_;
+        }
         gatherPositions();
-        build(list_, sys_.box, position_);
+        buildList();
         computeForces();
         if (isStart) checkOverlap();
     }
@@ -108,7 +122,7 @@ public:
             const double moved2 = maxSquaredDisplacement(list_, position_);
             if (!(moved2 <= 0.25 * list_.skin * list_.skin)) {
                 checkStable(moved2);
-                build(list_, sys_.box, position_);
+                buildList();
                 ++list_.rebuilds;
             }
             const auto t3 = Clock::now();
@@ -126,32 +140,68 @@ public:
     }
 
     double time() const { return steps_ * par_.dt; }
-    Snapshot snapshot() const { return makeSnapshot(sys_, time()); }
+    Snapshot snapshot() const {
+        if (!sortBodies_) return makeSnapshot(sys_, time());
+        Snapshot s = emptySnapshot<K>(time(), sys_.box.length, sys_.bodies.size());
+        for (const int i : engineOf_)
+            appendBody<K>(s, sys_.bodies[i], sys_.body);
+        return s;
+    }
     /// The bodies `bodies` (the scene's numbers) at time(), in that order.
     Snapshot snapshot(std::span<const int> bodies) const {
         Snapshot s = emptySnapshot<K>(time(), sys_.box.length, bodies.size());
         for (const int b : bodies)
-            appendBody<K>(s, sys_.bodies[b], sys_.body);
+            appendBody<K>(s, sys_.bodies[sortBodies_ ? engineOf_[b] : b], sys_.body);
         return s;
     }
     /// Every body's position at time(), in the scene's order (the snapshot's other fields empty).
     Snapshot positions() const {
-        Snapshot s = positionsOnly(time(), sys_.box.length, sys_.bodies.size());
-        for (const auto& b : sys_.bodies)
-            s.position.push_back(b.r);
+        const std::size_t n = sys_.bodies.size();
+        Snapshot s = positionsOnly(time(), sys_.box.length, n);
+        for (std::size_t b = 0; b < n; ++b)
+            s.position.push_back(sys_.bodies[sortBodies_ ? engineOf_[b] : b].r);
         return s;
     }
-    double kineticEnergy() const { return totalKinetic(sys_); }
+    // The sums over all bodies go in the scene's order, as without the sort: the same round-off.
+    double kineticEnergy() const {
+        if (!sortBodies_) return totalKinetic(sys_);
+        double e = 0.0;
+        for (const int i : engineOf_)
+            e += terrace::kineticEnergy<K>(sys_.bodies[i], sys_.body);
+        return e;
+    }
     /// The smoothed continuous potential energy at time().
     double potentialEnergy() const { return forces_.potential; }
     /// The molecular virial W = Σ_pairs r_ij·F_ij at time() (kJ/mol): P = (2 K_trans + W)/(3V).
     double virial() const { return forces_.virial; }
     /// ½ m Σ v² at time() (kJ/mol): the kinetic term of the pressure.
-    double translationalKineticEnergy() const { return translationalKinetic(sys_); }
-    Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }
+    double translationalKineticEnergy() const {
+        if (!sortBodies_) return translationalKinetic(sys_);
+        double e = 0.0;
+        for (const int i : engineOf_)
+            e += sys_.bodies[i].v.squaredNorm();
+        return 0.5 * sys_.body.mass * e;
+    }
+    Vec3 totalMomentum() const {
+        if (!sortBodies_) return terrace::totalMomentum(sys_);
+        Vec3 p = Vec3::Zero();
+        for (const int i : engineOf_)
+            p += sys_.body.mass * sys_.bodies[i].v;
+        return p;
+    }
 
     /// Scale v and ω so that the kinetic energy is ½ degreesOfFreedom<K>(N) kT.
-    void rescaleTemperature(double kT) { rescaleToTemperature(sys_, kT); }
+    void rescaleTemperature(double kT) {
+        if (!sortBodies_) return rescaleToTemperature(sys_, kT);
+        const double target = 0.5 * degreesOfFreedom<K>(sys_.size()) * kT;
+        const double now = kineticEnergy();
+        if (now <= 0.0) return;
+        const double f = std::sqrt(target / now);
+        for (auto& b : sys_.bodies) {
+            b.v *= f;
+            K::scaleAngularVelocity(b, sys_.body, f);
+        }
+    }
 
     /// Flip every velocity and angular velocity: the step map is then run backwards in time.
     void reverseMotion() {
@@ -183,11 +233,23 @@ public:
                   {"force", seconds_.force}}}};
     }
 
-    const System<K, P>& system() const { return sys_; }
+    /// The bodies in the scene's numbering (a copy).
+    System<K, P> system() const {
+        if (!sortBodies_) return sys_;
+        System<K, P> out{sys_.box, sys_.body, sys_.potential, {}, sys_.kT};
+        out.bodies.reserve(sys_.bodies.size());
+        for (const int i : engineOf_)
+            out.bodies.push_back(sys_.bodies[i]);
+        return out;
+    }
     const Parameters& parameters() const { return par_; }
     long steps() const { return steps_; }
     long neighbourRebuilds() const { return list_.rebuilds; }
     long pairEvaluations() const { return evaluations_; }
+    /// The scene number of the body the engine keeps at `engineIndex` (the same without the sort).
+    int sceneIndex(int engineIndex) const {
+        return sortBodies_ ? sceneOf_[engineIndex] : engineIndex;
+    }
 
 private:
     /// Between two list checks a body moves one step. A jump past the whole skin, or a position
@@ -223,12 +285,49 @@ private:
                 const double U =
                     sys_.potential.energy(rij, isOrientational<P> ? orientation_[a] : none,
                                           isOrientational<P> ? orientation_[b] : none);
-                if (overlapsAtStart(U, uMin)) throwOverlap(list_.order[a], list_.order[b], U);
+                if (overlapsAtStart(U, uMin))
+                    throwOverlap(sceneIndex(list_.order[a]), sceneIndex(list_.order[b]), U);
             }
     }
 
     template <class T> static double seconds(T a, T b) {
         return std::chrono::duration<double>(b - a).count();
+    }
+
+    /// Builds the list from position_. With the sort, the slots are filled in the scene's order
+    /// within each cell, then the bodies (and position_, and the list's displacement reference)
+    /// are moved into slot order, so that slot a holds body a.
+    void buildList() {
+        if (!sortBodies_) {
+            build(list_, sys_.box, position_);
+            return;
+        }
+        build(list_, sys_.box, position_, avx2Available(), engineOf_);
+        const std::size_t n = sys_.bodies.size();
+        // Body order[a] goes to a: each cycle of the permutation in turn, every body moved once.
+        moved_.assign(n, 0);
+        for (std::size_t a = 0; a < n; ++a) {
+            if (moved_[a]) continue;
+            auto held = std::move(sys_.bodies[a]);
+            std::size_t to = a;
+            for (std::size_t from = list_.order[a]; from != a; from = list_.order[from]) {
+                sys_.bodies[to] = std::move(sys_.bodies[from]);
+                moved_[to] = 1;
+                to = from;
+            }
+            sys_.bodies[to] = std::move(held);
+            moved_[to] = 1;
+        }
+        // Scene numbers follow their bodies; order becomes the identity.
+        for (std::size_t a = 0; a < n; ++a) // engineOf_, read by build() only, is scratch here
+            engineOf_[a] = sceneOf_[list_.order[a]];
+        std::swap(sceneOf_, engineOf_);
+        for (std::size_t a = 0; a < n; ++a) {
+            engineOf_[sceneOf_[a]] = static_cast<int>(a);
+            list_.order[a] = static_cast<int>(a);
+        }
+        gatherPositions();
+        list_.builtAt.assign(position_.begin(), position_.end());
     }
 
     /// p += F h, L += τ h with the forces at the current positions.
@@ -276,6 +375,10 @@ private:
     long steps_ = 0;
     long evaluations_ = 0;
     PhaseSeconds seconds_;
+    bool sortBodies_;
+    std::vector<int> sceneOf_;        // with the sort: scene number of each body of sys_
+    std::vector<int> engineOf_;       // with the sort: index in sys_ of each scene number
+    std::vector<std::uint8_t> moved_; // scratch of the re-sort
 };
 
 } // namespace terrace::smd

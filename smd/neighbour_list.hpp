@@ -256,9 +256,17 @@ TERRACE_AVX2 inline void listCellPairsAvx2(NeighbourList& list, int m, std::span
 /// reach wide (finer cells scan less empty volume) when the box holds five of them per edge and
 /// there are enough bodies to fill them, by all pairs otherwise.
 /// The cell path is the AVX2 loop where the processor has it unless `avx2` is false (tests).
+/// `visit`, when given, is a permutation of the bodies: the order in which they take their slots
+/// (within each cell, and in the all-pairs path) instead of r's own order. A caller that keeps
+/// its bodies in another order than the scene's passes the scene's order here, so that the slots,
+/// and with them the pair loop's sums, come out the same whatever the order of r.
 [[gnu::flatten]] inline void build(NeighbourList& list, const PeriodicBox& box,
-                                   std::span<const Vec3> r, bool avx2 = avx2Available()) {
+                                   std::span<const Vec3> r, bool avx2 = avx2Available(),
+                                   std::span<const int> visit = {}) {
     const std::size_t n = r.size();
+    if (!visit.empty() && visit.size() != n)
+        throw std::invalid_argument("smd neighbour list: the visiting order is not one per body");
+    const auto body = [&](std::size_t k) { return visit.empty() ? int(k) : visit[k]; };
     if (n >= (std::size_t{1} << (32 - NeighbourList::imageBits)))
         throw std::length_error("smd neighbour list: too many bodies for 27-bit slots");
     for (int a = 0; a < 27; ++a)
@@ -278,11 +286,15 @@ TERRACE_AVX2 inline void listCellPairsAvx2(NeighbourList& list, int m, std::span
 
     const int m = detail::cellsPerEdge(box.length, list.reach, n);
     if (m == 0) {
-        std::iota(list.order.begin(), list.order.end(), 0);
-        for (std::size_t i = 0; i < n; ++i)
-            list.offset[i] = r[i] - inBox[i];
+        std::vector<Vec3> x(n); // per slot, in the box
+        for (std::size_t slot = 0; slot < n; ++slot) {
+            const int i = body(slot);
+            list.order[slot] = i;
+            x[slot] = inBox[i];
+            list.offset[slot] = r[i] - inBox[i];
+        }
         clearEntries();
-        detail::listAllPairs(list, box, inBox);
+        detail::listAllPairs(list, box, x);
         return;
     }
     // Counting sort into cells: the slots of cell c are first[c] .. first[c+1].
@@ -296,9 +308,10 @@ TERRACE_AVX2 inline void listCellPairsAvx2(NeighbourList& list, int m, std::span
     std::partial_sum(first.begin(), first.end(), first.begin());
     std::vector<int> fill(first.begin(), first.end() - 1);
     std::vector<Vec3> x(n); // per slot, in the box
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < n; ++k) {
+        const int i = body(k);
         const int slot = fill[cellOf[i]]++;
-        list.order[slot] = static_cast<int>(i);
+        list.order[slot] = i;
         x[slot] = inBox[i];
         list.offset[slot] = r[i] - inBox[i];
     }

@@ -85,6 +85,7 @@ TEST(Scene, BadValuesAreNamed) {
     EXPECT_NE(errorOf({{"dmd", {{"queue", "tree"}}}}).find("auto | bpq | heap"), std::string::npos);
     EXPECT_NE(errorOf({{"dmd", {{"sort_bodies", "yes"}}}}).find("dmd.sort_bodies"),
               std::string::npos);
+    EXPECT_NE(errorOf({{"smd", {{"sort_bodies", 1}}}}).find("smd.sort_bodies"), std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", {3.0, 2.5}}}}}).find("potential.cutoff: must be"),
               std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", {0.0, 2.5}}}}}).find("potential.cutoff"),
@@ -117,6 +118,8 @@ TEST(Scene, OverridesByDottedPath) {
     EXPECT_EQ(sceneFromJson(json::object(), "t", {"dmd.queue=auto"}).dmd.queue, "auto");
     EXPECT_TRUE(defaultScene().dmd.sort_bodies);
     EXPECT_FALSE(sceneFromJson(json::object(), "t", {"dmd.sort_bodies=false"}).dmd.sort_bodies);
+    EXPECT_TRUE(defaultScene().smd.sort_bodies);
+    EXPECT_FALSE(sceneFromJson(json::object(), "t", {"smd.sort_bodies=false"}).smd.sort_bodies);
     EXPECT_EQ(s.name, "x y");
     EXPECT_NE(errorOf(json::object(), {"dmd.dV"}).find("key.path=value"), std::string::npos);
     EXPECT_NE(errorOf(json::object(), {"dmd.nope=1"}).find("dmd.nope: unknown key"),

@@ -4,7 +4,10 @@
 #include "smd/neighbour_list.hpp"
 #include "smd/pair_forces.hpp"
 #include "systems.hpp"
+#include <algorithm>
 #include <gtest/gtest.h>
+#include <numeric>
+#include <random>
 #include <set>
 
 using namespace terrace;
@@ -155,5 +158,34 @@ TEST(NeighbourList, Avx2BuildListsTheScalarBuildsEntries) {
             for (auto& x : r)
                 x += Vec3(0.7, -0.3, 0.2); // a new arrangement for the second build
         }
+    }
+}
+
+// The order in which bodies take their slots (build's `visit`): the same bodies in another order,
+// visited in the first order, give the same slots, entries and offsets, through the cell path
+// (six and nine cells per edge) and the all-pairs path.
+TEST(NeighbourList, VisitingOrderFixesTheSlots) {
+    for (auto [perEdge, density] : {std::pair{8, 0.5}, {10, 0.3}, {6, 0.5}}) {
+        auto sys = scatteredRods(perEdge, density, 0.8, 40 + perEdge);
+        const std::size_t n = sys.bodies.size();
+        std::vector<Vec3> r, shuffled(n);
+        for (const auto& b : sys.bodies)
+            r.push_back(b.r);
+        std::vector<int> at(n); // body i of r sits at at[i] in shuffled
+        std::iota(at.begin(), at.end(), 0);
+        std::shuffle(at.begin(), at.end(), std::mt19937_64(perEdge));
+        for (std::size_t i = 0; i < n; ++i)
+            shuffled[at[i]] = r[i];
+        NeighbourList given, visited;
+        given.skin = visited.skin = 0.3 * sys.potential.bare.sigma;
+        given.reach = visited.reach = sys.potential.range() + given.skin;
+        build(given, sys.box, r);
+        build(visited, sys.box, shuffled, avx2Available(), at);
+        ASSERT_GT(given.pairCount(), 0u);
+        for (std::size_t a = 0; a < n; ++a)
+            ASSERT_EQ(visited.order[a], at[given.order[a]]) << "slot " << a;
+        EXPECT_EQ(visited.start, given.start);
+        EXPECT_EQ(visited.entry, given.entry);
+        EXPECT_EQ(visited.offset, given.offset);
     }
 }
