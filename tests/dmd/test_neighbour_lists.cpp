@@ -136,7 +136,7 @@ TEST(NeighbourLists, RecordsAndSpillsBehaveAsPlainListsWithTheirTerraces) {
         });
         EXPECT_EQ(offZero, static_cast<int>(terraceOf.size()));
     }
-    EXPECT_GT(spilledSeen, 5); // the spills were exercised
+    EXPECT_GT(spilledSeen, 5);              // the spills were exercised
     for (const auto& [pair, t] : terraceOf) // (the lists refuse to drop a pair off terrace 0)
         lists.setTerrace(pair.first, pair.second, 0);
     for (int i = 0; i < n; ++i)
