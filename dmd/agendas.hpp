@@ -15,6 +15,7 @@
 // The order of a body's events is that of a vector whose removal moves the last event into the
 // gap: the slots of the block first, then the spill. Times in the engine's unit (100 fs).
 #include "dmd/event.hpp"
+#include "dmd/spill_pool.hpp"
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -156,15 +157,7 @@ private:
         freeSpill_.push_back(b.spill);
         b.spill = -1;
     }
-    int takeSpill() {
-        if (freeSpill_.empty()) {
-            spill_.emplace_back();
-            return static_cast<int>(spill_.size() - 1);
-        }
-        const int s = freeSpill_.back();
-        freeSpill_.pop_back();
-        return s;
-    }
+    int takeSpill() { return takeFromPool(spill_, freeSpill_); }
 
     std::vector<Block> block_;
     std::vector<std::vector<PendingEvent>> spill_; // overflow beyond the blocks, pooled

@@ -30,6 +30,7 @@
 // and per body's terraces cost ~100 B a body more in headers, heap-block overhead and the slack
 // of the largest size each had reached.
 #include "core/vec.hpp"
+#include "dmd/spill_pool.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -258,15 +259,7 @@ private:
         freeSpill_.push_back(s);
         rec[spillSlot] = -1;
     }
-    int takeSpill() {
-        if (freeSpill_.empty()) {
-            spill_.emplace_back();
-            return static_cast<int>(spill_.size() - 1);
-        }
-        const int s = freeSpill_.back();
-        freeSpill_.pop_back();
-        return s;
-    }
+    int takeSpill() { return takeFromPool(spill_, freeSpill_); }
 
     double skin_;
     int capacity_;

@@ -4,6 +4,7 @@
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "test_systems.hpp"
+#include "tests/sample_parts.hpp"
 #include <algorithm>
 #include <gtest/gtest.h>
 #include <span>
@@ -137,47 +138,22 @@ TEST(Engine, AutoQueueChoosesByTheNumberOfBodies) {
     EXPECT_EQ(RodEngine(rodSystem(small), small).statistics()["queue"], "bpq");
 }
 
+// In the engine's Morton order, with clocks apart (between events) and after a synchronisation.
+TEST(Engine, PartsOfASampleAreTheWholeSnapshotsOwn) {
+    const Scene s = rodScene(216, 0.5, 1.4, 0.5);
+    RodEngine e(rodSystem(s), s);
+    e.runEvents(3000);
+    terrace::testing::expectPartsOfTheSnapshot(e);
+    e.advanceTo(e.time() + 0.05);
+    terrace::testing::expectPartsOfTheSnapshot(e);
+}
+
 // Inside the engine the bodies are numbered in the Morton order of their cells (dmd.sort_bodies,
 // for memory locality); outside, they keep the scene's numbering. The order changes only which
 // pair is predicted first, and so which horizon each search draws: with and without it 512 dense
 // rods undergo the same collisions over 100 fs, the terraced energy is the same integer sum, and
 // every body, taken by its scene number, agrees to round-off grown by the chaos of the liquid (as
 // with the hold screen above). Snapshots, copies and checkpoints come in the scene's order.
-namespace {
-
-/// The parts the run driver takes of a sample when nothing needs it whole (some bodies' states,
-/// every position) are the whole snapshot's own entries, bit for bit.
-template <class E> void expectPartsOfTheSnapshot(const E& e) {
-    const Snapshot whole = e.snapshot();
-    const std::vector<int> some{whole.size() - 1, 0, whole.size() / 2, 3};
-    const Snapshot part = e.snapshot(std::span<const int>(some));
-    ASSERT_EQ(part.size(), 4);
-    EXPECT_EQ(part.time, whole.time);
-    EXPECT_EQ(part.boxLength, whole.boxLength);
-    for (int k = 0; k < 4; ++k) {
-        EXPECT_EQ(part.position[k], whole.position[some[k]]);
-        EXPECT_EQ(part.velocity[k], whole.velocity[some[k]]);
-        EXPECT_EQ(part.axis[k], whole.axis[some[k]]);
-        EXPECT_EQ(part.omega[k], whole.omega[some[k]]);
-    }
-    const Snapshot where = e.positions();
-    EXPECT_EQ(where.position, whole.position);
-    EXPECT_TRUE(where.velocity.empty() && where.axis.empty() && where.omega.empty());
-    EXPECT_EQ(where.time, whole.time);
-}
-
-} // namespace
-
-// In the engine's Morton order, with clocks apart (between events) and after a synchronisation.
-TEST(Engine, PartsOfASampleAreTheWholeSnapshotsOwn) {
-    const Scene s = rodScene(216, 0.5, 1.4, 0.5);
-    RodEngine e(rodSystem(s), s);
-    e.runEvents(3000);
-    expectPartsOfTheSnapshot(e);
-    e.advanceTo(e.time() + 0.05);
-    expectPartsOfTheSnapshot(e);
-}
-
 TEST(Engine, BodyOrderChangesNoObservable) {
     Scene sorted = rodScene(512, 0.5, 1.4, 0.5), given = sorted;
     given.dmd.sort_bodies = false;

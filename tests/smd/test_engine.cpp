@@ -7,6 +7,7 @@
 #include "core/symmetric_top.hpp"
 #include "smd/engine.hpp"
 #include "systems.hpp"
+#include "tests/sample_parts.hpp"
 #include <gtest/gtest.h>
 #include <memory>
 #include <span>
@@ -33,34 +34,13 @@ template <class F> void expectSceneError(F&& make, const std::string& key) {
     }
 }
 
-/// The parts the run driver takes of a sample when nothing needs it whole (some bodies' states,
-/// every position) are the whole snapshot's own entries, bit for bit.
-template <class E> void expectPartsOfTheSnapshot(const E& e) {
-    const Snapshot whole = e.snapshot();
-    const std::vector<int> some{whole.size() - 1, 0, whole.size() / 2, 3};
-    const Snapshot part = e.snapshot(std::span<const int>(some));
-    ASSERT_EQ(part.size(), 4);
-    EXPECT_EQ(part.time, whole.time);
-    EXPECT_EQ(part.boxLength, whole.boxLength);
-    for (int k = 0; k < 4; ++k) {
-        EXPECT_EQ(part.position[k], whole.position[some[k]]);
-        EXPECT_EQ(part.velocity[k], whole.velocity[some[k]]);
-        EXPECT_EQ(part.axis[k], whole.axis[some[k]]);
-        EXPECT_EQ(part.omega[k], whole.omega[some[k]]);
-    }
-    const Snapshot where = e.positions();
-    EXPECT_EQ(where.position, whole.position);
-    EXPECT_TRUE(where.velocity.empty() && where.axis.empty() && where.omega.empty());
-    EXPECT_EQ(where.time, whole.time);
-}
-
 } // namespace
 
 TEST(Engine, PartsOfASampleAreTheWholeSnapshotsOwn) {
     const auto sys = smd::fixtures::rods(6, 0.5, 1.4, 1);
     RodEngine e(sys, smd::fixtures::smdScene(sigmaRod, 1.8));
     e.advanceTo(0.5);
-    expectPartsOfTheSnapshot(e);
+    terrace::testing::expectPartsOfTheSnapshot(e);
 }
 
 TEST(Engine, RejectsBadParameters) {
