@@ -541,7 +541,7 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         if (!s.dmd.levels.empty() && !d.isDefault())
             rd.fail("dmd.terraces", "and dmd.levels both set the levels: give one of them");
     }
-    s.dmd.queue = rd.choice(dmd, "dmd", "queue", s.dmd.queue, {"auto", "heap", "bpq"});
+    s.dmd.queue = rd.choice(dmd, "dmd", "queue", s.dmd.queue, {"auto", "heap", "bpq", "tree"});
     s.dmd.invalidation =
         rd.choice(dmd, "dmd", "invalidation", s.dmd.invalidation, {"lazy", "eager"});
     s.dmd.horizon_fs = rd.number(dmd, "dmd", "horizon_fs", s.dmd.horizon_fs, 0.0, 1e6, true);

@@ -105,12 +105,9 @@ struct Scene {
             int n = 0;
             bool isDefault() const { return levels == "energy" && values == "midpoint" && n == 0; }
         } terraces;
-        // auto | heap | bpq: the calendar. auto takes G. Paul's bounded priority queue below
-        // dmd::autoHeapFromBodies (100 000) bodies and the binary heap from there on: measured on
-        // the dense rods, the bounded queue is 3-8 % faster at N 512 to 32 768, the heap 10 %
-        // at 262 144 and 35-50 % at 10^6, where the bounded queue's lists of scattered nodes miss
-        // the cache (docs/PERFORMANCE.md "Where the time goes"). Every choice gives the same
-        // trajectory.
+        // auto | heap | bpq | tree: the calendar. auto takes the tournament tree over the bodies
+        // (dmd/tournament_queue.hpp), measured the fastest of the three from N 512 to 10^6 on the
+        // dense rods (dmd/settings.hpp). Every choice gives the same trajectory.
         std::string queue = "auto";
         std::string invalidation = "lazy"; // lazy | eager
         double horizon_fs = 4.0;           // virtual-event horizon and largest search step, >= 0.1

@@ -106,8 +106,7 @@ public:
 private:
     Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume)
         : Engine(initial,
-                 readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length,
-                                 initial.size()),
+                 readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length),
                  scene, resume) {}
     // The settings are read before anything is built: the prediction base, built first, needs them.
     Engine(System<K, P>& initial, DmdSettings settings, const Scene& scene,
@@ -243,7 +242,9 @@ public:
         j["r_m_angstrom"] = settings_.rm;
         if constexpr (requires { sys_.potential.range(); })
             j["model"] = std::isfinite(sys_.potential.range()) ? "smoothed" : "bare";
-        j["queue"] = settings_.queue == QueueKind::Heap ? "heap" : "bpq";
+        j["queue"] = settings_.queue == QueueKind::Heap   ? "heap"
+                     : settings_.queue == QueueKind::Tree ? "tree"
+                                                          : "bpq";
         j["invalidation"] = settings_.eager ? "eager" : "lazy";
         j["max_queue_size"] = schedule_.maxQueueSize();
         j["cleanups"] = schedule_.cleanups();
@@ -419,7 +420,10 @@ private:
             if (q.empty()) throw std::logic_error("dmd: no event left (nothing moves)");
             const Event e = q.top();
             q.pop();
-            if (prefetching_ && !q.empty()) prefetchEvent(q.top());
+            if (prefetching_ && !q.empty()) {
+                prefetchEvent(q.top());
+                if constexpr (requires { q.prefetchPath(0); }) q.prefetchPath(q.top().i);
+            }
             if (e.kind == EventKind::Sample) return false;
             if (!schedule_.isCurrentEntry(e)) { // superseded, or its owner has been invalidated
                 ++staleEvents_;

@@ -1,12 +1,14 @@
 #pragma once
 // The DMD event calendar's interface (DESIGN.md "DMD engine"; paper, "Implementation of the
-// event-driven simulation"). Two implementations sit behind it and are chosen by `dmd.queue`:
+// event-driven simulation"). Three implementations sit behind it and are chosen by `dmd.queue`:
 //   heap — dmd/binary_heap_queue.hpp, O(log n) per operation;
-//   bpq  — dmd/bounded_priority_queue.hpp, G. Paul, J. Comput. Phys. 221, 615 (2007), O(1) average.
+//   bpq  — dmd/bounded_priority_queue.hpp, G. Paul, J. Comput. Phys. 221, 615 (2007), O(1) average;
+//   tree — dmd/tournament_queue.hpp, O(log n), one entry per owner (a push replaces its entry).
 //
-// Order: events leave strictly by (time, push sequence number). Both queues number pushes 0, 1, 2,
-// … and break exact time ties by that number, so that the same pushes produce the same pops in both
-// queues and `heap` and `bpq` runs are bit-identical. Times are in the internal unit (100 fs).
+// Order: events leave strictly by (time, push sequence number). The queues number pushes 0, 1, 2,
+// … and break exact time ties by that number, so that the same pushes produce the same pops in all
+// of them (in the tree, as long as no owner holds two entries at once: the engine's calendar) and
+// `heap`, `bpq` and `tree` runs are bit-identical. Times are in the internal unit (100 fs).
 //
 // Handles: push returns {slot, generation}. A slot's generation changes whenever its event leaves
 // the queue (pop, erase, removeIf, clear), so erasing through a handle to an event that already

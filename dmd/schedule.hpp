@@ -3,15 +3,15 @@
 // simulation"): the calendar and the per-body agendas that feed it.
 //
 // Every predicted event is filed in the agenda of the body whose prediction found it (Event::i);
-// the calendar (the queue: a binary heap or G. Paul's bounded priority queue, dmd/event_queue.hpp)
-// holds one entry per body, a stamped copy of the earliest event of its agenda, put there by
-// settle() once the body's predictions are done. A collision makes some 20 predicted events
-// stale, which then mostly never reach the calendar. An entry goes stale when its owner's entry
-// stamp moves on (lazy invalidation), or is erased through its stored handle (`eager`); a pair
-// event goes stale when its partner's event counter has moved on since its prediction (Rapaport,
-// J. Comput. Phys. 34, 184 (1980)). With lazy invalidation the calendar is cleaned of stale
-// entries when it grows beyond a multiple of its size after the previous cleanup; the bins of the
-// bounded queue are tuned from the measured push rate (dmd/bin_tuning.hpp).
+// the calendar (the queue: a binary heap, G. Paul's bounded priority queue or a tournament tree
+// over the bodies, dmd/event_queue.hpp) holds one entry per body, a stamped copy of the earliest
+// event of its agenda, put there by settle() once the body's predictions are done. A collision
+// makes some 20 predicted events stale, which then mostly never reach the calendar. An entry goes
+// stale when its owner's entry stamp moves on (lazy invalidation), or is erased through its stored
+// handle (`eager`); a pair event goes stale when its partner's event counter has moved on since its
+// prediction (Rapaport, J. Comput. Phys. 34, 184 (1980)). With lazy invalidation the calendar is
+// cleaned of stale entries when it grows beyond a multiple of its size after the previous cleanup;
+// the bins of the bounded queue are tuned from the measured push rate (dmd/bin_tuning.hpp).
 //
 // Apart from the engine (dmd/engine.hpp) because this state is the schedule's alone: the engine
 // and the searches (dmd/pair_prediction.hpp) only file events (schedule), pop entries, and ask
@@ -26,6 +26,7 @@
 #include "dmd/event.hpp"
 #include "dmd/event_queue.hpp"
 #include "dmd/settings.hpp"
+#include "dmd/tournament_queue.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -70,7 +71,8 @@ static_assert(sizeof(BodyBook) == 64, "a body's scalars fill one cache line");
 /// every engine in one copy it kept some of the small steps out of line: a call more per event).
 template <class Owner> class Schedule {
 public:
-    using Queue = std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>>;
+    using Queue =
+        std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>, TournamentQueue<Event>>;
 
     Schedule(int bodies, bool eager, double horizon)
         : book_(bodies), agendas_(bodies), entry_(eager ? bodies : 0), aboutFirst_(bodies, -1),
@@ -80,6 +82,8 @@ public:
     void openCalendar(QueueKind kind, double horizon, double now) {
         if (kind == QueueKind::Heap)
             queue_.emplace<BinaryHeapQueue<Event>>(eager_); // handles only to erase (eager)
+        else if (kind == QueueKind::Tree)
+            queue_.emplace<TournamentQueue<Event>>(static_cast<int>(book_.size()));
         else
             queue_.emplace<BoundedPriorityQueue<Event>>(horizon / 16.0, 1024, now);
     }

@@ -3,7 +3,7 @@
 // "Interfaces", "Bad input"): every bad value is a SceneError naming its key.
 //   dV            terrace height in units of kT (levels (n − ½) dV kT), > 0
 //   levels        explicit levels in kJ/mol (override dV when non-empty)
-//   queue         auto | heap | bpq (auto: bpq below autoHeapFromBodies bodies, heap from there on)
+//   queue         auto | heap | bpq | tree (auto: tree)
 //   invalidation  lazy | eager
 //   horizon_fs    virtual-event horizon and largest search step, fs, >= limits::minHorizonFs
 //   hold_screen   whether pairs are screened by their hold time before a search (default true;
@@ -19,29 +19,25 @@
 
 namespace terrace::dmd {
 
-enum class QueueKind { Heap, BoundedPriority };
+enum class QueueKind { Heap, BoundedPriority, Tree };
 
-/// dmd.queue = auto takes the binary heap from this many bodies on, the bounded priority queue
-/// below: on the dense rods the bounded queue was 3-8 % faster at N 512 to 32 768 and the heap
-/// 10 % faster at 262 144, 35-50 % at 10^6 (docs/PERFORMANCE.md "Where the time goes"), where the
-/// bounded queue's bins, lists threaded through nodes scattered over the pool, miss the cache at
-/// every push and every bin loaded.
-inline constexpr int autoHeapFromBodies = 100000;
+/// dmd.queue = auto takes the tournament tree at every size: on the dense rods, alternated runs
+/// of one binary, it was 2-7 % faster than the bounded queue at N 512 and 32 768 and 7-8 % faster
+/// than the heap at 10^6 (docs/PERFORMANCE.md "A tournament tree for the calendar"), where the
+/// bounded queue had been 35-50 % slower than the heap.
 
 struct DmdSettings {
     TerraceLevels levels;
     double rm = 0.0; // interaction range, Å
-    QueueKind queue = QueueKind::BoundedPriority;
+    QueueKind queue = QueueKind::Tree;
     bool eager = false;    // eager invalidation: erase a body's queued events at its event
     double horizon = 0.04; // time units
     bool holdScreen = true;
     bool sortBodies = true; // bodies numbered in the Morton order of their cells inside the engine
 };
 
-/// bodies: the system's size, which dmd.queue = auto chooses by (0: not known, bpq).
 template <PairPotential P>
-DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, double boxLength,
-                            int bodies = 0) {
+DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, double boxLength) {
     DmdSettings s;
     if (!d.levels.empty()) {
         s.levels = TerraceLevels::explicitLevels(d.levels, d.values);
@@ -64,15 +60,15 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
         s.levels = TerraceLevels::uniform(d.dV * kT);
         s.levels.checkMinimum(potential.minimumEnergy(), "dmd.dV");
     }
-    if (d.queue == "heap" || (d.queue == "auto" && bodies >= autoHeapFromBodies))
+    if (d.queue == "heap")
         s.queue = QueueKind::Heap;
-    else if (d.queue == "auto")
-        s.queue = QueueKind::BoundedPriority;
     else if (d.queue == "bpq")
         s.queue = QueueKind::BoundedPriority;
+    else if (d.queue == "tree" || d.queue == "auto")
+        s.queue = QueueKind::Tree;
     else
-        throw SceneError("dmd.queue: must be \"auto\", \"heap\" or \"bpq\", got \"" + d.queue +
-                         "\"");
+        throw SceneError("dmd.queue: must be \"auto\", \"heap\", \"bpq\" or \"tree\", got \"" +
+                         d.queue + "\"");
     if (d.invalidation == "lazy")
         s.eager = false;
     else if (d.invalidation == "eager")

@@ -9,7 +9,7 @@
 #             smoothed DMD model)
 #   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs; Verlet skin tuned for the state by
 #           smd-skin.sh)
-#   OPTION  heap | eager (DMD queue and invalidation, default auto + lazy: bpq at these N)
+#   OPTION  heap | bpq | tree | eager (DMD queue and invalidation, default auto + lazy: the tree)
 #           optimal | virial | boltzmann | distance | volume (DMD terrace design, default the
 #                    paper's uniform levels and midpoints; fronts.sh)
 #           omelyan | yoshida4 (SMD splitting, default the paper's verlet; fronts.sh)
@@ -52,7 +52,7 @@ mayfail=0
 for o in "${options[@]}"; do
     case $o in
     mayfail) mayfail=1 ;;
-    heap) sets+=(--set dmd.queue=heap) ;;
+    heap | bpq | tree) sets+=(--set dmd.queue="$o") ;;
     # Terrace designs (dmd/terrace_design.hpp) over the same ΔV ladder: n levels in the well as
     # uniform levels of height ΔV put there (at least 2).
     optimal) sets+=(--set 'dmd.terraces={"levels":"optimal"}') ;;

@@ -5,8 +5,9 @@
 # the dense rods and the gas (T* = 10, ρ* = 0.01). Means ± standard errors over the replica runs;
 # the ratio's error adds the relative errors in quadrature.
 #   table.sh efficiency | queues
-# queues: DMD at ΔV = kT/2, dense: binary heap vs bounded priority queue, lazy vs eager
-# invalidation (paper: the bounded queue ≈ 15 % faster, not deleting stale events ≈ 15 % more).
+# queues: DMD at ΔV = kT/2, dense: bounded priority queue vs binary heap vs tournament tree, lazy
+# vs eager invalidation (paper: the bounded queue ≈ 15 % faster than a binary tree, not deleting
+# stale events ≈ 15 % more).
 source "$(dirname "$0")/common.sh"
 what=$1
 dir=$OUT/table
@@ -43,11 +44,13 @@ efficiency)
         "$dir/efficiency.csv" >"$dir/efficiency.md"
     ;;
 queues)
-    rows dense dmd-0.5 dmd-0.5-heap dmd-0.5-eager dmd-0.5-heap-eager |
+    rows dense dmd-0.5-bpq dmd-0.5-heap dmd-0.5-tree dmd-0.5-bpq-eager dmd-0.5-heap-eager \
+        dmd-0.5-tree-eager |
         awk -F, -v OFS=, 'NR == 1 { print $0, "cpu_relative_to_bpq_lazy"; next }
             NR == 2 { base = $5 } { print $0, $5 / base }' >"$dir/queues.csv"
     awk -F, 'NR == 1 { print "| queue, invalidation | CPU s / ps | relative to bpq + lazy |"; print "|---|---|---|"; next }
-        { q = ($1 ~ /heap/) ? "binary heap" : "bounded priority queue"; i = ($1 ~ /eager/) ? "eager" : "lazy"
+        { q = ($1 ~ /heap/) ? "binary heap" : ($1 ~ /tree/) ? "tournament tree" : "bounded priority queue"
+          i = ($1 ~ /eager/) ? "eager" : "lazy"
           printf "| %s, %s | %.3g ± %.2g | %.3f |\n", q, i, $5, $6, $NF }' "$dir/queues.csv" >"$dir/queues.md"
     ;;
 *) echo "table.sh: efficiency or queues" >&2; exit 2 ;;

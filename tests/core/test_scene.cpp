@@ -81,8 +81,9 @@ TEST(Scene, BadValuesAreNamed) {
               std::string::npos);
     EXPECT_NE(errorOf({{"engine", "lammps"}}).find("engine: must be one of dmd | smd"),
               std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"queue", "tree"}}}}).find("dmd.queue"), std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"queue", "tree"}}}}).find("auto | bpq | heap"), std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"queue", "forest"}}}}).find("dmd.queue"), std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"queue", "forest"}}}}).find("auto | bpq | heap | tree"),
+              std::string::npos);
     EXPECT_NE(errorOf({{"dmd", {{"sort_bodies", "yes"}}}}).find("dmd.sort_bodies"),
               std::string::npos);
     EXPECT_NE(errorOf({{"smd", {{"sort_bodies", 1}}}}).find("smd.sort_bodies"), std::string::npos);

@@ -88,6 +88,33 @@ TEST(Engine, HeapAndBoundedQueueGiveTheSameTrajectory) {
     EXPECT_TRUE(sameBodies(a.synchronisedCopy(), b.synchronisedCopy())); // bit for bit
 }
 
+// The tournament tree keeps one entry per body, overwriting the one a body's new entry supersedes
+// where the heap leaves it stale: the same valid entries leave in the same order, bit for bit, in
+// both invalidation modes, and none is ever popped stale but those whose owner dropped its entry
+// without a new one.
+TEST(Engine, TreeAndHeapGiveTheSameTrajectory) {
+    for (const char* invalidation : {"lazy", "eager"}) {
+        Scene heap = denseScene(), tree = denseScene();
+        heap.dmd.queue = "heap";
+        tree.dmd.queue = "tree";
+        heap.dmd.invalidation = tree.dmd.invalidation = invalidation;
+        RodEngine a(rodSystem(heap), heap), b(rodSystem(tree), tree);
+        for (int k = 1; k <= 20; ++k) {
+            a.advanceTo(units::fromFs(25.0 * k));
+            b.advanceTo(units::fromFs(25.0 * k));
+        }
+        EXPECT_GT(a.counts().total(), 5000u);
+        EXPECT_EQ(a.counts().total(), b.counts().total()) << invalidation;
+        EXPECT_TRUE(sameBodies(a.synchronisedCopy(), b.synchronisedCopy())) << invalidation;
+        EXPECT_EQ(b.statistics()["queue"], "tree");
+        EXPECT_LE(b.queueSize(), static_cast<std::size_t>(a.synchronisedCopy().size()) + 1);
+        if (std::string(invalidation) == "lazy") {
+            EXPECT_LT(b.statistics()["stale_events"].get<double>(),
+                      0.05 * a.statistics()["stale_events"].get<double>());
+        }
+    }
+}
+
 // The hold-time screen (dmd/terrace_hold.hpp) only skips searches that could not find an event:
 // with and without it, 512 dense rods undergo the same collisions, in the same order, to the
 // last digits, until the chaos of the liquid amplifies the round-off of the root refinement
@@ -117,25 +144,26 @@ TEST(Engine, HoldScreenChangesNoCollision) {
     EXPECT_EQ(count(searched, "searches_screened"), screenedAtStart);
 }
 
-// dmd.queue = auto takes the bounded queue below dmd::autoHeapFromBodies bodies and the heap from
-// there on; an explicit choice stands whatever the size. The engine reports the queue it took.
-TEST(Engine, AutoQueueChoosesByTheNumberOfBodies) {
+// dmd.queue = auto takes the tournament tree, at every size; an explicit choice stands. The engine
+// reports the queue it took.
+TEST(Engine, AutoQueueIsTheTreeAndAChoiceStands) {
     Scene s = denseScene();
     ASSERT_EQ(s.dmd.queue, "auto");
     const auto potential = rodPotential(s);
-    const auto kindFor = [&](int bodies) {
-        return dmd::readDmdSettings(s.dmd, potential, s.kT(), s.boxLength(), bodies).queue;
+    const auto kind = [&] {
+        return dmd::readDmdSettings(s.dmd, potential, s.kT(), s.boxLength()).queue;
     };
-    EXPECT_EQ(kindFor(512), dmd::QueueKind::BoundedPriority);
-    EXPECT_EQ(kindFor(dmd::autoHeapFromBodies - 1), dmd::QueueKind::BoundedPriority);
-    EXPECT_EQ(kindFor(dmd::autoHeapFromBodies), dmd::QueueKind::Heap);
-    EXPECT_EQ(kindFor(1000000), dmd::QueueKind::Heap);
-    s.dmd.queue = "bpq";
-    EXPECT_EQ(kindFor(1000000), dmd::QueueKind::BoundedPriority);
-    s.dmd.queue = "heap";
-    EXPECT_EQ(kindFor(512), dmd::QueueKind::Heap);
+    EXPECT_EQ(kind(), dmd::QueueKind::Tree);
     const Scene small = denseScene();
-    EXPECT_EQ(RodEngine(rodSystem(small), small).statistics()["queue"], "bpq");
+    EXPECT_EQ(RodEngine(rodSystem(small), small).statistics()["queue"], "tree");
+    s.dmd.queue = "bpq";
+    EXPECT_EQ(kind(), dmd::QueueKind::BoundedPriority);
+    EXPECT_EQ(RodEngine(rodSystem(s), s).statistics()["queue"], "bpq");
+    s.dmd.queue = "heap";
+    EXPECT_EQ(kind(), dmd::QueueKind::Heap);
+    EXPECT_EQ(RodEngine(rodSystem(s), s).statistics()["queue"], "heap");
+    s.dmd.queue = "tree";
+    EXPECT_EQ(kind(), dmd::QueueKind::Tree);
 }
 
 // In the engine's Morton order, with clocks apart (between events) and after a synchronisation.
@@ -199,20 +227,27 @@ TEST(Engine, BodyOrderChangesNoObservable) {
 // Both modes push the same calendar entries in the same order (one erases what the other leaves
 // stale), so even events at one instant — a relist due now, say — come in the same order: 512
 // bodies over 1 ps, where entries renewed only when their stale predecessor surfaced had already
-// parted the two.
+// parted the two. (The tree overwrites an entry its owner's next one supersedes: lazy, it pops
+// stale only the few an owner dropped without a new one.)
 TEST(Engine, LazyAndEagerInvalidationGiveTheSameTrajectory) {
-    Scene lazy = rodScene(512, 0.5, 1.4, 0.5), eager = lazy;
-    lazy.dmd.invalidation = "lazy";
-    eager.dmd.invalidation = "eager";
-    RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
-    a.advanceTo(units::fromPs(1.0));
-    b.advanceTo(units::fromPs(1.0));
-    EXPECT_EQ(a.counts().total(), b.counts().total());
-    EXPECT_EQ(a.counts().up, b.counts().up);
-    EXPECT_EQ(a.counts().reflect, b.counts().reflect);
-    EXPECT_TRUE(sameBodies(a.synchronisedCopy(), b.synchronisedCopy()));
-    EXPECT_EQ(b.statistics()["stale_events"], 0); // eager leaves nothing stale in the queue
-    EXPECT_GT(a.statistics()["stale_events"].get<long>(), 0);
+    for (const char* queue : {"heap", "tree"}) {
+        Scene lazy = rodScene(512, 0.5, 1.4, 0.5);
+        lazy.dmd.queue = queue;
+        Scene eager = lazy;
+        lazy.dmd.invalidation = "lazy";
+        eager.dmd.invalidation = "eager";
+        RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
+        a.advanceTo(units::fromPs(1.0));
+        b.advanceTo(units::fromPs(1.0));
+        EXPECT_EQ(a.counts().total(), b.counts().total()) << queue;
+        EXPECT_EQ(a.counts().up, b.counts().up);
+        EXPECT_EQ(a.counts().reflect, b.counts().reflect);
+        EXPECT_TRUE(sameBodies(a.synchronisedCopy(), b.synchronisedCopy())) << queue;
+        EXPECT_EQ(b.statistics()["stale_events"], 0); // eager leaves nothing stale in the queue
+        if (std::string(queue) == "heap") {
+            EXPECT_GT(a.statistics()["stale_events"].get<long>(), 0);
+        }
+    }
 }
 
 // The calendar holds one entry per body (the earliest event of its agenda): with eager
@@ -222,6 +257,7 @@ TEST(Engine, LazyAndEagerInvalidationGiveTheSameTrajectory) {
 // every predicted event popped some eighteen.
 TEST(Engine, CalendarHoldsOneEntryPerBody) {
     Scene lazy = denseScene(), eager = denseScene();
+    lazy.dmd.queue = eager.dmd.queue = "heap"; // the tree holds one entry per body by its shape
     lazy.dmd.invalidation = "lazy";
     eager.dmd.invalidation = "eager";
     RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
@@ -439,16 +475,19 @@ TEST(Engine, HotLennardJonesGasWithoutAnAttractiveTerraceAdvances) {
 // partner would renew it at once). Without pruning those lists grow by one entry per virtual
 // event; both modes keep them, eager invalidation also a handle per body.
 TEST(Engine, BookkeepingStaysBoundedWithoutCollisions) {
-    for (const char* invalidation : {"lazy", "eager"}) {
-        Scene s = defaultScene();
-        s.dmd.dV = 0.5;
-        s.dmd.invalidation = invalidation;
-        RodEngine e(turningPairInTheWell(), s);
-        ASSERT_EQ(e.terrace(0, 1), -1);
-        e.runEvents(70000); // past the bounded queue's first retuning of its bins
-        const std::size_t early = e.bytesReserved();
-        e.runEvents(200000);
-        EXPECT_EQ(e.counts().virtualEvents, 270000u) << invalidation;
-        EXPECT_LT(e.bytesReserved(), early + early / 10) << invalidation << ": grew from " << early;
-    }
+    for (const char* queue : {"bpq", "heap", "tree"})
+        for (const char* invalidation : {"lazy", "eager"}) {
+            Scene s = defaultScene();
+            s.dmd.dV = 0.5;
+            s.dmd.queue = queue;
+            s.dmd.invalidation = invalidation;
+            RodEngine e(turningPairInTheWell(), s);
+            ASSERT_EQ(e.terrace(0, 1), -1);
+            e.runEvents(70000); // past the bounded queue's first retuning of its bins
+            const std::size_t early = e.bytesReserved();
+            e.runEvents(200000);
+            EXPECT_EQ(e.counts().virtualEvents, 270000u) << queue << ", " << invalidation;
+            EXPECT_LT(e.bytesReserved(), early + early / 10)
+                << queue << ", " << invalidation << ": grew from " << early;
+        }
 }

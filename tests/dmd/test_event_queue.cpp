@@ -1,4 +1,5 @@
-// Event queues (dmd/binary_heap_queue.hpp, dmd/bounded_priority_queue.hpp) against an obviously
+// Event queues (dmd/binary_heap_queue.hpp, dmd/bounded_priority_queue.hpp,
+// dmd/tournament_queue.hpp) against an obviously
 // correct reference: a std::map keyed by (time, push sequence), the order both queues promise.
 //
 // Every queue is driven through random push / pop / erase sequences whose times include exact ties,
@@ -8,6 +9,7 @@
 // that the overflow rescan, the jump over empty bins and the current-bin heap are all exercised.
 #include "dmd/binary_heap_queue.hpp"
 #include "dmd/bounded_priority_queue.hpp"
+#include "dmd/tournament_queue.hpp"
 
 #include <gtest/gtest.h>
 
@@ -400,6 +402,131 @@ TEST(BoundedPriorityQueue, RetuneRebinsFromTheEarliestEvent) {
     for (std::uint32_t i = 0; i < 100; ++i) {
         ASSERT_EQ(q.top().id, i);
         q.pop();
+    }
+}
+
+// The tournament tree holds one entry per owner (Event::i; i < 0: no owner) and a push replaces
+// the owner's entry. Against a reference of the same rule (a map keyed by (time, push sequence)
+// and each owner's key): random pushes (replacing or not), pops, erases through current and stale
+// handles, cleanups and clears, with ties, over 37 owners (an odd number of leaves: the implicit
+// tree is not a full one). Then, when the caller drops an owner's entry before its next push, as
+// the engine's schedule does, the tree pops what the heap pops.
+struct OwnedEvent {
+    double time = 0.0;
+    std::int32_t i = -1;
+    std::uint32_t id = 0;
+};
+static_assert(EventQueue<TournamentQueue<OwnedEvent>, OwnedEvent>);
+
+TEST(EventQueues, TournamentTreeKeepsOneEntryPerOwnerInReferenceOrder) {
+    constexpr int kOwners = 37;
+    TournamentQueue<OwnedEvent> tree(kOwners);
+    std::map<std::pair<double, std::uint64_t>, OwnedEvent> reference;
+    std::map<int, std::pair<double, std::uint64_t>> keyOf; // owner (−1 too) → its entry's key
+    std::map<int, QueueHandle> handleOf;
+    std::vector<QueueHandle> gone;
+    std::uint64_t sequence = 0;
+    std::uint32_t id = 0;
+    std::mt19937_64 rng(kRandomOpsSeed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    double now = 0.0;
+    const auto forget = [&](int owner) {
+        reference.erase(keyOf.at(owner));
+        keyOf.erase(owner);
+        gone.push_back(handleOf.at(owner));
+        handleOf.erase(owner);
+    };
+    for (int step = 0; step < 200000; ++step) {
+        const double u = uniform(rng);
+        if (u < 0.55) {
+            const int owner = static_cast<int>(rng() % (kOwners + 1)) - 1;
+            // ties: a coarse grid of times
+            const double t = now + std::floor(uniform(rng) * 50.0) * 0.01;
+            const OwnedEvent e{t, owner, id++};
+            if (keyOf.count(owner)) forget(owner);
+            const auto key = std::make_pair(t, sequence++);
+            reference[key] = e;
+            keyOf[owner] = key;
+            handleOf[owner] = tree.push(e);
+        } else if (u < 0.9) {
+            if (reference.empty()) continue;
+            const OwnedEvent expected = reference.begin()->second;
+            ASSERT_EQ(tree.top().id, expected.id) << "step " << step;
+            now = expected.time;
+            tree.pop();
+            forget(expected.i);
+        } else if (u < 0.97) {
+            if (!gone.empty() && uniform(rng) < 0.5) { // an entry that already left: a no-op
+                ASSERT_FALSE(tree.erase(gone[rng() % gone.size()]));
+                continue;
+            }
+            if (handleOf.empty()) continue;
+            auto it = handleOf.begin();
+            std::advance(it, static_cast<long>(rng() % handleOf.size()));
+            const int owner = it->first;
+            ASSERT_TRUE(tree.erase(it->second));
+            forget(owner);
+        } else if (u < 0.999) {
+            const std::uint32_t cut = id;
+            const auto stale = [cut](const OwnedEvent& e) { return (e.id + cut) % 3 == 0; };
+            std::size_t expected = 0;
+            for (auto it = keyOf.begin(); it != keyOf.end();) {
+                const int owner = (it++)->first;
+                if (stale(reference.at(keyOf.at(owner)))) {
+                    forget(owner);
+                    ++expected;
+                }
+            }
+            ASSERT_EQ(tree.removeIf(stale), expected);
+        } else {
+            tree.clear();
+            while (!keyOf.empty())
+                forget(keyOf.begin()->first);
+        }
+        ASSERT_EQ(tree.size(), reference.size());
+        ASSERT_EQ(tree.empty(), reference.empty());
+        if (!reference.empty()) {
+            ASSERT_EQ(tree.top().id, reference.begin()->second.id);
+        }
+    }
+    // A copy queues what the original queues, apart from it.
+    TournamentQueue<OwnedEvent> copy = tree;
+    while (!reference.empty()) {
+        ASSERT_EQ(copy.top().id, reference.begin()->second.id);
+        copy.pop();
+        reference.erase(reference.begin());
+    }
+    EXPECT_TRUE(copy.empty());
+    EXPECT_EQ(tree.size(), keyOf.size());
+}
+
+TEST(EventQueues, TournamentTreePopsAsTheHeapWhenOwnersDropTheirEntryFirst) {
+    constexpr int kOwners = 500;
+    TournamentQueue<OwnedEvent> tree(kOwners);
+    BinaryHeapQueue<OwnedEvent> heap;
+    std::vector<QueueHandle> inHeap(kOwners + 1);
+    std::vector<bool> queued(kOwners + 1, false);
+    std::mt19937_64 rng(kStressSeed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    double now = 0.0;
+    for (int step = 0; step < 300000; ++step) {
+        if (uniform(rng) < 0.5 || heap.empty()) {
+            const int owner = static_cast<int>(rng() % (kOwners + 1)) - 1;
+            const OwnedEvent e{now + std::floor(uniform(rng) * 20.0) * 0.05, owner,
+                               static_cast<std::uint32_t>(step)};
+            if (queued[owner + 1]) heap.erase(inHeap[owner + 1]); // the heap needs it erased
+            inHeap[owner + 1] = heap.push(e);
+            queued[owner + 1] = true;
+            tree.push(e);
+        } else {
+            ASSERT_EQ(tree.top().id, heap.top().id) << "step " << step;
+            ASSERT_EQ(tree.top().time, heap.top().time);
+            now = heap.top().time;
+            queued[heap.top().i + 1] = false;
+            heap.pop();
+            tree.pop();
+        }
+        ASSERT_EQ(tree.size(), heap.size());
     }
 }
 

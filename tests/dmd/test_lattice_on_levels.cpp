@@ -74,7 +74,7 @@ template <class E> void runConserving(E& e, double fs) {
 } // namespace
 
 // The scene as reported: seeds 1, 5 and 7 stopped at t = 0 (10^6 events without time
-// advancing), with either queue and either invalidation.
+// advancing), with every queue and either invalidation.
 TEST(LatticeOnLevels, ReportedSceneRunsInEverySeed) {
     for (std::uint64_t seed = 1; seed <= 7; ++seed) {
         const Scene s = ljOnLevels(500, seed);
@@ -87,12 +87,14 @@ TEST(LatticeOnLevels, ReportedSceneRunsInEverySeed) {
         runConserving(e, 1000.0);
         EXPECT_GT(e.counts().down, 1000u) << seed;
     }
-    Scene s = ljOnLevels(500, 5);
-    s.dmd.queue = "heap";
-    s.dmd.invalidation = "eager";
-    LJEngine e(buildInitialState<Sphere, LJPotential>(s, ljPotential(s)), s);
-    e.setStallLimit(10000);
-    runConserving(e, 300.0);
+    for (const char* queue : {"heap", "bpq"}) {
+        Scene s = ljOnLevels(500, 5);
+        s.dmd.queue = queue;
+        s.dmd.invalidation = "eager";
+        LJEngine e(buildInitialState<Sphere, LJPotential>(s, ljPotential(s)), s);
+        e.setStallLimit(10000);
+        runConserving(e, 300.0);
+    }
 }
 
 // A full lattice of 512 spheres spaced at each attractive level's radius in turn (1.25, 1.45,
