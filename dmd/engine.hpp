@@ -420,10 +420,7 @@ private:
             if (q.empty()) throw std::logic_error("dmd: no event left (nothing moves)");
             const Event e = q.top();
             q.pop();
-            if (prefetching_ && !q.empty()) {
-                prefetchEvent(q.top());
-                if constexpr (requires { q.prefetchPath(0); }) q.prefetchPath(q.top().i);
-            }
+            if (prefetching_ && !q.empty()) prefetchEvent(q.top());
             if (e.kind == EventKind::Sample) return false;
             if (!schedule_.isCurrentEntry(e)) { // superseded, or its owner has been invalidated
                 ++staleEvents_;

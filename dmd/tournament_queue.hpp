@@ -119,24 +119,12 @@ public:
         rebuild();
     }
 
-    /// Asks the caches for the leaf of an owner (−1: none) and the lower levels of its path, which
-    /// its next pop or push walks: those that may be cold (the upper ones are on every path). The
-    /// addresses follow from the owner alone, so all are asked for at once.
-    [[gnu::always_inline]] void prefetchPath(int owner) const {
-        const std::size_t b = owner < 0 ? leaves_ - 1 : static_cast<std::size_t>(owner);
-        std::size_t k = leaves_ + b;
-        for (int level = 0; level < kPrefetchedLevels && k > 1; ++level, k >>= 1)
-            __builtin_prefetch(&node_[k]);
-        __builtin_prefetch(&leaf_[b]);
-    }
-
     std::size_t bytesReserved() const {
         return 2 * leaves_ * sizeof(Node) + leaf_.capacity() * sizeof(Leaf);
     }
 
 private:
     static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-    static constexpr int kPrefetchedLevels = 8;
 
     struct Node {
         double time = std::numeric_limits<double>::infinity();
