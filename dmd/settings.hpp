@@ -21,10 +21,10 @@ namespace terrace::dmd {
 
 enum class QueueKind { Heap, BoundedPriority, Tree };
 
-/// dmd.queue = auto takes the tournament tree at every size: on the dense rods, alternated runs
-/// of one binary, it was 2-7 % faster than the bounded queue at N 512 and 32 768 and 7-8 % faster
-/// than the heap at 10^6 (docs/PERFORMANCE.md "A tournament tree for the calendar"), where the
-/// bounded queue had been 35-50 % slower than the heap.
+/// dmd.queue = auto takes the tournament tree at every size: on the dense rods, alternated with
+/// the queue auto took before, it cost 0.93 of the bounded queue's at N 512 and 0.96 at 32 768,
+/// 0.98 of the heap's at 262 144 and 0.80-0.96 at 10^6 (medians; docs/PERFORMANCE.md "a tournament
+/// tree for the calendar"), where the bounded queue had been 35-50 % slower than the heap.
 
 struct DmdSettings {
     TerraceLevels levels;

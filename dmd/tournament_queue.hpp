@@ -1,8 +1,7 @@
 #pragma once
 // A tournament (winner) tree over the bodies, the `dmd.queue = tree` choice: the calendar of an
-// engine whose bodies each hold at most one entry (dmd/schedule.hpp), as in the event trees of
-// event-driven codes (Rapaport, "The Art of Molecular Dynamics Simulation", 2nd ed., sec. 14.2;
-// Marín, Risso and Cordero, J. Comput. Phys. 109, 306 (1993)).
+// engine whose bodies each hold at most one entry (dmd/schedule.hpp), as the complete binary tree
+// of one event per particle of M. Marín, D. Risso and P. Cordero, J. Comput. Phys. 109, 306 (1993).
 //
 // Leaf b holds the entry of owner b (Event::i; one more leaf for the events of no owner, i < 0, the
 // sample event), and every inner node the earliest entry below it, as (time, leaf). A push for an
@@ -20,6 +19,7 @@
 // The inner nodes are an implicit tree over L leaves (node k's children 2k and 2k + 1, leaves at
 // L … 2L − 1, any L), aligned so that two siblings share a cache line.
 #include "dmd/event_queue.hpp"
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
