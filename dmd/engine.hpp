@@ -242,9 +242,7 @@ public:
         j["r_m_angstrom"] = settings_.rm;
         if constexpr (requires { sys_.potential.range(); })
             j["model"] = std::isfinite(sys_.potential.range()) ? "smoothed" : "bare";
-        j["queue"] = settings_.queue == QueueKind::Heap   ? "heap"
-                     : settings_.queue == QueueKind::Tree ? "tree"
-                                                          : "bpq";
+        j["queue"] = queueName(settings_.queue);
         j["invalidation"] = settings_.eager ? "eager" : "lazy";
         j["max_queue_size"] = schedule_.maxQueueSize();
         j["cleanups"] = schedule_.cleanups();

@@ -14,12 +14,25 @@
 #include "core/units.hpp"
 #include "dmd/terrace_design.hpp"
 #include "dmd/terrace_levels.hpp"
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace terrace::dmd {
 
 enum class QueueKind { Heap, BoundedPriority, Tree };
+
+/// The calendars by their `dmd.queue` names (auto aside).
+inline constexpr std::pair<const char*, QueueKind> queueKinds[] = {
+    {"heap", QueueKind::Heap}, {"bpq", QueueKind::BoundedPriority}, {"tree", QueueKind::Tree}};
+inline std::string queueName(QueueKind kind) {
+    for (const auto& [name, k] : queueKinds)
+        if (k == kind) return name;
+    throw std::logic_error("dmd: a queue kind without a name");
+}
 
 /// dmd.queue = auto takes the tournament tree at every size: on the dense rods, alternated with
 /// the queue auto took before, it cost 0.93 of the bounded queue's at N 512 and 0.96 at 32 768,
@@ -60,12 +73,12 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
         s.levels = TerraceLevels::uniform(d.dV * kT);
         s.levels.checkMinimum(potential.minimumEnergy(), "dmd.dV");
     }
-    if (d.queue == "heap")
-        s.queue = QueueKind::Heap;
-    else if (d.queue == "bpq")
-        s.queue = QueueKind::BoundedPriority;
-    else if (d.queue == "tree" || d.queue == "auto")
+    const auto named = std::find_if(std::begin(queueKinds), std::end(queueKinds),
+                                    [&](const auto& q) { return d.queue == q.first; });
+    if (d.queue == "auto")
         s.queue = QueueKind::Tree;
+    else if (named != std::end(queueKinds))
+        s.queue = named->second;
     else
         throw SceneError("dmd.queue: must be \"auto\", \"heap\", \"bpq\" or \"tree\", got \"" +
                          d.queue + "\"");

@@ -76,8 +76,7 @@ public:
     void pop() {
         assert(size_ > 0);
         const std::uint32_t b = node_[1].leaf;
-        retire(leaf_[b]);
-        leaf_[b].queued = false;
+        leave(leaf_[b]);
         --size_;
         update(b);
     }
@@ -86,8 +85,7 @@ public:
         if (h.slot >= leaves_ || h.generation == 0) return false;
         Leaf& l = leaf_[h.slot];
         if (!l.queued || l.generation != h.generation) return false;
-        retire(l);
-        l.queued = false;
+        leave(l);
         --size_;
         update(h.slot);
         return true;
@@ -100,8 +98,7 @@ public:
         std::size_t removed = 0;
         for (Leaf& l : leaf_)
             if (l.queued && pred(static_cast<const E&>(l.event))) {
-                retire(l);
-                l.queued = false;
+                leave(l);
                 ++removed;
             }
         size_ -= removed;
@@ -111,10 +108,7 @@ public:
 
     void clear() {
         for (Leaf& l : leaf_)
-            if (l.queued) {
-                retire(l);
-                l.queued = false;
-            }
+            if (l.queued) leave(l);
         size_ = 0;
         rebuild();
     }
@@ -158,8 +152,13 @@ private:
             throw std::out_of_range("TournamentQueue: an event's owner beyond the bodies");
         return static_cast<std::size_t>(e.i);
     }
+    // The leaf's entry leaves the queue (replaced, or gone): handles to it stop holding.
     static void retire(Leaf& l) {
         l.generation = l.generation == UINT32_MAX ? 1 : l.generation + 1;
+    }
+    static void leave(Leaf& l) {
+        retire(l);
+        l.queued = false;
     }
 
     // Strict order of two nodes by (time, push sequence); an empty node comes after every entry.
