@@ -119,16 +119,27 @@ public:
             // A relative margin far above the round-off of positions and faces.
             limit = reach * reach * (1.0 + 1e-9);
         }
+        // The cells first, then their first bodies, then the chains: each stage's reads are asked
+        // of memory together, where walking cell after cell would wait for each head in turn.
+        std::array<int, 27> first;
+        int cells = 0;
         for (int dx = 0; dx < 3; ++dx)
             for (int dy = 0; dy < 3; ++dy) {
                 const double gxy = gap[0][dx] + gap[1][dy];
-                for (int dz = 0; dz < 3; ++dz) {
-                    if (gxy + gap[2][dz] > limit) continue;
-                    const int cell = (x[dx] * n_ + y[dy]) * n_ + z[dz];
-                    for (int j = head_[cell]; j >= 0; j = next_[j])
-                        if (j != i) f(j);
-                }
+                for (int dz = 0; dz < 3; ++dz)
+                    if (gxy + gap[2][dz] <= limit) {
+                        first[cells] = (x[dx] * n_ + y[dy]) * n_ + z[dz];
+                        __builtin_prefetch(&head_[first[cells]]);
+                        ++cells;
+                    }
             }
+        for (int c = 0; c < cells; ++c) {
+            first[c] = head_[first[c]];
+            if (first[c] >= 0) __builtin_prefetch(&next_[first[c]]);
+        }
+        for (int c = 0; c < cells; ++c)
+            for (int j = first[c]; j >= 0; j = next_[j])
+                if (j != i) f(j);
     }
 
     std::size_t bytesReserved() const {

@@ -418,7 +418,7 @@ private:
             if (q.empty()) throw std::logic_error("dmd: no event left (nothing moves)");
             const Event e = q.top();
             q.pop();
-            if (prefetching_ && !q.empty()) prefetchEvent(q.top());
+            if (prefetching_ && !q.empty()) prefetchNext(q);
             if (e.kind == EventKind::Sample) return false;
             if (!schedule_.isCurrentEntry(e)) { // superseded, or its owner has been invalidated
                 ++staleEvents_;
@@ -461,15 +461,30 @@ private:
     /// Asks the caches for what the next event reads first of its bodies. It is known (the
     /// calendar's top) while this one is resolved, and in a large system its bodies are anywhere
     /// in memory: without this, each of its first reads would wait for memory in turn.
-    [[gnu::always_inline]] void prefetchEvent(const Event& next) const {
-        if (next.kind == EventKind::Sample) return;
-        schedule_.prefetch(next.i);
-        this->prefetchBody(next.i);
-        lists_.prefetch(next.i);
-        if (next.j < 0) return;
-        schedule_.prefetch(next.j);
-        this->prefetchBody(next.j);
-        lists_.prefetch(next.j);
+    /// The tree names the next event's bodies at its root, so that their data, its leaf and the
+    /// lower levels of the paths its pop and the bodies' new entries walk are asked for at once,
+    /// with no read waited on (at N = 10⁶ waiting for the top's leaf alone took ~0.7 µs of an
+    /// event's 4–6); another queue's top is read first.
+    template <class Q> [[gnu::always_inline]] void prefetchNext(const Q& q) const {
+        if constexpr (requires { q.topBodies(); }) {
+            const auto [i, j] = q.topBodies();
+            q.prefetchTop();
+            prefetchBodies(i, j);
+            if (j >= 0) q.prefetchPath(static_cast<std::size_t>(j));
+        } else {
+            const Event& next = q.top();
+            if (next.kind != EventKind::Sample) prefetchBodies(next.i, next.j);
+        }
+    }
+    [[gnu::always_inline]] void prefetchBodies(int i, int j) const {
+        if (i < 0) return;
+        schedule_.prefetch(i);
+        this->prefetchBody(i);
+        lists_.prefetch(i);
+        if (j < 0) return;
+        schedule_.prefetch(j);
+        this->prefetchBody(j);
+        lists_.prefetch(j);
     }
 
     template <class Q> void collide(Q& q, const Event& e) {
@@ -539,6 +554,11 @@ private:
     /// there). A dropped pair (now farther apart than r_m + skin) keeps its queued events, which
     /// remain true to the motion, but its chain of virtual events ends (resume).
     void relist(int i) {
+        // The old partners' records are rewritten at the end (i leaves them, and joins those it
+        // keeps): asked for now, they come while the cells are scanned.
+        if (prefetching_)
+            for (const int j : lists_.partners(i))
+                lists_.prefetch(j);
         bringToNow(i);
         if (++listStamp_ == 0) { // wrapped: no stamp of an earlier rebuild may match
             std::fill(listedBefore_.begin(), listedBefore_.end(), 0u);

@@ -137,10 +137,16 @@ protected:
         double entry = std::numeric_limits<double>::infinity();
         const Moving mi = movingNow(i);
         const auto partners = engine.lists_.partners(i);
+        // The partners' states are fetched `ahead` predictions before theirs: they are scattered
+        // in memory, each prediction starts by reading its partner, and one prediction (~0.1–0.2
+        // µs) is shorter than a miss of a large system's memory (~0.4 µs on a virtual machine).
+        constexpr std::size_t ahead = 3;
+        if (engine.prefetching_)
+            for (std::size_t k = 0; k < std::min(ahead, partners.size()); ++k)
+                prefetchBody(partners[k]);
         for (std::size_t k = 0; k < partners.size(); ++k) {
-            // The next partner's state is fetched while this one is predicted: the partners are
-            // scattered in memory, and each prediction starts by reading its partner.
-            if (engine.prefetching_ && k + 1 < partners.size()) prefetchBody(partners[k + 1]);
+            if (engine.prefetching_ && k + ahead < partners.size())
+                prefetchBody(partners[k + ahead]);
             const int j = partners[k];
             if (j != exclude)
                 entry =

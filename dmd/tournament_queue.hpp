@@ -4,11 +4,11 @@
 // of one event per particle of M. Marín, D. Risso and P. Cordero, J. Comput. Phys. 109, 306 (1993).
 //
 // Leaf b holds the entry of owner b (Event::i; one more leaf for the events of no owner, i < 0, the
-// sample event), and every inner node the earliest entry below it, as (time, leaf). A push for an
-// owner replaces its entry (the schedule pushes only after its old one stopped standing); pop,
-// erase and push walk from the leaf to the root, a push stopping where nothing changes. top is the
-// root. Order and ties are exactly those of the other queues (time, push sequence), so all three
-// pop the same events in the same order when no owner holds two entries at once.
+// sample event), and every inner node the earliest entry below it, as (time, leaf, partner). A push
+// for an owner replaces its entry (the schedule pushes only after its old one stopped standing);
+// pop, erase and push walk from the leaf to the root, a push stopping where nothing changes. top is
+// the root. Order and ties are exactly those of the other queues (time, push sequence), so all
+// three pop the same events in the same order when no owner holds two entries at once.
 //
 // Why a tree: in a heap a pop walks a path chosen by its comparisons through the whole array, the
 // lower levels of which are cold in a large system. Here a leaf's path is fixed by its body, and
@@ -28,6 +28,7 @@
 #include <memory>
 #include <new>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace terrace::dmd {
@@ -71,6 +72,29 @@ public:
     const E& top() const {
         assert(size_ > 0);
         return leaf_[node_[1].leaf].event;
+    }
+
+    /// The owner and partner (Event::i, Event::j; −1 for none) of the earliest entry, read from
+    /// the root alone: in a large system its leaf is far from the caches, and the engine wants
+    /// to ask for the bodies of its next event without first waiting for that leaf.
+    std::pair<int, int> topBodies() const {
+        const Node& root = node_[1];
+        if (root.leaf == kNone || root.leaf == leaves_ - 1) return {-1, -1};
+        return {static_cast<int>(root.leaf), root.partner};
+    }
+    /// Asks the caches for what popping the earliest entry reads: its leaf and the lower levels
+    /// of its path (the upper ones are walked by every event and stay cached).
+    [[gnu::always_inline]] void prefetchTop() const {
+        if (node_[1].leaf != kNone) prefetchPath(node_[1].leaf);
+    }
+    /// The same for owner b's leaf and path, which a new entry of b walks.
+    [[gnu::always_inline]] void prefetchPath(std::size_t b) const {
+        const char* l = reinterpret_cast<const char*>(&leaf_[b]);
+        __builtin_prefetch(l);
+        __builtin_prefetch(l + sizeof(Leaf) - 1);
+        std::size_t k = leaves_ + b;
+        for (int level = 0; level < prefetchedLevels && k > 1; ++level, k >>= 1)
+            __builtin_prefetch(&node_[k]); // and its sibling: the two share a line
     }
 
     void pop() {
@@ -119,10 +143,14 @@ public:
 
 private:
     static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+    // Path levels asked for ahead of a walk, from the leaf up: above them a tree of 10⁶ leaves
+    // has fewer than 2¹⁰ nodes (16 KB), which the walks of every event keep in the caches.
+    static constexpr int prefetchedLevels = 11;
 
     struct Node {
         double time = std::numeric_limits<double>::infinity();
         std::uint32_t leaf = kNone; // the earliest entry below (kNone: none)
+        std::int32_t partner = -1;  // its Event::j, if events have one: topBodies reads no leaf
     };
     static_assert(sizeof(Node) == 16, "two siblings to 32 bytes");
     struct Leaf {
@@ -170,7 +198,10 @@ private:
     }
     Node nodeOfLeaf(std::size_t b) const {
         const Leaf& l = leaf_[b];
-        return l.queued ? Node{l.event.time, static_cast<std::uint32_t>(b)} : Node{};
+        if (!l.queued) return Node{};
+        std::int32_t partner = -1;
+        if constexpr (requires { l.event.j; }) partner = l.event.j;
+        return Node{l.event.time, static_cast<std::uint32_t>(b), partner};
     }
 
     /// Leaf b changed: its ancestors again hold the earliest below them. A node that comes out as

@@ -7,8 +7,9 @@
 #   SMD    µs of engine CPU per body-step      (cpu_seconds / (steps · N))
 #   both   analysis CPU per sample (ms) and its share of engine + analysis CPU,
 #          peak resident memory per body (GNU time's maximum RSS / N), whole-run wall seconds
-# DMD runs once per queue (bpq, heap), so that the queue can be chosen by N.
-#   experiments/scaling.sh [TERRACE] [OUT] [N ...]
+# DMD runs once per queue of QUEUES (default: tree, the one dmd.queue auto takes; e.g.
+# QUEUES="tree heap bpq" to compare them by N), for each model of MODELS (default: rods lj).
+#   [QUEUES=…] [MODELS=…] experiments/scaling.sh [TERRACE] [OUT] [N ...]
 # Writes OUT/scaling.csv (default results/scaling). Machine time: ~40 min on a quiet 2-core box.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -54,12 +55,16 @@ PY
 }
 
 for n in $sizes; do
-    for model in rods lj; do
-        scene=dense-rods.json
-        [ $model = lj ] && scene=lj-liquid.json
-        row $model $scene smd bpq "$n"
-        row $model $scene dmd bpq "$n"
-        row $model $scene dmd heap "$n"
+    for model in ${MODELS:-rods lj}; do
+        case $model in
+        rods) scene=dense-rods.json ;;
+        lj) scene=lj-liquid.json ;;
+        *) echo "scaling.sh: no model '$model' (rods, lj)" >&2; exit 1 ;;
+        esac
+        row $model $scene smd tree "$n"
+        for queue in ${QUEUES:-tree}; do
+            row $model $scene dmd "$queue" "$n"
+        done
     done
 done
 echo "wrote $csv"

@@ -9,6 +9,7 @@
 // that the overflow rescan, the jump over empty bins and the current-bin heap are all exercised.
 #include "dmd/binary_heap_queue.hpp"
 #include "dmd/bounded_priority_queue.hpp"
+#include "dmd/event.hpp"
 #include "dmd/tournament_queue.hpp"
 
 #include <gtest/gtest.h>
@@ -408,18 +409,27 @@ TEST(BoundedPriorityQueue, RetuneRebinsFromTheEarliestEvent) {
 // The tournament tree holds one entry per owner (Event::i; i < 0: no owner) and a push replaces
 // the owner's entry. Against a reference of the same rule (a map keyed by (time, push sequence)
 // and each owner's key): random pushes (replacing or not), pops, erases through current and stale
-// handles, cleanups and clears, with ties, over 37 owners (an odd number of leaves: the implicit
-// tree is not a full one). Then, when the caller drops an owner's entry before its next push, as
-// the engine's schedule does, the tree pops what the heap pops.
+// handles, cleanups and clears, with ties, for several numbers of owners (below). Then, when the
+// caller drops an owner's entry before its next push, as the engine's schedule does, the tree pops
+// what the heap pops.
 struct OwnedEvent {
     double time = 0.0;
     std::int32_t i = -1;
     std::uint32_t id = 0;
 };
 static_assert(EventQueue<TournamentQueue<OwnedEvent>, OwnedEvent>);
+void checkTreeAgainstReference(int owners);
 
 TEST(EventQueues, TournamentTreeKeepsOneEntryPerOwnerInReferenceOrder) {
-    constexpr int kOwners = 37;
+    // None, one, 256 (with the leaf of no owner: 1, 2 and 257 leaves), and odd numbers, for which
+    // the implicit tree is not a full one; 70 001 gives paths of 17 levels.
+    for (const int kOwners : {0, 1, 37, 256, 70001}) {
+        SCOPED_TRACE(kOwners);
+        checkTreeAgainstReference(kOwners);
+    }
+}
+
+void checkTreeAgainstReference(int kOwners) {
     TournamentQueue<OwnedEvent> tree(kOwners);
     std::map<std::pair<double, std::uint64_t>, OwnedEvent> reference;
     std::map<int, std::pair<double, std::uint64_t>> keyOf; // owner (−1 too) → its entry's key
@@ -487,7 +497,14 @@ TEST(EventQueues, TournamentTreeKeepsOneEntryPerOwnerInReferenceOrder) {
         ASSERT_EQ(tree.empty(), reference.empty());
         if (!reference.empty()) {
             ASSERT_EQ(tree.top().id, reference.begin()->second.id);
+            // The top's owner from the root alone (these events have no partner).
+            const int owner = reference.begin()->second.i;
+            ASSERT_EQ(tree.topBodies(), std::make_pair(owner < 0 ? -1 : owner, -1));
+            tree.prefetchTop();
+        } else {
+            ASSERT_EQ(tree.topBodies(), std::make_pair(-1, -1));
         }
+        if (kOwners > 0) tree.prefetchPath(rng() % kOwners);
     }
     // A copy queues what the original queues, apart from it.
     TournamentQueue<OwnedEvent> copy = tree;
@@ -498,6 +515,32 @@ TEST(EventQueues, TournamentTreeKeepsOneEntryPerOwnerInReferenceOrder) {
     }
     EXPECT_TRUE(copy.empty());
     EXPECT_EQ(tree.size(), keyOf.size());
+}
+
+// The engine asks for the next event's bodies by the root alone: owner and partner of the top.
+TEST(EventQueues, TournamentTreeNamesTheTopsBodiesAtItsRoot) {
+    TournamentQueue<Event> tree(10);
+    const auto event = [](double t, int i, int j) {
+        Event e;
+        e.time = t;
+        e.i = i;
+        e.j = j;
+        e.kind = i < 0 ? EventKind::Sample : EventKind::Collision;
+        return e;
+    };
+    EXPECT_EQ(tree.topBodies(), std::make_pair(-1, -1));
+    tree.push(event(3.0, 4, 7));
+    EXPECT_EQ(tree.topBodies(), std::make_pair(4, 7));
+    tree.push(event(2.0, 9, -1));
+    EXPECT_EQ(tree.topBodies(), std::make_pair(9, -1));
+    tree.push(event(1.0, -1, -1)); // the sample event: no body
+    EXPECT_EQ(tree.topBodies(), std::make_pair(-1, -1));
+    tree.pop();
+    tree.push(event(5.0, 9, 2)); // replaces 9's entry
+    EXPECT_EQ(tree.topBodies(), std::make_pair(4, 7));
+    tree.pop();
+    EXPECT_EQ(tree.topBodies(), std::make_pair(9, 2));
+    EXPECT_EQ(tree.top().j, 2);
 }
 
 TEST(EventQueues, TournamentTreePopsAsTheHeapWhenOwnersDropTheirEntryFirst) {
