@@ -23,6 +23,9 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace po = boost::program_options;
 using namespace terrace;
@@ -311,6 +314,14 @@ int checkedStdout(int status) {
 }
 
 int main(int argc, char** argv) {
+#if defined(__GLIBC__)
+    // Blocks of 1 MiB and more are mapped apart, and so return to the system when freed. glibc's
+    // own threshold rises to 32 MiB once such a block is freed (a restart point drops the
+    // engine), after which the rebuilt engine's arrays come from the heap, where what is freed
+    // around them stays resident: DMD at 262 144 bodies with restart points peaked at 1.17 KB
+    // per body so, 1.003 with the threshold held (0.98 without restart points).
+    mallopt(M_MMAP_THRESHOLD, 1 << 20);
+#endif
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
         std::fputs(usage, args.empty() ? stderr : stdout);

@@ -1,5 +1,6 @@
 #include "cli/restart.hpp"
 #include "core/output_file.hpp"
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -22,15 +23,16 @@ std::size_t recordDoubles(int bodies, bool withOrientation) {
     return 8 + std::size_t(bodies) * (withOrientation ? 16 : 12);
 }
 
-} // namespace
-
-std::string encodeSample(const Snapshot& s, const SampleRecord& e) {
+std::string sampleHead(double time, const SampleRecord& e) {
     std::string out;
-    const bool tops = !s.orientation.empty();
-    out.reserve(recordDoubles(s.size(), tops) * sizeof(double));
-    put(out, s.time), put(out, e.tPs), put(out, e.total), put(out, e.potential);
+    put(out, time), put(out, e.tPs), put(out, e.total), put(out, e.potential);
     put(out, e.kinetic), put(out, e.kineticTranslational), put(out, e.virial);
     put(out, e.collisions);
+    return out;
+}
+
+void putBodies(std::string& out, const Snapshot& s) {
+    const bool tops = !s.orientation.empty();
     for (int i = 0; i < s.size(); ++i) {
         put(out, s.position[i]), put(out, s.velocity[i]), put(out, s.axis[i]);
         put(out, s.omega[i]);
@@ -39,7 +41,27 @@ std::string encodeSample(const Snapshot& s, const SampleRecord& e) {
             put(out, q.w()), put(out, q.x()), put(out, q.y()), put(out, q.z());
         }
     }
+}
+
+} // namespace
+
+std::string encodeSample(const Snapshot& s, const SampleRecord& e) {
+    std::string out = sampleHead(s.time, e);
+    out.reserve(recordDoubles(s.size(), !s.orientation.empty()) * sizeof(double));
+    putBodies(out, s);
     return out;
+}
+
+void writeSamplePieces(int bodies, double time, const SampleRecord& e,
+                       const std::function<Snapshot(int, int)>& bodiesOf, const PieceSink& sink,
+                       int bodiesPerPiece) {
+    sink(sampleHead(time, e));
+    std::string out;
+    for (int begin = 0; begin < bodies; begin += bodiesPerPiece) {
+        out.clear();
+        putBodies(out, bodiesOf(begin, std::min(bodies, begin + bodiesPerPiece)));
+        sink(out);
+    }
 }
 
 void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, double boxLength,

@@ -7,9 +7,9 @@
 //                       format, scene (resolved), phase (equilibration | production), the number
 //                       of thermostat ticks or samples done, the bodies (every number of their
 //                       states as raw bytes: exact, and compact), the engine's checkpoint (DMD:
-//                       clock, pair terraces, horizon stream; SMD: step count), the run's
-//                       accumulators (production start, initial momentum, production statistics,
-//                       CPU seconds) and the lengths of trajectory.xyz, thermo.csv and
+//                       clock, pair terraces as raw bytes, horizon stream; SMD: step count), the
+//                       run's accumulators (production start, initial momentum, production
+//                       statistics, CPU seconds) and the lengths of trajectory.xyz, thermo.csv and
 //                       samples.bin at that point;
 //   DIR/samples.bin   the production samples, one fixed-size record per sample, appended as they
 //                     are taken (kept only while restarts are on; removed when the run completes):
@@ -35,8 +35,9 @@
 namespace terrace::cli {
 
 /// Version 2: samples.bin records carry K_trans, W and the collision count, and restart.bin the
-/// length of thermo.csv (version 1 files are refused as another version's).
-inline constexpr const char* restartFormat = "terrace restart 2";
+/// length of thermo.csv. Version 3: the DMD checkpoint's pair terraces are raw bytes
+/// (dmd/engine_start.hpp). Files of another version are refused, naming both versions.
+inline constexpr const char* restartFormat = "terrace restart 3";
 
 /// One production sample and its energies (kJ/mol), as the run loop keeps them.
 struct SampleRecord {
@@ -49,6 +50,12 @@ struct SampleRecord {
 
 /// The bytes of one samples.bin record.
 std::string encodeSample(const Snapshot& s, const SampleRecord& e);
+/// The same bytes for a sample of `bodies` bodies at `time` (time units) handed to `sink` in
+/// pieces, each piece's bodies from bodiesOf(begin, end), a snapshot of bodies begin … end−1
+/// alone: at 10⁶ rods a record is ~0.1 GB, never held whole beside the engine.
+void writeSamplePieces(int bodies, double time, const SampleRecord& e,
+                       const std::function<Snapshot(int, int)>& bodiesOf, const PieceSink& sink,
+                       int bodiesPerPiece = 4096);
 /// Every record of a samples.bin of `bytes` bytes (N bodies, tops when withOrientation).
 void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, double boxLength,
                    std::vector<Snapshot>& samples, std::vector<SampleRecord>& energies);
@@ -77,9 +84,13 @@ template <class State, class F> void forEachField(State& b, F&& f) {
 }
 
 /// Every number of every body's state, in order, as raw bytes: exact, and compact in CBOR.
-template <class State> nlohmann::json bodiesToBinary(std::vector<State> bodies) {
+template <class State> nlohmann::json bodiesToBinary(const std::vector<State>& bodies) {
     std::vector<std::uint8_t> bytes;
-    for (auto& b : bodies)
+    std::size_t perBody = 0; // reserved whole: grown, it could hold twice the bytes
+    const State probe{};
+    forEachField(probe, [&](const auto& m) { perBody += m.size() * sizeof(double); });
+    bytes.reserve(bodies.size() * perBody);
+    for (const auto& b : bodies)
         forEachField(b, [&](const auto& m) {
             const auto* p = reinterpret_cast<const std::uint8_t*>(m.data());
             bytes.insert(bytes.end(), p, p + m.size() * sizeof(double));

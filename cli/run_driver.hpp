@@ -126,9 +126,9 @@ struct RunRecord {
         analysis->add(s);
         analysisClock.stop();
     }
-    /// A sample that nothing else needs whole: the analysis gets only what it reads (the
-    /// followed bodies, and every position on a g(r) frame), so that a large system's sample
-    /// is never held whole beside the engine (~0.1 GB at 10⁶ rods).
+    /// A sample taken from the engine: the analysis gets only what it reads (the followed
+    /// bodies, and every position on a g(r) frame), so that a large system's sample is never
+    /// held whole beside the engine (~0.1 GB at 10⁶ rods).
     template <class E> void addParts(const SampleRecord& e, const E& engine) {
         records.push_back(e);
         if (!analysis) return;
@@ -160,6 +160,15 @@ template <class E> auto currentSystem(const E& engine) {
         return engine.synchronisedCopy();
     else
         return engine.system();
+}
+
+/// The bodies as they are now, from an engine about to be dropped: DMD's are moved out of it
+/// (dmd/engine_start.hpp), not copied beside it; SMD's engine is small enough for a copy.
+template <class E> auto releasedSystem(E&& engine) {
+    if constexpr (requires { releaseSystem(std::move(engine)); })
+        return releaseSystem(std::move(engine));
+    else
+        return currentSystem(engine);
 }
 
 /// DMD keeps a running impulse virial (its forces are impulses), SMD the virial at the instant.
@@ -197,27 +206,35 @@ Resumed resumeRun(const nlohmann::json& restart, const RunPlan& plan,
                   const std::filesystem::path& dir, int bodies, bool withOrientation,
                   double boxLength, RunRecord& run);
 
-/// Drives the engine through the scene's run into target.dir, which the caller has claimed
-/// (cli/output_dir.hpp). `engine` holds the engine built from the scene's initial state, or from
-/// the restart file when continuing; every restart point replaces it by one rebuilt from its
-/// bodies and checkpoint (the old one stays should the rebuild fail).
-/// The engine's bodies as one trajectory frame, handed to `sink` piece by piece, each piece's
-/// bodies taken from the engine as it is written: at 10⁶ bodies neither the frame's text nor its
-/// snapshot is held whole.
-template <class E>
-void writeFrame(const E& engine, int n, TrajectoryLayout layout, const PieceSink& sink) {
-    std::vector<int> bodies;
-    const Snapshot none = engine.snapshot(std::span<const int>(bodies)); // its time and box
-    writeXyzFramePieces(
-        n, none.time, none.boxLength, layout,
-        [&](int begin, int end) {
-            bodies.resize(static_cast<std::size_t>(end - begin));
-            std::iota(bodies.begin(), bodies.end(), begin);
-            return engine.snapshot(std::span<const int>(bodies));
-        },
-        sink);
+/// The engine's bodies begin … end−1 as a snapshot, taken when a piece of a frame or of a sample
+/// record is written: at 10⁶ bodies neither the record's bytes nor its snapshot is held whole.
+template <class E> auto bodiesOf(const E& engine) {
+    return [&engine, bodies = std::vector<int>()](int begin, int end) mutable {
+        bodies.resize(static_cast<std::size_t>(end - begin));
+        std::iota(bodies.begin(), bodies.end(), begin);
+        return engine.snapshot(std::span<const int>(bodies));
+    };
 }
 
+/// The engine's bodies as one trajectory frame, handed to `sink` piece by piece.
+template <class E>
+void writeFrame(const E& engine, int n, TrajectoryLayout layout, const PieceSink& sink) {
+    const Snapshot none = engine.snapshot(std::span<const int>()); // its time and box
+    writeXyzFramePieces(n, none.time, none.boxLength, layout, bodiesOf(engine), sink);
+}
+
+/// The engine's bodies and the sample's energies as one samples.bin record, piece by piece.
+template <class E>
+void writeSample(const E& engine, int n, const SampleRecord& e, const PieceSink& sink) {
+    const Snapshot none = engine.snapshot(std::span<const int>()); // its time
+    writeSamplePieces(n, none.time, e, bodiesOf(engine), sink);
+}
+
+/// Drives the engine through the scene's run into target.dir, which the caller has claimed
+/// (cli/output_dir.hpp). `engine` holds the engine built from the scene's initial state, or from
+/// the restart file when continuing; every restart point drops it and puts in its place one
+/// rebuilt from its bodies and checkpoint. It is null on return when the run ended at a restart
+/// point (a signal's stop, a failed rebuild or restart file).
 template <class E>
 RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget& target,
                  int rotationalDof) {
@@ -289,35 +306,36 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                 sample > 0 ? &run.records[sample - plan.thermoEvery] : nullptr;
             thermo.append(thermoRow(e, before, continuousPotentialOf(*engine), thermoLayout));
         }
-        if (!restarts) { // nothing needs the sample whole
-            if (frameDue)
-                trajectory.appendPieces(
-                    [&](const PieceSink& sink) { writeFrame(*engine, run.bodies, layout, sink); });
-            run.addParts(e, *engine);
-            return;
-        }
-        const Snapshot s = engine->snapshot();
-        samplesFile.append(encodeSample(s, e));
+        // Nothing takes the sample whole: beside the engine it would raise the run's peak.
+        if (restarts) // what a continued run reads back
+            samplesFile.appendPieces(
+                [&](const PieceSink& sink) { writeSample(*engine, run.bodies, e, sink); });
         if (frameDue)
             trajectory.appendPieces(
-                [&](const PieceSink& sink) { writeXyzFramePieces(s, layout, sink); });
-        run.add(e, s);
+                [&](const PieceSink& sink) { writeFrame(*engine, run.bodies, layout, sink); });
+        run.addParts(e, *engine);
     };
+    // What the code after the loop reads of the engine, kept at every restart point: the engine
+    // is dropped there, and a rebuild that fails leaves none.
+    struct EngineEnd {
+        nlohmann::json statistics;
+        double time = 0.0;
+        Vec3 momentum = Vec3::Zero();
+    } last;
+    auto endOf = [](const E& e) { return EngineEnd{e.statistics(), e.time(), e.totalMomentum()}; };
     // A restart point: the engine is rebuilt from its bodies and checkpoint, exactly as a run
-    // continued from the file written here builds it; the growing files reach the disk before the
-    // restart file that counts their bytes. At a signal's stop the engine is not rebuilt: the run
-    // ends there.
+    // continued from the file written here builds it. Nothing the size of an engine lives beside
+    // one: the bodies are moved out of the old engine, which is dropped before the new one is
+    // built (the two side by side doubled the run's peak); the file is written in between, and
+    // so is kept should the rebuild fail. The growing files reach the disk before the restart
+    // file that counts their bytes. At a signal's stop the engine is not rebuilt: the run ends.
     auto restartPoint = [&](const std::string& reason, bool rebuild) {
-        auto system = currentSystem(*engine);
         const nlohmann::json checkpoint = engine->checkpoint();
-        nlohmann::json production = run.production;
-        if (inProduction) accumulateStatistics(production, stretchStart, engine->statistics());
-        if (rebuild) {
-            auto rebuilt = std::make_unique<E>(system, scene, checkpoint);
-            engine = std::move(rebuilt);
-            run.production = production;
-            stretchStart = engine->statistics();
-        }
+        last = endOf(*engine);
+        if (inProduction) accumulateStatistics(run.production, stretchStart, last.statistics);
+        stretchStart = last.statistics; // the stretch so far is in run.production
+        auto system = releasedSystem(std::move(*engine));
+        engine.reset();
         if (trajectory.isOpen()) trajectory.sync();
         if (thermo.isOpen()) thermo.sync();
         if (samplesFile.isOpen()) samplesFile.sync();
@@ -328,11 +346,11 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                            {"tick", tick},
                            {"sample", sample},
                            {"t_start", at.tStart},
-                           {"time_fs", units::toFs(engine->time())},
+                           {"time_fs", units::toFs(last.time)},
                            {"n_bodies", run.bodies},
                            {"bodies", bodiesToBinary(system.bodies)},
                            {"engine", checkpoint},
-                           {"production_statistics", production},
+                           {"production_statistics", run.production},
                            {"momentum_initial", vec3Json(run.momentumInitial)},
                            {"cpu_seconds", at.cpuProduction + (inProduction ? cpu.seconds() : 0.0)},
                            {"cpu_seconds_equilibration",
@@ -344,6 +362,9 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                              {"thermo_bytes", thermo.isOpen() ? thermo.size() : 0},
                              {"samples_bytes", samplesFile.isOpen() ? samplesFile.size() : 0}}}});
         ++run.restartsWritten;
+        if (!rebuild) return;
+        engine = std::make_unique<E>(std::move(system), scene, checkpoint);
+        stretchStart = engine->statistics();
     };
     // The first error ends the run; what was gathered until then is still written.
     auto guarded = [&](auto&& work) {
@@ -407,9 +428,10 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     }
     if (inProduction) {
         at.cpuProduction += cpu.seconds();
-        accumulateStatistics(run.production, stretchStart, engine->statistics());
-        run.simulatedPs = units::toPs(engine->time() - at.tStart);
-        run.momentumFinal = engine->totalMomentum();
+        if (engine) last = endOf(*engine); // else the last restart point's
+        accumulateStatistics(run.production, stretchStart, last.statistics);
+        run.simulatedPs = units::toPs(last.time - at.tStart);
+        run.momentumFinal = last.momentum;
     } else {
         at.cpuEquilibration += cpu.seconds();
     }

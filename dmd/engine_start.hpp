@@ -8,6 +8,10 @@
 // here too: the writer and the reader of the restart format side by side (cli/restart.hpp keeps
 // the file). Calendars, lists and cells are built afresh either way, by the engine.
 //
+// The pair terraces are the checkpoint's one part that grows with N (a few pairs per body in a
+// dense liquid): they are raw bytes, 12 per pair, not JSON arrays (over 100 B per pair in memory,
+// held beside the engine at every restart point).
+//
 // Apart from the engine because it runs once, before the first event: the event loop reads better
 // without it. A mixin (CRTP), as dmd/pair_prediction.hpp: EngineStart is a base of the engine,
 // with no state of its own, and sets the engine's members. Units: Å, kJ/mol, time unit 100 fs.
@@ -18,15 +22,58 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace terrace::dmd {
 
 /// A restart file's pair off terrace 0 may sit this fraction beyond r_m (round-off of r at the
 /// instant it reached r_m); farther out, the file does not belong to the bodies.
 inline constexpr double resumeRangeTolerance = 1e-9;
+
+/// One pair off terrace 0 in a checkpoint: its bodies by scene number (i < j) and its terrace.
+struct PairTerrace {
+    std::int32_t i = 0, j = 0, terrace = 0;
+};
+static_assert(sizeof(PairTerrace) == 12, "a checkpoint's pair record is three int32, unpadded");
+
+/// Appends p to a checkpoint's pair bytes (native byte order, as the restart file's bodies).
+inline void appendPairTerrace(std::vector<std::uint8_t>& bytes, const PairTerrace& p) {
+    const auto* b = reinterpret_cast<const std::uint8_t*>(&p);
+    bytes.insert(bytes.end(), b, b + sizeof p);
+}
+
+/// f(PairTerrace) for every pair of a checkpoint's "terraces" (raw bytes). A value that is not
+/// raw bytes, or bytes that are not whole records (a file cut short or damaged), is a SceneError
+/// naming what is wrong.
+template <class F> void forEachPairTerrace(const nlohmann::json& terraces, F&& f) {
+    if (!terraces.is_binary())
+        throw SceneError("restart: the DMD pair terraces are not raw bytes (a checkpoint of "
+                         "another format)");
+    const auto& bytes = terraces.get_binary();
+    if (bytes.size() % sizeof(PairTerrace) != 0)
+        throw SceneError("restart: the DMD pair terraces hold " + std::to_string(bytes.size()) +
+                         " bytes, not whole records of " + std::to_string(sizeof(PairTerrace)) +
+                         " (damaged or cut short)");
+    for (std::size_t at = 0; at < bytes.size(); at += sizeof(PairTerrace)) {
+        PairTerrace p;
+        std::memcpy(&p, bytes.data() + at, sizeof p);
+        f(p);
+    }
+}
+
+/// The pairs of a checkpoint's "terraces", in the order written.
+inline std::vector<PairTerrace> pairTerraces(const nlohmann::json& terraces) {
+    std::vector<PairTerrace> pairs;
+    forEachPairTerrace(terraces, [&](const PairTerrace& p) { pairs.push_back(p); });
+    return pairs;
+}
+
+template <BodyKind K, PairPotential P> class Engine;
 
 /// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
 template <BodyKind K, PairPotential P, class Engine> class EngineStart {
@@ -38,17 +85,39 @@ public:
         for (int i = 0; i < engine.sys_.size(); ++i)
             if (engine.schedule_.book(i).clock != engine.time_)
                 throw std::logic_error("dmd: checkpoint with clocks not at one time");
-        nlohmann::json pairs = nlohmann::json::array();
+        std::vector<std::uint8_t> pairs;
         // In the scene's numbering of the bodies, whatever the engine's own.
         engine.lists_.forEachPairOffZero([&](int i, int j, int n) {
             const int a = engine.sceneIndex(i), b = engine.sceneIndex(j);
-            pairs.push_back({std::min(a, b), std::max(a, b), n});
+            appendPairTerrace(pairs, {std::min(a, b), std::max(a, b), n});
         });
         const auto stream = engine.jitter_.position();
         return {{"time", engine.time_},
                 {"impulse_virial", engine.impulseVirial_},
-                {"terraces", std::move(pairs)},
+                {"terraces", nlohmann::json::binary(std::move(pairs))},
                 {"horizon_stream", {{"state", stream.state}, {"ready", stream.ready}}}};
+    }
+
+    /// The bodies at time(), in the scene's order, as synchronisedCopy() gives them, but moved
+    /// out of the engine rather than copied beside it (96 B a rod, a tenth of the engine's
+    /// memory). The engine is then fit only to be destroyed. Called as releaseSystem(engine).
+    static System<K, P> release(Engine& engine) {
+        auto& bodies = engine.sys_.bodies;
+        const int n = engine.sys_.size();
+        for (int i = 0; i < n; ++i)
+            bodies[i] = engine.stateNow(i); // reads body i and its clock alone
+        // Engine order to the scene's in place, cycle by cycle: body i goes to sceneIndex(i).
+        std::vector<bool> placed(static_cast<std::size_t>(n), false);
+        for (int start = 0; start < n; ++start) {
+            if (placed[start]) continue;
+            State moving = bodies[start];
+            for (int to = engine.sceneIndex(start);; to = engine.sceneIndex(to)) {
+                std::swap(moving, bodies[to]);
+                placed[to] = true;
+                if (to == start) break;
+            }
+        }
+        return std::move(engine.sys_);
     }
 
 protected:
@@ -111,8 +180,8 @@ protected:
     void resumeTerraces(const nlohmann::json& c) {
         Engine& engine = self();
         const System<K, P>& sys = engine.sys_;
-        for (const auto& p : c.at("terraces")) {
-            const int i = p.at(0).get<int>(), j = p.at(1).get<int>(), n = p.at(2).get<int>();
+        forEachPairTerrace(c.at("terraces"), [&](const PairTerrace& p) {
+            const int i = p.i, j = p.j, n = p.terrace;
             if (i < 0 || j < 0 || i >= sys.size() || j >= sys.size() || i == j)
                 throw SceneError("restart: terrace of a pair of bodies that do not exist");
             // A pair leaves terrace 0 at r_m exactly: a sample there may read r a round-off
@@ -124,12 +193,17 @@ protected:
                                  std::to_string(j) + " are held on terrace " + std::to_string(n) +
                                  " beyond the interaction range");
             engine.lists_.setTerrace(std::min(a, b), std::max(a, b), n);
-        }
+        });
     }
 
 private:
     const Engine& self() const { return static_cast<const Engine&>(*this); }
     Engine& self() { return static_cast<Engine&>(*this); }
 };
+
+/// A restart point's bodies (EngineStart::release): moved out of an engine about to be dropped.
+template <BodyKind K, PairPotential P> System<K, P> releaseSystem(Engine<K, P>&& engine) {
+    return EngineStart<K, P, Engine<K, P>>::release(engine);
+}
 
 } // namespace terrace::dmd

@@ -1,5 +1,6 @@
 // Restart points: what a restart file holds comes back bit for bit, and an engine rebuilt from it
 // goes on exactly as one rebuilt from the live state (cli/restart.hpp, the engines' checkpoint()).
+#include "cli/dispatch.hpp"
 #include "cli/restart.hpp"
 #include "cli/run_driver.hpp"
 #include "core/asymmetric_top.hpp"
@@ -11,8 +12,10 @@
 #include "core/symmetric_top.hpp"
 #include "dmd/engine.hpp"
 #include "smd/engine.hpp"
+#include <array>
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <set>
 #include <unistd.h>
 
 using namespace terrace;
@@ -92,6 +95,27 @@ TEST(Restart, SamplesComeBackBitForBit) {
                  std::runtime_error);
 }
 
+// A record written in pieces, its bodies taken a few at a time (as the run takes them from the
+// engine), is the record whole, byte for byte.
+TEST(Restart, ASampleRecordInPiecesIsTheRecordWhole) {
+    const Scene scene = smallScene("asymmetric");
+    const auto sys = buildInitialState<AsymmetricTop>(scene, rodPotential(scene));
+    const Snapshot a = makeSnapshot(sys, 0.25);
+    const cli::SampleRecord e{0.125, -3.5, -10.25, 6.75, 4.5, -31.25, 1234.0, a.time};
+    std::string pieces;
+    int calls = 0;
+    cli::writeSamplePieces(
+        a.size(), a.time, e,
+        [&](int begin, int end) {
+            auto part = sys;
+            part.bodies.assign(sys.bodies.begin() + begin, sys.bodies.begin() + end);
+            return makeSnapshot(part, a.time);
+        },
+        [&](std::string_view piece) { pieces += piece, ++calls; }, 5);
+    EXPECT_EQ(calls, 1 + (a.size() + 4) / 5); // the head, then 5 bodies a piece
+    EXPECT_EQ(pieces, cli::encodeSample(a, e));
+}
+
 namespace {
 
 /// Two engines rebuilt at time t1 from the same bodies and checkpoint — one from the values in
@@ -165,15 +189,64 @@ DmdPoint dmdPointAt(double t) {
 // The checkpoint keeps each pair's terrace: a pair held off terrace 0 beyond the interaction
 // range cannot belong to these bodies and is refused, not silently re-derived.
 TEST(Restart, ADmdCheckpointThatDoesNotFitTheBodiesIsRefused) {
-    auto [scene, sys, checkpoint, rm] = dmdPointAt(0.2);
-    ASSERT_FALSE(checkpoint["terraces"].empty());
+    const auto [scene, sys, checkpoint, rm] = dmdPointAt(0.2);
+    ASSERT_FALSE(dmd::pairTerraces(checkpoint.at("terraces")).empty());
     int far = 1;
     while ((sys.box.minimumImage(sys.bodies[0].r - sys.bodies[far].r)).norm() < rm)
         ++far;
-    checkpoint["terraces"].push_back({0, far, -1});
-    EXPECT_THROW(RodDmd(sys, scene, checkpoint), SceneError);
-    checkpoint["terraces"].back() = {0, sys.size(), -1};
-    EXPECT_THROW(RodDmd(sys, scene, checkpoint), SceneError);
+    for (const dmd::PairTerrace& extra : {dmd::PairTerrace{0, far, -1}, {0, sys.size(), -1}}) {
+        nlohmann::json wrong = checkpoint;
+        dmd::appendPairTerrace(wrong["terraces"].get_binary(), extra);
+        EXPECT_THROW(RodDmd(sys, scene, wrong), SceneError) << extra.j;
+    }
+}
+
+// The checkpoint's pair terraces are raw bytes, 12 per pair: they decode, after a trip through
+// CBOR as in restart.bin, to exactly the pairs the engine holds off terrace 0.
+TEST(Restart, ADmdCheckpointsCompactTerracesAreTheEnginesPairs) {
+    Scene scene = smallScene("linear");
+    scene.state.n = 216;
+    RodDmd engine(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
+    engine.advanceTo(0.5);
+    const nlohmann::json checkpoint = engine.checkpoint();
+    ASSERT_TRUE(checkpoint.at("terraces").is_binary());
+    const auto stored = nlohmann::json::from_cbor(nlohmann::json::to_cbor(checkpoint));
+    std::set<std::array<int, 3>> decoded;
+    for (const dmd::PairTerrace& p : dmd::pairTerraces(stored.at("terraces"))) {
+        EXPECT_LT(p.i, p.j);
+        decoded.insert({p.i, p.j, p.terrace});
+    }
+    std::set<std::array<int, 3>> held;
+    for (int i = 0; i < scene.state.n; ++i)
+        for (int j = i + 1; j < scene.state.n; ++j)
+            if (engine.terrace(i, j) != 0) held.insert({i, j, engine.terrace(i, j)});
+    EXPECT_GT(held.size(), std::size_t(scene.state.n)); // a dense liquid: several pairs per body
+    EXPECT_EQ(decoded, held);
+    EXPECT_EQ(stored.at("terraces").get_binary().size(), 12 * held.size());
+}
+
+// Pair bytes cut short or damaged, or the JSON arrays of an older checkpoint, are refused with a
+// message that says so, rather than read as other pairs.
+TEST(Restart, ADamagedDmdPairBlobIsNamed) {
+    const auto [scene, sys, checkpoint, rm] = dmdPointAt(0.2);
+    auto messageOf = [&, &scene = scene, &sys = sys](const nlohmann::json& c) {
+        try {
+            RodDmd engine(sys, scene, c);
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    nlohmann::json cut = checkpoint;
+    auto& bytes = cut["terraces"].get_binary();
+    bytes.resize(bytes.size() - 5);
+    EXPECT_EQ(messageOf(cut), "restart: the DMD pair terraces hold " +
+                                  std::to_string(bytes.size()) +
+                                  " bytes, not whole records of 12 (damaged or cut short)");
+    nlohmann::json arrays = checkpoint;
+    arrays["terraces"] = nlohmann::json::array({{0, 1, -1}});
+    EXPECT_EQ(messageOf(arrays),
+              "restart: the DMD pair terraces are not raw bytes (a checkpoint of another format)");
 }
 
 TEST(Restart, StatisticsAddUpOverRebuiltStretches) {
@@ -215,22 +288,24 @@ TEST(Restart, ADmdEngineContinuesItsHorizonStream) {
     EXPECT_NE(a.statistics()["events"]["virtual"], b.statistics()["events"]["virtual"]);
 }
 
-// A restart file of another format (version 1's samples lack the pressure's terms) is named as
-// such, not read as damaged or misread.
+// A restart file of another format (version 1's samples lack the pressure's terms, version 2's
+// DMD checkpoint holds its pairs as JSON arrays) is named as such, not read as damaged or misread.
 TEST(Restart, ARestartFileOfAnotherFormatIsNamed) {
     const auto dir =
         std::filesystem::temp_directory_path() / ("terrace-format-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
-    cli::writeRestart(dir, {{"format", "terrace restart 1"}, {"phase", "production"}});
-    try {
-        cli::readRestart(dir);
-        FAIL() << "expected an IoError";
-    } catch (const IoError& e) {
-        EXPECT_EQ(std::string(e.what()),
-                  (dir / "restart.bin").string() +
-                      ": written by another version of terrace ('terrace restart 1'; this one "
-                      "reads '" +
-                      cli::restartFormat + "'): start the run again");
+    // Version 2 held the DMD pair terraces as JSON arrays.
+    for (const std::string old : {"terrace restart 1", "terrace restart 2"}) {
+        cli::writeRestart(dir, {{"format", old}, {"phase", "production"}});
+        try {
+            cli::readRestart(dir);
+            ADD_FAILURE() << "expected an IoError for " << old;
+        } catch (const IoError& e) {
+            EXPECT_EQ(std::string(e.what()), (dir / "restart.bin").string() +
+                                                 ": written by another version of terrace ('" +
+                                                 old + "'; this one reads '" + cli::restartFormat +
+                                                 "'): start the run again");
+        }
     }
     cli::writeRestart(dir, {{"format", cli::restartFormat}});
     EXPECT_EQ(cli::readRestart(dir).at("format"), cli::restartFormat);
@@ -304,4 +379,126 @@ TEST(Restart, AWriteThatFailsInTheAnalysisIsRecorded) {
               std::string::npos)
         << summary.dump();
     std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+/// A DMD engine that counts its rebuilds from a checkpoint, notes a rebuild begun while another
+/// engine of its kind still lives, and refuses the rebuild numbered `failAt`.
+struct WatchedDmd : RodDmd {
+    static inline int live = 0, rebuilds = 0, failAt = 0, besideAnother = 0;
+    WatchedDmd(System<LinearRotor, RodPotential> sys, const Scene& scene)
+        : RodDmd(std::move(sys), scene) {
+        ++live;
+    }
+    WatchedDmd(System<LinearRotor, RodPotential> sys, const Scene& scene, const nlohmann::json& c)
+        : RodDmd(rebuilding(std::move(sys)), scene, c) {
+        ++live;
+    }
+    ~WatchedDmd() { --live; }
+
+private:
+    static System<LinearRotor, RodPotential> rebuilding(System<LinearRotor, RodPotential> sys) {
+        besideAnother += live > 0;
+        if (++rebuilds == failAt) throw std::runtime_error("the rebuild failed");
+        return sys;
+    }
+};
+
+/// 64 rods, 10 production samples after 2 thermostat ticks, a restart point every 3 samples.
+Scene watchedScene() {
+    Scene scene = smallScene("linear");
+    scene.run.equilibrate_ps = 0.018;
+    scene.run.time_ps = 0.09;
+    scene.output.restart_every_ps = 0.027;
+    scene.output.thermo_every_fs = 9.0;
+    return scene;
+}
+
+/// Runs the scene with a WatchedDmd into a fresh `dir` (or, with `resume`, continues there).
+cli::RunOutcome runWatched(const Scene& scene, const std::filesystem::path& dir,
+                           const nlohmann::json* resume = nullptr) {
+    const cli::RunTarget target{dir, resume ? cli::OutputMode::Continue : cli::OutputMode::Fresh,
+                                true, resume};
+    if (!resume) {
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir);
+    }
+    auto sys = cli::startingSystem<LinearRotor>(scene, rodPotential(scene), target);
+    auto engine = resume ? std::make_unique<WatchedDmd>(std::move(sys), scene, resume->at("engine"))
+                         : std::make_unique<WatchedDmd>(std::move(sys), scene);
+    return cli::drive(engine, scene, target, LinearRotor::rotationalDof);
+}
+
+std::filesystem::path scratch(const std::string& name) {
+    return std::filesystem::temp_directory_path() /
+           ("terrace-" + name + "-" + std::to_string(::getpid()));
+}
+
+} // namespace
+
+// A restart point moves the bodies out of the DMD engine it drops: the same bits, in the scene's
+// order, as the copy an engine left alive gives (512 rods, numbered otherwise inside the engine).
+TEST(Restart, BodiesReleasedFromADmdEngineAreItsSynchronisedCopy) {
+    Scene scene = smallScene("linear");
+    scene.state.n = 512;
+    const auto start = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    RodDmd kept(start, scene), dropped(start, scene);
+    kept.advanceTo(0.5);
+    dropped.advanceTo(0.5);
+    int renumbered = 0;
+    for (int b = 0; b < scene.state.n; ++b)
+        renumbered += kept.engineIndex(b) != b;
+    ASSERT_GT(renumbered, scene.state.n / 2);
+    const auto copy = kept.synchronisedCopy();
+    const auto released = dmd::releaseSystem(std::move(dropped));
+    ASSERT_EQ(released.size(), copy.size());
+    for (int b = 0; b < copy.size(); ++b)
+        ASSERT_TRUE(sameBits(released.bodies[b], copy.bodies[b])) << "body " << b;
+}
+
+// A restart point drops the engine before it builds the next one, or both would live at once
+// (twice the engine's memory at the run's peak).
+TEST(Restart, ARestartPointDropsTheEngineBeforeItsSuccessorIsBuilt) {
+    WatchedDmd::rebuilds = WatchedDmd::besideAnother = 0, WatchedDmd::failAt = 0;
+    const auto dir = scratch("successor");
+    runWatched(watchedScene(), dir);
+    EXPECT_EQ(WatchedDmd::rebuilds, 4); // at production's start and at samples 3, 6, 9
+    EXPECT_EQ(WatchedDmd::besideAnother, 0);
+    EXPECT_EQ(WatchedDmd::live, 0);
+    std::filesystem::remove_all(dir);
+}
+
+// A rebuild that fails at a restart point ends the run as any failure does: the error raised and
+// in summary.json, the samples until then analysed and their files kept, and restart.bin written
+// at that point, from which a continued run ends with the same bytes as one that never failed.
+TEST(Restart, ARebuildThatFailsEndsTheRunWithItsFilesKept) {
+    const Scene scene = watchedScene();
+    const auto whole = scratch("whole"), failed = scratch("failed");
+    WatchedDmd::failAt = 0;
+    runWatched(scene, whole);
+    WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 3; // the restart point at sample 6
+    try {
+        runWatched(scene, failed);
+        ADD_FAILURE() << "expected the rebuild's error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "the rebuild failed (output so far in " + failed.string() + ")");
+    }
+    EXPECT_EQ(WatchedDmd::live, 0);
+    const auto summary = nlohmann::json::parse(readWholeFile(failed / "summary.json"));
+    EXPECT_EQ(summary.at("error"), "the rebuild failed");
+    EXPECT_EQ(summary.at("samples"), 7);
+    EXPECT_NEAR(summary.at("simulated_ps").get<double>(), 0.054, 1e-12);
+    EXPECT_EQ(summary.at("restarts").at("written"), 3);
+    EXPECT_GT(summary.at("events").at("up").get<long>(), 0); // production's statistics kept
+    EXPECT_TRUE(std::filesystem::exists(failed / "rdf.csv"));
+    const nlohmann::json restart = cli::readRestart(failed);
+    EXPECT_EQ(restart.at("sample"), 6);
+    WatchedDmd::failAt = 0;
+    runWatched(scene, failed, &restart);
+    for (const char* f : {"thermo.csv", "rdf.csv", "vacf.csv", "oacf.csv", "msd.csv"})
+        EXPECT_EQ(readWholeFile(failed / f), readWholeFile(whole / f)) << f;
+    std::filesystem::remove_all(whole);
+    std::filesystem::remove_all(failed);
 }

@@ -6,6 +6,7 @@
 #include "test_systems.hpp"
 #include "tests/sample_parts.hpp"
 #include <algorithm>
+#include <array>
 #include <gtest/gtest.h>
 #include <span>
 #include <string>
@@ -216,7 +217,9 @@ TEST(Engine, BodyOrderChangesNoObservable) {
             ASSERT_EQ(a.terrace(i, j), b.terrace(i, j)) << i << " " << j;
     // The checkpoint lists the same pairs on the same terraces, by scene number.
     auto pairs = [](const RodEngine& e) {
-        auto list = e.checkpoint().at("terraces").get<std::vector<std::vector<int>>>();
+        std::vector<std::array<int, 3>> list;
+        for (const dmd::PairTerrace& p : dmd::pairTerraces(e.checkpoint().at("terraces")))
+            list.push_back({p.i, p.j, p.terrace});
         std::sort(list.begin(), list.end());
         return list;
     };
