@@ -15,8 +15,16 @@
 // Reported per benchmark: ns per hold (CPU time), bytes per queued entry and per body; after the
 // run, a table of ratios heap/bpq and eager/lazy for each N. The queue alone is timed here: in the
 // engine, event processing between holds also competes for cache, so whole-run ratios are smaller.
+//
+// The engine's calendar holds one entry per body (dmd/schedule.hpp), which the tournament tree
+// needs; the owner model is that calendar: N owners, one entry each. One hold = pop the earliest
+// (owner i), give i a new entry at now + delay and, one hold in three (a collision), give a
+// neighbour j of i (|i − j| ≤ 300, as the engine's Morton order puts partners) a new entry in place
+// of its old one. The heap erases j's old entry through its handle first (eager); the tree
+// overwrites it. Ratio tree/heap per N after the run.
 #include "dmd/binary_heap_queue.hpp"
 #include "dmd/bounded_priority_queue.hpp"
+#include "dmd/tournament_queue.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -26,6 +34,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <unistd.h>
 #include <vector>
 
@@ -217,6 +226,64 @@ void runHolds(benchmark::State& state, Q queue, Invalidation invalidation, Delay
     state.counters["cleanups"] = static_cast<double>(model.cleanups());
 }
 
+struct OwnerEvent {
+    double time = 0.0;
+    std::int32_t i = -1; // the owner
+    std::int32_t j = -1;
+};
+
+// One entry per owner; Q is the tree, or the heap with each owner's handle kept.
+template <class Q> class OwnerHoldModel {
+public:
+    explicit OwnerHoldModel(std::size_t owners) : queue_(make(owners)), handle_(owners) {
+        for (std::size_t i = 0; i < owners; ++i)
+            give(static_cast<std::int32_t>(i), kMeanDelay * -std::log1p(-rng_.uniform()));
+    }
+    void hold() {
+        const OwnerEvent e = queue_.top();
+        queue_.pop();
+        now_ = e.time;
+        give(e.i, now_ + delay());
+        if (rng_.next() % 3 == 0) {
+            const auto n = static_cast<std::int64_t>(handle_.size());
+            const std::int64_t j =
+                (e.i + static_cast<std::int64_t>(rng_.next() % 601) - 300 + n) % n;
+            if (j != e.i) {
+                if constexpr (std::is_same_v<Q, BinaryHeapQueue<OwnerEvent>>)
+                    queue_.erase(handle_[j]);
+                give(static_cast<std::int32_t>(j), now_ + delay());
+            }
+        }
+    }
+    const Q& queue() const { return queue_; }
+
+private:
+    static Q make(std::size_t owners) {
+        if constexpr (std::is_same_v<Q, BinaryHeapQueue<OwnerEvent>>)
+            return Q{};
+        else
+            return Q(static_cast<int>(owners));
+    }
+    double delay() { return kMeanDelay * -std::log1p(-rng_.uniform()); }
+    void give(std::int32_t i, double t) { handle_[i] = queue_.push(OwnerEvent{t, i, -1}); }
+
+    Q queue_;
+    std::vector<QueueHandle> handle_;
+    Xorshift rng_{kHoldSeed};
+    double now_ = 0.0;
+};
+
+template <class Q> void runOwnerHolds(benchmark::State& state) {
+    const auto owners = static_cast<std::size_t>(state.range(0));
+    OwnerHoldModel<Q> model(owners);
+    for (std::size_t k = 0; k < 2 * owners; ++k) // the steady spread of times
+        model.hold();
+    for (auto _ : state)
+        model.hold();
+    state.counters["B/body"] =
+        static_cast<double>(model.queue().bytesReserved()) / static_cast<double>(owners);
+}
+
 // Keeps ns per hold by benchmark name so that the ratios can be printed after the run; with
 // --benchmark_repetitions the median is kept (robust to other jobs on a shared machine).
 class RatioReporter : public benchmark::ConsoleReporter {
@@ -285,7 +352,35 @@ void printRatios(const std::map<std::string, double>& ns) {
     }
 }
 
+constexpr std::size_t kOwnerSizes[] = {512, 32768, 262144, 1000000};
+
+void printOwnerRatios(const std::map<std::string, double>& ns) {
+    bool header = false;
+    for (const std::size_t n : kOwnerSizes) {
+        const auto tree = ns.find("owner/tree/" + std::to_string(n));
+        const auto heap = ns.find("owner/heap/" + std::to_string(n));
+        if (tree == ns.end() || heap == ns.end()) continue;
+        if (!header) {
+            std::printf("\nOne entry per owner: ns per hold (CPU)\n%8s %10s %10s %10s\n", "N",
+                        "tree", "heap", "tree/heap");
+            header = true;
+        }
+        std::printf("%8zu %10.1f %10.1f %10.2f\n", n, tree->second, heap->second,
+                    tree->second / heap->second);
+    }
+}
+
 void registerAll() {
+    for (const std::size_t owners : kOwnerSizes) {
+        benchmark::RegisterBenchmark("owner/tree", runOwnerHolds<TournamentQueue<OwnerEvent>>)
+            ->Arg(static_cast<std::int64_t>(owners))
+            ->Iterations(kTimedHolds)
+            ->Unit(benchmark::kNanosecond);
+        benchmark::RegisterBenchmark("owner/heap", runOwnerHolds<BinaryHeapQueue<OwnerEvent>>)
+            ->Arg(static_cast<std::int64_t>(owners))
+            ->Iterations(kTimedHolds)
+            ->Unit(benchmark::kNanosecond);
+    }
     for (const std::size_t bodies : {512u, 4096u, 32768u, 262144u})
         for (const Delays delays : {Delays::Exponential, Delays::Uniform})
             for (const Invalidation mode :
@@ -315,6 +410,7 @@ int main(int argc, char** argv) {
     terrace::dmd::RatioReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
     terrace::dmd::printRatios(reporter.nsPerHold);
+    terrace::dmd::printOwnerRatios(reporter.nsPerHold);
     benchmark::Shutdown();
     return 0;
 }
