@@ -237,7 +237,7 @@ template <class Q> class OwnerHoldModel {
 public:
     explicit OwnerHoldModel(std::size_t owners) : queue_(make(owners)), handle_(owners) {
         for (std::size_t i = 0; i < owners; ++i)
-            give(static_cast<std::int32_t>(i), kMeanDelay * -std::log1p(-rng_.uniform()));
+            give(static_cast<std::int32_t>(i), delay());
     }
     void hold() {
         const OwnerEvent e = queue_.top();

@@ -101,20 +101,6 @@ void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout
     out.precision(precision);
 }
 
-void writeXyzFramePieces(const Snapshot& f, TrajectoryLayout layout,
-                         const std::function<void(std::string_view)>& sink, int bodiesPerPiece) {
-    if (bodiesPerPiece < 1) throw std::invalid_argument("writeXyzFramePieces: no bodies per piece");
-    std::ostringstream out;
-    out.precision(17);
-    writeXyzHeader(out, f.size(), f.time, f.boxLength, layout);
-    sink(out.view());
-    for (int begin = 0; begin < f.size(); begin += bodiesPerPiece) {
-        out.str(std::string()); // empties the buffer; the stream keeps its precision
-        writeXyzBodies(out, f, layout, begin, std::min(f.size(), begin + bodiesPerPiece));
-        sink(out.view());
-    }
-}
-
 void writeXyzFramePieces(int bodies, double time, double boxLength, TrajectoryLayout layout,
                          const std::function<Snapshot(int, int)>& bodiesOf,
                          const std::function<void(std::string_view)>& sink, int bodiesPerPiece) {

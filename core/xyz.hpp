@@ -46,14 +46,10 @@ constexpr TrajectoryLayout layoutFor(int rotationalDof) {
 void writeXyzFrame(std::ostream& out, const Snapshot& frame, TrajectoryLayout layout);
 /// The frame as writeXyzFrame writes it, as one string: one record for an AppendFile.
 std::string formatXyzFrame(const Snapshot& frame, TrajectoryLayout layout);
-/// The same bytes handed to `sink` in pieces of at most `bodiesPerPiece` bodies (the header
-/// first), so that a frame of 10⁶ bodies (~0.3 GB of text) is never held whole.
-void writeXyzFramePieces(const Snapshot& frame, TrajectoryLayout layout,
-                         const std::function<void(std::string_view)>& sink,
-                         int bodiesPerPiece = 4096);
 /// The same bytes for a frame of `bodies` bodies at `time` (time units) in a box of `boxLength`
-/// (Å) whose bodies come piece by piece from bodiesOf(begin, end), a snapshot of bodies
-/// begin … end−1 alone: not even the frame's snapshot is held whole.
+/// (Å), handed to `sink` in pieces of at most `bodiesPerPiece` bodies (the header first), whose
+/// bodies come piece by piece from bodiesOf(begin, end), a snapshot of bodies begin … end−1
+/// alone: a frame of 10⁶ bodies (~0.3 GB of text) and its snapshot are never held whole.
 void writeXyzFramePieces(int bodies, double time, double boxLength, TrajectoryLayout layout,
                          const std::function<Snapshot(int, int)>& bodiesOf,
                          const std::function<void(std::string_view)>& sink,
