@@ -5,12 +5,14 @@
 // Laid out for a large system, where an event's bodies are far apart in memory and every separate
 // heap block is a cache and TLB miss: each body owns a block of `inlineEvents` slots in one array,
 // in the engine's body order (bodies sorted in space, dmd/engine.hpp): four cache lines, the
-// slots' times first (finding the earliest reads two lines), then the rest of each event and the
-// agenda's size. A body whose agenda outgrows its block keeps the rest in a spill vector taken
-// from a pool and given back when the agenda fits again. In the dense rods a body's agenda holds
-// ~7 events (up to ~18), ~6 of them virtual events of its pairs (a truncated search resumes
-// there); the old layout, a std::vector of 48-byte events per body, kept the largest capacity each
-// had reached (16 events, 0.8 KB, for most bodies), where a block holds 12 in 256 B.
+// slots' times first (finding the earliest reads two lines), then the rest of each event, packed
+// in 8 B, and the agenda's size. A body whose agenda outgrows its block keeps the rest in a spill
+// vector, of the same 16-B slots, taken from a pool and given back when the agenda fits again. In
+// the dense rods a body's agenda holds ~7 events (up to ~18), ~6 of them virtual events of its
+// pairs (a truncated search resumes there); LJ spheres hold ~13. The old layout, a std::vector of
+// 48-byte events per body, kept the largest capacity each had reached (16 events, 0.8 KB, for
+// most bodies), where a block holds 15 in 256 B. (With the rest in 12 B, 12 slots to a block, the
+// spheres' spills cost 216 B a body more at 32 768.)
 //
 // The order of a body's events is that of a vector whose removal moves the last event into the
 // gap: the slots of the block first, then the spill. Times in the engine's unit (100 fs).
@@ -19,16 +21,22 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace terrace::dmd {
 
 class Agendas {
+    // A packed slot's word (Rest below): partner, kind and side.
+    static constexpr int partnerBits = 26, kindBits = 3;
+
 public:
     /// Slots in a body's own block.
-    static constexpr int inlineEvents = 12;
+    static constexpr int inlineEvents = 15;
+    /// Bodies an agenda can name as partners (a packed slot keeps 26 bits of j).
+    static constexpr int maxBodies = (1 << partnerBits) - 1;
 
-    explicit Agendas(int bodies) : block_(static_cast<std::size_t>(bodies)) {}
+    explicit Agendas(int bodies) : block_(static_cast<std::size_t>(checkedBodies(bodies))) {}
 
     int size(int i) const { return block_[i].size; }
     bool empty(int i) const { return block_[i].size == 0; }
@@ -40,9 +48,11 @@ public:
     /// The event in i's slot k (0 ≤ k < size(i)).
     PendingEvent at(int i, int k) const {
         const Block& b = block_[i];
-        if (k >= inlineEvents) return spill_[b.spill][k - inlineEvents];
-        const Rest& r = b.rest[k];
-        return {b.time[k], r.j, r.countJ, r.kind, r.side};
+        if (k >= inlineEvents) {
+            const Spilled& s = spill_[b.spill][k - inlineEvents];
+            return unpack(s.time, s.rest);
+        }
+        return unpack(b.time[k], b.rest[k]);
     }
 
     /// Appends e to i's agenda; returns its slot.
@@ -54,7 +64,7 @@ public:
             put(b, k, e);
         } else {
             if (b.spill < 0) b.spill = takeSpill();
-            spill_[b.spill].push_back(e);
+            spill_[b.spill].push_back({e.time, pack(e)});
         }
         return k;
     }
@@ -67,7 +77,7 @@ public:
             if (last < inlineEvents)
                 copySlot(b, last, k);
             else if (k < inlineEvents)
-                put(b, k, spill_[b.spill].back());
+                putSpilled(b, k, spill_[b.spill].back());
             else
                 spill_[b.spill][k - inlineEvents] = spill_[b.spill].back();
         }
@@ -90,6 +100,17 @@ public:
 
     void clear(int i) { truncate(i, 0); }
 
+    /// Frees the spills a passing crowd left idle (dmd/spill_pool.hpp compactPool).
+    void compactSpills() {
+        compactPool(spill_, freeSpill_, [&](auto&& renumber) {
+            for (Block& b : block_)
+                if (b.spill >= 0) renumber(b.spill);
+        });
+    }
+    /// Spills held now, and kept in all (held or idle).
+    std::size_t spillsHeld() const { return spill_.size() - freeSpill_.size(); }
+    std::size_t spillsKept() const { return spill_.size(); }
+
     /// Asks the caches for i's block (an event about to be taken from it).
     [[gnu::always_inline]] void prefetch(int i) const {
         const char* b = reinterpret_cast<const char*>(&block_[i]);
@@ -108,19 +129,22 @@ public:
         std::size_t b = block_.capacity() * sizeof(Block) + spill_.capacity() * sizeof(spill_[0]) +
                         freeSpill_.capacity() * sizeof(int);
         for (const auto& s : spill_)
-            b += s.capacity() * sizeof(PendingEvent);
+            b += s.capacity() * sizeof(Spilled);
         return b;
     }
 
 private:
     static constexpr int maxEvents = 0xffff;
 
-    // An event's fields but its time, which sits with the other slots' times.
+    // An event's fields but its time, which sits with the other slots' times: j + 1 (0: none),
+    // the kind and side + 2 (side in [−2, 5]: a level side ±1, or a cell face 0–5) in one word.
     struct Rest {
-        std::int32_t j;
+        std::uint32_t tagged;
         std::uint32_t countJ;
-        EventKind kind;
-        std::int8_t side;
+    };
+    struct Spilled {
+        double time;
+        Rest rest;
     };
     struct alignas(64) Block {
         double time[inlineEvents];
@@ -128,11 +152,39 @@ private:
         std::int32_t spill = -1; // index into spill_, or −1
         std::uint16_t size = 0;
     };
-    static_assert(sizeof(Rest) == 12 && sizeof(Block) == 256, "a block is four cache lines");
+    static_assert(sizeof(Rest) == 8 && sizeof(Spilled) == 16, "a slot is 16 B");
+    static_assert(sizeof(Block) == 256, "a block is four cache lines");
+    static_assert(static_cast<int>(EventKind::Sample) < (1 << kindBits));
 
+    static int checkedBodies(int bodies) {
+        if (bodies > maxBodies)
+            throw std::invalid_argument(
+                "dmd: at most " + std::to_string(maxBodies) +
+                " bodies (an agenda slot keeps a partner in 26 bits), not " +
+                std::to_string(bodies));
+        return bodies;
+    }
+    static Rest pack(const PendingEvent& e) {
+        const auto j = static_cast<std::uint32_t>(e.j + 1);
+        const auto kind = static_cast<std::uint32_t>(e.kind);
+        const auto side = static_cast<std::uint32_t>(e.side + 2);
+        return {j | kind << partnerBits | side << (partnerBits + kindBits), e.countJ};
+    }
+    static PendingEvent unpack(double time, Rest r) {
+        constexpr std::uint32_t partnerMask = (1u << partnerBits) - 1;
+        constexpr std::uint32_t kindMask = (1u << kindBits) - 1;
+        return {
+            time, static_cast<std::int32_t>(r.tagged & partnerMask) - 1, r.countJ,
+            static_cast<EventKind>(r.tagged >> partnerBits & kindMask),
+            static_cast<std::int8_t>(static_cast<int>(r.tagged >> (partnerBits + kindBits)) - 2)};
+    }
     static void put(Block& b, int k, const PendingEvent& e) {
         b.time[k] = e.time;
-        b.rest[k] = {e.j, e.countJ, e.kind, e.side};
+        b.rest[k] = pack(e);
+    }
+    static void putSpilled(Block& b, int k, const Spilled& s) {
+        b.time[k] = s.time;
+        b.rest[k] = s.rest;
     }
     static void copySlot(Block& b, int from, int to) {
         b.time[to] = b.time[from];
@@ -142,7 +194,7 @@ private:
         if (k < inlineEvents)
             put(block_[i], k, e);
         else
-            spill_[block_[i].spill][k - inlineEvents] = e;
+            spill_[block_[i].spill][k - inlineEvents] = {e.time, pack(e)};
     }
     /// Drops every event of i from slot n on; an agenda back within its block returns its spill.
     void truncate(int i, int n) {
@@ -160,8 +212,8 @@ private:
     int takeSpill() { return takeFromPool(spill_, freeSpill_); }
 
     std::vector<Block> block_;
-    std::vector<std::vector<PendingEvent>> spill_; // overflow beyond the blocks, pooled
-    std::vector<int> freeSpill_;                   // spill vectors no body holds
+    std::vector<std::vector<Spilled>> spill_; // overflow beyond the blocks, pooled
+    std::vector<int> freeSpill_;              // spill vectors no body holds
 };
 
 } // namespace terrace::dmd

@@ -150,6 +150,9 @@ public:
             }
         });
         synchronise(t);
+        // A pass over the bodies like the one just made, and only when most spills are idle.
+        schedule_.compactSpills();
+        lists_.compactSpills();
         ++counts_.sample;
     }
     double time() const { return time_; }

@@ -164,6 +164,15 @@ public:
     }
     /// Lists held in a spill now.
     std::size_t spilled() const { return spill_.size() - freeSpill_.size(); }
+    /// Spills kept in all (held or idle).
+    std::size_t spillsKept() const { return spill_.size(); }
+    /// Frees the spills a passing crowd left idle (dmd/spill_pool.hpp compactPool).
+    void compactSpills() {
+        compactPool(spill_, freeSpill_, [&](auto&& renumber) {
+            for (int i = 0; i < static_cast<int>(anchor_.size()); ++i)
+                if (record_[offset(i) + spillSlot] >= 0) renumber(record_[offset(i) + spillSlot]);
+        });
+    }
 
 private:
     // A record: size, spill (index into spill_, or −1), then capacity_ partners and as many

@@ -340,6 +340,9 @@ public:
         const Memory m = memory();
         return m.calendar + m.books + m.agendas + m.about;
     }
+    /// Frees the agenda spills a passing crowd left idle (dmd/agendas.hpp).
+    void compactSpills() { agendas_.compactSpills(); }
+    const Agendas& agendas() const { return agendas_; }
     std::uint64_t maxQueueSize() const { return maxQueueSize_; }
     std::uint64_t cleanups() const { return cleanups_; }
     std::uint64_t staleInAgendas() const { return staleInAgendas_; }

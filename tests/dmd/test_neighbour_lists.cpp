@@ -144,6 +144,46 @@ TEST(NeighbourLists, RecordsAndSpillsBehaveAsPlainListsWithTheirTerraces) {
     EXPECT_EQ(lists.spilled(), 0u);
 }
 
+// A crowd of spilled lists that mostly fit their records again leaves idle spills: compacting frees
+// them, and the lists and terraces still held in spills are unchanged.
+TEST(NeighbourLists, CompactingFreesTheSpillsACrowdLeftIdle) {
+    constexpr int n = 300;
+    dmd::NeighbourLists lists(n, 1.0, 2);
+    const auto ring = [&](int i, int width) {
+        std::vector<int> within;
+        for (int d = 1; d <= width; ++d)
+            within.push_back((i + d) % n);
+        return within;
+    };
+    for (int i = 0; i < n; i += 2) // lists of ~10 in records of 2: all spill
+        lists.rebuild(i, ring(i, 5), Vec3::Zero());
+    const std::size_t crowd = lists.spillsKept();
+    EXPECT_GT(crowd, 200u);
+    for (int i = 0; i < n; i += 2)
+        lists.rebuild(i, {}, Vec3::Zero());
+    for (int i = 0; i < n; i += 20) // a few spill again, some taking an idle spill back
+        lists.rebuild(i, ring(i, 4), Vec3::Zero());
+    lists.setTerrace(0, 3, -2);
+    std::vector<std::vector<int>> before(n);
+    for (int i = 0; i < n; ++i) {
+        const auto p = lists.partners(i);
+        before[i].assign(p.begin(), p.end());
+    }
+    const std::size_t held = lists.spilled();
+    EXPECT_EQ(held, static_cast<std::size_t>(n / 20));
+    const std::size_t bytes = lists.bytesReserved();
+    lists.compactSpills();
+    EXPECT_EQ(lists.spillsKept(), held);
+    EXPECT_LT(lists.bytesReserved(), bytes);
+    for (int i = 0; i < n; ++i) {
+        const auto p = lists.partners(i);
+        EXPECT_EQ(std::vector<int>(p.begin(), p.end()), before[i]) << "body " << i;
+    }
+    EXPECT_EQ(lists.terrace(0, 3), -2);
+    EXPECT_EQ(lists.terrace(3, 0), -2);
+    EXPECT_EQ(lists.terrace(0, 2), 0);
+}
+
 // A pair off terrace 0 is inside r_m, so always listed: the storage refuses to hold one that is
 // not, and a rebuild that would drop one, instead of losing its energy silently.
 TEST(NeighbourLists, APairOffTerraceZeroMustStayListed) {
