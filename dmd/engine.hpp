@@ -401,15 +401,28 @@ private:
         for (int b = 0; b < n; ++b)
             key[b] = {cells_.mortonCode(sys_.bodies[b].r), b};
         std::sort(key.begin(), key.end());
-        std::vector<State> sorted(n);
         sceneIndex_.resize(n);
         engineIndex_.resize(n);
         for (int i = 0; i < n; ++i) {
-            sorted[i] = sys_.bodies[key[i].second];
             sceneIndex_[i] = key[i].second;
             engineIndex_[key[i].second] = i;
         }
-        sys_.bodies = std::move(sorted);
+        std::vector<std::pair<std::uint64_t, int>>().swap(key);
+        // In place, cycle by cycle (engine body i is scene body sceneIndex_[i]): the rest of the
+        // engine is built by now, and a sorted copy beside it (96 B a rod) was a restart point's
+        // peak.
+        std::vector<bool> placed(static_cast<std::size_t>(n), false);
+        for (int start = 0; start < n; ++start) {
+            if (placed[start]) continue;
+            const State first = sys_.bodies[start];
+            int to = start;
+            for (int from = sceneIndex_[to]; from != start; to = from, from = sceneIndex_[to]) {
+                sys_.bodies[to] = sys_.bodies[from];
+                placed[to] = true;
+            }
+            sys_.bodies[to] = first;
+            placed[to] = true;
+        }
     }
 
     // ---- the event loop: pop → discard if stale → resolve → invalidate → predict ----

@@ -85,7 +85,12 @@ public:
         for (int i = 0; i < engine.sys_.size(); ++i)
             if (engine.schedule_.book(i).clock != engine.time_)
                 throw std::logic_error("dmd: checkpoint with clocks not at one time");
+        // Counted first: grown by doubling, the bytes held up to twice their size while the
+        // next engine was built from them (the peak of a run with restart points).
+        std::size_t count = 0;
+        engine.lists_.forEachPairOffZero([&](int, int, int) { ++count; });
         std::vector<std::uint8_t> pairs;
+        pairs.reserve(count * sizeof(PairTerrace));
         // In the scene's numbering of the bodies, whatever the engine's own.
         engine.lists_.forEachPairOffZero([&](int i, int j, int n) {
             const int a = engine.sceneIndex(i), b = engine.sceneIndex(j);
