@@ -408,9 +408,9 @@ private:
             engineIndex_[key[i].second] = i;
         }
         std::vector<std::pair<std::uint64_t, int>>().swap(key);
-        // In place, cycle by cycle (engine body i is scene body sceneIndex_[i]): the rest of the
-        // engine is built by now, and a sorted copy beside it (96 B a rod) was a restart point's
-        // peak.
+        // In place, cycle by cycle (engine body i is scene body sceneIndex_[i]): the engine's other
+        // arrays are allocated by now (not yet filled), and a sorted copy beside them (96 B a rod)
+        // was a restart point's peak.
         std::vector<bool> placed(static_cast<std::size_t>(n), false);
         for (int start = 0; start < n; ++start) {
             if (placed[start]) continue;
