@@ -42,14 +42,18 @@ RdfAccumulator::RdfAccumulator(int bodies, double boxLength, double binWidth, do
 }
 
 void RdfAccumulator::add(const Snapshot& frame) {
-    if (frame.size() != bodies_ || frame.boxLength != length_)
+    add([&frame](int b) { return frame.position[b]; }, frame.size(), frame.boxLength);
+}
+
+void RdfAccumulator::add(const PositionOf& positionOf, int bodies, double boxLength) {
+    if (bodies != bodies_ || boxLength != length_)
         throw std::invalid_argument("g(r): N and box length must not change");
     while (block_ + 1 < blocks_ && frames_ >= blockBegin(block_ + 1, plannedFrames_, blocks_))
         ++block_;
     const PeriodicBox box{length_};
     if (cellsPerSide_ < 3) {
         for (int i = 0; i < bodies_; ++i) {
-            const Vec3 r = box.wrap(frame.position[i]);
+            const Vec3 r = box.wrap(positionOf(i));
             x_[i] = r.x(), y_[i] = r.y(), z_[i] = r.z();
         }
         countAllPairs(histogram_[block_]);
@@ -61,7 +65,7 @@ void RdfAccumulator::add(const Snapshot& frame) {
         auto index = [m, perCell](double c) { return std::min(m - 1, int(c * perCell)); };
         // The wrap is done twice rather than kept (24 B a body at the run's peak).
         for (int i = 0; i < bodies_; ++i) {
-            const Vec3 r = box.wrap(frame.position[i]);
+            const Vec3 r = box.wrap(positionOf(i));
             cellOf_[i] = (index(r.x()) * m + index(r.y())) * m + index(r.z());
             ++cellStart_[cellOf_[i] + 1];
         }
@@ -69,7 +73,7 @@ void RdfAccumulator::add(const Snapshot& frame) {
             cellStart_[c] += cellStart_[c - 1];
         fill_.assign(cellStart_.begin(), cellStart_.end() - 1);
         for (int i = 0; i < bodies_; ++i) {
-            const Vec3 r = box.wrap(frame.position[i]);
+            const Vec3 r = box.wrap(positionOf(i));
             const int k = fill_[cellOf_[i]]++;
             x_[k] = r.x(), y_[k] = r.y(), z_[k] = r.z();
         }

@@ -10,9 +10,15 @@
 #include "analysis/rdf.hpp"
 #include "core/snapshot.hpp"
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace terrace::analysis {
+
+/// Body b's position (Å), for b = 0 … N − 1: a frame read body by body where it lives (an engine's
+/// own arrays), so that a large system's positions are not copied beside it for a g(r) frame
+/// (24 B a body at the run's peak). An empty function: no frame.
+using PositionOf = std::function<Vec3(int)>;
 
 class RdfAccumulator {
 public:
@@ -22,6 +28,9 @@ public:
                    int blocks);
 
     void add(const Snapshot& frame);
+    /// The frame of `bodies` bodies in a box of boxLength whose positions positionOf gives (each
+    /// asked for twice): the same counts as add() of a snapshot of those positions.
+    void add(const PositionOf& positionOf, int bodies, double boxLength);
     long frames() const { return frames_; }
     /// g(r) of the frames added so far; blocks that received no frame do not count.
     RadialDistribution result() const;

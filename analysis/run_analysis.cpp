@@ -56,13 +56,13 @@ void RunAnalysis::add(const Snapshot& sample) {
     ++samples_;
 }
 
-void RunAnalysis::add(const Snapshot& followed, const Snapshot* positions) {
-    if (followed.boxLength != boxLength_ || (positions && positions->boxLength != boxLength_))
+void RunAnalysis::add(const Snapshot& followed, const PositionOf& positionOf) {
+    if (followed.boxLength != boxLength_)
         throw std::invalid_argument("analysis: the box length must not change");
-    if (wantsPositions() && !positions)
+    if (wantsPositions() && !positionOf)
         throw std::invalid_argument("analysis: a g(r) frame needs every body's position");
     correlations_->addFollowed(followed);
-    if (wantsPositions()) rdf_->add(*positions);
+    if (wantsPositions()) rdf_->add(positionOf, bodies_, boxLength_);
     ++samples_;
 }
 

@@ -12,6 +12,7 @@
 // and of g(r) frames are laid out over the planned number of samples, as the post-hoc analysis
 // lays them over the samples it is given: a run that reaches its planned length gets the same
 // blocks. A run stopped early is analysed over the samples it has, its last blocks short or empty.
+#include "analysis/rdf_accumulator.hpp" // and PositionOf
 #include "core/snapshot.hpp"
 #include <cstddef>
 #include <filesystem>
@@ -21,7 +22,6 @@
 
 namespace terrace::analysis {
 
-class RdfAccumulator;
 class StreamingCorrelations;
 
 struct StreamingOptions {
@@ -46,9 +46,10 @@ public:
     void add(const Snapshot& sample);
     /// The next sample in parts, so that a large system's sample is never held whole: the
     /// followed bodies alone (followedBodies(), in that order) and, when the sample is a g(r)
-    /// frame (wantsPositions()), every body's position (a snapshot of positions only; else null).
-    /// The same numbers as add() of the whole sample.
-    void add(const Snapshot& followed, const Snapshot* positions);
+    /// frame (wantsPositions()), every body's position, read body by body where it lives
+    /// (analysis/rdf_accumulator.hpp PositionOf; else empty). The same numbers as add() of the
+    /// whole sample.
+    void add(const Snapshot& followed, const PositionOf& positionOf);
     /// The bodies the time correlations follow (indices into a whole sample), in order.
     const std::vector<int>& followedBodies() const;
     /// Whether the next sample is a g(r) frame, which needs every body's position.

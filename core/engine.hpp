@@ -2,6 +2,7 @@
 // What the run driver (cli) needs from an engine. Sampling in physical time is decided outside the
 // engines: the driver calls advanceTo(t_k) on a uniform grid for either engine (STYLE.md item 9).
 #include "core/snapshot.hpp"
+#include "core/vec.hpp"
 #include <concepts>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -15,6 +16,7 @@ concept Engine = requires(E e, const E ce, double t, std::span<const int> bodies
     { ce.snapshot() } -> std::same_as<Snapshot>;           // all bodies at time()
     { ce.snapshot(bodies) } -> std::same_as<Snapshot>;     // those bodies (scene numbers), in order
     { ce.positions() } -> std::same_as<Snapshot>;          // every body's position only
+    { ce.position(0) } -> std::same_as<Vec3>;              // one body's (scene number), at time()
     { ce.kineticEnergy() } -> std::convertible_to<double>; // kJ/mol at time()
     { ce.potentialEnergy() } -> std::convertible_to<double>; // kJ/mol: terraced for DMD
     { ce.totalMomentum() } -> std::convertible_to<Vec3>;     // g/mol Å per time unit

@@ -172,6 +172,8 @@ public:
             appendBody<K>(s, stateNow(engineIndex(b)), sys_.body);
         return s;
     }
+    /// Body b's position now (b: the scene's number).
+    Vec3 position(int b) const { return positionNow(engineIndex(b)); }
     /// Every body's position now, in the scene's order (the snapshot's other fields empty).
     Snapshot positions() const {
         const int n = sys_.size();

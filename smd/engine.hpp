@@ -154,6 +154,8 @@ public:
             appendBody<K>(s, sys_.bodies[sortBodies_ ? engineOf_[b] : b], sys_.body);
         return s;
     }
+    /// Body b's position at time() (b: the scene's number).
+    Vec3 position(int b) const { return sys_.bodies[sortBodies_ ? engineOf_[b] : b].r; }
     /// Every body's position at time(), in the scene's order (the snapshot's other fields empty).
     Snapshot positions() const {
         const std::size_t n = sys_.bodies.size();

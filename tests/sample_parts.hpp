@@ -25,6 +25,8 @@ template <class E> void expectPartsOfTheSnapshot(const E& e) {
     }
     const Snapshot where = e.positions();
     EXPECT_EQ(where.position, whole.position);
+    for (int b = 0; b < whole.size(); ++b) // what a g(r) frame reads, body by body
+        ASSERT_EQ(e.position(b), whole.position[b]) << "body " << b;
     EXPECT_TRUE(where.velocity.empty() && where.axis.empty() && where.omega.empty());
     EXPECT_EQ(where.time, whole.time);
 }

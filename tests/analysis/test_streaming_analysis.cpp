@@ -285,7 +285,7 @@ TEST(RunAnalysis, ASampleInPartsGivesTheNumbersOfTheWholeSample) {
         if (parts.wantsPositions()) {
             ++framesWithPositions;
             EXPECT_THROW(parts.add(followed, nullptr), std::invalid_argument);
-            parts.add(followed, &where);
+            parts.add(followed, [&where](int b) { return where.position[b]; });
         } else {
             parts.add(followed, nullptr);
         }
@@ -297,5 +297,6 @@ TEST(RunAnalysis, ASampleInPartsGivesTheNumbersOfTheWholeSample) {
         EXPECT_EQ(x.columns, y.columns) << file;
     }
     Snapshot notFollowed = samples.front();
-    EXPECT_THROW(parts.add(notFollowed, &notFollowed), std::invalid_argument); // 200 bodies, not 50
+    EXPECT_THROW(parts.add(notFollowed, [&](int b) { return notFollowed.position[b]; }),
+                 std::invalid_argument); // 200 bodies, not 50
 }
