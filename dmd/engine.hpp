@@ -179,7 +179,7 @@ public:
         const int n = sys_.size();
         Snapshot s = positionsOnly(time_, sys_.box.length, static_cast<std::size_t>(n));
         for (int b = 0; b < n; ++b)
-            s.position.push_back(positionNow(engineIndex(b)));
+            s.position.push_back(position(b));
         return s;
     }
     double kineticEnergy() const { return totalKinetic(sys_); } // constant in free flight

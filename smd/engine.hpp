@@ -161,7 +161,7 @@ public:
         const std::size_t n = sys_.bodies.size();
         Snapshot s = positionsOnly(time(), sys_.box.length, n);
         for (std::size_t b = 0; b < n; ++b)
-            s.position.push_back(sys_.bodies[sortBodies_ ? engineOf_[b] : b].r);
+            s.position.push_back(position(static_cast<int>(b)));
         return s;
     }
     // The sums over all bodies go in the scene's order, as without the sort: the same round-off.
