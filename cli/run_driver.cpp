@@ -250,6 +250,9 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
         summary["restarts"] = {{"every_ps", run.restartEveryPs},
                                {"written", run.restartsWritten},
                                {"continued", run.continuations}};
+    // Renumberings of the bodies as the liquid diffused (dmd.resort_cells); SMD re-sorts its own
+    // at every list build.
+    if (scene.engine == "dmd") summary["resorts"] = run.resorts;
     addEnergy(summary, run);
     if (!run.records.empty())
         summary["pressure"] =
@@ -345,6 +348,7 @@ Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::files
         run.momentumInitial =
             Vec3(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
         run.restartsWritten = r.at("restarts_written").get<long>();
+        run.resorts = r.value("resorts", 0L); // absent from files written before re-sorting
         run.continuations = r.at("continuations").get<int>() + 1;
         trajectoryBytes = r.at("files").at("trajectory_bytes").get<std::int64_t>();
         thermoBytes = r.at("files").at("thermo_bytes").get<std::int64_t>();

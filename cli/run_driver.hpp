@@ -115,6 +115,7 @@ struct RunRecord {
     std::string interruptedIn;         // equilibration | production | analysis
     std::string failure;               // the first error that ended the run ("" if none)
     long restartsWritten = 0;          // restart files written over the whole run
+    long resorts = 0;                  // DMD: bodies renumbered at a sample (dmd.resort_cells)
     int continuations = 0;             // times the run was continued from a restart file
     double restartEveryPs = 0.0;       // 0: no restart files
     std::vector<std::string> warnings; // from the scene (sceneWarnings)
@@ -327,13 +328,20 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     // built (the two side by side doubled the run's peak); the file is written in between, and
     // so is kept should the rebuild fail. The growing files reach the disk before the restart
     // file that counts their bytes. At a signal's stop the engine is not rebuilt: the run ends.
-    auto restartPoint = [&](const std::string& reason, bool rebuild) {
+    // A re-sort point (DMD, `dmd.resort_cells`) is a restart point without its file: the rebuilt
+    // engine numbers the bodies afresh in the cell order of where they are now.
+    auto restartPoint = [&](const std::string& reason, bool rebuild, bool keepFile = true) {
         const nlohmann::json checkpoint = engine->checkpoint();
         last = endOf(*engine);
         if (inProduction) accumulateStatistics(run.production, stretchStart, last.statistics);
         stretchStart = last.statistics; // the stretch so far is in run.production
         auto system = releasedSystem(std::move(*engine));
         engine.reset();
+        if (!keepFile) {
+            engine = std::make_unique<E>(std::move(system), scene, checkpoint);
+            stretchStart = engine->statistics();
+            return;
+        }
         if (trajectory.isOpen()) trajectory.sync();
         if (thermo.isOpen()) thermo.sync();
         if (samplesFile.isOpen()) samplesFile.sync();
@@ -354,6 +362,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                            {"cpu_seconds_equilibration",
                             at.cpuEquilibration + (inProduction ? 0.0 : cpu.seconds())},
                            {"restarts_written", run.restartsWritten + 1},
+                           {"resorts", run.resorts},
                            {"continuations", run.continuations},
                            {"files",
                             {{"trajectory_bytes", trajectory.isOpen() ? trajectory.size() : 0},
@@ -363,6 +372,17 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
         if (!rebuild) return;
         engine = std::make_unique<E>(std::move(system), scene, checkpoint);
         stretchStart = engine->statistics();
+    };
+    // The bodies renumbered when their order has decayed, with the rebuild's CPU time counted as
+    // the engine's (a restart point's is not: it is paid for its file). Not at the run's end.
+    auto resortWhereDecayed = [&] {
+        if constexpr (requires { engine->orderHasDecayed(); }) {
+            if (!engine->orderHasDecayed()) return;
+            cpu.start();
+            restartPoint("re-sort", true, false);
+            cpu.stop();
+            ++run.resorts;
+        }
     };
     // The first error ends the run; what was gathered until then is still written.
     auto guarded = [&](auto&& work) {
@@ -382,9 +402,11 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                 cpu.stop();
                 ++tick;
                 progress.report("equilibration", tick, plan.equilibrationTicks, engine->time());
-                if (restarts && tick % plan.restartEveryTicks == 0 &&
-                    tick < plan.equilibrationTicks && !interrupt.requested())
+                if (tick == plan.equilibrationTicks || interrupt.requested()) continue;
+                if (restarts && tick % plan.restartEveryTicks == 0)
                     restartPoint("interval", true);
+                else
+                    resortWhereDecayed();
             }
             if (interrupt.requested()) return;
             at.cpuEquilibration += cpu.seconds();
@@ -411,9 +433,11 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
             ++sample;
             record();
             progress.report("production", sample, plan.productionSamples, engine->time());
-            if (restarts && sample % plan.restartEvery == 0 && sample < plan.productionSamples &&
-                !interrupt.requested())
+            if (sample == plan.productionSamples || interrupt.requested()) continue;
+            if (restarts && sample % plan.restartEvery == 0)
                 restartPoint("interval", true);
+            else
+                resortWhereDecayed();
         }
     });
     const bool stopped = interrupt.requested(); // by a signal, before the run's end

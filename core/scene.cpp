@@ -494,7 +494,7 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     const auto& dmd = rd.section(j, "dmd");
     rd.onlyKeys(dmd, "dmd",
                 {"dV", "levels", "values", "terraces", "queue", "invalidation", "horizon_fs",
-                 "model", "hold_screen", "sort_bodies"});
+                 "model", "hold_screen", "sort_bodies", "resort_cells"});
     s.dmd.model = rd.choice(dmd, "dmd", "model", s.dmd.model, {"smoothed", "bare"});
     s.dmd.dV = rd.number(dmd, "dmd", "dV", s.dmd.dV, 0.0, 1e6, true);
     if (dmd.contains("levels")) {
@@ -555,6 +555,8 @@ Scene sceneFromJson(const json& input, const std::string& origin,
             rd.fail("dmd.sort_bodies", "must be true or false, got " + dmd["sort_bodies"].dump());
         s.dmd.sort_bodies = dmd["sort_bodies"].get<bool>();
     }
+    if (dmd.contains("resort_cells") && dmd["resort_cells"] != "auto")
+        s.dmd.resort_cells = rd.number(dmd, "dmd", "resort_cells", 0.0, 0.0, 1e6);
     if (s.dmd.horizon_fs < limits::minHorizonFs)
         rd.fail("dmd.horizon_fs",
                 "must be >= " + Reader::fmt(limits::minHorizonFs) + " fs, got " +
@@ -834,6 +836,7 @@ json toJson(const Scene& s) {
     // Written only when off, so that the resolved scenes of earlier runs are unchanged.
     if (!s.dmd.hold_screen) j["dmd"]["hold_screen"] = false;
     if (!s.dmd.sort_bodies) j["dmd"]["sort_bodies"] = false;
+    if (s.dmd.resort_cells) j["dmd"]["resort_cells"] = *s.dmd.resort_cells;
     if (!s.dmd.terraces.isDefault())
         j["dmd"]["terraces"] = {{"levels", s.dmd.terraces.levels},
                                 {"values", s.dmd.terraces.values},

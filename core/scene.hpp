@@ -121,6 +121,12 @@ struct Scene {
         // that neighbours lie close in memory (dmd/engine.hpp); the bodies keep the scene's
         // numbering outside it. Off only to check that the order changes no observable.
         bool sort_bodies = true;
+        // With sort_bodies, renumber them afresh once their RMS displacement since the last
+        // numbering reaches this many cell widths (the order's grain): the engine is rebuilt from
+        // its checkpoint at that sample, as at a restart point. 0: only at the start and at
+        // restart points. Unset ("auto"): 1 from dmd::prefetchFromBodies bodies on, where the
+        // engine's data outgrow the caches, and 0 below, where the order buys nothing.
+        std::optional<double> resort_cells;
     } dmd;
 
     struct Smd {

@@ -36,6 +36,7 @@
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
 #include "core/engine.hpp"
 #include "core/free_orbit.hpp"
+#include "core/gather_in_place.hpp"
 #include "core/scene.hpp"
 #include "core/snapshot.hpp"
 #include "core/system.hpp"
@@ -133,6 +134,7 @@ private:
         countTerraces();
         visitQueue([&](auto& q) { this->predictAll(q); }); // (this->: g++ 12 needs it here)
         schedule_.retuneBins(time_);
+        anchorOrder();
     }
 
 public:
@@ -305,6 +307,27 @@ public:
     const TerraceLevels& levels() const { return settings_.levels; }
     double interactionRange() const { return settings_.rm; }
     const EventCounts& counts() const { return counts_; }
+    /// Whether the cell order of the bodies has decayed as the liquid diffused: the RMS
+    /// displacement, since they were numbered, of a fixed sample of them (every anchorStride_-th
+    /// in the engine's order, so spread over the box) has reached dmd.resort_cells cell widths
+    /// (auto: 1 from prefetchFromBodies bodies on, never below).
+    /// Neighbours in space are then no longer neighbours in memory; the run driver renumbers the
+    /// bodies by rebuilding the engine from its checkpoint (cli/run_driver.hpp). Always false
+    /// when the bodies are not sorted.
+    bool orderHasDecayed() const {
+        if (orderAnchors_.empty()) return false;
+        double sum = 0.0;
+        for (std::size_t k = 0; k < orderAnchors_.size(); ++k) {
+            const int i = static_cast<int>(k) * anchorStride_;
+            sum +=
+                sys_.box.minimumImage(positionNow(i) - orderAnchors_[k], inverseBox_).squaredNorm();
+        }
+        return sum >= resortSquared_ * static_cast<double>(orderAnchors_.size());
+    }
+    /// The RMS displacement at which orderHasDecayed (Å; 0: never).
+    double resortDistance() const {
+        return orderAnchors_.empty() ? 0.0 : std::sqrt(resortSquared_);
+    }
     /// All bodies brought to time(): the system as it is now, its bodies in the scene's order.
     System<K, P> synchronisedCopy() const {
         System<K, P> s = sys_;
@@ -362,7 +385,7 @@ public:
                 {"other", (listedBefore_.capacity() + scanned_.capacity()) * sizeof(int) +
                               terraceCount_.capacity() * sizeof(std::int64_t) +
                               (sceneIndex_.capacity() + engineIndex_.capacity()) * sizeof(int) +
-                              this->predictionBytes()}};
+                              orderAnchors_.capacity() * sizeof(Vec3) + this->predictionBytes()}};
     }
     std::size_t bytesReserved() const {
         std::size_t b = 0;
@@ -392,10 +415,10 @@ private:
     /// scene's order: bodies close in space then lie close in every per-body array (states,
     /// orbits, books, agendas, lists), and an event's partners are mostly a few cache lines or
     /// pages apart instead of anywhere in the whole system. Done before anything else is built
-    /// from the bodies, so at every start and every rebuild from a checkpoint (restart points):
-    /// the order follows the liquid as it diffuses from one rebuild to the next. Outside the
-    /// engine the bodies keep the scene's numbering (synchronisedCopy, snapshot, checkpoint,
-    /// terrace, messages).
+    /// from the bodies, so at every start and every rebuild from a checkpoint (restart points, and
+    /// the re-sort points that orderHasDecayed calls for): the order follows the liquid as it
+    /// diffuses from one rebuild to the next. Outside the engine the bodies keep the scene's
+    /// numbering (synchronisedCopy, snapshot, checkpoint, terrace, messages).
     void sortBodiesByCell() {
         const int n = sys_.size();
         if (cells_.single() || n < 2) return;
@@ -410,21 +433,23 @@ private:
             engineIndex_[key[i].second] = i;
         }
         std::vector<std::pair<std::uint64_t, int>>().swap(key);
-        // In place, cycle by cycle (engine body i is scene body sceneIndex_[i]): the engine's other
-        // arrays are allocated by now (not yet filled), and a sorted copy beside them (96 B a rod)
-        // was a restart point's peak.
-        std::vector<bool> placed(static_cast<std::size_t>(n), false);
-        for (int start = 0; start < n; ++start) {
-            if (placed[start]) continue;
-            const State first = sys_.bodies[start];
-            int to = start;
-            for (int from = sceneIndex_[to]; from != start; to = from, from = sceneIndex_[to]) {
-                sys_.bodies[to] = sys_.bodies[from];
-                placed[to] = true;
-            }
-            sys_.bodies[to] = first;
-            placed[to] = true;
-        }
+        // In place: the engine's other arrays are allocated by now (not yet filled), and a sorted
+        // copy beside them (96 B a rod) was a restart point's peak.
+        gatherInPlace(sys_.bodies, [&](int i) { return sceneIndex_[i]; });
+    }
+
+    /// Where the sample that orderHasDecayed follows stands now, just numbered (every clock is
+    /// at time_ when an engine is built).
+    void anchorOrder() {
+        const int n = sys_.size();
+        const double cells = settings_.resortCells.value_or(n >= prefetchFromBodies ? 1.0 : 0.0);
+        if (!settings_.sortBodies || cells_.single() || !(cells > 0.0)) return;
+        anchorStride_ = std::max(1, n / orderSampleSize);
+        orderAnchors_.clear();
+        for (int i = 0; i < n; i += anchorStride_)
+            orderAnchors_.push_back(sys_.bodies[i].r);
+        const double width = sys_.box.length / cells_.cellsPerSide();
+        resortSquared_ = cells * width * cells * width;
     }
 
     // ---- the event loop: pop → discard if stale → resolve → invalidate → predict ----
@@ -678,6 +703,12 @@ private:
     // The scene's number of each body and the engine's number of each scene body (empty: the
     // same numbering, sortBodiesByCell not applied).
     std::vector<int> sceneIndex_, engineIndex_;
+    // orderHasDecayed's sample: where every anchorStride_-th body was when numbered (Å), and the
+    // square of the RMS displacement that ends the order (Å²). 4 096 bodies give the RMS to ~2 %.
+    static constexpr int orderSampleSize = 4096;
+    std::vector<Vec3> orderAnchors_;
+    int anchorStride_ = 1;
+    double resortSquared_ = 0.0;
     StallWatch stallWatch_;
     double time_ = 0.0;
     double impulseVirial_ = 0.0; // Σ r_ij·Δp_i over collisions, kJ/mol × time unit

@@ -15,6 +15,7 @@
 // Apart from the engine because it runs once, before the first event: the event loop reads better
 // without it. A mixin (CRTP), as dmd/pair_prediction.hpp: EngineStart is a base of the engine,
 // with no state of its own, and sets the engine's members. Units: Å, kJ/mol, time unit 100 fs.
+#include "core/gather_in_place.hpp"
 #include "core/overlap.hpp"
 #include "core/pair_potential.hpp"
 #include "core/scene.hpp"
@@ -111,17 +112,8 @@ public:
         const int n = engine.sys_.size();
         for (int i = 0; i < n; ++i)
             bodies[i] = engine.stateNow(i); // reads body i and its clock alone
-        // Engine order to the scene's in place, cycle by cycle: body i goes to sceneIndex(i).
-        std::vector<bool> placed(static_cast<std::size_t>(n), false);
-        for (int start = 0; start < n; ++start) {
-            if (placed[start]) continue;
-            State moving = bodies[start];
-            for (int to = engine.sceneIndex(start);; to = engine.sceneIndex(to)) {
-                std::swap(moving, bodies[to]);
-                placed[to] = true;
-                if (to == start) break;
-            }
-        }
+        // Engine order to the scene's, in place: scene body b is engine body engineIndex(b).
+        gatherInPlace(bodies, [&](int b) { return engine.engineIndex(b); });
         return std::move(engine.sys_);
     }
 

@@ -10,6 +10,9 @@
 //                 false only to measure what the screen saves: it changes no event)
 //   sort_bodies   whether the engine numbers the bodies in the Morton order of their cells
 //                 (default true; false only to check that the order changes no observable)
+//   resort_cells  RMS displacement, in cell widths, after which a run renumbers them afresh
+//                 (0: only at the start and at restart points; auto, the default: 1 from
+//                 prefetchFromBodies bodies on, 0 below)
 #include "core/scene.hpp"
 #include "core/units.hpp"
 #include "dmd/terrace_design.hpp"
@@ -17,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -47,6 +51,8 @@ struct DmdSettings {
     double horizon = 0.04; // time units
     bool holdScreen = true;
     bool sortBodies = true; // bodies numbered in the Morton order of their cells inside the engine
+    // and renumbered after an RMS displacement of this many cells (0: never; unset: auto)
+    std::optional<double> resortCells;
 };
 
 template <PairPotential P>
@@ -96,6 +102,9 @@ DmdSettings readDmdSettings(const Scene::Dmd& d, const P& potential, double kT, 
     s.horizon = units::fromFs(d.horizon_fs);
     s.holdScreen = d.hold_screen;
     s.sortBodies = d.sort_bodies;
+    if (d.resort_cells && (!(*d.resort_cells >= 0.0) || !std::isfinite(*d.resort_cells)))
+        throw SceneError("dmd.resort_cells: must be >= 0, got " + std::to_string(*d.resort_cells));
+    s.resortCells = d.resort_cells;
     s.rm = interactionRange(s.levels, potential);
     if (!(s.rm > 0.0))
         throw SceneError("dmd.dV: no level bounding terrace 0 is ever reached (r_m = 0)");

@@ -502,3 +502,101 @@ TEST(Restart, ARebuildThatFailsEndsTheRunWithItsFilesKept) {
     std::filesystem::remove_all(whole);
     std::filesystem::remove_all(failed);
 }
+
+// What a restart or re-sort point does to the physics: an engine rebuilt from its bodies and
+// checkpoint mid-run (512 dense rods at 50 fs, numbered afresh inside) undergoes the collisions
+// of one that goes on, over the next 100 fs, and ends with the same terraced energy and bodies
+// that agree to the round-off the liquid's chaos grows (the rebuild re-predicts every pair from
+// now, so searches start elsewhere and find the same events to their tolerance). Its lists are
+// re-anchored, so relists and virtual events are not counted alike.
+TEST(Restart, ARebuiltDmdEngineUndergoesTheCollisionsOfOneThatGoesOn) {
+    Scene scene = defaultScene();
+    scene.state.n = 512;
+    scene.state.density = 0.5;
+    scene.state.temperature = 1.4;
+    const auto start = buildInitialState<LinearRotor>(scene, rodPotential(scene));
+    RodDmd goesOn(start, scene);
+    auto rebuilt = std::make_unique<RodDmd>(start, scene);
+    ASSERT_GE(goesOn.cellsPerSide(), 3);
+    const double t1 = units::fromFs(50.0);
+    goesOn.advanceTo(t1);
+    rebuilt->advanceTo(t1);
+    auto collisions = [](const dmd::EventCounts& c) {
+        return std::array<std::uint64_t, 3>{c.up, c.down, c.reflect};
+    };
+    const auto before = collisions(rebuilt->counts());
+    ASSERT_EQ(before, collisions(goesOn.counts()));
+    const nlohmann::json checkpoint = rebuilt->checkpoint();
+    auto sys = dmd::releaseSystem(std::move(*rebuilt));
+    rebuilt = std::make_unique<RodDmd>(std::move(sys), scene, checkpoint);
+    int renumbered = 0; // the lattice's order was the cells' at the start; the liquid's is not
+    for (int b = 0; b < scene.state.n; ++b)
+        renumbered += rebuilt->engineIndex(b) != goesOn.engineIndex(b);
+    EXPECT_GT(renumbered, 0);
+    for (int k = 1; k <= 50; ++k) {
+        const double t = t1 + units::fromFs(2.0 * k);
+        goesOn.advanceTo(t);
+        rebuilt->advanceTo(t);
+        auto sum = collisions(rebuilt->counts());
+        for (int m = 0; m < 3; ++m)
+            sum[m] += before[m];
+        ASSERT_EQ(sum, collisions(goesOn.counts())) << 50 + 2 * k << " fs";
+    }
+    EXPECT_GT(goesOn.counts().up + goesOn.counts().down, 1000u);
+    EXPECT_EQ(rebuilt->potentialEnergy(), goesOn.potentialEnergy());
+    const Snapshot a = rebuilt->snapshot(), b = goesOn.snapshot();
+    double largest = 0.0;
+    for (int i = 0; i < a.size(); ++i)
+        largest = std::max({largest, (a.position[i] - b.position[i]).norm(),
+                            (a.velocity[i] - b.velocity[i]).norm(), (a.axis[i] - b.axis[i]).norm(),
+                            (a.omega[i] - b.omega[i]).norm()});
+    EXPECT_LT(largest, 1e-9);
+}
+
+// dmd.resort_cells: the run renumbers the bodies at every sample or thermostat tick where their
+// order has decayed (here at once: a thousandth of a cell), by the rebuild of a restart point
+// without its file, one engine at a time; a restart point itself renumbers them and is not
+// counted. summary.json and restart.bin count the re-sorts; a continued run goes on counting and
+// ends with the same files as the whole run. With resort_cells 0 nothing is rebuilt between
+// restart points.
+TEST(Restart, ARunRenumbersItsBodiesWhereTheirOrderHasDecayed) {
+    Scene scene = watchedScene();
+    scene.state.n = 512;
+    scene.state.density = 0.5;
+    scene.dmd.resort_cells = 1e-3;
+    {
+        const RodDmd probe(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
+        ASSERT_GE(probe.cellsPerSide(), 3);
+    }
+    const auto whole = scratch("resort-whole"), cut = scratch("resort-cut");
+    WatchedDmd::rebuilds = WatchedDmd::besideAnother = 0, WatchedDmd::failAt = 0;
+    runWatched(scene, whole);
+    // Equilibration: a re-sort at tick 1 (tick 2 ends it). Production: restart points at its
+    // start and at samples 3, 6, 9; re-sorts at samples 1, 2, 4, 5, 7, 8 (sample 10 ends it).
+    EXPECT_EQ(WatchedDmd::rebuilds, 4 + 7);
+    EXPECT_EQ(WatchedDmd::besideAnother, 0);
+    const auto summary = nlohmann::json::parse(readWholeFile(whole / "summary.json"));
+    EXPECT_EQ(summary.at("resorts"), 7);
+    EXPECT_EQ(summary.at("restarts").at("written"), 4);
+
+    // Stopped by a failed rebuild at the restart point of sample 6, then continued.
+    WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 1 + 1 + 2 + 1 + 2 + 1; // …, 4, 5, then 6
+    EXPECT_THROW(runWatched(scene, cut), std::runtime_error);
+    const nlohmann::json restart = cli::readRestart(cut);
+    ASSERT_EQ(restart.at("sample"), 6);
+    EXPECT_EQ(restart.at("resorts"), 5);
+    WatchedDmd::failAt = 0;
+    runWatched(scene, cut, &restart);
+    const auto continued = nlohmann::json::parse(readWholeFile(cut / "summary.json"));
+    EXPECT_EQ(continued.at("resorts"), 7);
+    for (const char* f : {"thermo.csv", "rdf.csv", "vacf.csv", "oacf.csv", "msd.csv"})
+        EXPECT_EQ(readWholeFile(cut / f), readWholeFile(whole / f)) << f;
+
+    scene.dmd.resort_cells = 0.0;
+    WatchedDmd::rebuilds = 0;
+    runWatched(scene, whole);
+    EXPECT_EQ(WatchedDmd::rebuilds, 4);
+    EXPECT_EQ(nlohmann::json::parse(readWholeFile(whole / "summary.json")).at("resorts"), 0);
+    std::filesystem::remove_all(whole);
+    std::filesystem::remove_all(cut);
+}

@@ -87,6 +87,8 @@ TEST(Scene, BadValuesAreNamed) {
     EXPECT_NE(errorOf({{"dmd", {{"sort_bodies", "yes"}}}}).find("dmd.sort_bodies"),
               std::string::npos);
     EXPECT_NE(errorOf({{"smd", {{"sort_bodies", 1}}}}).find("smd.sort_bodies"), std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"resort_cells", -1}}}}).find("dmd.resort_cells: must be >= 0"),
+              std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", {3.0, 2.5}}}}}).find("potential.cutoff: must be"),
               std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", {0.0, 2.5}}}}}).find("potential.cutoff"),
@@ -121,6 +123,13 @@ TEST(Scene, OverridesByDottedPath) {
     EXPECT_FALSE(sceneFromJson(json::object(), "t", {"dmd.sort_bodies=false"}).dmd.sort_bodies);
     EXPECT_TRUE(defaultScene().smd.sort_bodies);
     EXPECT_FALSE(sceneFromJson(json::object(), "t", {"smd.sort_bodies=false"}).smd.sort_bodies);
+    EXPECT_FALSE(defaultScene().dmd.resort_cells); // auto: set by the engine from N
+    EXPECT_FALSE(sceneFromJson(json::object(), "t", {"dmd.resort_cells=auto"}).dmd.resort_cells);
+    const Scene never = sceneFromJson(json::object(), "t", {"dmd.resort_cells=0"});
+    EXPECT_EQ(never.dmd.resort_cells, 0.0);
+    // The resolved scene names it only when it is set, and reads back.
+    EXPECT_FALSE(toJson(defaultScene())["dmd"].contains("resort_cells"));
+    EXPECT_EQ(sceneFromJson(toJson(never), "t").dmd.resort_cells, 0.0);
     EXPECT_EQ(s.name, "x y");
     EXPECT_NE(errorOf(json::object(), {"dmd.dV"}).find("key.path=value"), std::string::npos);
     EXPECT_NE(errorOf(json::object(), {"dmd.nope=1"}).find("dmd.nope: unknown key"),

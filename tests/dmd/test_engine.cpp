@@ -226,6 +226,52 @@ TEST(Engine, BodyOrderChangesNoObservable) {
     EXPECT_EQ(pairs(a), pairs(b));
 }
 
+// The order decays as the liquid diffuses: orderHasDecayed is whether the RMS displacement of the
+// bodies since they were numbered (every body, below 4 096) has reached dmd.resort_cells cell
+// widths. Three engines that differ only in that threshold undergo the same events; the RMS is
+// taken here from their snapshots, and a threshold just above it and just below it fall on
+// either side. Unsorted bodies have no order to lose. Left to itself (auto) the threshold is one
+// cell width where the engine's data outgrow the caches, and never below.
+TEST(Engine, OrderDecaysWhenTheBodiesHaveMovedTheirShareOfACell) {
+    Scene s = rodScene(512, 0.5, 1.4, 0.5);
+    const RodSystem start = rodSystem(s);
+    RodEngine probe(start, s);
+    ASSERT_GE(probe.cellsPerSide(), 3);
+    EXPECT_FALSE(probe.orderHasDecayed());
+    probe.advanceTo(units::fromFs(30.0));
+    const Snapshot was = RodEngine(start, s).snapshot(), now = probe.snapshot();
+    double sum = 0.0;
+    for (int i = 0; i < now.size(); ++i)
+        sum += start.box.minimumImage(now.position[i] - was.position[i]).squaredNorm();
+    const double cells = std::sqrt(sum / now.size()) / (start.box.length / probe.cellsPerSide());
+    ASSERT_GT(cells, 0.01);
+    ASSERT_LT(cells, 1.0);
+    EXPECT_FALSE(probe.orderHasDecayed());
+    EXPECT_EQ(probe.resortDistance(), 0.0); // auto: never below dmd::prefetchFromBodies bodies
+    for (const double factor : {0.99, 1.01}) {
+        Scene t = s;
+        t.dmd.resort_cells = factor * cells;
+        RodEngine e(start, t);
+        e.advanceTo(units::fromFs(30.0));
+        EXPECT_EQ(e.counts().total(), probe.counts().total());
+        EXPECT_EQ(e.orderHasDecayed(), factor < 1.0) << factor;
+    }
+    Scene never = s, unsorted = s;
+    never.dmd.resort_cells = 0.0;
+    unsorted.dmd.sort_bodies = false;
+    unsorted.dmd.resort_cells = 1e-6;
+    for (const Scene& t : {never, unsorted}) {
+        RodEngine e(start, t);
+        e.advanceTo(units::fromFs(30.0));
+        EXPECT_FALSE(e.orderHasDecayed());
+        EXPECT_EQ(e.resortDistance(), 0.0);
+    }
+    // From dmd::prefetchFromBodies bodies on, auto is one cell width.
+    const Scene large = rodScene(dmd::prefetchFromBodies, 0.5, 1.4, 0.5);
+    const RodEngine big(rodSystem(large), large);
+    EXPECT_NEAR(big.resortDistance(), large.boxLength() / big.cellsPerSide(), 1e-12);
+}
+
 // Both modes push the same calendar entries in the same order (one erases what the other leaves
 // stale), so even events at one instant — a relist due now, say — come in the same order: 512
 // bodies over 1 ps, where entries renewed only when their stale predecessor surfaced had already
