@@ -100,18 +100,24 @@ public:
     /// instant then undergo the same events.
     Engine(System<K, P> initial, const Scene& scene, const nlohmann::json& checkpoint)
         : Engine(std::move(initial), scene, &checkpoint) {}
+    /// The same, and the checkpoint's pair terraces are freed as soon as they are read, before
+    /// the pairs are predicted: kept, they would sit beside the new engine at its largest (the
+    /// peak of a run's rebuilds; ~100 B a body for LJ spheres). `checkpoint` is then spent.
+    Engine(System<K, P> initial, const Scene& scene, nlohmann::json&& checkpoint)
+        : Engine(std::move(initial), scene, &checkpoint, &checkpoint) {}
 
     /// What a resumed engine needs beyond the bodies (dmd/engine_start.hpp).
     using Start::checkpoint;
 
 private:
-    Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume)
+    Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume,
+           nlohmann::json* spent = nullptr)
         : Engine(initial,
                  readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length),
-                 scene, resume) {}
+                 scene, resume, spent) {}
     // The settings are read before anything is built: the prediction base, built first, needs them.
     Engine(System<K, P>& initial, DmdSettings settings, const Scene& scene,
-           const nlohmann::json* resume)
+           const nlohmann::json* resume, nlohmann::json* spent)
         : Prediction(settings, initial.potential, scene.seed, initial.size()),
           sys_(std::move(initial)), settings_(std::move(settings)),
           lists_(makeLists(settings_.rm, sys_)),
@@ -131,6 +137,7 @@ private:
             resumeTerraces(*resume);
         else
             assignInitialTerraces();
+        if (spent) *spent = nlohmann::json(); // resume points to it: read no more from here on
         countTerraces();
         visitQueue([&](auto& q) { this->predictAll(q); }); // (this->: g++ 12 needs it here)
         schedule_.retuneBins(time_);
@@ -143,6 +150,7 @@ public:
     /// Process every event before t, then bring all clocks to t.
     void advanceTo(double t) {
         if (!(t >= time_)) throw std::invalid_argument("dmd: advanceTo into the past");
+        if (shed_) throw std::logic_error("dmd: advanceTo on an engine that shed its events");
         visitQueue([&](auto& q) {
             Event sample;
             sample.time = t;
@@ -323,6 +331,16 @@ public:
                 sys_.box.minimumImage(positionNow(i) - orderAnchors_[k], inverseBox_).squaredNorm();
         }
         return sum >= resortSquared_ * static_cast<double>(orderAnchors_.size());
+    }
+    /// Frees what only the event loop needs (the calendar, the agendas and the orbits, ~0.4 KB a
+    /// body) from an engine about to be dropped at a restart or re-sort point, so that its
+    /// checkpoint, then the next engine, take their room instead of adding to the run's peak. The
+    /// bodies, clocks, lists and terraces stay: checkpoint(), the reads of the bodies
+    /// (synchronisedCopy, releaseSystem) and destruction may follow, and no advanceTo.
+    void shed() {
+        schedule_.shed();
+        std::vector<FreeOrbit<K>>().swap(orbit_);
+        shed_ = true;
     }
     /// The RMS displacement at which orderHasDecayed (Å; 0: never).
     double resortDistance() const {
@@ -710,6 +728,7 @@ private:
     int anchorStride_ = 1;
     double resortSquared_ = 0.0;
     StallWatch stallWatch_;
+    bool shed_ = false; // shed(): fit only for a checkpoint, the bodies and destruction
     double time_ = 0.0;
     double impulseVirial_ = 0.0; // Σ r_ij·Δp_i over collisions, kJ/mol × time unit
     double inverseBox_ = 1.0 / sys_.box.length; // 1/L (Å⁻¹) for minimum images; NVE: L is fixed

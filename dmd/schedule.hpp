@@ -340,6 +340,15 @@ public:
         const Memory m = memory();
         return m.calendar + m.books + m.agendas + m.about;
     }
+    /// Frees the calendar, the agendas and the lists of owners about each body, keeping the
+    /// books (each body's clock): for an engine about to be dropped (Engine::shed).
+    void shed() {
+        agendas_ = Agendas(0);
+        queue_.emplace<BinaryHeapQueue<Event>>();
+        std::vector<QueueHandle>().swap(entry_);
+        std::vector<std::int32_t>().swap(aboutFirst_);
+        std::vector<int>().swap(unsettled_);
+    }
     /// Frees the agenda spills a passing crowd left idle (dmd/agendas.hpp).
     void compactSpills() { agendas_.compactSpills(); }
     const Agendas& agendas() const { return agendas_; }

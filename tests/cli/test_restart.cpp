@@ -600,3 +600,52 @@ TEST(Restart, ARunRenumbersItsBodiesWhereTheirOrderHasDecayed) {
     std::filesystem::remove_all(whole);
     std::filesystem::remove_all(cut);
 }
+
+// A DMD engine rebuilt from a checkpoint it is handed to spend frees the checkpoint's pairs before
+// it predicts them (the rebuild's peak memory), and goes on as one rebuilt from a kept copy.
+TEST(Restart, ADmdRebuildSpendsTheCheckpointItIsHanded) {
+    Scene scene = smallScene("linear");
+    scene.state.n = 216;
+    RodDmd engine(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
+    engine.advanceTo(0.5);
+    const auto sys = engine.synchronisedCopy();
+    const nlohmann::json kept = engine.checkpoint();
+    nlohmann::json handed = kept;
+    RodDmd a(sys, scene, kept), b(sys, scene, std::move(handed));
+    EXPECT_TRUE(handed.is_null()); // NOLINT(bugprone-use-after-move): spent, as documented
+    EXPECT_FALSE(kept.is_null());
+    a.advanceTo(1.5);
+    b.advanceTo(1.5);
+    const Snapshot x = a.snapshot(), y = b.snapshot();
+    for (int i = 0; i < x.size(); ++i) {
+        ASSERT_EQ(x.position[i], y.position[i]) << "body " << i;
+        ASSERT_EQ(x.velocity[i], y.velocity[i]) << "body " << i;
+    }
+    EXPECT_EQ(a.statistics().dump(), b.statistics().dump());
+}
+
+// At a restart or re-sort point the engine sheds its calendar, agendas and orbits before its
+// checkpoint is taken: it then gives the same checkpoint and bodies, holds none of their bytes
+// (over 300 a body), and refuses to advance.
+TEST(Restart, ADmdEngineThatShedItsEventsGivesTheSameCheckpointAndBodies) {
+    Scene scene = smallScene("linear");
+    scene.state.n = 512;
+    RodDmd engine(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
+    engine.advanceTo(0.5);
+    const nlohmann::json before = engine.checkpoint();
+    const auto copy = engine.synchronisedCopy();
+    const std::size_t bytes = engine.bytesReserved();
+    std::size_t eventLoop = 0; // what shed() frees
+    for (const auto& [part, size] : engine.memoryByPart())
+        if (std::string(part) == "agendas" || std::string(part) == "orbits" ||
+            std::string(part) == "calendar" || std::string(part) == "about")
+            eventLoop += size;
+    ASSERT_GT(eventLoop, 300u * 512u);
+    engine.shed();
+    EXPECT_LE(engine.bytesReserved(), bytes - eventLoop + 1024); // an empty calendar's few bytes
+    EXPECT_EQ(engine.checkpoint(), before);
+    EXPECT_THROW(engine.advanceTo(1.0), std::logic_error);
+    const auto released = dmd::releaseSystem(std::move(engine));
+    for (int b = 0; b < copy.size(); ++b)
+        ASSERT_TRUE(sameBits(released.bodies[b], copy.bodies[b])) << "body " << b;
+}
