@@ -9,9 +9,11 @@
 //                  the sample to samples.bin
 //   restart points every output.restart_every_ps (cli/restart.hpp): the engine is rebuilt from
 //                  its bodies and checkpoint and restart.bin is written
-// CPU time is measured around the engine's advanceTo and rescale calls only, so output, analysis
-// and restart points do not count against either engine; the analysis' own CPU time is reported
-// apart (analysis_cpu_seconds).
+//   re-sort points (DMD, dmd.resort_cells): at a sample or thermostat tick where the bodies'
+//                  cell order has decayed, the engine is rebuilt the same way, without the file
+// CPU time is measured around the engine's advanceTo and rescale calls and its re-sorts only, so
+// output, analysis and restart points do not count against either engine; the analysis' own CPU
+// time is reported apart (analysis_cpu_seconds).
 //
 // Nothing is lost when a run stops: every file is written whole (core/output_file.hpp); a signal
 // (cli/interrupt.hpp) ends the run at the next sample with restart.bin, summary.json (saying
@@ -345,11 +347,20 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
     // engine numbers the bodies afresh in the cell order of where they are now.
     auto restartPoint = [&](const std::string& reason, bool rebuild, bool keepFile = true) {
         last = endOf(*engine);
-        if constexpr (requires { engine->shed(); }) engine->shed(); // the checkpoint takes its room
-        nlohmann::json checkpoint = engine->checkpoint();           // spent by the rebuild
         if (inProduction) accumulateStatistics(run.production, stretchStart, last.statistics);
         stretchStart = last.statistics; // the stretch so far is in run.production
-        auto system = releasedSystem(std::move(*engine));
+        nlohmann::json checkpoint;      // spent by the rebuild
+        auto system = [&] {
+            try {
+                if constexpr (requires { engine->shed(); })
+                    engine->shed(); // the checkpoint takes its room
+                checkpoint = engine->checkpoint();
+                return releasedSystem(std::move(*engine));
+            } catch (...) { // a shed engine is fit for nothing else: `last` is its end
+                engine.reset();
+                throw;
+            }
+        }();
         engine.reset();
         returnFreedMemory();
         if (!keepFile) {
@@ -385,11 +396,13 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                              {"samples_bytes", samplesFile.isOpen() ? samplesFile.size() : 0}}}});
         ++run.restartsWritten;
         if (!rebuild) return;
+        returnFreedMemory(); // the restart file's buffers
         engine = std::make_unique<E>(std::move(system), scene, std::move(checkpoint));
         stretchStart = engine->statistics();
     };
     // The bodies renumbered when their order has decayed, with the rebuild's CPU time counted as
-    // the engine's (a restart point's is not: it is paid for its file). Not at the run's end.
+    // the engine's (a restart point's is not: it is paid for its file). Not at the run's end, nor
+    // where a restart point rebuilds the engine anyway.
     auto resortWhereDecayed = [&] {
         if constexpr (requires { engine->orderHasDecayed(); }) {
             if (!engine->orderHasDecayed()) return;
@@ -417,11 +430,15 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
                 cpu.stop();
                 ++tick;
                 progress.report("equilibration", tick, plan.equilibrationTicks, engine->time());
-                if (tick == plan.equilibrationTicks || interrupt.requested()) continue;
-                if (restarts && tick % plan.restartEveryTicks == 0)
-                    restartPoint("interval", true);
-                else
-                    resortWhereDecayed();
+                if (interrupt.requested()) continue;
+                if (tick < plan.equilibrationTicks) {
+                    if (restarts && tick % plan.restartEveryTicks == 0)
+                        restartPoint("interval", true);
+                    else
+                        resortWhereDecayed();
+                } else if (!restarts && plan.productionSamples > 0) {
+                    resortWhereDecayed(); // (with restarts, production's start rebuilds it)
+                }
             }
             if (interrupt.requested()) return;
             at.cpuEquilibration += cpu.seconds();

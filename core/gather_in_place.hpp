@@ -9,8 +9,9 @@
 namespace terrace {
 
 /// Puts into items[i] what was in items[from(i)], for every i, where `from` is a permutation of
-/// 0 … n−1: each cycle of it is walked once, one element held aside, so the cost is n moves and n
-/// bits. To scatter (item i to place to(i)), gather with the inverse of `to`.
+/// 0 … n−1: each cycle of it is walked once, one element held aside, so the cost is n moves (and
+/// one more per cycle) and n bits. To scatter (item i to place to(i)), gather with the inverse of
+/// `to`.
 template <class T, class From> void gatherInPlace(std::vector<T>& items, From&& from) {
     const int n = static_cast<int>(items.size());
     std::vector<bool> placed(static_cast<std::size_t>(n), false);

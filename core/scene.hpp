@@ -123,9 +123,11 @@ struct Scene {
         bool sort_bodies = true;
         // With sort_bodies, renumber them afresh once their RMS displacement since the last
         // numbering reaches this many cell widths (the order's grain): the engine is rebuilt from
-        // its checkpoint at that sample, as at a restart point. 0: only at the start and at
-        // restart points. Unset ("auto"): 1 from dmd::prefetchFromBodies bodies on, where the
-        // engine's data outgrow the caches, and 0 below, where the order buys nothing.
+        // its checkpoint at that sample or thermostat tick, as at a restart point. 0: only at the
+        // start and at restart points. Displacements are minimum images, so a value near half the
+        // cells a side or more is never reached. Unset ("auto"): 1 from dmd::prefetchFromBodies
+        // bodies on, where the engine's data outgrow the caches, and 0 below, where the order buys
+        // nothing.
         std::optional<double> resort_cells;
     } dmd;
 

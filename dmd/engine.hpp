@@ -150,7 +150,7 @@ public:
     /// Process every event before t, then bring all clocks to t.
     void advanceTo(double t) {
         if (!(t >= time_)) throw std::invalid_argument("dmd: advanceTo into the past");
-        if (shed_) throw std::logic_error("dmd: advanceTo on an engine that shed its events");
+        requireEvents();
         visitQueue([&](auto& q) {
             Event sample;
             sample.time = t;
@@ -236,6 +236,7 @@ public:
         return u;
     }
     void rescaleTemperature(double kT) {
+        requireEvents();
         synchronise(time_);
         rescaleToTemperature(sys_, kT);
         for (int i = 0; i < sys_.size(); ++i)
@@ -289,6 +290,7 @@ public:
 
     /// Process n events (samples excluded); clocks stay local, time() is the last event's time.
     void runEvents(std::uint64_t n) {
+        requireEvents();
         visitQueue([&](auto& q) {
             for (std::uint64_t k = 0; k < n; ++k)
                 if (!step(q)) throw std::logic_error("dmd: sample event outside advanceTo");
@@ -298,6 +300,7 @@ public:
     /// measure what the screen saves, or to check that it changes no event). Every pair is
     /// predicted afresh.
     void setHoldScreen(bool on) {
+        requireEvents();
         holdScreen_ = on;
         synchronise(time_);
         repredictAll();
@@ -332,6 +335,8 @@ public:
         }
         return sum >= resortSquared_ * static_cast<double>(orderAnchors_.size());
     }
+    /// The number of bodies orderHasDecayed follows (0: none; every anchorStride_-th, ≤ 4 096).
+    std::size_t orderSampleBodies() const { return orderAnchors_.size(); }
     /// Frees what only the event loop needs (the calendar, the agendas and the orbits, ~0.4 KB a
     /// body) from an engine about to be dropped at a restart or re-sort point, so that its
     /// checkpoint, then the next engine, take their room instead of adding to the run's peak. The
@@ -456,13 +461,18 @@ private:
         gatherInPlace(sys_.bodies, [&](int i) { return sceneIndex_[i]; });
     }
 
+    /// After shed() only the bodies, the checkpoint and destruction are left.
+    void requireEvents() const {
+        if (shed_) throw std::logic_error("dmd: the engine shed its events (a restart point)");
+    }
+
     /// Where the sample that orderHasDecayed follows stands now, just numbered (every clock is
     /// at time_ when an engine is built).
     void anchorOrder() {
         const int n = sys_.size();
         const double cells = settings_.resortCells.value_or(n >= prefetchFromBodies ? 1.0 : 0.0);
         if (!settings_.sortBodies || cells_.single() || !(cells > 0.0)) return;
-        anchorStride_ = std::max(1, n / orderSampleSize);
+        anchorStride_ = std::max(1, (n + orderSampleSize - 1) / orderSampleSize);
         orderAnchors_.clear();
         for (int i = 0; i < n; i += anchorStride_)
             orderAnchors_.push_back(sys_.bodies[i].r);
@@ -722,7 +732,7 @@ private:
     // same numbering, sortBodiesByCell not applied).
     std::vector<int> sceneIndex_, engineIndex_;
     // orderHasDecayed's sample: where every anchorStride_-th body was when numbered (Å), and the
-    // square of the RMS displacement that ends the order (Å²). 4 096 bodies give the RMS to ~2 %.
+    // square of the RMS displacement that ends the order (Å²). ≤ 4 096 bodies give the RMS to ~1 %.
     static constexpr int orderSampleSize = 4096;
     std::vector<Vec3> orderAnchors_;
     int anchorStride_ = 1;

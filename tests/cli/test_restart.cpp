@@ -395,6 +395,11 @@ struct WatchedDmd : RodDmd {
         : RodDmd(rebuilding(std::move(sys)), scene, c) {
         ++live;
     }
+    // What the run driver's rebuilds call, as they call the engine's own (the checkpoint spent).
+    WatchedDmd(System<LinearRotor, RodPotential> sys, const Scene& scene, nlohmann::json&& c)
+        : RodDmd(rebuilding(std::move(sys)), scene, std::move(c)) {
+        ++live;
+    }
     ~WatchedDmd() { --live; }
 
 private:

@@ -16,7 +16,10 @@ TEST(GatherInPlace, EqualsAGatherIntoACopy) {
         std::iota(from.begin(), from.end(), 0);
         for (int shape = 0; shape < 3; ++shape) {
             if (shape == 1) std::shuffle(from.begin(), from.end(), rng); // cycles of all lengths
-            if (shape == 2 && n > 1) std::rotate(from.begin(), from.begin() + 1, from.end()); // one
+            if (shape == 2 && n > 1) { // one cycle through every item
+                std::iota(from.begin(), from.end(), 0);
+                std::rotate(from.begin(), from.begin() + 1, from.end());
+            }
             std::vector<std::string> items(static_cast<std::size_t>(n)), expected(items.size());
             for (int i = 0; i < n; ++i)
                 items[i] = "body " + std::to_string(i);

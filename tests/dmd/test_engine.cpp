@@ -266,10 +266,30 @@ TEST(Engine, OrderDecaysWhenTheBodiesHaveMovedTheirShareOfACell) {
         EXPECT_FALSE(e.orderHasDecayed());
         EXPECT_EQ(e.resortDistance(), 0.0);
     }
-    // From dmd::prefetchFromBodies bodies on, auto is one cell width.
-    const Scene large = rodScene(dmd::prefetchFromBodies, 0.5, 1.4, 0.5);
-    const RodEngine big(rodSystem(large), large);
+    // From dmd::prefetchFromBodies bodies on, auto is one cell width; above 4 096 bodies the
+    // sample is every stride-th body in the engine's numbering (16 384: every fourth), and the
+    // threshold brackets the RMS over just those.
+    Scene large = rodScene(dmd::prefetchFromBodies, 0.5, 1.4, 0.5);
+    const RodSystem bigStart = rodSystem(large);
+    RodEngine big(bigStart, large);
     EXPECT_NEAR(big.resortDistance(), large.boxLength() / big.cellsPerSide(), 1e-12);
+    ASSERT_EQ(big.orderSampleBodies(), 4096u);
+    big.advanceTo(units::fromFs(10.0));
+    const Snapshot bigNow = big.snapshot();
+    double sampled = 0.0;
+    for (int k = 0; k < 4096; ++k) {
+        const int b = big.sceneIndex(4 * k);
+        sampled +=
+            bigStart.box.minimumImage(bigNow.position[b] - bigStart.bodies[b].r).squaredNorm();
+    }
+    const double bigCells = std::sqrt(sampled / 4096) / (large.boxLength() / big.cellsPerSide());
+    // (Tight: another 4 096 bodies would give an RMS ~0.6 % away.)
+    for (const double factor : {0.9999, 1.0001}) {
+        large.dmd.resort_cells = factor * bigCells;
+        RodEngine e(bigStart, large);
+        e.advanceTo(units::fromFs(10.0));
+        EXPECT_EQ(e.orderHasDecayed(), factor < 1.0) << factor;
+    }
 }
 
 // Both modes push the same calendar entries in the same order (one erases what the other leaves
