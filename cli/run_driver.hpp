@@ -363,40 +363,38 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
         }();
         engine.reset();
         returnFreedMemory();
-        if (!keepFile) {
-            engine = std::make_unique<E>(std::move(system), scene, std::move(checkpoint));
-            stretchStart = engine->statistics();
-            return;
+        if (keepFile) {
+            if (trajectory.isOpen()) trajectory.sync();
+            if (thermo.isOpen()) thermo.sync();
+            if (samplesFile.isOpen()) samplesFile.sync();
+            writeRestart(dir,
+                         {{"format", restartFormat},
+                          {"reason", reason},
+                          {"scene", toJson(scene)},
+                          {"phase", inProduction ? "production" : "equilibration"},
+                          {"tick", tick},
+                          {"sample", sample},
+                          {"t_start", at.tStart},
+                          {"time_fs", units::toFs(last.time)},
+                          {"n_bodies", run.bodies},
+                          {"bodies", bodiesToBinary(system.bodies)},
+                          {"engine", checkpoint},
+                          {"production_statistics", run.production},
+                          {"momentum_initial", vec3Json(run.momentumInitial)},
+                          {"cpu_seconds", at.cpuProduction + (inProduction ? cpu.seconds() : 0.0)},
+                          {"cpu_seconds_equilibration",
+                           at.cpuEquilibration + (inProduction ? 0.0 : cpu.seconds())},
+                          {"restarts_written", run.restartsWritten + 1},
+                          {"resorts", run.resorts},
+                          {"continuations", run.continuations},
+                          {"files",
+                           {{"trajectory_bytes", trajectory.isOpen() ? trajectory.size() : 0},
+                            {"thermo_bytes", thermo.isOpen() ? thermo.size() : 0},
+                            {"samples_bytes", samplesFile.isOpen() ? samplesFile.size() : 0}}}});
+            ++run.restartsWritten;
+            if (!rebuild) return;
+            returnFreedMemory(); // the restart file's buffers
         }
-        if (trajectory.isOpen()) trajectory.sync();
-        if (thermo.isOpen()) thermo.sync();
-        if (samplesFile.isOpen()) samplesFile.sync();
-        writeRestart(dir, {{"format", restartFormat},
-                           {"reason", reason},
-                           {"scene", toJson(scene)},
-                           {"phase", inProduction ? "production" : "equilibration"},
-                           {"tick", tick},
-                           {"sample", sample},
-                           {"t_start", at.tStart},
-                           {"time_fs", units::toFs(last.time)},
-                           {"n_bodies", run.bodies},
-                           {"bodies", bodiesToBinary(system.bodies)},
-                           {"engine", checkpoint},
-                           {"production_statistics", run.production},
-                           {"momentum_initial", vec3Json(run.momentumInitial)},
-                           {"cpu_seconds", at.cpuProduction + (inProduction ? cpu.seconds() : 0.0)},
-                           {"cpu_seconds_equilibration",
-                            at.cpuEquilibration + (inProduction ? 0.0 : cpu.seconds())},
-                           {"restarts_written", run.restartsWritten + 1},
-                           {"resorts", run.resorts},
-                           {"continuations", run.continuations},
-                           {"files",
-                            {{"trajectory_bytes", trajectory.isOpen() ? trajectory.size() : 0},
-                             {"thermo_bytes", thermo.isOpen() ? thermo.size() : 0},
-                             {"samples_bytes", samplesFile.isOpen() ? samplesFile.size() : 0}}}});
-        ++run.restartsWritten;
-        if (!rebuild) return;
-        returnFreedMemory(); // the restart file's buffers
         engine = std::make_unique<E>(std::move(system), scene, std::move(checkpoint));
         stretchStart = engine->statistics();
     };
