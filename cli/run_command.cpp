@@ -59,7 +59,7 @@ RunOutcome runScene(const Scene& scene, const RunTarget& target) {
 RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scene) {
     // The lock first: the restart file read is the one no other run can change meanwhile.
     const OutputDirectory output(dir, OutputMode::Continue);
-    const nlohmann::json restart = readRestart(dir);
+    nlohmann::json restart = readRestart(dir);
     try {
         scene = sceneFromJson(restart.at("scene"), (dir / "restart.bin").string());
         checkSampleMemory(scene);

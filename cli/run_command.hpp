@@ -33,7 +33,7 @@ RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scen
 
 // One translation unit per engine keeps compile times down; each instantiates its engine for
 // every (body kind, potential) pair a scene may ask for. `target.resume`, when set, is the
-// restart file the engine and its bodies come from.
+// restart file the engine and its bodies come from (and are taken out of).
 RunOutcome runSmd(const Scene& scene, const RunTarget& target);
 RunOutcome runDmd(const Scene& scene, const RunTarget& target);
 

@@ -78,7 +78,8 @@ struct RunTarget {
     std::filesystem::path dir;
     OutputMode mode = OutputMode::Fresh;
     bool quiet = false;
-    const nlohmann::json* resume = nullptr; // DIR/restart.bin when continuing
+    // DIR/restart.bin when continuing; the engine's builder takes its bodies and checkpoint out.
+    nlohmann::json* resume = nullptr;
 };
 
 /// What a run returns: its summary, and the process's exit status (0, or 128 + a signal).

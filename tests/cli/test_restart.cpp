@@ -420,18 +420,17 @@ Scene watchedScene() {
     return scene;
 }
 
-/// Runs the scene with a WatchedDmd into a fresh `dir` (or, with `resume`, continues there).
+/// Runs the scene with a WatchedDmd into a fresh `dir` (or, with `resume`, continues there, as
+/// `terrace run --continue` does: the engine's bodies and checkpoint are taken out of `*resume`).
 cli::RunOutcome runWatched(const Scene& scene, const std::filesystem::path& dir,
-                           const nlohmann::json* resume = nullptr) {
+                           nlohmann::json* resume = nullptr) {
     const cli::RunTarget target{dir, resume ? cli::OutputMode::Continue : cli::OutputMode::Fresh,
                                 true, resume};
     if (!resume) {
         std::filesystem::remove_all(dir);
         std::filesystem::create_directories(dir);
     }
-    auto sys = cli::startingSystem<LinearRotor>(scene, rodPotential(scene), target);
-    auto engine = resume ? std::make_unique<WatchedDmd>(std::move(sys), scene, resume->at("engine"))
-                         : std::make_unique<WatchedDmd>(std::move(sys), scene);
+    auto engine = cli::startingEngine<WatchedDmd, LinearRotor>(scene, rodPotential(scene), target);
     return cli::drive(engine, scene, target, LinearRotor::rotationalDof);
 }
 
@@ -498,10 +497,14 @@ TEST(Restart, ARebuildThatFailsEndsTheRunWithItsFilesKept) {
     EXPECT_EQ(summary.at("restarts").at("written"), 3);
     EXPECT_GT(summary.at("events").at("up").get<long>(), 0); // production's statistics kept
     EXPECT_TRUE(std::filesystem::exists(failed / "rdf.csv"));
-    const nlohmann::json restart = cli::readRestart(failed);
+    nlohmann::json restart = cli::readRestart(failed);
     EXPECT_EQ(restart.at("sample"), 6);
     WatchedDmd::failAt = 0;
     runWatched(scene, failed, &restart);
+    // The continued run's engine took the bodies and checkpoint out of the file it was read from:
+    // nothing of them stays beside it for the rest of the run.
+    EXPECT_FALSE(restart.contains("bodies"));
+    EXPECT_FALSE(restart.contains("engine"));
     for (const char* f : {"thermo.csv", "rdf.csv", "vacf.csv", "oacf.csv", "msd.csv"})
         EXPECT_EQ(readWholeFile(failed / f), readWholeFile(whole / f)) << f;
     std::filesystem::remove_all(whole);
@@ -587,7 +590,7 @@ TEST(Restart, ARunRenumbersItsBodiesWhereTheirOrderHasDecayed) {
     // Stopped by a failed rebuild at the restart point of sample 6, then continued.
     WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 1 + 1 + 2 + 1 + 2 + 1; // …, 4, 5, then 6
     EXPECT_THROW(runWatched(scene, cut), std::runtime_error);
-    const nlohmann::json restart = cli::readRestart(cut);
+    nlohmann::json restart = cli::readRestart(cut);
     ASSERT_EQ(restart.at("sample"), 6);
     EXPECT_EQ(restart.at("resorts"), 5);
     WatchedDmd::failAt = 0;
