@@ -1,12 +1,13 @@
-// Question: what does it cost DMD to fetch a listed partner's data as N grows, when a body's
-// state (96 B for a rod), free orbit (88 B) and book (64 B) sit in three arrays, as the engine
-// keeps them (sys_.bodies, Clocks::orbit_, Schedule::book_), against one 256-byte record per body?
+// Question: what does it cost DMD to fetch a listed partner's data as N grows, and does the
+// layout change it? The engine keeps a body's state (96 B for a rod), free orbit (88 B) and book
+// (64 B) in three arrays (sys_.bodies, Clocks::orbit_, Schedule::book_); against it, the orbit
+// and book side by side beside the states, one 256-byte record per body, records of 3 and 2 cache
+// lines (what a compacted partner could be), and one record with a fifth, redundant prefetch.
 //
 // Why it matters: a collision re-predicts ~29 listed pairs, and each reads its partner's state,
 // orbit and book (docs/PERFORMANCE.md, "Where the time goes against N"). At N = 512 these are
 // cached; at 10⁶ (0.25 GB of them) each is a miss. On this project's VM a miss waited on costs
-// ~370 ns, and misses issued together ~21 ns each, so the cost of a partner is set by how many
-// separate places in memory it is fetched from, not by its bytes alone.
+// ~370 ns and misses issued together ~21 ns each.
 //
 // Model: N points placed uniformly at the dense rods' number density (0.0178 Å⁻³, 14.5 listed
 // partners within the reach of 5.8 Å), numbered in the Morton order of their cells with the
@@ -51,13 +52,6 @@ struct alignas(64) BookPart {
 }; // clock, counters, …: 64 B, one line
 static_assert(sizeof(StatePart) == 96 && sizeof(OrbitPart) == 88 && sizeof(BookPart) == 64);
 
-struct alignas(64) BodyRecord { // the three parts of one body, 248 B in four lines
-    StatePart state;
-    OrbitPart orbit;
-    BookPart book;
-};
-static_assert(sizeof(BodyRecord) == 256);
-
 struct SplitBodies {
     std::vector<StatePart> state;
     std::vector<OrbitPart> orbit;
@@ -80,20 +74,58 @@ struct SplitBodies {
     }
 };
 
-struct RecordBodies {
-    std::vector<BodyRecord> body;
-    explicit RecordBodies(int n) : body(n) {
+/// The state in its array, the orbit and book of a body side by side in another (192 B).
+struct PairedBodies {
+    struct alignas(64) OrbitAndBook {
+        OrbitPart orbit;
+        BookPart book;
+    };
+    static_assert(sizeof(OrbitAndBook) == 192);
+    std::vector<StatePart> state;
+    std::vector<OrbitAndBook> rest;
+    explicit PairedBodies(int n) : state(n), rest(n) {
         for (int i = 0; i < n; ++i)
-            body[i].state.v[0] = body[i].orbit.v[0] = body[i].book.v[0] = i;
+            state[i].v[0] = rest[i].orbit.v[0] = rest[i].book.v[0] = i;
+    }
+    void prefetch(int j) const {
+        const char* s = reinterpret_cast<const char*>(&state[j]);
+        const char* o = reinterpret_cast<const char*>(&rest[j]);
+        __builtin_prefetch(s);
+        __builtin_prefetch(s + sizeof(StatePart) - 1);
+        __builtin_prefetch(o);
+        __builtin_prefetch(o + 64);
+        __builtin_prefetch(o + 128);
+    }
+    double read(int j) const {
+        return state[j].v[0] + state[j].v[11] + rest[j].orbit.v[0] + rest[j].orbit.v[10] +
+               rest[j].book.v[0];
+    }
+};
+
+/// One record of `Lines` cache lines per body, one value read from each line, and `Prefetches`
+/// prefetch instructions per body (beyond `Lines`, the extra ones ask again for its last line):
+/// the compact layouts a partner could have, and a control for what the count of prefetches
+/// alone does.
+template <int Lines, int Prefetches> struct LineRecords {
+    struct alignas(64) Record {
+        double v[8 * Lines];
+    };
+    std::vector<Record> body;
+    explicit LineRecords(int n) : body(n) {
+        for (int i = 0; i < n; ++i)
+            for (int line = 0; line < Lines; ++line)
+                body[i].v[8 * line] = i;
     }
     void prefetch(int j) const {
         const char* b = reinterpret_cast<const char*>(&body[j]);
-        for (int line = 0; line < 4; ++line)
-            __builtin_prefetch(b + 64 * line);
+        for (int k = 0; k < Prefetches; ++k)
+            __builtin_prefetch(b + 64 * std::min(k, Lines - 1));
     }
     double read(int j) const {
-        const BodyRecord& b = body[j];
-        return b.state.v[0] + b.state.v[11] + b.orbit.v[0] + b.orbit.v[10] + b.book.v[0];
+        double sum = 0.0;
+        for (int line = 0; line < Lines; ++line)
+            sum += body[j].v[8 * line];
+        return sum;
     }
 };
 
@@ -148,7 +180,7 @@ template <class Bodies> void BM_PartnerFetch(benchmark::State& st) {
         e = static_cast<int>((s * 0x2545F4914F6CDD1DULL >> 11) % static_cast<std::uint64_t>(n));
     }
     const int work = static_cast<int>(st.range(1));
-    double sum = 0.0;
+    double sum = 0.0, carry = 0.0;
     std::int64_t fetched = 0;
     for (auto _ : st) {
         for (int k = 0; k < kEvents; ++k) {
@@ -164,12 +196,20 @@ template <class Bodies> void BM_PartnerFetch(benchmark::State& st) {
                 bodies.prefetch(p[m]);
             for (int m = 0; m < count; ++m) {
                 if (m + kAhead < count) bodies.prefetch(p[m + kAhead]);
-                // A prediction's arithmetic on what was fetched: `work` dependent steps
-                // (~4 cycles each), so that prefetches have something to hide behind.
-                double x = bodies.read(p[m]);
-                for (int w = 0; w < work; ++w)
-                    x = x * 0.999999 + 1e-9;
-                sum += x;
+                // A prediction's arithmetic on what was fetched: `work` steps of four
+                // independent chains, started from the previous partner's result, as a
+                // prediction (~830 instructions, more than the core's reorder window) follows
+                // the one before: no partner's reads start early unless prefetched.
+                const double x = bodies.read(p[m]) + carry;
+                double a = x, b = 0.5 * x, c = 0.25 * x, d = 0.125 * x;
+                for (int w = 0; w < work; ++w) {
+                    a = a * 0.999999 + 1e-9;
+                    b = b * 0.999999 + 1e-9;
+                    c = c * 0.999999 + 1e-9;
+                    d = d * 0.999999 + 1e-9;
+                }
+                carry = 1e-12 * (a + b + c + d);
+                sum += carry;
             }
             fetched += count;
         }
@@ -181,8 +221,8 @@ template <class Bodies> void BM_PartnerFetch(benchmark::State& st) {
         static_cast<double>(hood.partners.size()) / static_cast<double>(n);
 }
 
-/// Sizes × the arithmetic per partner: none (the fetches alone) and 100 dependent steps (~130 ns
-/// here, the order of a held pair's prediction, ~830 instructions).
+/// Sizes × the arithmetic per partner: none (the fetches alone) and 100 steps of four chains
+/// (~800 instructions, ~140 ns at N = 512: about a held pair's prediction).
 void sizes(benchmark::internal::Benchmark* b) {
     for (const long work : {0L, 100L})
         for (const long n : {512L, 4096L, 32768L, 262144L, 1000000L})
@@ -191,7 +231,11 @@ void sizes(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_PartnerFetch<SplitBodies>)->Name("three_arrays")->Apply(sizes);
-BENCHMARK(BM_PartnerFetch<RecordBodies>)->Name("one_record")->Apply(sizes);
+BENCHMARK(BM_PartnerFetch<PairedBodies>)->Name("state_then_orbit_and_book")->Apply(sizes);
+BENCHMARK(BM_PartnerFetch<LineRecords<4, 4>>)->Name("one_record")->Apply(sizes);
+BENCHMARK(BM_PartnerFetch<LineRecords<4, 5>>)->Name("one_record_5_prefetches")->Apply(sizes);
+BENCHMARK(BM_PartnerFetch<LineRecords<3, 3>>)->Name("record_of_3_lines")->Apply(sizes);
+BENCHMARK(BM_PartnerFetch<LineRecords<2, 2>>)->Name("record_of_2_lines")->Apply(sizes);
 
 } // namespace
 } // namespace terrace::dmd
