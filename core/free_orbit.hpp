@@ -18,6 +18,7 @@
 #include "core/small_angle.hpp"
 #include "core/sphere.hpp"
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <type_traits>
 
@@ -115,6 +116,22 @@ public:
     }
     /// The long axis where the orbit is based (after advancedBy: at τ₀).
     const Vec3& axis() const { return s_; }
+
+    /// What an orbit based at its body's state (as constructed, or after advancedBy: no shift)
+    /// holds beyond that state's axis and ω: |ω| and ω̂ × s, 32 bytes. A store of many orbits
+    /// keeps these alone beside the states (dmd/body_clocks.hpp).
+    struct alignas(32) Turn {
+        Vec3 sideways;
+        double speed;
+    };
+    Turn turn() const {
+        assert(shift_ == 0.0);
+        return {sideways_, speed_};
+    }
+    /// The orbit based at axis s and ω with that turn: bit for bit the orbit turn() was taken
+    /// from, given its axis() and ω.
+    FreeOrbit(const Vec3& s, const Vec3& w, const Turn& t)
+        : s_(s), w_(w), speed_(t.speed), sideways_(t.sideways) {}
 
     /// The pair's two sincos in one packed pass. A rotor at rest has speed 0 and a zero sideways
     /// vector, so its angle is 0 and its axis comes out as s exactly, without a branch.

@@ -22,6 +22,23 @@
 
 namespace terrace::dmd {
 
+/// What the clocks keep of a body's orbit: the orbit itself, which of(state) gives back. A
+/// linear rotor's orbit, based at its clock, holds the state's own axis and ω: only its turn
+/// (|ω| and ω̂ × s) is kept, 32 B in one cache line instead of 88 B over two or three, and of()
+/// rebuilds the orbit from it and the state, bit for bit. In a large system a partner's orbit is
+/// a miss at every prediction: one line fetched instead of two or three.
+template <BodyKind K> struct KeptOrbit {
+    FreeOrbit<K> orbit;
+    explicit KeptOrbit(const FreeOrbit<K>& o) : orbit(o) {}
+    const FreeOrbit<K>& of(const typename K::State&) const { return orbit; }
+};
+template <> struct KeptOrbit<LinearRotor> {
+    FreeOrbit<LinearRotor>::Turn turn;
+    explicit KeptOrbit(const FreeOrbit<LinearRotor>& o) : turn(o.turn()) {}
+    FreeOrbit<LinearRotor> of(const LinearRotor::State& b) const { return {b.s, b.w, turn}; }
+};
+static_assert(sizeof(KeptOrbit<LinearRotor>) == 32);
+
 /// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
 template <BodyKind K, PairPotential P, class Engine> class BodyClocks {
 protected:
@@ -32,7 +49,7 @@ protected:
         Engine& engine = self();
         orbit_.reserve(engine.sys_.bodies.size());
         for (int i = 0; i < engine.sys_.size(); ++i) {
-            orbit_.emplace_back(engine.sys_.bodies[i], engine.sys_.body);
+            orbit_.emplace_back(FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body));
             engine.schedule_.book(i).axisRate = axisRateBound(engine.sys_.bodies[i]);
         }
     }
@@ -52,8 +69,9 @@ protected:
             // its new axis and stays its orbit (FreeOrbit::advancedBy).
             State& b = engine.sys_.bodies[i];
             b.r = translated(b.r, b.v, dt);
-            orbit_[i] = orbit_[i].advancedBy(dt);
-            b.s = orbit_[i].axis();
+            const FreeOrbit<K> turned = orbitOf(i).advancedBy(dt); // from b.s before it turns
+            b.s = turned.axis();
+            orbit_[i] = KeptOrbit<K>(turned);
         } else {
             freeMove<K>(engine.sys_.bodies[i], engine.sys_.body, dt);
             refreshOrbit(i);
@@ -64,7 +82,7 @@ protected:
     /// of other kinds).
     void refreshOrbit(int i) {
         Engine& engine = self();
-        orbit_[i] = FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body);
+        orbit_[i] = KeptOrbit<K>(FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body));
         engine.schedule_.book(i).axisRate = axisRateBound(engine.sys_.bodies[i]);
     }
 
@@ -89,7 +107,11 @@ protected:
             bringToNow(i);
     }
 
-    std::vector<FreeOrbit<K>> orbit_; // each body's free orbit from its state at its clock
+    /// Body i's free orbit from its state at its clock (for a rotor, built from the state and
+    /// its turn: a value, not a reference).
+    decltype(auto) orbitOf(int i) const { return orbit_[i].of(self().sys_.bodies[i]); }
+
+    std::vector<KeptOrbit<K>> orbit_; // each body's free orbit from its state at its clock
 
 private:
     const Engine& self() const { return static_cast<const Engine&>(*this); }

@@ -344,7 +344,7 @@ public:
     /// (synchronisedCopy, releaseSystem) and destruction may follow, and no advanceTo.
     void shed() {
         schedule_.shed();
-        std::vector<FreeOrbit<K>>().swap(orbit_);
+        std::vector<KeptOrbit<K>>().swap(orbit_);
         shed_ = true;
     }
     /// The RMS displacement at which orderHasDecayed (Å; 0: never).
@@ -398,7 +398,7 @@ public:
     std::vector<std::pair<const char*, std::size_t>>
     memoryByPart(const typename Schedule<Engine>::Memory& sched) const {
         return {{"states", sys_.bodies.capacity() * sizeof(State)},
-                {"orbits", orbit_.capacity() * sizeof(FreeOrbit<K>)},
+                {"orbits", orbit_.capacity() * sizeof(KeptOrbit<K>)},
                 {"books", sched.books},
                 {"agendas", sched.agendas},
                 {"calendar", sched.calendar},
@@ -419,8 +419,8 @@ public:
 
 private:
     // What the engine takes of its bases (the rest of them is their own).
-    using Clocks::orbit_, Clocks::cacheOrbits, Clocks::positionNow, Clocks::bringToNow,
-        Clocks::refreshOrbit, Clocks::synchronise;
+    using Clocks::orbit_, Clocks::orbitOf, Clocks::cacheOrbits, Clocks::positionNow,
+        Clocks::bringToNow, Clocks::refreshOrbit, Clocks::synchronise;
     using Prediction::predictAll, Prediction::repredictAll, Prediction::predictBody,
         Prediction::predictPair, Prediction::movingNow, Prediction::pairEvent, Prediction::schedule,
         Prediction::scheduleBodyEvent, Prediction::planCellCrossing, Prediction::planRelist;

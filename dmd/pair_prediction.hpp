@@ -26,6 +26,7 @@
 #include "dmd/event.hpp"
 #include "dmd/horizon_jitter.hpp"
 #include "dmd/neighbour_lists.hpp"
+#include "dmd/prefetch.hpp"
 #include "dmd/root_search.hpp"
 #include "dmd/schedule.hpp"
 #include "dmd/settings.hpp"
@@ -159,12 +160,8 @@ protected:
     /// Asks the caches for what predictPair reads of body j first.
     [[gnu::always_inline]] void prefetchBody(int j) const {
         const Engine& engine = self();
-        const char* state = reinterpret_cast<const char*>(&engine.sys_.bodies[j]);
-        const char* orbit = reinterpret_cast<const char*>(&engine.orbit_[j]);
-        __builtin_prefetch(state);
-        __builtin_prefetch(state + sizeof(State) - 1);
-        __builtin_prefetch(orbit);
-        __builtin_prefetch(orbit + sizeof(FreeOrbit<K>) - 1);
+        prefetchLines(&engine.sys_.bodies[j], sizeof(State));
+        prefetchLines(&engine.orbit_[j], sizeof(engine.orbit_[j]));
         __builtin_prefetch(&engine.schedule_.book(j));
     }
 
@@ -245,7 +242,7 @@ protected:
         const double horizon = jitter_.next();
         if (win.enter > horizon) return engine.time_ + win.enter;
         // Body j's attitude now serves the hold screen; its orbit is built only for a search.
-        const auto ajNow = engine.orbit_[j].startOf(dtj);
+        const auto ajNow = engine.orbitOf(j).startOf(dtj);
         const auto sampleWith = [&](double tau, const auto& attitudes) {
             const auto& [ai, aj] = attitudes;
             const EnergyRate e =
@@ -278,7 +275,7 @@ protected:
                     return none;
                 }
             }
-        const FreeOrbit<K> orbitJ = engine.orbit_[j].from(dtj);
+        const FreeOrbit<K> orbitJ = engine.orbitOf(j).from(dtj);
         auto eval = [&](double tau) { return sampleWith(tau, attitudesAt(mi.orbit, orbitJ, tau)); };
         PairSample start;
         if (resumeFrom && win.enter == 0.0) {
@@ -413,7 +410,7 @@ protected:
         const Engine& engine = self();
         const State& b = engine.sys_.bodies[i];
         const double dt = engine.time_ - engine.schedule_.book(i).clock;
-        Moving m{translated(b.r, b.v, dt), b.v, engine.orbit_[i].from(dt), {}};
+        Moving m{translated(b.r, b.v, dt), b.v, engine.orbitOf(i).from(dt), {}};
         m.now = m.orbit.at(0.0);
         return m;
     }

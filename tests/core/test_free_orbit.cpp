@@ -234,4 +234,33 @@ TEST(FreeOrbit, AdvancedOrbitFollowsFreeMove) {
     EXPECT_LE((orbit.axis() - exact.s).norm(), 1e-9);
 }
 
+// What the DMD engine keeps of a rotor's orbit (dmd/body_clocks.hpp KeptOrbit): its turn, with the
+// state's axis and ω. The orbit rebuilt from them is the orbit, bit for bit, both as built from a
+// state and after advancedBy (whose axis the engine writes into the state), rotors at rest too:
+// every attitude, shifted start and re-based orbit the searches ask of it is the same double.
+TEST(FreeOrbit, ARotorsOrbitRebuiltFromItsTurnIsTheOrbit) {
+    std::mt19937_64 rng(37);
+    const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
+    auto same = [](const Vec3& a, const Vec3& b) {
+        for (int k = 0; k < 3; ++k)
+            if (std::bit_cast<std::uint64_t>(a[k]) != std::bit_cast<std::uint64_t>(b[k]))
+                return false;
+        return true;
+    };
+    for (int k = 0; k < 40; ++k) {
+        const LinearRotor::State b = spinningRotor(rng, k % 8 == 0 ? 0.0 : 0.7 * k);
+        const FreeOrbit<LinearRotor> built(b, p);
+        for (double tau0 : {0.0, 0.004, 0.3, -0.05, 2.5}) {
+            const FreeOrbit<LinearRotor> orbit = tau0 == 0.0 ? built : built.advancedBy(tau0);
+            const FreeOrbit<LinearRotor> rebuilt(orbit.axis(), b.w, orbit.turn());
+            for (double tau : taus) {
+                EXPECT_TRUE(same(rebuilt.at(tau).axis, orbit.at(tau).axis)) << k << " " << tau;
+                EXPECT_TRUE(same(rebuilt.at(tau).w, orbit.at(tau).w));
+                EXPECT_TRUE(same(rebuilt.from(tau).at(0.01).axis, orbit.from(tau).at(0.01).axis));
+                EXPECT_TRUE(same(rebuilt.advancedBy(tau).axis(), orbit.advancedBy(tau).axis()));
+            }
+        }
+    }
+}
+
 } // namespace
