@@ -14,6 +14,8 @@
 // bringing its bodies to now. A mixin (CRTP), as dmd/pair_prediction.hpp: BodyClocks is a base of
 // the engine, owns the orbits and moves the engine's bodies. Units: Å, time unit 100 fs.
 #include "core/free_orbit.hpp"
+#include "core/sphere.hpp"
+#include "core/symmetric_top.hpp"
 #include "core/system.hpp"
 #include "core/vec.hpp"
 #include <cmath>
@@ -22,20 +24,30 @@
 
 namespace terrace::dmd {
 
-/// What the clocks keep of a body's orbit: the orbit itself, which of(state) gives back. A
-/// linear rotor's orbit, based at its clock, holds the state's own axis and ω: only its turn
-/// (|ω| and ω̂ × s) is kept, 32 B in one cache line instead of 88 B over two or three, and of()
-/// rebuilds the orbit from it and the state, bit for bit. In a large system a partner's orbit is
-/// a miss at every prediction: one line fetched instead of two or three.
+/// What the clocks keep of a body's orbit: what its state at the clock does not already hold,
+/// from which of(state, params) gives the orbit back, bit for bit. In a large system a partner's
+/// orbit is a miss at every prediction, so the less kept, the fewer lines fetched:
+/// - an asymmetric top: the whole orbit (its prepared free rotation);
+/// - a linear rotor: the orbit, based at its clock, holds the state's own axis and ω, so only its
+///   turn (|ω| and ω̂ × s) is kept, 32 B in one line instead of 88 B over two or three;
+/// - a sphere (nothing turns) and a symmetric top (whose orbit is a copy of the state, rotated
+///   afresh at every τ): nothing.
 template <BodyKind K> struct KeptOrbit {
     FreeOrbit<K> orbit;
     explicit KeptOrbit(const FreeOrbit<K>& o) : orbit(o) {}
-    const FreeOrbit<K>& of(const typename K::State&) const { return orbit; }
+    const FreeOrbit<K>& of(const typename K::State&, const BodyParams&) const { return orbit; }
 };
 template <> struct KeptOrbit<LinearRotor> {
     FreeOrbit<LinearRotor>::Turn turn;
     explicit KeptOrbit(const FreeOrbit<LinearRotor>& o) : turn(o.turn()) {}
-    FreeOrbit<LinearRotor> of(const LinearRotor::State& b) const { return {b.s, b.w, turn}; }
+    FreeOrbit<LinearRotor> of(const LinearRotor::State& b, const BodyParams&) const {
+        return {b.s, b.w, turn};
+    }
+};
+template <BodyKind K>
+requires(std::is_same_v<K, Sphere> || std::is_same_v<K, SymmetricTop>) struct KeptOrbit<K> {
+    explicit KeptOrbit(const FreeOrbit<K>&) {}
+    FreeOrbit<K> of(const typename K::State& b, const BodyParams& p) const { return {b, p}; }
 };
 static_assert(sizeof(KeptOrbit<LinearRotor>) == 32);
 
@@ -107,9 +119,11 @@ protected:
             bringToNow(i);
     }
 
-    /// Body i's free orbit from its state at its clock (for a rotor, built from the state and
-    /// its turn: a value, not a reference).
-    decltype(auto) orbitOf(int i) const { return orbit_[i].of(self().sys_.bodies[i]); }
+    /// Body i's free orbit from its state at its clock (unless the whole orbit is kept, built
+    /// from the state: a value, not a reference).
+    decltype(auto) orbitOf(int i) const {
+        return orbit_[i].of(self().sys_.bodies[i], self().sys_.body);
+    }
 
     std::vector<KeptOrbit<K>> orbit_; // each body's free orbit from its state at its clock
 
