@@ -17,6 +17,7 @@
 // The order of a body's events is that of a vector whose removal moves the last event into the
 // gap: the slots of the block first, then the spill. Times in the engine's unit (100 fs).
 #include "dmd/event.hpp"
+#include "dmd/prefetch.hpp"
 #include "dmd/spill_pool.hpp"
 #include <cstddef>
 #include <cstdint>
@@ -112,11 +113,7 @@ public:
     std::size_t spillsKept() const { return spill_.size(); }
 
     /// Asks the caches for i's block (an event about to be taken from it).
-    [[gnu::always_inline]] void prefetch(int i) const {
-        const char* b = reinterpret_cast<const char*>(&block_[i]);
-        for (std::size_t line = 0; line < sizeof(Block); line += 64)
-            __builtin_prefetch(b + line);
-    }
+    [[gnu::always_inline]] void prefetch(int i) const { prefetchLines(&block_[i], sizeof(Block)); }
 
     /// Events waiting, over all agendas.
     std::size_t events() const {

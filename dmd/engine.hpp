@@ -47,6 +47,7 @@
 #include "dmd/event.hpp"
 #include "dmd/neighbour_lists.hpp"
 #include "dmd/pair_prediction.hpp"
+#include "dmd/prefetch.hpp"
 #include "dmd/root_search.hpp"
 #include "dmd/schedule.hpp"
 #include "dmd/settings.hpp"
@@ -702,9 +703,7 @@ private:
 
     /// Asks the caches for what positionNow(j) reads: its position, velocity and clock.
     [[gnu::always_inline]] void prefetchWhere(int j) const {
-        const char* state = reinterpret_cast<const char*>(&sys_.bodies[j]);
-        __builtin_prefetch(state);
-        __builtin_prefetch(state + 2 * sizeof(Vec3) - 1);
+        prefetchLines(&sys_.bodies[j], 2 * sizeof(Vec3)); // r and v lead the state
         schedule_.prefetchBook(j);
     }
 

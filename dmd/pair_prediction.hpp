@@ -161,7 +161,7 @@ protected:
     [[gnu::always_inline]] void prefetchBody(int j) const {
         const Engine& engine = self();
         prefetchLines(&engine.sys_.bodies[j], sizeof(State));
-        if constexpr (!std::is_empty_v<std::remove_cvref_t<decltype(engine.orbit_[j])>>)
+        if constexpr (!std::is_empty_v<KeptOrbit<K>>)
             prefetchLines(&engine.orbit_[j], sizeof(engine.orbit_[j])); // none kept: none asked for
         __builtin_prefetch(&engine.schedule_.book(j));
     }

@@ -4,18 +4,31 @@
 // An object of an array whose size is not a multiple of 64 B straddles cache lines differently
 // from one element to the next, and a large array is not 64-byte aligned (glibc maps a block of
 // 1 MiB and more at 16 B past a page boundary): a rod's 96-byte state covers two lines or three,
-// its first and last byte then leaving the middle line unasked for. Every line is asked for here.
+// and asking for its first and last byte left the middle one out. Here each line it covers is
+// asked for once.
 #include <cstddef>
+#include <cstdint>
 
 namespace terrace::dmd {
 
-/// Prefetches every cache line that the `bytes` bytes from `p` touch.
+inline constexpr std::uintptr_t cacheLine = 64; // bytes
+
+/// The start of the first cache line the `bytes` (> 0) bytes at `address` touch, and how many.
+struct LinesCovered {
+    std::uintptr_t first;
+    std::size_t count;
+};
+constexpr LinesCovered linesCovered(std::uintptr_t address, std::size_t bytes) {
+    const std::uintptr_t first = address & ~(cacheLine - 1);
+    const std::uintptr_t last = (address + bytes - 1) & ~(cacheLine - 1);
+    return {first, static_cast<std::size_t>((last - first) / cacheLine + 1)};
+}
+
+/// Prefetches every cache line that the `bytes` bytes from `p` touch, each once.
 [[gnu::always_inline]] inline void prefetchLines(const void* p, std::size_t bytes) {
-    const char* b = static_cast<const char*>(p);
-    for (std::size_t k = 0; k < bytes; k += 64)
-        __builtin_prefetch(b + k);
-    __builtin_prefetch(b + bytes -
-                       1); // the last line, where k's steps from a mid-line start miss it
+    const LinesCovered lines = linesCovered(reinterpret_cast<std::uintptr_t>(p), bytes);
+    for (std::size_t k = 0; k < lines.count; ++k)
+        __builtin_prefetch(reinterpret_cast<const void*>(lines.first + k * cacheLine));
 }
 
 } // namespace terrace::dmd

@@ -19,6 +19,7 @@
 // The inner nodes are an implicit tree over L leaves (node k's children 2k and 2k + 1, leaves at
 // L … 2L − 1, any L), aligned so that two siblings share a cache line.
 #include "dmd/event_queue.hpp"
+#include "dmd/prefetch.hpp"
 #include <algorithm>
 #include <cassert>
 #include <cstddef>
@@ -89,9 +90,7 @@ public:
     }
     /// The same for owner b's leaf and path, which a new entry of b walks.
     [[gnu::always_inline]] void prefetchPath(std::size_t b) const {
-        const char* l = reinterpret_cast<const char*>(&leaf_[b]);
-        __builtin_prefetch(l);
-        __builtin_prefetch(l + sizeof(Leaf) - 1);
+        prefetchLines(&leaf_[b], sizeof(Leaf));
         std::size_t k = leaves_ + b;
         for (int level = 0; level < prefetchedLevels && k > 1; ++level, k >>= 1)
             __builtin_prefetch(&node_[k]); // and its sibling: the two share a line
