@@ -1,14 +1,17 @@
 // The lines a prefetch asks for (dmd/prefetch.hpp): every line an object covers, each once,
 // wherever it starts; the layouts the engine prefetches from included.
+#include "core/linear_rotor.hpp"
 #include "dmd/prefetch.hpp"
 #include <gtest/gtest.h>
+#include <vector>
 
 namespace {
 
 using terrace::dmd::linesCovered;
 
 TEST(Prefetch, EveryLineAnObjectCoversOnce) {
-    // A rod's 96-byte state in a mapped array (16 B past a page): two lines, then three.
+    // 96-byte objects in an array mapped 16 B past a page (a rod's states, were they not
+    // aligned): two lines, then three.
     EXPECT_EQ(linesCovered(4096 + 16, 96).count, 2u);
     EXPECT_EQ(linesCovered(4096 + 16 + 96, 96).count, 3u);
     EXPECT_EQ(linesCovered(4096 + 16 + 96, 96).first, 4096u + 64u);
@@ -29,6 +32,20 @@ TEST(Prefetch, EveryLineAnObjectCoversOnce) {
             EXPECT_EQ(lines.count, distinct) << start << " " << bytes;
             EXPECT_EQ(lines.first, start - start % 64);
         }
+}
+
+// A rod's state is aligned to 32 B, so that in any array, a large one that the heap maps 16 B past
+// a page included, each covers two lines and a partner's prediction fetches no third.
+TEST(Prefetch, EveryRodStateInAnArrayCoversTwoLines) {
+    using State = terrace::LinearRotor::State;
+    static_assert(sizeof(State) == 96 && alignof(State) == 32);
+    for (const std::size_t n : {7u, 20000u}) { // 20 000 states: 1.9 MB, a mapped block
+        const std::vector<State> states(n);
+        for (std::size_t i = 0; i < n; ++i)
+            ASSERT_EQ(
+                linesCovered(reinterpret_cast<std::uintptr_t>(&states[i]), sizeof(State)).count, 2u)
+                << "state " << i << " of " << n;
+    }
 }
 
 } // namespace
