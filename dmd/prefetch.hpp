@@ -3,9 +3,10 @@
 //
 // An object of an array whose size is not a multiple of 64 B straddles cache lines differently
 // from one element to the next, and a large array is not 64-byte aligned (glibc maps a block of
-// 1 MiB and more at 16 B past a page boundary): a rod's 96-byte state covers two lines or three,
-// and asking for its first and last byte left the middle one out. Here each line it covers is
-// asked for once.
+// 1 MiB and more at 16 B past a page boundary): a list record of 176 B covers three lines or four,
+// a sphere's 48-byte state one or two, and asking for an object's first and last byte leaves any
+// middle line out. Here each line it covers is asked for once. (A rod's state is aligned to 32 B
+// so that it always covers two: core/linear_rotor.hpp.)
 #include <cstddef>
 #include <cstdint>
 

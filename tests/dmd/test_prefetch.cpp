@@ -7,6 +7,7 @@
 
 namespace {
 
+using terrace::dmd::cacheLine;
 using terrace::dmd::linesCovered;
 
 TEST(Prefetch, EveryLineAnObjectCoversOnce) {
@@ -23,14 +24,14 @@ TEST(Prefetch, EveryLineAnObjectCoversOnce) {
     EXPECT_EQ(linesCovered(8192 + 16, 176).count, 3u);
     EXPECT_EQ(linesCovered(8192 + 48, 176).count, 4u);
     // Against a count of the distinct lines byte by byte, at every offset in a line.
-    for (std::uintptr_t start = 1024; start < 1024 + 64; ++start)
+    for (std::uintptr_t start = 1024; start < 1024 + cacheLine; ++start)
         for (std::size_t bytes : {1u, 8u, 48u, 63u, 64u, 65u, 96u, 128u, 176u, 256u}) {
             std::size_t distinct = 0;
             for (std::uintptr_t a = start; a < start + bytes; ++a)
-                distinct += a == start || a % 64 == 0;
+                distinct += a == start || a % cacheLine == 0;
             const auto lines = linesCovered(start, bytes);
             EXPECT_EQ(lines.count, distinct) << start << " " << bytes;
-            EXPECT_EQ(lines.first, start - start % 64);
+            EXPECT_EQ(lines.first, start - start % cacheLine);
         }
 }
 
