@@ -50,4 +50,13 @@ struct Event {
 };
 static_assert(sizeof(Event) == 32);
 
+/// What the calendar's root tells of an entry's partner (dmd/tournament_queue.hpp topBodies),
+/// so that the engine asks the caches for no more of it than the event will read: j for a
+/// collision, which rewrites both bodies' agendas, lists and entries; −2 − j for another event of
+/// a pair, which reads only j's motion and book; −1 for an event of the owner alone.
+inline std::int32_t rootPartner(const Event& e) {
+    if (e.j < 0 || e.kind == EventKind::Collision) return e.j;
+    return -2 - e.j;
+}
+
 } // namespace terrace::dmd

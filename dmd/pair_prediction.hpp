@@ -157,6 +157,9 @@ protected:
         scheduleBodyEvents(i, entry);
     }
 
+    /// Asks the caches for body i's plan, which every event of i reads and rewrites.
+    [[gnu::always_inline]] void prefetchPlan(int i) const { __builtin_prefetch(&plans_[i]); }
+
     /// Asks the caches for what predictPair reads of body j first.
     [[gnu::always_inline]] void prefetchBody(int j) const {
         const Engine& engine = self();

@@ -55,13 +55,17 @@ struct alignas(64) BodyBook {
     double agendaFirstTime = std::numeric_limits<double>::infinity();
     // time of its calendar entry (+∞: none)
     double queuedAt = std::numeric_limits<double>::infinity();
-    std::uint64_t unsettledRound = 0; // round in which it was last marked unsettled
-    std::uint32_t counter = 0;        // bumped whenever its velocities change
-    std::uint32_t entryStamp = 0;     // stamp of its current calendar entry
-    std::int32_t entryPartner = -1;   // the partner of that entry (−1: a body event, or none)
+    std::uint32_t counter = 0;      // bumped whenever its velocities change
+    std::uint32_t entryStamp = 0;   // stamp of its current calendar entry
+    std::int32_t entryPartner = -1; // the partner of that entry (−1: a body event, or none)
     // Neighbours in the list of the owners whose entry is about that partner (−1: none).
     std::int32_t aboutPrev = -1, aboutNext = -1;
+    // The first owner whose entry is about this body (−1: none): here, not in an array of its
+    // own, because the book is read anyway wherever the list is (settle checks the partner's
+    // counter, invalidate bumps the body's own), and another array was one more miss.
+    std::int32_t aboutFirst = -1;
     std::uint16_t agendaFirst = 0; // index of its earliest event (unknownFirst: scan)
+    bool unsettled = false;        // listed for settle() to renew its entry
 };
 static_assert(sizeof(BodyBook) == 64, "a body's scalars fill one cache line");
 
@@ -75,8 +79,8 @@ public:
         std::variant<BinaryHeapQueue<Event>, BoundedPriorityQueue<Event>, TournamentQueue<Event>>;
 
     Schedule(int bodies, bool eager, double horizon)
-        : book_(bodies), agendas_(bodies), entry_(eager ? bodies : 0), aboutFirst_(bodies, -1),
-          eager_(eager), tuning_(horizon) {}
+        : book_(bodies), agendas_(bodies), entry_(eager ? bodies : 0), eager_(eager),
+          tuning_(horizon) {}
 
     /// The calendar of the kind the settings name, starting at now.
     void openCalendar(QueueKind kind, double horizon, double now) {
@@ -140,8 +144,8 @@ public:
     }
 
     void markUnsettled(int i) {
-        if (book_[i].unsettledRound == settleRound_) return;
-        book_[i].unsettledRound = settleRound_;
+        if (book_[i].unsettled) return;
+        book_[i].unsettled = true;
         unsettled_.push_back(i);
     }
 
@@ -152,6 +156,7 @@ public:
     /// now: the engine's time, from which the bin tuning measures the lead of each push.
     template <class Q> void settle(Q& q, double now) {
         for (const int i : unsettled_) {
+            book_[i].unsettled = false;
             bool moved = false;
             int best = 0;
             PendingEvent a; // the earliest valid event, once found
@@ -186,7 +191,6 @@ public:
             tuning_.pushed(entry.time - now);
         }
         unsettled_.clear();
-        ++settleRound_;
     }
 
     /// i's calendar entry no longer stands: the stamp makes it stale (lazy), or it is erased
@@ -214,15 +218,16 @@ public:
 
     /// The owners whose calendar entry is about i (a pair event with partner i) are listed with i,
     /// so that invalidating i renews those entries at once. Each body has at most one entry, so
-    /// the lists are threaded through the books (aboutPrev, aboutNext) from a first owner per
-    /// body: 4 B a body, and an owner leaves its list the moment its entry stops standing.
+    /// the lists are threaded through the books (aboutPrev, aboutNext) from the first owner in
+    /// the partner's book (aboutFirst), and an owner leaves its list the moment its entry stops
+    /// standing.
     void linkAbout(int owner, int i) {
         BodyBook& b = book_[owner];
         b.entryPartner = i;
         b.aboutPrev = -1;
-        b.aboutNext = aboutFirst_[i];
+        b.aboutNext = book_[i].aboutFirst;
         if (b.aboutNext >= 0) book_[b.aboutNext].aboutPrev = owner;
-        aboutFirst_[i] = owner;
+        book_[i].aboutFirst = owner;
     }
     void unlinkAbout(int owner) {
         BodyBook& b = book_[owner];
@@ -230,7 +235,7 @@ public:
         if (b.aboutPrev >= 0)
             book_[b.aboutPrev].aboutNext = b.aboutNext;
         else
-            aboutFirst_[b.entryPartner] = b.aboutNext;
+            book_[b.entryPartner].aboutFirst = b.aboutNext;
         if (b.aboutNext >= 0) book_[b.aboutNext].aboutPrev = b.aboutPrev;
         b.entryPartner = b.aboutPrev = b.aboutNext = -1;
     }
@@ -276,13 +281,21 @@ public:
     /// erased; either way the same entries are pushed in the same order, so both give the same
     /// trajectory. Other events about i that wait in agendas go stale by its counter and are
     /// dropped when they come first.
-    template <class Q> void invalidate(Q& q, int i) {
+    /// askAhead: whether to ask the caches now for what settle() will read of those bodies, their
+    /// agendas and calendar paths, which in a large system are far and would be waited on when
+    /// the event ends; the event's predictions run meanwhile.
+    template <class Q> void invalidate(Q& q, int i, bool askAhead) {
         ++book_[i].counter;
         dropEntry(q, i);
-        for (int k = aboutFirst_[i]; k >= 0;) {
+        for (int k = book_[i].aboutFirst; k >= 0;) {
             const int next = book_[k].aboutNext;
             dropEntry(q, k); // leaves i's list
             markUnsettled(k);
+            if (askAhead) {
+                agendas_.prefetch(k);
+                if constexpr (requires { q.prefetchPath(std::size_t{}); })
+                    q.prefetchPath(static_cast<std::size_t>(k));
+            }
             k = next;
         }
         forgetAgenda(i);
@@ -320,11 +333,11 @@ public:
     std::size_t queueSize() const {
         return std::visit([](const auto& q) { return q.size(); }, queue_);
     }
-    /// Bytes held, by part: the calendar, the books, the agendas and the lists of owners whose
-    /// entry is about each body; and the events waiting in agendas.
+    /// Bytes held, by part: the calendar, the books (with the lists of owners whose entry is
+    /// about each body) and the agendas; and the events waiting in agendas.
     struct Memory {
-        std::size_t calendar = 0, books = 0, agendas = 0, about = 0; // about: first owners
-        std::size_t agendaEvents = 0;                                // events, not bytes
+        std::size_t calendar = 0, books = 0, agendas = 0;
+        std::size_t agendaEvents = 0; // events, not bytes
     };
     Memory memory() const {
         Memory m;
@@ -333,20 +346,18 @@ public:
         m.books = book_.capacity() * sizeof(BodyBook);
         m.agendas = agendas_.bytesReserved();
         m.agendaEvents = agendas_.events();
-        m.about = aboutFirst_.capacity() * sizeof(std::int32_t);
         return m;
     }
     std::size_t bytesReserved() const {
         const Memory m = memory();
-        return m.calendar + m.books + m.agendas + m.about;
+        return m.calendar + m.books + m.agendas;
     }
-    /// Frees the calendar, the agendas and the lists of owners about each body, keeping the
-    /// books (each body's clock): for an engine about to be dropped (Engine::shed).
+    /// Frees the calendar and the agendas, keeping the books (each body's clock): for an engine
+    /// about to be dropped (Engine::shed).
     void shed() {
         agendas_ = Agendas(0);
         queue_.emplace<BinaryHeapQueue<Event>>();
         std::vector<QueueHandle>().swap(entry_);
-        std::vector<std::int32_t>().swap(aboutFirst_);
         std::vector<int>().swap(unsettled_);
     }
     /// Frees the agenda spills a passing crowd left idle (dmd/agendas.hpp).
@@ -360,11 +371,9 @@ private:
     static constexpr std::uint16_t unknownFirst = std::numeric_limits<std::uint16_t>::max();
 
     std::vector<BodyBook> book_;
-    Agendas agendas_;                      // each body's pending events
-    std::vector<QueueHandle> entry_;       // eager: the handle of each body's calendar entry
-    std::vector<std::int32_t> aboutFirst_; // first owner whose entry is about the body (−1: none)
-    std::vector<int> unsettled_;           // bodies whose entry settle() must renew
-    std::uint64_t settleRound_ = 1;
+    Agendas agendas_;                // each body's pending events
+    std::vector<QueueHandle> entry_; // eager: the handle of each body's calendar entry
+    std::vector<int> unsettled_;     // bodies whose entry settle() must renew
     bool eager_;
     Queue queue_;
     BinTuning tuning_;

@@ -77,7 +77,8 @@ public:
 
     /// The owner and partner (Event::i, Event::j; −1 for none) of the earliest entry, read from
     /// the root alone: in a large system its leaf is far from the caches, and the engine wants
-    /// to ask for the bodies of its next event without first waiting for that leaf.
+    /// to ask for the bodies of its next event without first waiting for that leaf. The partner
+    /// is as rootPartner(entry) gives it where the entry type has one (dmd/event.hpp).
     std::pair<int, int> topBodies() const {
         const Node& root = node_[1];
         if (root.leaf == kNone || root.leaf == leaves_ - 1) return {-1, -1};
@@ -149,7 +150,7 @@ private:
     struct Node {
         double time = std::numeric_limits<double>::infinity();
         std::uint32_t leaf = kNone; // the earliest entry below (kNone: none)
-        std::int32_t partner = -1;  // its Event::j, if events have one: topBodies reads no leaf
+        std::int32_t partner = -1;  // rootPartner or Event::j, if any: topBodies reads no leaf
     };
     static_assert(sizeof(Node) == 16, "two siblings to 32 bytes");
     struct Leaf {
@@ -199,7 +200,10 @@ private:
         const Leaf& l = leaf_[b];
         if (!l.queued) return Node{};
         std::int32_t partner = -1;
-        if constexpr (requires { l.event.j; }) partner = l.event.j;
+        if constexpr (requires { rootPartner(l.event); })
+            partner = rootPartner(l.event);
+        else if constexpr (requires { l.event.j; })
+            partner = l.event.j;
         return Node{l.event.time, static_cast<std::uint32_t>(b), partner};
     }
 

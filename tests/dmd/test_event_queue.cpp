@@ -543,6 +543,31 @@ TEST(EventQueues, TournamentTreeNamesTheTopsBodiesAtItsRoot) {
     EXPECT_EQ(tree.top().j, 2);
 }
 
+// The root tells a collision, which rewrites its partner's agenda, list and entry, from another
+// event of a pair, which reads only the partner's motion and book (dmd/event.hpp rootPartner).
+TEST(EventQueues, TournamentTreeTellsAtItsRootHowMuchOfThePartnerTheTopReads) {
+    TournamentQueue<Event> tree(10);
+    Event e;
+    e.time = 1.0;
+    e.i = 4;
+    e.j = 7;
+    e.kind = EventKind::Virtual;
+    tree.push(e);
+    EXPECT_EQ(tree.topBodies(), std::make_pair(4, -2 - 7));
+    EXPECT_EQ(tree.top().j, 7); // the entry itself keeps its partner
+    e.kind = EventKind::Collision;
+    tree.push(e); // replaces 4's entry
+    EXPECT_EQ(tree.topBodies(), std::make_pair(4, 7));
+    e.j = -1;
+    e.kind = EventKind::Virtual; // a body's own entry event
+    tree.push(e);
+    EXPECT_EQ(tree.topBodies(), std::make_pair(4, -1));
+    e.j = 0;
+    e.kind = EventKind::Virtual; // partner 0 stays apart from "none"
+    tree.push(e);
+    EXPECT_EQ(tree.topBodies(), std::make_pair(4, -2));
+}
+
 TEST(EventQueues, TournamentTreePopsAsTheHeapWhenOwnersDropTheirEntryFirst) {
     constexpr int kOwners = 500;
     TournamentQueue<OwnedEvent> tree(kOwners);
