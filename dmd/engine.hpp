@@ -547,23 +547,31 @@ private:
             if (next.kind != EventKind::Sample) prefetchEvent(next.i, rootPartner(next));
         }
     }
-    /// An event of owner i (none: i < 0) reads all of i's data. Of its partner, as rootPartner
-    /// tells it (dmd/event.hpp), a collision reads as much, and another event of a pair only the
-    /// motion and book that the pair's prediction reads: asking for the partner's agenda, list
-    /// record and calendar path too, as all pair events once did, fetched 7–8 lines and 11 levels
-    /// of a path that nothing read, some 3 % of the time at 10⁶ rods.
+    /// An event of owner i (none: i < 0) reads i's book, agenda, motion and list record. Of its
+    /// partner, as rootPartner tells it (dmd/event.hpp), a collision reads as much, and another
+    /// event of a pair only the motion and book that the pair's prediction reads: asking for the
+    /// partner's agenda, list record and calendar path too, as all pair events once did, fetched
+    /// 7–8 lines and 11 levels of a path that nothing read, some 3 % of the time at 10⁶ rods. The
+    /// bodies' plans and cells are read by every event but a pair's virtual one (resume), which
+    /// only searches on from where the pair's last search ended.
     [[gnu::always_inline]] void prefetchEvent(int i, int partner) const {
         if (i < 0) return;
-        prefetchWhole(i);
-        if (partner >= 0)
-            prefetchWhole(partner);
-        else if (partner <= -2)
+        prefetchShared(i);
+        if (partner <= -2) {
             this->prefetchBody(-2 - partner);
+            return;
+        }
+        prefetchOwn(i);
+        if (partner < 0) return;
+        prefetchShared(partner);
+        prefetchOwn(partner);
     }
-    [[gnu::always_inline]] void prefetchWhole(int i) const {
+    [[gnu::always_inline]] void prefetchShared(int i) const {
         schedule_.prefetch(i);
         this->prefetchBody(i);
         lists_.prefetch(i);
+    }
+    [[gnu::always_inline]] void prefetchOwn(int i) const {
         this->prefetchPlan(i);
         cells_.prefetch(i);
     }
