@@ -157,7 +157,8 @@ protected:
         scheduleBodyEvents(i, entry);
     }
 
-    /// Asks the caches for body i's plan, which every event of i reads and rewrites.
+    /// Asks the caches for body i's plan, which i's events read and rewrite (all but the virtual
+    /// events of its pairs).
     [[gnu::always_inline]] void prefetchPlan(int i) const { __builtin_prefetch(&plans_[i]); }
 
     /// Asks the caches for what predictPair reads of body j first.
