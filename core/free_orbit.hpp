@@ -67,8 +67,12 @@ template <BodyKind K> auto attitudesAt(const FreeOrbit<K>& i, const FreeOrbit<K>
 template <> class FreeOrbit<LinearRotor> {
 public:
     FreeOrbit(const LinearRotor::State& start, const BodyParams&)
-        : s_(start.s), w_(start.w), speed_(start.w.norm()) {
-        if (speed_ != 0.0) sideways_ = (start.w / speed_).cross(start.s);
+        : FreeOrbit(start, start.w.norm()) {}
+    /// The same orbit, bit for bit, from a state whose |ω| is known (speed: start.w.norm()), as
+    /// the DMD engine keeps it in a body's book: one division and a cross product, no root.
+    FreeOrbit(const LinearRotor::State& start, double speed)
+        : s_(start.s), w_(start.w), speed_(speed) {
+        if (speed_ != 0.0) sideways_ = (start.w * (1.0 / speed_)).cross(start.s);
     }
     struct Attitude {
         Vec3 axis;
@@ -116,22 +120,6 @@ public:
     }
     /// The long axis where the orbit is based (after advancedBy: at τ₀).
     const Vec3& axis() const { return s_; }
-
-    /// What an orbit based at its body's state (as constructed, or after advancedBy: no shift)
-    /// holds beyond that state's axis and ω: |ω| and ω̂ × s, 32 bytes. A store of many orbits
-    /// keeps these alone beside the states (dmd/body_clocks.hpp).
-    struct alignas(32) Turn {
-        Vec3 sideways;
-        double speed;
-    };
-    Turn turn() const {
-        assert(shift_ == 0.0);
-        return {sideways_, speed_};
-    }
-    /// The orbit based at axis s and ω with that turn: bit for bit the orbit turn() was taken
-    /// from, given its axis() and ω.
-    FreeOrbit(const Vec3& s, const Vec3& w, const Turn& t)
-        : s_(s), w_(w), speed_(t.speed), sideways_(t.sideways) {}
 
     /// The pair's two sincos in one packed pass. A rotor at rest has speed 0 and a zero sideways
     /// vector, so its angle is 0 and its axis comes out as s exactly, without a branch.

@@ -4,8 +4,9 @@
 // Between events every body moves freely (core freeMove: straight line + exact rotation), so a
 // body's stored state is kept at its own clock and brought to the current time only when it
 // takes part in an event (or at a sample, for all). Its free orbit from that state
-// (core/free_orbit.hpp) is cached beside it: the searches (dmd/pair_prediction.hpp) evaluate U(t)
-// from it without copying states, and a linear rotor is turned on by its orbit alone. With the
+// (core/free_orbit.hpp) serves the searches (dmd/pair_prediction.hpp), which evaluate U(t) from
+// it without copying states, and turns a linear rotor on; it is kept beside the state only where
+// building it costs more than fetching it (keepsOrbit). With the
 // orbit the clock keeps a bound on how fast the body's axis turns, for the search steps and the
 // hold screen. The clock and that bound sit in the body's book (dmd/schedule.hpp BodyBook), in
 // the cache line its event bookkeeping reads anyway.
@@ -13,7 +14,9 @@
 // Apart from the engine so that its event loop reads as the algorithm: every event starts by
 // bringing its bodies to now. A mixin (CRTP), as dmd/pair_prediction.hpp: BodyClocks is a base of
 // the engine, owns the orbits and moves the engine's bodies. Units: Å, time unit 100 fs.
+#include "core/asymmetric_top.hpp"
 #include "core/free_orbit.hpp"
+#include "core/linear_rotor.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "core/system.hpp"
@@ -24,32 +27,17 @@
 
 namespace terrace::dmd {
 
-/// What the clocks keep of a body's orbit: what its state at the clock does not already hold,
-/// from which of(state, params) gives the orbit back, bit for bit. In a large system a partner's
-/// orbit is a miss at every prediction, so the less kept, the fewer lines fetched:
-/// - an asymmetric top: the whole orbit (its prepared free rotation);
-/// - a linear rotor: the orbit, based at its clock, holds the state's own axis and ω, so only its
-///   turn (|ω| and ω̂ × s) is kept, 32 B in one line instead of 88 B over two or three;
-/// - a sphere (nothing turns) and a symmetric top (whose orbit is a copy of the state, rotated
-///   afresh at every τ): nothing.
-template <BodyKind K> struct KeptOrbit {
-    FreeOrbit<K> orbit;
-    explicit KeptOrbit(const FreeOrbit<K>& o) : orbit(o) {}
-    const FreeOrbit<K>& of(const typename K::State&, const BodyParams&) const { return orbit; }
-};
-template <> struct KeptOrbit<LinearRotor> {
-    FreeOrbit<LinearRotor>::Turn turn;
-    explicit KeptOrbit(const FreeOrbit<LinearRotor>& o) : turn(o.turn()) {}
-    FreeOrbit<LinearRotor> of(const LinearRotor::State& b, const BodyParams&) const {
-        return {b.s, b.w, turn};
-    }
-};
-template <BodyKind K>
-requires(std::is_same_v<K, Sphere> || std::is_same_v<K, SymmetricTop>) struct KeptOrbit<K> {
-    explicit KeptOrbit(const FreeOrbit<K>&) {}
-    FreeOrbit<K> of(const typename K::State& b, const BodyParams& p) const { return {b, p}; }
-};
-static_assert(sizeof(KeptOrbit<LinearRotor>) == 32);
+/// Whether the clocks keep each body's orbit beside its state, or build it from the state (and
+/// the book's |ω|) whenever a search or a flight asks for it. In a large system a kept orbit is
+/// one more line fetched for every body an event touches, its own and each partner's, so it is
+/// kept only where building it costs more than a miss:
+/// - an asymmetric top: kept (its prepared free rotation, elliptic functions and all);
+/// - a linear rotor: built (s and ω are the state's; |ω| is the book's axis rate, so ω̂ × s takes
+///   one division and a cross product); keeping the 32 B of |ω| and ω̂ × s in an array of their
+///   own cost ~10 % per event at 10⁶ rods (docs/PERFORMANCE.md);
+/// - a sphere (nothing turns) and a symmetric top (its orbit is a copy of the state, rotated
+///   afresh at every τ): built, a copy.
+template <BodyKind K> inline constexpr bool keepsOrbit = std::is_same_v<K, AsymmetricTop>;
 
 /// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
 template <BodyKind K, PairPotential P, class Engine> class BodyClocks {
@@ -59,9 +47,10 @@ protected:
     /// Each body's orbit from its state at its clock (all clocks set).
     void cacheOrbits() {
         Engine& engine = self();
-        orbit_.reserve(engine.sys_.bodies.size());
+        if constexpr (keepsOrbit<K>) orbit_.reserve(engine.sys_.bodies.size());
         for (int i = 0; i < engine.sys_.size(); ++i) {
-            orbit_.emplace_back(FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body));
+            if constexpr (keepsOrbit<K>)
+                orbit_.emplace_back(engine.sys_.bodies[i], engine.sys_.body);
             engine.schedule_.book(i).axisRate = axisRateBound(engine.sys_.bodies[i]);
         }
     }
@@ -77,13 +66,11 @@ protected:
         const double dt = engine.time_ - engine.schedule_.book(i).clock;
         engine.schedule_.book(i).clock = engine.time_;
         if constexpr (std::is_same_v<K, LinearRotor>) {
-            // A rotor's ω is constant in free flight: its cached orbit, turned on by dt, gives
-            // its new axis and stays its orbit (FreeOrbit::advancedBy).
+            // A rotor's ω is constant in free flight: its orbit, turned on by dt, gives its new
+            // axis (FreeOrbit::advancedBy), and |ω| in the book stays.
             State& b = engine.sys_.bodies[i];
             b.r = translated(b.r, b.v, dt);
-            const FreeOrbit<K> turned = orbitOf(i).advancedBy(dt); // from b.s before it turns
-            b.s = turned.axis();
-            orbit_[i] = KeptOrbit<K>(turned);
+            b.s = orbitOf(i).advancedBy(dt).axis(); // from b.s before it turns
         } else {
             freeMove<K>(engine.sys_.bodies[i], engine.sys_.body, dt);
             refreshOrbit(i);
@@ -94,7 +81,8 @@ protected:
     /// of other kinds).
     void refreshOrbit(int i) {
         Engine& engine = self();
-        orbit_[i] = KeptOrbit<K>(FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body));
+        if constexpr (keepsOrbit<K>)
+            orbit_[i] = FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body);
         engine.schedule_.book(i).axisRate = axisRateBound(engine.sys_.bodies[i]);
     }
 
@@ -119,13 +107,20 @@ protected:
             bringToNow(i);
     }
 
-    /// Body i's free orbit from its state at its clock (unless the whole orbit is kept, built
-    /// from the state: a value, not a reference).
+    /// Body i's free orbit from its state at its clock: the kept one, or one built from the state
+    /// (a value, not a reference).
     decltype(auto) orbitOf(int i) const {
-        return orbit_[i].of(self().sys_.bodies[i], self().sys_.body);
+        const Engine& engine = self();
+        if constexpr (keepsOrbit<K>)
+            return orbit_[i];
+        else if constexpr (std::is_same_v<K, LinearRotor>)
+            return FreeOrbit<K>(engine.sys_.bodies[i], engine.schedule_.book(i).axisRate);
+        else
+            return FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body);
     }
 
-    std::vector<KeptOrbit<K>> orbit_; // each body's free orbit from its state at its clock
+    // each body's free orbit from its state at its clock, where kept (keepsOrbit); else empty
+    std::vector<FreeOrbit<K>> orbit_;
 
 private:
     const Engine& self() const { return static_cast<const Engine&>(*this); }

@@ -345,7 +345,7 @@ public:
     /// (synchronisedCopy, releaseSystem) and destruction may follow, and no advanceTo.
     void shed() {
         schedule_.shed();
-        std::vector<KeptOrbit<K>>().swap(orbit_);
+        std::vector<FreeOrbit<K>>().swap(orbit_);
         shed_ = true;
     }
     /// The RMS displacement at which orderHasDecayed (Å; 0: never).
@@ -399,7 +399,7 @@ public:
     std::vector<std::pair<const char*, std::size_t>>
     memoryByPart(const typename Schedule<Engine>::Memory& sched) const {
         return {{"states", sys_.bodies.capacity() * sizeof(State)},
-                {"orbits", orbit_.capacity() * sizeof(KeptOrbit<K>)},
+                {"orbits", orbit_.capacity() * sizeof(FreeOrbit<K>)},
                 {"books", sched.books},
                 {"agendas", sched.agendas},
                 {"calendar", sched.calendar},

@@ -165,7 +165,7 @@ protected:
     [[gnu::always_inline]] void prefetchBody(int j) const {
         const Engine& engine = self();
         prefetchLines(&engine.sys_.bodies[j], sizeof(State));
-        if constexpr (!std::is_empty_v<KeptOrbit<K>>)
+        if constexpr (keepsOrbit<K>)
             prefetchLines(&engine.orbit_[j], sizeof(engine.orbit_[j])); // none kept: none asked for
         __builtin_prefetch(&engine.schedule_.book(j));
     }
@@ -247,7 +247,8 @@ protected:
         const double horizon = jitter_.next();
         if (win.enter > horizon) return engine.time_ + win.enter;
         // Body j's attitude now serves the hold screen; its orbit is built only for a search.
-        const auto ajNow = engine.orbitOf(j).startOf(dtj);
+        const auto& orbitJAtClock = engine.orbitOf(j); // built (a rotor's): once a pair
+        const auto ajNow = orbitJAtClock.startOf(dtj);
         const auto sampleWith = [&](double tau, const auto& attitudes) {
             const auto& [ai, aj] = attitudes;
             const EnergyRate e =
@@ -280,7 +281,7 @@ protected:
                     return none;
                 }
             }
-        const FreeOrbit<K> orbitJ = engine.orbitOf(j).from(dtj);
+        const FreeOrbit<K> orbitJ = orbitJAtClock.from(dtj);
         auto eval = [&](double tau) { return sampleWith(tau, attitudesAt(mi.orbit, orbitJ, tau)); };
         PairSample start;
         if (resumeFrom && win.enter == 0.0) {
