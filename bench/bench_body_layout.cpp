@@ -1,6 +1,7 @@
 // Question: what does it cost DMD to fetch a listed partner's data as N grows, and does the
-// layout change it? The engine keeps a body's state (96 B for a rod), free orbit (88 B) and book
-// (64 B) in three arrays (sys_.bodies, Clocks::orbit_, Schedule::book_); against it, the orbit
+// layout change it? The engine kept a body's state (96 B for a rod), free orbit (88 B) and book
+// (64 B) in three arrays (sys_.bodies, Clocks::orbit_, Schedule::book_) when this was written (a
+// rod's orbit is now built from its state, dmd/body_clocks.hpp keepsOrbit); against it, the orbit
 // and book side by side beside the states, one 256-byte record per body, records of 3 and 2 cache
 // lines (what a compacted partner could be), and one record with a fifth, redundant prefetch.
 //
