@@ -34,7 +34,8 @@ namespace terrace::dmd {
 /// - an asymmetric top: kept (its prepared free rotation, elliptic functions and all);
 /// - a linear rotor: built (s and ω are the state's; |ω| is the book's axis rate, so ω̂ × s takes
 ///   one division and a cross product); keeping the 32 B of |ω| and ω̂ × s in an array of their
-///   own cost ~10 % per event at 10⁶ rods (docs/PERFORMANCE.md);
+///   own was 13 % of the lines an event read from memory at 262 144 rods, though not measurably
+///   of its time, and 32 B per body (docs/PERFORMANCE.md);
 /// - a sphere (nothing turns) and a symmetric top (its orbit is a copy of the state, rotated
 ///   afresh at every τ): built, a copy.
 template <BodyKind K> inline constexpr bool keepsOrbit = std::is_same_v<K, AsymmetricTop>;

@@ -558,7 +558,7 @@ private:
         if (i < 0) return;
         prefetchShared(i);
         if (partner <= -2) {
-            this->prefetchBody(-2 - partner);
+            this->prefetchBody(pairPartnerOfRootCode(partner));
             return;
         }
         prefetchOwn(i);

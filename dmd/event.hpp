@@ -58,5 +58,9 @@ inline std::int32_t rootPartner(const Event& e) {
     if (e.j < 0 || e.kind == EventKind::Collision) return e.j;
     return -2 - e.j;
 }
+/// The partner of a pair's other event from its rootPartner code (≤ −2).
+inline int pairPartnerOfRootCode(int code) {
+    return -2 - code;
+}
 
 } // namespace terrace::dmd

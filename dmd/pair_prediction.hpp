@@ -246,8 +246,9 @@ protected:
         if (win.empty()) return none;
         const double horizon = jitter_.next();
         if (win.enter > horizon) return engine.time_ + win.enter;
-        // Body j's attitude now serves the hold screen; its orbit is built only for a search.
-        const auto& orbitJAtClock = engine.orbitOf(j); // built (a rotor's): once a pair
+        // Body j's attitude now serves the hold screen; its orbit from now is built only for a
+        // search. Its orbit at its clock (built, for a rotor) gives both: taken once.
+        const auto& orbitJAtClock = engine.orbitOf(j);
         const auto ajNow = orbitJAtClock.startOf(dtj);
         const auto sampleWith = [&](double tau, const auto& attitudes) {
             const auto& [ai, aj] = attitudes;

@@ -234,30 +234,13 @@ TEST(FreeOrbit, AdvancedOrbitFollowsFreeMove) {
     EXPECT_LE((orbit.axis() - exact.s).norm(), 1e-9);
 }
 
-// The DMD engine keeps no orbit for a rotor (dmd/body_clocks.hpp keepsOrbit): it builds one from
-// the state and the |ω| its book holds wherever a search or a flight asks. That orbit is the one
-// built from the state alone, bit for bit, rotors at rest too; and a rotor flown the engine's way,
-// 10⁵ flights each from an orbit built afresh from the state the last one left (its s
-// renormalised, ω̂ × s rebuilt from it), stays a unit axis perpendicular to ω and on the exact
-// rotation, as the carried orbit does above.
-TEST(FreeOrbit, ARotorsOrbitFromItsStateAndSpeedIsTheOrbitAndFliesTrue) {
+// The DMD engine keeps no orbit for a rotor (dmd/body_clocks.hpp keepsOrbit): at every flight it
+// builds one from the state the last flight left (its s renormalised, ω̂ × s rebuilt from it, |ω|
+// as its book holds it) instead of carrying the orbit along as above. Over 10⁵ flights the axis
+// stays a unit vector perpendicular to ω and on the exact rotation, as the carried orbit does.
+TEST(FreeOrbit, ARotorFlownFromItsStateAtEveryFlightStaysOnItsExactRotation) {
     std::mt19937_64 rng(37);
     const BodyParams p{18.0, Vec3(1.154, 1.154, 0.0)};
-    auto same = [](const Vec3& a, const Vec3& b) {
-        for (int k = 0; k < 3; ++k)
-            if (std::bit_cast<std::uint64_t>(a[k]) != std::bit_cast<std::uint64_t>(b[k]))
-                return false;
-        return true;
-    };
-    for (int k = 0; k < 40; ++k) {
-        const LinearRotor::State b = spinningRotor(rng, k % 8 == 0 ? 0.0 : 0.7 * k);
-        const FreeOrbit<LinearRotor> built(b, p), fromSpeed(b, b.w.norm());
-        for (double tau : taus) {
-            EXPECT_TRUE(same(fromSpeed.at(tau).axis, built.at(tau).axis)) << k << " " << tau;
-            EXPECT_TRUE(same(fromSpeed.from(tau).at(0.01).axis, built.from(tau).at(0.01).axis));
-            EXPECT_TRUE(same(fromSpeed.advancedBy(tau).axis(), built.advancedBy(tau).axis()));
-        }
-    }
     LinearRotor::State flown = spinningRotor(rng, 30.0);
     const LinearRotor::State start = flown;
     const double speed = flown.w.norm();
