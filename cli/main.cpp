@@ -13,6 +13,7 @@
 #include "cli/run_command.hpp"
 #include "cli/run_driver.hpp"
 #include "cli/sweep_mpi.hpp"
+#include "core/huge_pages.hpp"
 #include "core/xyz.hpp"
 #include <algorithm>
 #include <boost/program_options.hpp>
@@ -82,6 +83,9 @@ Usage:
 SIGINT, SIGTERM and SIGHUP end a run at the next sample with its output written (exit
 status 128 + the signal's number; the analysis, accumulated as the run went, is written
 too); a third signal ends the process at once.
+Per-body arrays of 2 MiB and more are mapped on 2-MiB boundaries and advised for transparent
+huge pages (fewer TLB misses at large N; TERRACE_HUGE_PAGES=0 in the environment turns the
+advice off, for measuring it). summary.json's memory_in_huge_pages_bytes says what the kernel gave.
 Units: lengths in Angstrom, masses g/mol, energies kJ/mol, times fs/ps on input and output.
 )";
 
@@ -330,6 +334,7 @@ int main(int argc, char** argv) {
     const std::string command = args[0];
     args.erase(args.begin());
     try {
+        hugePagesWanted(); // a misspelt TERRACE_HUGE_PAGES is an error before anything runs
         if (command == "run") return checkedStdout(runMain(args));
         if (command == "analyse" || command == "analyze") return checkedStdout(analyseMain(args));
         if (command == "compare") return checkedStdout(compareMain(args));

@@ -22,6 +22,7 @@
 // and goes on.
 // At every restart point the running engine is rebuilt the same way, so that a run continued from
 // a restart file undergoes the same events and writes the same bytes as one that never stopped.
+#include "core/huge_pages.hpp"
 #include "core/output_file.hpp"
 #include "core/snapshot.hpp"
 #include <cstdint>
@@ -84,7 +85,7 @@ template <class State, class F> void forEachField(State& b, F&& f) {
 }
 
 /// Every number of every body's state, in order, as raw bytes: exact, and compact in CBOR.
-template <class State> nlohmann::json bodiesToBinary(const std::vector<State>& bodies) {
+template <class State, class A> nlohmann::json bodiesToBinary(const std::vector<State, A>& bodies) {
     std::vector<std::uint8_t> bytes;
     std::size_t perBody = 0; // reserved whole: grown, it could hold twice the bytes
     const State probe{};
@@ -98,9 +99,9 @@ template <class State> nlohmann::json bodiesToBinary(const std::vector<State>& b
     return nlohmann::json::binary(std::move(bytes));
 }
 
-template <class State> std::vector<State> bodiesFromBinary(const nlohmann::json& j, int n) {
+template <class State> BodyArray<State> bodiesFromBinary(const nlohmann::json& j, int n) {
     const auto& bytes = j.get_binary();
-    std::vector<State> bodies(n);
+    BodyArray<State> bodies(n);
     std::size_t at = 0;
     for (auto& b : bodies)
         forEachField(b, [&](auto& m) {

@@ -253,6 +253,8 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     // Renumberings of the bodies as the liquid diffused (dmd.resort_cells); SMD re-sorts its own
     // at every list build.
     if (scene.engine == "dmd") summary["resorts"] = run.resorts;
+    // Of the whole process, at the end of the engine that held most (core/huge_pages.hpp).
+    summary["memory_in_huge_pages_bytes"] = run.hugePageBytes;
     addEnergy(summary, run);
     if (!run.records.empty())
         summary["pressure"] =

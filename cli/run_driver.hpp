@@ -27,6 +27,7 @@
 #include "cli/restart.hpp"
 #include "cli/thermo.hpp"
 #include "core/engine.hpp"
+#include "core/huge_pages.hpp"
 #include "core/output_file.hpp"
 #include "core/scene.hpp"
 #include "core/units.hpp"
@@ -121,6 +122,7 @@ struct RunRecord {
     std::string interruptedIn;         // equilibration | production | analysis
     std::string failure;               // the first error that ended the run ("" if none)
     long restartsWritten = 0;          // restart files written over the whole run
+    std::size_t hugePageBytes = 0;     // most of the process seen in huge pages at an engine's end
     long resorts = 0;                  // DMD: bodies renumbered at a sample (dmd.resort_cells)
     int continuations = 0;             // times the run was continued from a restart file
     double restartEveryPs = 0.0;       // 0: no restart files
@@ -337,7 +339,11 @@ RunOutcome drive(std::unique_ptr<E>& engine, const Scene& scene, const RunTarget
         double time = 0.0;
         Vec3 momentum = Vec3::Zero();
     } last;
-    auto endOf = [](const E& e) { return EngineEnd{e.statistics(), e.time(), e.totalMomentum()}; };
+    auto endOf = [&run](const E& e) {
+        // The engine's arrays are all there now: what of the process lies in huge pages.
+        run.hugePageBytes = std::max(run.hugePageBytes, processHugePageBytes());
+        return EngineEnd{e.statistics(), e.time(), e.totalMomentum()};
+    };
     // A restart point: the engine is rebuilt from its bodies and checkpoint, exactly as a run
     // continued from the file written here builds it. Nothing the size of an engine lives beside
     // one: the bodies are moved out of the old engine, which is dropped before the new one is

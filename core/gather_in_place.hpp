@@ -12,7 +12,7 @@ namespace terrace {
 /// 0 … n−1: each cycle of it is walked once, one element held aside, so the cost is n moves (and
 /// one more per cycle) and n bits. To scatter (item i to place to(i)), gather with the inverse of
 /// `to`.
-template <class T, class From> void gatherInPlace(std::vector<T>& items, From&& from) {
+template <class T, class A, class From> void gatherInPlace(std::vector<T, A>& items, From&& from) {
     const int n = static_cast<int>(items.size());
     std::vector<bool> placed(static_cast<std::size_t>(n), false);
     for (int start = 0; start < n; ++start) {

@@ -4,6 +4,7 @@
 #include "core/body_kind.hpp"
 #include "core/body_orientation.hpp"
 #include "core/box.hpp"
+#include "core/huge_pages.hpp"
 #include "core/pair_potential.hpp"
 #include <cmath>
 #include <vector>
@@ -16,8 +17,8 @@ template <BodyKind K, PairPotential P> struct System {
     PeriodicBox box;
     BodyParams body;
     P potential;
-    std::vector<typename K::State> bodies;
-    double kT = 0.0; // thermal energy of the state point, kJ/mol
+    BodyArray<typename K::State> bodies; // in huge pages when large (core/huge_pages.hpp)
+    double kT = 0.0;                     // thermal energy of the state point, kJ/mol
 
     int size() const { return static_cast<int>(bodies.size()); }
 };

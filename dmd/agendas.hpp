@@ -16,6 +16,7 @@
 //
 // The order of a body's events is that of a vector whose removal moves the last event into the
 // gap: the slots of the block first, then the spill. Times in the engine's unit (100 fs).
+#include "core/huge_pages.hpp"
 #include "dmd/event.hpp"
 #include "dmd/prefetch.hpp"
 #include "dmd/spill_pool.hpp"
@@ -208,7 +209,7 @@ private:
     }
     int takeSpill() { return takeFromPool(spill_, freeSpill_); }
 
-    std::vector<Block> block_;
+    BodyArray<Block> block_;
     std::vector<std::vector<Spilled>> spill_; // overflow beyond the blocks, pooled
     std::vector<int> freeSpill_;              // spill vectors no body holds
 };

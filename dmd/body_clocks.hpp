@@ -121,7 +121,7 @@ protected:
     }
 
     // each body's free orbit from its state at its clock, where kept (keepsOrbit); else empty
-    std::vector<FreeOrbit<K>> orbit_;
+    BodyArray<FreeOrbit<K>> orbit_;
 
 private:
     const Engine& self() const { return static_cast<const Engine&>(*this); }

@@ -8,6 +8,7 @@
 // place and schedule the same crossing again at zero delay.
 // With fewer than 3 cells per side the 27 neighbouring cells would repeat; then one cell holds
 // every body and all pairs are neighbours (no crossing events). Units: Å, time unit 100 fs.
+#include "core/huge_pages.hpp"
 #include "core/vec.hpp"
 #include "dmd/prefetch.hpp"
 #include <algorithm>
@@ -189,8 +190,8 @@ private:
     double box_;
     int n_ = 1;
     double edge_ = 0.0;
-    std::vector<int> head_, next_, prev_, cell_;
-    std::vector<std::array<std::int64_t, 3>> coord_;
+    BodyArray<int> head_, next_, prev_, cell_;
+    BodyArray<std::array<std::int64_t, 3>> coord_;
 };
 
 } // namespace terrace::dmd

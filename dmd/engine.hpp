@@ -345,7 +345,7 @@ public:
     /// (synchronisedCopy, releaseSystem) and destruction may follow, and no advanceTo.
     void shed() {
         schedule_.shed();
-        std::vector<FreeOrbit<K>>().swap(orbit_);
+        BodyArray<FreeOrbit<K>>().swap(orbit_);
         shed_ = true;
     }
     /// The RMS displacement at which orderHasDecayed (Å; 0: never).

@@ -29,6 +29,7 @@
 // list is one contiguous run of partners) and back when it fits again. One std::vector per list
 // and per body's terraces cost ~100 B a body more in headers, heap-block overhead and the slack
 // of the largest size each had reached.
+#include "core/huge_pages.hpp"
 #include "core/vec.hpp"
 #include "dmd/prefetch.hpp"
 #include "dmd/spill_pool.hpp"
@@ -273,8 +274,8 @@ private:
     double skin_;
     int capacity_;
     std::size_t stride_;
-    std::vector<std::int32_t> record_; // a record of stride_ slots per body
-    std::vector<Vec3> anchor_;
+    BodyArray<std::int32_t> record_; // a record of stride_ slots per body
+    BodyArray<Vec3> anchor_;
     std::vector<Spill> spill_; // lists beyond their records, pooled
     std::vector<int> freeSpill_;
     std::vector<Kept> kept_; // rebuild: i's pairs off terrace 0

@@ -450,7 +450,7 @@ protected:
     bool holdScreen_ = true;
 
 private:
-    std::vector<BodyPlan> plans_;
+    BodyArray<BodyPlan> plans_;
     TerraceBandTable bands_; // effective-distance bands of the terraces (hold screen)
     // The hold screen's ceiling on r (dmd/terrace_hold.hpp bandCeiling), Å.
     double ceiling_;

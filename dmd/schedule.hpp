@@ -19,6 +19,7 @@
 // of its fields are the schedule's, and the clock and axis rate that the engine and the searches
 // read share its cache line. Times in the engine's unit (100 fs).
 #include "core/branch_free.hpp"
+#include "core/huge_pages.hpp"
 #include "dmd/agendas.hpp"
 #include "dmd/bin_tuning.hpp"
 #include "dmd/binary_heap_queue.hpp"
@@ -370,7 +371,7 @@ public:
 private:
     static constexpr std::uint16_t unknownFirst = std::numeric_limits<std::uint16_t>::max();
 
-    std::vector<BodyBook> book_;
+    BodyArray<BodyBook> book_;
     Agendas agendas_;                // each body's pending events
     std::vector<QueueHandle> entry_; // eager: the handle of each body's calendar entry
     std::vector<int> unsettled_;     // bodies whose entry settle() must renew

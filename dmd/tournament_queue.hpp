@@ -18,16 +18,14 @@
 // 48-B leaf per body, with no stale entries (a heap of lazy entries holds ~1.75 per body).
 // The inner nodes are an implicit tree over L leaves (node k's children 2k and 2k + 1, leaves at
 // L … 2L − 1, any L), aligned so that two siblings share a cache line.
+#include "core/huge_pages.hpp"
 #include "dmd/event_queue.hpp"
 #include "dmd/prefetch.hpp"
 #include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <limits>
-#include <memory>
-#include <new>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -40,20 +38,9 @@ public:
     explicit TournamentQueue(int owners) : leaves_(static_cast<std::size_t>(owners) + 1) {
         if (owners < 0) throw std::invalid_argument("TournamentQueue: owners must be >= 0");
         leaf_.resize(leaves_);
-        node_.reset(allocateNodes(2 * leaves_));
+        node_.resize(2 * leaves_);
         rebuild();
     }
-    TournamentQueue(const TournamentQueue& other)
-        : leaves_(other.leaves_), size_(other.size_), nextSequence_(other.nextSequence_),
-          leaf_(other.leaf_), node_(allocateNodes(2 * other.leaves_)) {
-        std::copy(other.node_.get(), other.node_.get() + 2 * leaves_, node_.get());
-    }
-    TournamentQueue& operator=(const TournamentQueue& other) {
-        if (this != &other) *this = TournamentQueue(other);
-        return *this;
-    }
-    TournamentQueue(TournamentQueue&&) noexcept = default;
-    TournamentQueue& operator=(TournamentQueue&&) noexcept = default;
 
     /// Queues e as its owner's entry, in place of the one it had, if any.
     QueueHandle push(const E& e) {
@@ -138,7 +125,7 @@ public:
     }
 
     std::size_t bytesReserved() const {
-        return 2 * leaves_ * sizeof(Node) + leaf_.capacity() * sizeof(Leaf);
+        return node_.capacity() * sizeof(Node) + leaf_.capacity() * sizeof(Leaf);
     }
 
 private:
@@ -159,20 +146,6 @@ private:
         std::uint32_t generation = 1; // of its entry; changes whenever an entry leaves (0 never)
         bool queued = false;
     };
-    struct FreeNodes {
-        void operator()(Node* p) const { std::free(p); }
-    };
-
-    static Node* allocateNodes(std::size_t n) {
-        constexpr std::size_t line = 64;
-        const std::size_t bytes = (n * sizeof(Node) + line - 1) / line * line;
-        void* raw = std::aligned_alloc(line, bytes);
-        if (!raw) throw std::bad_alloc();
-        Node* nodes = static_cast<Node*>(raw);
-        for (std::size_t k = 0; k < n; ++k)
-            new (&nodes[k]) Node{};
-        return nodes;
-    }
 
     std::size_t leafOf(const E& e) const {
         if (e.i < 0) return leaves_ - 1;
@@ -232,8 +205,8 @@ private:
     std::size_t leaves_;
     std::size_t size_ = 0;
     std::uint64_t nextSequence_ = 0;
-    std::vector<Leaf> leaf_;
-    std::unique_ptr<Node[], FreeNodes> node_; // node_[0] unused; node_[1] the root
+    BodyArray<Leaf> leaf_;
+    BodyArray<Node> node_; // node_[0] unused; node_[1] the root; 64-B aligned (HugePageAllocator)
 };
 
 } // namespace terrace::dmd
