@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <sys/mman.h>
+#include <unistd.h>
 
 namespace terrace {
 
@@ -20,12 +21,13 @@ bool hugePagesWanted() {
 
 namespace {
 std::size_t pageRounded(std::size_t bytes) {
-    constexpr std::size_t page = 4096;
+    static const std::size_t page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
     return (bytes + page - 1) / page * page;
 }
 } // namespace
 
 void* mapLargeBlock(std::size_t bytes, bool advise) {
+    if (bytes > std::numeric_limits<std::size_t>::max() / 2) throw std::bad_alloc();
     const std::size_t length = pageRounded(bytes);
     // Map a huge page more than asked for, then give back what lies before the first 2-MiB
     // boundary and after the block: a huge page can only back a 2-MiB-aligned stretch that lies
@@ -49,7 +51,7 @@ void unmapLargeBlock(void* p, std::size_t bytes) noexcept {
 }
 
 PagesOfMapping pagesOfMapping(const void* p) {
-    PagesOfMapping found;
+    PagesOfMapping mapping;
     std::ifstream smaps("/proc/self/smaps");
     const auto address = reinterpret_cast<std::uintptr_t>(p);
     std::string line;
@@ -61,6 +63,7 @@ PagesOfMapping pagesOfMapping(const void* p) {
             line.find('-') < line.find(' ')) {
             if (inside) break;
             inside = address >= from && address < to;
+            mapping.found = mapping.found || inside;
             continue;
         }
         if (!inside) continue;
@@ -70,14 +73,14 @@ PagesOfMapping pagesOfMapping(const void* p) {
         if (key == "AnonHugePages:") {
             std::size_t kB = 0;
             fields >> kB;
-            found.hugeBytes = kB * 1024;
+            mapping.hugeBytes = kB * 1024;
         } else if (key == "VmFlags:") {
             std::string flag;
             while (fields >> flag)
-                if (flag == "hg") found.advised = true;
+                if (flag == "hg") mapping.advised = true;
         }
     }
-    return found;
+    return mapping;
 }
 
 std::size_t processHugePageBytes() {

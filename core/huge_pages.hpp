@@ -37,10 +37,11 @@ bool hugePagesWanted();
 void* mapLargeBlock(std::size_t bytes, bool advise);
 void unmapLargeBlock(void* p, std::size_t bytes) noexcept;
 
-/// What /proc/self/smaps says of the mapping that holds p: advised for huge pages (VmFlags "hg"),
-/// and how many of its bytes lie in huge pages now (AnonHugePages). Both false/0 where the file
-/// cannot be read.
+/// What /proc/self/smaps says of the mapping that holds p: whether there is one (found: false also
+/// where the file cannot be read), advised for huge pages (VmFlags "hg"), and how many of its
+/// bytes lie in huge pages now (AnonHugePages).
 struct PagesOfMapping {
+    bool found = false;
     bool advised = false;
     std::size_t hugeBytes = 0;
 };
@@ -61,6 +62,7 @@ template <class T> struct HugePageAllocator {
     static constexpr std::size_t alignment = alignof(T) > 64 ? alignof(T) : 64;
 
     T* allocate(std::size_t n) {
+        static_assert(alignof(T) <= hugePageBytes, "a mapped block is aligned to a huge page");
         if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
         const std::size_t bytes = n * sizeof(T);
         if (bytes >= hugePageThreshold)

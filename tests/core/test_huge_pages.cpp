@@ -5,34 +5,54 @@
 #include "core/huge_pages.hpp"
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
 #include <gtest/gtest.h>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <sys/mman.h>
 
 using namespace terrace;
 
 namespace {
-// The kernel has transparent huge pages (in any mode): MADV_HUGEPAGE is then taken and shows as
-// "hg" among the mapping's VmFlags.
+// The kernel has transparent huge pages (in any mode) when it takes MADV_HUGEPAGE on a mapping of
+// its own (EINVAL otherwise); the advice then shows as "hg" among the mapping's VmFlags.
 bool kernelHasHugePages() {
-    return std::filesystem::exists("/sys/kernel/mm/transparent_hugepage/enabled");
+    const std::size_t bytes = 2 * hugePageBytes;
+    void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) throw std::runtime_error("test: no scratch mapping");
+    const bool taken = madvise(p, bytes, MADV_HUGEPAGE) == 0;
+    munmap(p, bytes);
+    return taken;
 }
 std::uintptr_t address(const void* p) {
     return reinterpret_cast<std::uintptr_t>(p);
 }
 
-struct UnsetSwitch { // leaves TERRACE_HUGE_PAGES as the test found it: unset
-    ~UnsetSwitch() { unsetenv("TERRACE_HUGE_PAGES"); }
+// Starts a test without TERRACE_HUGE_PAGES and restores it as the test found it.
+class SwitchRestored {
+public:
+    SwitchRestored() {
+        if (const char* v = std::getenv("TERRACE_HUGE_PAGES")) before_ = v;
+        unsetenv("TERRACE_HUGE_PAGES");
+    }
+    ~SwitchRestored() {
+        if (before_)
+            setenv("TERRACE_HUGE_PAGES", before_->c_str(), 1);
+        else
+            unsetenv("TERRACE_HUGE_PAGES");
+    }
+
+private:
+    std::optional<std::string> before_;
 };
 } // namespace
 
 TEST(HugePages, ALargeArrayStartsOnAHugePageBoundaryAndIsAdvised) {
-    UnsetSwitch unset;
-    unsetenv("TERRACE_HUGE_PAGES");
+    SwitchRestored restored;
     BodyArray<double> values(hugePageThreshold / sizeof(double) + 3);
     EXPECT_EQ(address(values.data()) % hugePageBytes, 0u);
     const PagesOfMapping pages = pagesOfMapping(values.data());
+    ASSERT_TRUE(pages.found) << "no mapping in /proc/self/smaps holds the block";
     EXPECT_EQ(pages.advised, kernelHasHugePages());
     for (std::size_t k = 0; k < values.size(); ++k)
         values[k] = double(k);
@@ -44,20 +64,26 @@ TEST(HugePages, ALargeArrayStartsOnAHugePageBoundaryAndIsAdvised) {
 TEST(HugePages, ASmallArrayComesFromTheHeapAlignedToACacheLine) {
     BodyArray<char> bytes(1000, 'x');
     EXPECT_EQ(address(bytes.data()) % 64, 0u);
+    const PagesOfMapping pages = pagesOfMapping(bytes.data());
+    ASSERT_TRUE(pages.found);
     // The heap is advised only where glibc's own huge-page tunable asks for it.
     const char* tunables = std::getenv("GLIBC_TUNABLES");
-    if (!(tunables && std::string(tunables).find("hugetlb") != std::string::npos))
-        EXPECT_FALSE(pagesOfMapping(bytes.data()).advised);
+    if (!(tunables && std::string(tunables).find("hugetlb") != std::string::npos)) {
+        EXPECT_FALSE(pages.advised);
+    }
 }
 
 TEST(HugePages, TheSwitchMapsWithoutAdviceAndRefusesOtherValues) {
-    UnsetSwitch unset;
+    SwitchRestored restored;
     setenv("TERRACE_HUGE_PAGES", "0", 1);
     EXPECT_FALSE(hugePagesWanted());
     {
         BodyArray<double> values(hugePageThreshold / sizeof(double));
         EXPECT_EQ(address(values.data()) % hugePageBytes, 0u);
-        EXPECT_FALSE(pagesOfMapping(values.data()).advised);
+        const PagesOfMapping pages = pagesOfMapping(values.data());
+        ASSERT_TRUE(pages.found);
+        EXPECT_FALSE(pages.advised);
+        EXPECT_EQ(pages.hugeBytes, 0u);
     }
     setenv("TERRACE_HUGE_PAGES", "1", 1);
     EXPECT_TRUE(hugePagesWanted());
@@ -67,12 +93,10 @@ TEST(HugePages, TheSwitchMapsWithoutAdviceAndRefusesOtherValues) {
                  std::invalid_argument);
 }
 
+namespace {
 // A rod's state is aligned to 32 B (core/linear_rotor.hpp); growth from the heap into a mapping
-// and back must keep every element and its alignment.
-TEST(HugePages, ContentsAndAlignmentSurviveGrowthAcrossTheThreshold) {
-    struct alignas(32) Aligned {
-        double x, y, z;
-    };
+// and back must keep every element and its alignment, below a cache line's and above it.
+template <class Aligned> void growAcrossTheThresholdAndBack() {
     BodyArray<Aligned> items;
     const std::size_t n = 2 * hugePageThreshold / sizeof(Aligned);
     for (std::size_t k = 0; k < n; ++k) {
@@ -80,17 +104,33 @@ TEST(HugePages, ContentsAndAlignmentSurviveGrowthAcrossTheThreshold) {
         ASSERT_EQ(address(items.data()) % alignof(Aligned), 0u);
     }
     EXPECT_EQ(address(items.data()) % hugePageBytes, 0u);
+    for (std::size_t k = 0; k < n; k += 1021)
+        ASSERT_EQ(items[k].x, double(k));
     items.resize(10);
     items.shrink_to_fit(); // back to the heap
     ASSERT_EQ(items.size(), 10u);
-    for (std::size_t k = 0; k < items.size(); ++k)
+    EXPECT_EQ(address(items.data()) % alignof(Aligned), 0u);
+    for (std::size_t k = 0; k < items.size(); ++k) {
         EXPECT_EQ(items[k].y, -double(k));
-    for (std::size_t k = 0; k < 10; ++k)
         EXPECT_EQ(items[k].z, 0.5 * double(k));
+    }
+}
+struct alignas(32) Aligned32 {
+    double x, y, z;
+};
+struct alignas(128) Aligned128 {
+    double x, y, z;
+};
+} // namespace
+
+TEST(HugePages, ContentsAndAlignmentSurviveGrowthAcrossTheThreshold) {
+    growAcrossTheThresholdAndBack<Aligned32>();
+    growAcrossTheThresholdAndBack<Aligned128>();
 }
 
 TEST(HugePages, AnAddressOutsideEveryMappingHasNone) {
     const PagesOfMapping none = pagesOfMapping(reinterpret_cast<const void*>(std::uintptr_t{8}));
+    EXPECT_FALSE(none.found);
     EXPECT_FALSE(none.advised);
     EXPECT_EQ(none.hugeBytes, 0u);
 }
