@@ -7,7 +7,7 @@
 // for: a prefetch waits for it. With 2-MiB pages the same TLB maps 4 GiB. Linux gives an
 // anonymous mapping huge pages on its own only when transparent huge pages are "always"; the
 // common default (Debian's too) is "madvise", which gives them only to ranges advised with
-// MADV_HUGEPAGE before they are touched. So blocks of `hugePageThreshold` and more are mapped
+// MADV_HUGEPAGE before they are touched. So blocks of a huge page and more are mapped
 // here at a 2-MiB boundary and advised before anyone writes to them; smaller ones come from the
 // ordinary heap. Nothing about the contents changes, only where the bytes lie.
 //
@@ -15,18 +15,19 @@
 // it), read at each large allocation, for measuring what the advice buys with one binary.
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <new>
-#include <string>
 #include <vector>
 
 namespace terrace {
 
-/// Blocks from this size up (one huge page: a smaller block cannot hold one) are mapped on a
-/// huge-page boundary and advised (bytes). Nothing is rounded up: the stretch past a block's last
-/// boundary stays in small pages, so a block costs no more memory for its advice.
 inline constexpr std::size_t hugePageBytes = std::size_t{2} << 20;
-inline constexpr std::size_t hugePageThreshold = hugePageBytes;
+
+/// Whether a block of `bytes` is mapped on a huge-page boundary and advised: from one huge page up
+/// (a smaller block cannot hold one). Nothing is rounded up: the stretch past a block's last
+/// boundary stays in small pages, so a block costs no more memory for its advice.
+constexpr bool mappedInHugePages(std::size_t bytes) {
+    return bytes >= hugePageBytes;
+}
 
 /// Whether large blocks are to be advised: TERRACE_HUGE_PAGES unset or "1" yes, "0" no; any other
 /// value is an error (std::invalid_argument), so a misspelt switch is not silently ignored.
@@ -51,7 +52,7 @@ PagesOfMapping pagesOfMapping(const void* p);
 /// 0 where it cannot be read).
 std::size_t processHugePageBytes();
 
-/// A standard allocator that maps blocks of `hugePageThreshold` and more with mapLargeBlock and
+/// A standard allocator that maps the blocks mappedInHugePages names with mapLargeBlock and
 /// takes smaller ones from the heap, every block aligned to at least a cache line. Stateless: any
 /// two compare equal, so containers move and swap their blocks freely.
 template <class T> struct HugePageAllocator {
@@ -65,13 +66,13 @@ template <class T> struct HugePageAllocator {
         static_assert(alignof(T) <= hugePageBytes, "a mapped block is aligned to a huge page");
         if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
         const std::size_t bytes = n * sizeof(T);
-        if (bytes >= hugePageThreshold)
+        if (mappedInHugePages(bytes))
             return static_cast<T*>(mapLargeBlock(bytes, hugePagesWanted()));
         return static_cast<T*>(::operator new (bytes, std::align_val_t{alignment}));
     }
     void deallocate(T* p, std::size_t n) noexcept {
         const std::size_t bytes = n * sizeof(T);
-        if (bytes >= hugePageThreshold)
+        if (mappedInHugePages(bytes))
             unmapLargeBlock(p, bytes);
         else
             ::operator delete (p, bytes, std::align_val_t{alignment});
@@ -79,7 +80,7 @@ template <class T> struct HugePageAllocator {
     template <class U> bool operator==(const HugePageAllocator<U>&) const noexcept { return true; }
 };
 
-/// A per-body array that may be large: in huge pages from hugePageThreshold up.
+/// A per-body array that may be large: in huge pages from one huge page up.
 template <class T> using BodyArray = std::vector<T, HugePageAllocator<T>>;
 
 } // namespace terrace

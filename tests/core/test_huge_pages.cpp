@@ -49,7 +49,7 @@ private:
 
 TEST(HugePages, ALargeArrayStartsOnAHugePageBoundaryAndIsAdvised) {
     SwitchRestored restored;
-    BodyArray<double> values(hugePageThreshold / sizeof(double) + 3);
+    BodyArray<double> values(hugePageBytes / sizeof(double) + 3);
     EXPECT_EQ(address(values.data()) % hugePageBytes, 0u);
     const PagesOfMapping pages = pagesOfMapping(values.data());
     ASSERT_TRUE(pages.found) << "no mapping in /proc/self/smaps holds the block";
@@ -78,7 +78,7 @@ TEST(HugePages, TheSwitchMapsWithoutAdviceAndRefusesOtherValues) {
     setenv("TERRACE_HUGE_PAGES", "0", 1);
     EXPECT_FALSE(hugePagesWanted());
     {
-        BodyArray<double> values(hugePageThreshold / sizeof(double));
+        BodyArray<double> values(hugePageBytes / sizeof(double));
         EXPECT_EQ(address(values.data()) % hugePageBytes, 0u);
         const PagesOfMapping pages = pagesOfMapping(values.data());
         ASSERT_TRUE(pages.found);
@@ -89,7 +89,7 @@ TEST(HugePages, TheSwitchMapsWithoutAdviceAndRefusesOtherValues) {
     EXPECT_TRUE(hugePagesWanted());
     setenv("TERRACE_HUGE_PAGES", "yes", 1);
     EXPECT_THROW(hugePagesWanted(), std::invalid_argument);
-    EXPECT_THROW({ BodyArray<double> refused(hugePageThreshold / sizeof(double)); },
+    EXPECT_THROW({ BodyArray<double> refused(hugePageBytes / sizeof(double)); },
                  std::invalid_argument);
 }
 
@@ -98,7 +98,7 @@ namespace {
 // and back must keep every element and its alignment, below a cache line's and above it.
 template <class Aligned> void growAcrossTheThresholdAndBack() {
     BodyArray<Aligned> items;
-    const std::size_t n = 2 * hugePageThreshold / sizeof(Aligned);
+    const std::size_t n = 2 * hugePageBytes / sizeof(Aligned);
     for (std::size_t k = 0; k < n; ++k) {
         items.push_back({double(k), -double(k), 0.5 * double(k)});
         ASSERT_EQ(address(items.data()) % alignof(Aligned), 0u);
