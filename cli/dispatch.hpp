@@ -70,17 +70,25 @@ std::unique_ptr<E> startingEngine(const Scene& scene, const P& potential, const 
     return std::make_unique<E>(std::move(start), scene, std::move(checkpoint));
 }
 
+/// A restart point's engine, built as a run continued from its file builds it.
+template <class E> auto rebuildFromCheckpoint(const Scene& scene) {
+    return [&scene](auto&& released) {
+        return std::make_unique<E>(std::move(released.system), scene,
+                                   std::move(released.checkpoint));
+    };
+}
+
 /// Builds the engine, claims the output directory unless the caller holds it (a continued run
 /// claims it before reading the restart file), and drives the run. The directory is claimed only
 /// after the engine is built, so that a scene refused by the engine's own checks leaves nothing
 /// behind.
 template <template <class, class> class Engine, BodyKind K, PairPotential P>
 RunOutcome buildAndDrive(const Scene& scene, const P& potential, const RunTarget& target) {
-    std::unique_ptr<Engine<K, P>> engine =
-        startingEngine<Engine<K, P>, K, P>(scene, potential, target);
+    using E = Engine<K, P>;
+    std::unique_ptr<E> engine = startingEngine<E, K, P>(scene, potential, target);
     std::optional<OutputDirectory> output;
     if (target.mode != OutputMode::Continue) output.emplace(target.dir, target.mode);
-    return drive(engine, scene, target, K::rotationalDof);
+    return drive(engine, rebuildFromCheckpoint<E>(scene), scene, target, K::rotationalDof);
 }
 
 } // namespace terrace::cli

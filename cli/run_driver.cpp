@@ -80,6 +80,28 @@ double analysisBytes(const Scene& scene) {
            n * (3.0 * sizeof(double) + 2.0 * sizeof(int));
 }
 
+RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxLength,
+                     int rotationalDof, VirialKind virial)
+    : sampleInterval(plan.sampleInterval), kT(scene.kT()), volume(std::pow(boxLength, 3)),
+      virialKind(virial), bodies(n), dof(degreesOfFreedom(rotationalDof, n)),
+      restartEveryPs(scene.output.restart_every_ps), warnings(sceneWarnings(scene)) {
+    if (plan.productionSamples + 1 >= 4)
+        analysis = std::make_unique<analysis::RunAnalysis>(
+            bodies, boxLength, units::toPs(plan.sampleInterval), plan.productionSamples + 1,
+            streamingOptions(scene));
+}
+
+void RunFiles::sync() {
+    for (AppendFile* f : {&trajectory, &thermo, &samples})
+        if (f->isOpen()) f->sync();
+}
+
+nlohmann::json RunFiles::sizes() const {
+    return {{"trajectory_bytes", trajectory.isOpen() ? trajectory.size() : 0},
+            {"thermo_bytes", thermo.isOpen() ? thermo.size() : 0},
+            {"samples_bytes", samples.isOpen() ? samples.size() : 0}};
+}
+
 nlohmann::json vec3Json(const Vec3& v) {
     return nlohmann::json::array({v.x(), v.y(), v.z()});
 }
@@ -91,7 +113,8 @@ namespace {
 bool isCounter(const std::string& path) {
     static const std::set<std::string> counters = {
         "steps",        "neighbour_rebuilds", "pair_evaluations",   "cleanups",
-        "stale_events", "stale_in_agendas",   "search_evaluations", "searches_screened"};
+        "stale_events", "stale_in_agendas",   "search_evaluations", "searches_screened",
+        "resorts"};
     return path.rfind("events.", 0) == 0 || counters.count(path) > 0;
 }
 
@@ -250,9 +273,6 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
         summary["restarts"] = {{"every_ps", run.restartEveryPs},
                                {"written", run.restartsWritten},
                                {"continued", run.continuations}};
-    // Renumberings of the bodies as the liquid diffused (dmd.resort_cells); SMD re-sorts its own
-    // at every list build.
-    if (scene.engine == "dmd") summary["resorts"] = run.resorts;
     // Of the whole process, at the end of the engine that held most (core/huge_pages.hpp).
     summary["memory_in_huge_pages_bytes"] = run.hugePageBytes;
     addEnergy(summary, run);
@@ -334,9 +354,10 @@ std::int64_t sizeOf(const std::filesystem::path& path) {
 
 } // namespace
 
-Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::filesystem::path& dir,
-                  int bodies, bool withOrientation, double boxLength, RunRecord& run) {
-    Resumed at;
+RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
+                      const std::filesystem::path& dir, int bodies, bool withOrientation,
+                      double boxLength, RunRecord& run, RunFiles& files) {
+    RunPosition at;
     std::int64_t trajectoryBytes = 0, thermoBytes = 0, samplesBytes = 0;
     try {
         at.inProduction = r.at("phase") == "production";
@@ -350,7 +371,6 @@ Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::files
         run.momentumInitial =
             Vec3(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
         run.restartsWritten = r.at("restarts_written").get<long>();
-        run.resorts = r.value("resorts", 0L); // absent from files written before re-sorting
         run.continuations = r.at("continuations").get<int>() + 1;
         trajectoryBytes = r.at("files").at("trajectory_bytes").get<std::int64_t>();
         thermoBytes = r.at("files").at("thermo_bytes").get<std::int64_t>();
@@ -372,9 +392,9 @@ Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::files
                           " bytes, fewer than the " + std::to_string(bytes) +
                           " of its restart point: it was changed after restart.bin was written");
     }
-    if (withTrajectory) at.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
-    if (withThermo) at.thermo = AppendFile(dir / "thermo.csv", thermoBytes);
-    at.samples = AppendFile(dir / "samples.bin", samplesBytes);
+    if (withTrajectory) files.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
+    if (withThermo) files.thermo = AppendFile(dir / "thermo.csv", thermoBytes);
+    files.samples = AppendFile(dir / "samples.bin", samplesBytes);
     // The samples go through the analysis again, one at a time: never all in memory.
     const long read =
         forEachSample(dir / "samples.bin", bodies, withOrientation, boxLength,
@@ -383,6 +403,31 @@ Resumed resumeRun(const nlohmann::json& r, const RunPlan& plan, const std::files
         throw IoError((dir / "samples.bin").string() + " holds " + std::to_string(read) +
                       " samples, its restart point " + std::to_string(at.sample + 1));
     return at;
+}
+
+RunOutcome finishRun(const Scene& scene, RunRecord& run, const std::filesystem::path& dir,
+                     const InterruptGuard& interrupt, bool stopped, bool restarts) {
+    RunOutcome outcome;
+    bool analysed = false;
+    try {
+        outcome.summary =
+            writeSummaryAndAnalysis(scene, run, dir, interrupt, stopped ? 1 : 0, analysed);
+    } catch (const std::exception&) {
+        if (run.failure.empty()) throw;
+        // The first error is the one to report; this one followed from it (e.g. a full disk).
+    }
+    if (!run.failure.empty())
+        throw std::runtime_error(run.failure + " (output so far in " + dir.string() + ")");
+    if (!run.interruptedBy.empty()) outcome.exitStatus = interrupt.exitStatus();
+    // A run that went to its end and was analysed leaves nothing to continue. One whose analysis
+    // a signal cancelled keeps its restart files: continuing redoes the last interval and the
+    // analysis.
+    if (restarts && !stopped && analysed) {
+        std::error_code ec;
+        std::filesystem::remove(dir / "restart.bin", ec);
+        std::filesystem::remove(dir / "samples.bin", ec);
+    }
+    return outcome;
 }
 
 } // namespace terrace::cli

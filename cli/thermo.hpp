@@ -29,6 +29,7 @@
 //                           the first
 // Numbers are written with 17 significant digits (exact on reading back).
 #include "cli/restart.hpp"
+#include "core/pressure.hpp"
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -36,8 +37,8 @@
 
 namespace terrace::cli {
 
-/// What SampleRecord::virial holds: SMD's virial at the sample, or DMD's running impulse virial.
-enum class VirialKind { Instantaneous, Impulse };
+/// What SampleRecord::virial holds (core/pressure.hpp).
+using terrace::VirialKind;
 
 /// Blocks behind the pressure's error (as analysis::Options' default for the correlations).
 inline constexpr int pressureBlocks = 8;

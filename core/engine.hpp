@@ -1,13 +1,27 @@
 #pragma once
-// What the run driver (cli) needs from an engine. Sampling in physical time is decided outside the
-// engines: the driver calls advanceTo(t_k) on a uniform grid for either engine (STYLE.md item 9).
+// What the run driver (cli/run_driver.hpp) needs from an engine, all of it: the driver calls
+// these and nothing else, so it never asks which engine it holds. Sampling in physical time is
+// decided outside the engines: the driver calls advanceTo(t_k) on a uniform grid for either
+// engine (STYLE.md item 9); where an engine keeps its bodies in an order of its own (for memory
+// locality), it renumbers them inside advanceTo and answers every question in the scene's
+// numbering.
+#include "core/pressure.hpp"
 #include "core/snapshot.hpp"
 #include "core/vec.hpp"
 #include <concepts>
 #include <nlohmann/json.hpp>
 #include <span>
+#include <utility>
 
 namespace terrace {
+
+/// What an engine hands over when it is dropped at a restart point: its bodies as they are now,
+/// in the scene's numbering, and what a new engine needs beyond them to undergo the same events
+/// (its checkpoint). The engine is spent by it.
+template <class System> struct Released {
+    System system;
+    nlohmann::json checkpoint;
+};
 
 template <class E>
 concept Engine = requires(E e, const E ce, double t, std::span<const int> bodies) {
@@ -18,10 +32,20 @@ concept Engine = requires(E e, const E ce, double t, std::span<const int> bodies
     { ce.positions() } -> std::same_as<Snapshot>;          // every body's position only
     { ce.position(0) } -> std::same_as<Vec3>;              // one body's (scene number), at time()
     { ce.kineticEnergy() } -> std::convertible_to<double>; // kJ/mol at time()
-    { ce.potentialEnergy() } -> std::convertible_to<double>; // kJ/mol: terraced for DMD
-    { ce.totalMomentum() } -> std::convertible_to<Vec3>;     // g/mol Å per time unit
+    { ce.translationalKineticEnergy() } -> std::convertible_to<double>; // ½ m Σ v², kJ/mol
+    {
+        ce.potentialEnergy()
+        } -> std::convertible_to<double>;                              // kJ/mol: the one integrated
+                                                                       // (terraced for DMD)
+    { ce.continuousPotentialEnergy() } -> std::convertible_to<double>; // the model's U, kJ/mol
+    { E::virialKind } -> std::convertible_to<VirialKind>;              // what virial() holds
+    { ce.virial() } -> std::convertible_to<double>;                    // core/pressure.hpp
+    { ce.totalMomentum() } -> std::convertible_to<Vec3>;               // g/mol Å per time unit
     e.rescaleTemperature(t); // scale v and ω so that the kinetic temperature is kT = t
     { ce.statistics() } -> std::convertible_to<nlohmann::json>; // engine-specific summary keys
+    { ce.checkpoint() } -> std::convertible_to<nlohmann::json>; // beyond the bodies, at time()
+    ce.system();                                                // the bodies now (a copy)
+    { std::move(e).release() } -> std::same_as<Released<decltype(ce.system())>>;
 };
 
 } // namespace terrace

@@ -18,6 +18,11 @@
 
 namespace terrace {
 
+/// What an engine's virial() holds: SMD's W = Σ r_ij·F_ij at the instant (kJ/mol), or DMD's
+/// running impulse virial W_imp = Σ r_ij·Δp_i since the run began (kJ/mol × time unit), whose
+/// increase over an interval divided by its length is that interval's mean W.
+enum class VirialKind { Instantaneous, Impulse };
+
 /// P = (2 K_trans + W)/(3V) in kJ/mol/Å³, from K_trans and W in kJ/mol and V in Å³.
 inline constexpr double virialPressure(double kineticTranslational, double virial, double volume) {
     return (2.0 * kineticTranslational + virial) / (3.0 * volume);

@@ -107,24 +107,20 @@ public:
     Engine(System<K, P> initial, const Scene& scene, nlohmann::json&& checkpoint)
         : Engine(std::move(initial), scene, &checkpoint, &checkpoint) {}
 
-    /// What a resumed engine needs beyond the bodies (dmd/engine_start.hpp).
-    using Start::checkpoint;
-
 private:
     Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume,
            nlohmann::json* spent = nullptr)
         : Engine(initial,
                  readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length),
-                 scene, resume, spent) {}
+                 scene.seed, resume, spent) {}
     // The settings are read before anything is built: the prediction base, built first, needs them.
-    Engine(System<K, P>& initial, DmdSettings settings, const Scene& scene,
+    Engine(System<K, P>& initial, DmdSettings settings, std::uint64_t seed,
            const nlohmann::json* resume, nlohmann::json* spent)
-        : Prediction(settings, initial.potential, scene.seed, initial.size()),
-          sys_(std::move(initial)), settings_(std::move(settings)),
-          lists_(makeLists(settings_.rm, sys_)),
+        : Prediction(settings, initial.potential, seed, initial.size()), sys_(std::move(initial)),
+          settings_(std::move(settings)), lists_(makeLists(settings_.rm, sys_)),
           cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
           schedule_(sys_.size(), settings_.eager, settings_.horizon), listedBefore_(sys_.size(), 0),
-          scanned_(64) {
+          scanned_(64), seed_(seed) {
         checkBodies();
         if (settings_.sortBodies) sortBodiesByCell();
         if (resume) resumeClocks(*resume);
@@ -148,10 +144,12 @@ private:
 public:
     // ---- the Engine contract (core/engine.hpp) ----
 
-    /// Process every event before t, then bring all clocks to t.
+    /// Process every event before t, then bring all clocks to t. The bodies are numbered afresh
+    /// first where their cell order has decayed (renumberBodies).
     void advanceTo(double t) {
         if (!(t >= time_)) throw std::invalid_argument("dmd: advanceTo into the past");
         requireEvents();
+        if (orderHasDecayed()) renumberBodies();
         visitQueue([&](auto& q) {
             Event sample;
             sample.time = t;
@@ -213,12 +211,13 @@ public:
     /// the impulse on i (kJ/mol × time unit). Over an interval Δt the pressure is
     /// P = (2 K_trans + ΔW/Δt)/(3V): the impulse form of the virial (Alder & Wainwright,
     /// J. Chem. Phys. 33, 1439 (1960); Allen & Tildesley, 2nd ed., sec. 3.7).
-    double impulseVirial() const { return impulseVirial_; }
+    static constexpr VirialKind virialKind = VirialKind::Impulse;
+    double virial() const { return impulseVirial_; }
     /// The continuous U of the model at time() (kJ/mol), un-terraced: the smoothed potential over
     /// every pair within its range, or for a bare one (no cutoff) within r_m, the range terraced.
     /// O(N) by a cell list of its own; for output, not for the dynamics.
     double continuousPotentialEnergy() const {
-        const System<K, P> s = synchronisedCopy();
+        const System<K, P> s = system();
         double range = settings_.rm;
         if constexpr (requires { sys_.potential.range(); })
             if (std::isfinite(sys_.potential.range())) range = sys_.potential.range();
@@ -284,7 +283,25 @@ public:
             j["memory_bytes_per_body"][part] = static_cast<double>(bytes) / n;
         j["search_evaluations"] = evaluations_;
         j["searches_screened"] = screened_;
+        j["resorts"] = resorts_;
         return j;
+    }
+    /// What a resumed engine needs beyond the bodies (dmd/engine_start.hpp).
+    using Start::checkpoint;
+    /// All bodies brought to time(): the system as it is now, its bodies in the scene's order.
+    System<K, P> system() const {
+        System<K, P> s = sys_;
+        for (int i = 0; i < s.size(); ++i)
+            s.bodies[sceneIndex(i)] = stateNow(i);
+        return s;
+    }
+    /// The bodies and the checkpoint, moved out: what the event loop alone needs is freed first
+    /// (shed), then the checkpoint takes its room, then the bodies leave without a copy beside
+    /// them, so that a restart point adds nothing to the run's peak. The engine is then spent.
+    Released<System<K, P>> release() && {
+        shed();
+        nlohmann::json c = checkpoint();
+        return {releaseSystem(std::move(*this)), std::move(c)};
     }
 
     // ---- for tests and benchmarks ----
@@ -323,9 +340,8 @@ public:
     /// displacement, since they were numbered, of a fixed sample of them (every anchorStride_-th
     /// in the engine's order, so spread over the box) has reached dmd.resort_cells cell widths
     /// (auto: 1 from prefetchFromBodies bodies on, never below).
-    /// Neighbours in space are then no longer neighbours in memory; the run driver renumbers the
-    /// bodies by rebuilding the engine from its checkpoint (cli/run_driver.hpp). Always false
-    /// when the bodies are not sorted.
+    /// Neighbours in space are then no longer neighbours in memory; advanceTo then renumbers
+    /// them (renumberBodies). Always false when the bodies are not sorted.
     bool orderHasDecayed() const {
         if (orderAnchors_.empty()) return false;
         double sum = 0.0;
@@ -342,7 +358,7 @@ public:
     /// body) from an engine about to be dropped at a restart or re-sort point, so that its
     /// checkpoint, then the next engine, take their room instead of adding to the run's peak. The
     /// bodies, clocks, lists and terraces stay: checkpoint(), the reads of the bodies
-    /// (synchronisedCopy, releaseSystem) and destruction may follow, and no advanceTo.
+    /// (system, releaseSystem) and destruction may follow, and no advanceTo.
     void shed() {
         schedule_.shed();
         BodyArray<FreeOrbit<K>>().swap(orbit_);
@@ -351,13 +367,6 @@ public:
     /// The RMS displacement at which orderHasDecayed (Å; 0: never).
     double resortDistance() const {
         return orderAnchors_.empty() ? 0.0 : std::sqrt(resortSquared_);
-    }
-    /// All bodies brought to time(): the system as it is now, its bodies in the scene's order.
-    System<K, P> synchronisedCopy() const {
-        System<K, P> s = sys_;
-        for (int i = 0; i < s.size(); ++i)
-            s.bodies[sceneIndex(i)] = stateNow(i);
-        return s;
     }
     /// The engine's body i as it is at time(), its stored state moved freely from its clock.
     State stateNow(int i) const {
@@ -379,7 +388,7 @@ public:
     /// Terraced energy recomputed from scratch from U of every pair (all pairs, O(N²)). On a
     /// level this rounds by U alone, so compare with potentialEnergy() only away from levels.
     double terracedEnergyFromScratch() const {
-        const System<K, P> s = synchronisedCopy();
+        const System<K, P> s = system();
         double e = 0.0;
         for (int i = 0; i < s.size(); ++i)
             for (int j = i + 1; j < s.size(); ++j) {
@@ -441,7 +450,7 @@ private:
     /// from the bodies, so at every start and every rebuild from a checkpoint (restart points, and
     /// the re-sort points that orderHasDecayed calls for): the order follows the liquid as it
     /// diffuses from one rebuild to the next. Outside the engine the bodies keep the scene's
-    /// numbering (synchronisedCopy, snapshot, checkpoint, terrace, messages).
+    /// numbering (system, snapshot, checkpoint, terrace, messages).
     void sortBodiesByCell() {
         const int n = sys_.size();
         if (cells_.single() || n < 2) return;
@@ -459,6 +468,30 @@ private:
         // In place: the engine's other arrays are allocated by now (not yet filled), and a sorted
         // copy beside them (96 B a rod) was a restart point's peak.
         gatherInPlace(sys_.bodies, [&](int i) { return sceneIndex_[i]; });
+    }
+
+    /// Numbers the bodies afresh in the cell order of where they are now, by rebuilding the engine
+    /// from its bodies and checkpoint at this instant, exactly as a restart point does: the same
+    /// events follow as after a restart point here. The old engine is gone before the new one is
+    /// built (the two side by side would double the peak); counters and switches carry over.
+    void renumberBodies() {
+        const EventCounts counts = counts_;
+        const std::uint64_t stale = staleEvents_, resorts = resorts_ + 1;
+        const auto evaluations = evaluations_, screened = screened_;
+        const bool holdScreen = holdScreen_;
+        const std::uint64_t stallLimit = stallWatch_.limit();
+        const std::uint64_t seed = seed_;
+        DmdSettings settings = settings_;
+        Released<System<K, P>> kept = std::move(*this).release();
+        { const Engine dropped = std::move(*this); }
+        *this = Engine(kept.system, std::move(settings), seed, &kept.checkpoint, &kept.checkpoint);
+        counts_ = counts;
+        staleEvents_ = stale;
+        resorts_ = resorts;
+        evaluations_ = evaluations;
+        screened_ = screened;
+        stallWatch_.setLimit(stallLimit);
+        if (holdScreen != holdScreen_) setHoldScreen(holdScreen);
     }
 
     /// After shed() only the bodies, the checkpoint and destruction are left.
@@ -754,7 +787,9 @@ private:
     int anchorStride_ = 1;
     double resortSquared_ = 0.0;
     StallWatch stallWatch_;
-    bool shed_ = false; // shed(): fit only for a checkpoint, the bodies and destruction
+    std::uint64_t seed_;        // the scene's: the horizon stream's, kept for renumberBodies
+    std::uint64_t resorts_ = 0; // renumberBodies since the start or the checkpoint
+    bool shed_ = false;         // shed(): fit only for a checkpoint, the bodies and destruction
     double time_ = 0.0;
     double impulseVirial_ = 0.0; // Σ r_ij·Δp_i over collisions, kJ/mol × time unit
     double inverseBox_ = 1.0 / sys_.box.length; // 1/L (Å⁻¹) for minimum images; NVE: L is fixed

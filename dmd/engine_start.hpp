@@ -104,7 +104,7 @@ public:
                 {"horizon_stream", {{"state", stream.state}, {"ready", stream.ready}}}};
     }
 
-    /// The bodies at time(), in the scene's order, as synchronisedCopy() gives them, but moved
+    /// The bodies at time(), in the scene's order, as system() gives them, but moved
     /// out of the engine rather than copied beside it (96 B a rod, a tenth of the engine's
     /// memory). The engine is then fit only to be destroyed. Called as releaseSystem(engine).
     static System<K, P> release(Engine& engine) {

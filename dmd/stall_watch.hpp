@@ -20,6 +20,7 @@ inline constexpr std::uint64_t stalledEventLimit = 1'000'000;
 class StallWatch {
 public:
     void setLimit(std::uint64_t n) { limit_ = n; }
+    std::uint64_t limit() const { return limit_; }
 
     /// Called with every event about to run at `next` while the clock reads `now` (time unit 100
     /// fs); throws std::runtime_error naming the time and the bodies once the clock has stopped.

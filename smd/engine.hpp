@@ -172,9 +172,11 @@ public:
             e += terrace::kineticEnergy<K>(sys_.bodies[i], sys_.body);
         return e;
     }
-    /// The smoothed continuous potential energy at time().
+    /// The smoothed continuous potential energy at time(): the model's U, which SMD integrates.
     double potentialEnergy() const { return forces_.potential; }
+    double continuousPotentialEnergy() const { return forces_.potential; }
     /// The molecular virial W = Σ_pairs r_ij·F_ij at time() (kJ/mol): P = (2 K_trans + W)/(3V).
+    static constexpr VirialKind virialKind = VirialKind::Instantaneous;
     double virial() const { return forces_.virial; }
     /// ½ m Σ v² at time() (kJ/mol): the kinetic term of the pressure.
     double translationalKineticEnergy() const {
@@ -243,6 +245,12 @@ public:
         for (const int i : engineOf_)
             out.bodies.push_back(sys_.bodies[i]);
         return out;
+    }
+    /// The bodies (in the scene's numbering) and the checkpoint, moved out; the engine is spent.
+    Released<System<K, P>> release() && {
+        nlohmann::json c = checkpoint();
+        if (!sortBodies_) return {std::move(sys_), std::move(c)};
+        return {system(), std::move(c)};
     }
     const Parameters& parameters() const { return par_; }
     long steps() const { return steps_; }

@@ -125,7 +125,7 @@ void rebuiltEnginesAgree(const Scene& scene, const P& potential, double t1, doub
     std::optional<Engine<K, P>> engine;
     engine.emplace(buildInitialState<K>(scene, potential), scene);
     engine->advanceTo(t1);
-    const auto sys = cli::currentSystem(*engine);
+    const auto sys = engine->system();
     const nlohmann::json checkpoint = engine->checkpoint();
     const auto stored = nlohmann::json::from_cbor(nlohmann::json::to_cbor(
         {{"bodies", cli::bodiesToBinary(sys.bodies)}, {"engine", checkpoint}}));
@@ -181,7 +181,7 @@ DmdPoint dmdPointAt(double t) {
     scene.state.n = 216;
     RodDmd engine(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
     engine.advanceTo(t);
-    return {scene, engine.synchronisedCopy(), engine.checkpoint(), engine.interactionRange()};
+    return {scene, engine.system(), engine.checkpoint(), engine.interactionRange()};
 }
 
 } // namespace
@@ -332,9 +332,10 @@ TEST(Restart, ADamagedRestartFileIsNamed) {
         {"files", {{"trajectory_bytes", 0}, {"thermo_bytes", 0}, {"samples_bytes", 100}}}};
     restart.erase("tick");
     cli::RunRecord run;
+    cli::RunFiles files;
     const cli::RunPlan plan = cli::planRun(defaultScene());
     try {
-        cli::resumeRun(restart, plan, dir, 8, false, 10.0, run);
+        cli::resumeRun(restart, plan, dir, 8, false, 10.0, run, files);
         FAIL() << "expected an IoError";
     } catch (const IoError& e) {
         EXPECT_EQ(std::string(e.what()), (dir / "restart.bin").string() +
@@ -343,7 +344,7 @@ TEST(Restart, ADamagedRestartFileIsNamed) {
     }
     // Whole, but samples.bin shorter than its restart point: refused, nothing created or cut.
     restart["tick"] = 0;
-    EXPECT_THROW(cli::resumeRun(restart, plan, dir, 8, false, 10.0, run), IoError);
+    EXPECT_THROW(cli::resumeRun(restart, plan, dir, 8, false, 10.0, run, files), IoError);
     EXPECT_FALSE(std::filesystem::exists(dir / "samples.bin"));
     std::filesystem::remove_all(dir);
 }
@@ -431,7 +432,8 @@ cli::RunOutcome runWatched(const Scene& scene, const std::filesystem::path& dir,
         std::filesystem::create_directories(dir);
     }
     auto engine = cli::startingEngine<WatchedDmd, LinearRotor>(scene, rodPotential(scene), target);
-    return cli::drive(engine, scene, target, LinearRotor::rotationalDof);
+    return cli::drive(engine, cli::rebuildFromCheckpoint<WatchedDmd>(scene), scene, target,
+                      LinearRotor::rotationalDof);
 }
 
 std::filesystem::path scratch(const std::string& name) {
@@ -454,7 +456,7 @@ TEST(Restart, BodiesReleasedFromADmdEngineAreItsSynchronisedCopy) {
     for (int b = 0; b < scene.state.n; ++b)
         renumbered += kept.engineIndex(b) != b;
     ASSERT_GT(renumbered, scene.state.n / 2);
-    const auto copy = kept.synchronisedCopy();
+    const auto copy = kept.system();
     const auto released = dmd::releaseSystem(std::move(dropped));
     ASSERT_EQ(released.size(), copy.size());
     for (int b = 0; b < copy.size(); ++b)
@@ -561,12 +563,11 @@ TEST(Restart, ARebuiltDmdEngineUndergoesTheCollisionsOfOneThatGoesOn) {
     EXPECT_LT(largest, 1e-9);
 }
 
-// dmd.resort_cells: the run renumbers the bodies at every sample or thermostat tick where their
-// order has decayed (here at once: a thousandth of a cell), by the rebuild of a restart point
-// without its file, one engine at a time; a restart point itself renumbers them and is not
-// counted. summary.json and restart.bin count the re-sorts; a continued run goes on counting and
-// ends with the same files as the whole run. With resort_cells 0 nothing is rebuilt between
-// restart points.
+// dmd.resort_cells: the engine renumbers its bodies at the start of an advanceTo where their
+// order has decayed (here at once: a thousandth of a cell), that is at the sample or thermostat
+// tick before; a restart point itself renumbers them and is not counted. summary.json counts the
+// renumberings of production, restart.bin those so far, and a continued run ends with the same
+// files as the whole run. With resort_cells 0 nothing is renumbered between restart points.
 TEST(Restart, ARunRenumbersItsBodiesWhereTheirOrderHasDecayed) {
     Scene scene = watchedScene();
     scene.state.n = 512;
@@ -579,24 +580,24 @@ TEST(Restart, ARunRenumbersItsBodiesWhereTheirOrderHasDecayed) {
     const auto whole = scratch("resort-whole"), cut = scratch("resort-cut");
     WatchedDmd::rebuilds = WatchedDmd::besideAnother = 0, WatchedDmd::failAt = 0;
     runWatched(scene, whole);
-    // Equilibration: a re-sort at tick 1 (tick 2 ends it). Production: restart points at its
-    // start and at samples 3, 6, 9; re-sorts at samples 1, 2, 4, 5, 7, 8 (sample 10 ends it).
-    EXPECT_EQ(WatchedDmd::rebuilds, 4 + 7);
+    // Restart points at production's start and at samples 3, 6, 9; renumberings on the way to
+    // samples 2, 3, 5, 6, 8, 9 (an engine just built has not moved).
+    EXPECT_EQ(WatchedDmd::rebuilds, 4);
     EXPECT_EQ(WatchedDmd::besideAnother, 0);
     const auto summary = nlohmann::json::parse(readWholeFile(whole / "summary.json"));
-    EXPECT_EQ(summary.at("resorts"), 7);
+    EXPECT_EQ(summary.at("resorts"), 6);
     EXPECT_EQ(summary.at("restarts").at("written"), 4);
 
     // Stopped by a failed rebuild at the restart point of sample 6, then continued.
-    WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 1 + 1 + 2 + 1 + 2 + 1; // …, 4, 5, then 6
+    WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 3;
     EXPECT_THROW(runWatched(scene, cut), std::runtime_error);
     nlohmann::json restart = cli::readRestart(cut);
     ASSERT_EQ(restart.at("sample"), 6);
-    EXPECT_EQ(restart.at("resorts"), 5);
+    EXPECT_EQ(restart.at("production_statistics").at("resorts"), 4);
     WatchedDmd::failAt = 0;
     runWatched(scene, cut, &restart);
     const auto continued = nlohmann::json::parse(readWholeFile(cut / "summary.json"));
-    EXPECT_EQ(continued.at("resorts"), 7);
+    EXPECT_EQ(continued.at("resorts"), 6);
     for (const char* f : {"thermo.csv", "rdf.csv", "vacf.csv", "oacf.csv", "msd.csv"})
         EXPECT_EQ(readWholeFile(cut / f), readWholeFile(whole / f)) << f;
 
@@ -616,7 +617,7 @@ TEST(Restart, ADmdRebuildSpendsTheCheckpointItIsHanded) {
     scene.state.n = 216;
     RodDmd engine(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
     engine.advanceTo(0.5);
-    const auto sys = engine.synchronisedCopy();
+    const auto sys = engine.system();
     const nlohmann::json kept = engine.checkpoint();
     nlohmann::json handed = kept;
     RodDmd a(sys, scene, kept), b(sys, scene, std::move(handed));
@@ -641,7 +642,7 @@ TEST(Restart, ADmdEngineThatShedItsEventsGivesTheSameCheckpointAndBodies) {
     RodDmd engine(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
     engine.advanceTo(0.5);
     const nlohmann::json before = engine.checkpoint();
-    const auto copy = engine.synchronisedCopy();
+    const auto copy = engine.system();
     const std::size_t bytes = engine.bytesReserved();
     std::size_t eventLoop = 0; // what shed() frees
     for (const auto& [part, size] : engine.memoryByPart())

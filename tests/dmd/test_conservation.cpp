@@ -16,7 +16,7 @@ constexpr double energyTolerance = 1e-10;
 constexpr double momentumTolerance = 1e-10;
 
 void expectHealthy(const RodEngine& e, double e0, const std::string& what) {
-    const RodSystem now = e.synchronisedCopy();
+    const RodSystem now = e.system();
     for (const auto& b : now.bodies)
         ASSERT_TRUE(b.r.allFinite() && b.v.allFinite() && b.s.allFinite() && b.w.allFinite())
             << what;

@@ -62,7 +62,7 @@ Observables dmdObservables(const Scene& s, const RodSystem& start) {
     while (t < end) {
         t += units::fromFs(sampleFs);
         e.advanceTo(t);
-        accumulate(e.synchronisedCopy(), o, samples);
+        accumulate(e.system(), o, samples);
     }
     normalise(o, samples, start.size(), start.box.volume());
     return o;

@@ -95,14 +95,14 @@ template <class Engine> double meanPressure(Engine& e, const Scene& s, double vo
     const double t0 = e.time();
     double twiceKinetic = 0.0, virial = 0.0;
     double w0 = 0.0;
-    if constexpr (requires { e.impulseVirial(); }) w0 = e.impulseVirial();
+    constexpr bool impulse = Engine::virialKind == VirialKind::Impulse;
+    if constexpr (impulse) w0 = e.virial();
     for (int k = 1; k <= samples; ++k) {
         e.advanceTo(t0 + k * units::fromFs(sampleFs));
         twiceKinetic += 2.0 * e.translationalKineticEnergy() / samples;
-        if constexpr (!requires { e.impulseVirial(); }) virial += e.virial() / samples;
+        if constexpr (!impulse) virial += e.virial() / samples;
     }
-    if constexpr (requires { e.impulseVirial(); })
-        virial = impulseVirialOver(w0, e.impulseVirial(), t0, e.time());
+    if constexpr (impulse) virial = impulseVirialOver(w0, e.virial(), t0, e.time());
     return reducedPressure(virialPressure(0.5 * twiceKinetic, virial, volume), s.potential.sigma,
                            s.potential.epsilon);
 }

@@ -42,11 +42,11 @@ Compressibility hardSphereZ(double eta, int blocks, double blockTime) {
     e.advanceTo(5.0); // 500 fs, some 100 collisions per sphere at η = 0.4: the lattice forgotten
     std::vector<double> z;
     for (int b = 0; b < blocks; ++b) {
-        const double t0 = e.time(), w0 = e.impulseVirial();
+        const double t0 = e.time(), w0 = e.virial();
         e.advanceTo(t0 + blockTime);
         EXPECT_EQ(e.counts().up, 0u); // no pair climbed the step: hard spheres throughout
         const double kin = e.translationalKineticEnergy(); // constant: reflections conserve it
-        const double pressure = (2.0 * kin + (e.impulseVirial() - w0) / blockTime) / (3.0 * V);
+        const double pressure = (2.0 * kin + (e.virial() - w0) / blockTime) / (3.0 * V);
         // kT from the 3(N − 1) degrees of freedom left by the fixed total momentum.
         z.push_back(pressure * V / (n * (2.0 * kin / (3.0 * (n - 1.0)))));
     }

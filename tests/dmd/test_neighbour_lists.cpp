@@ -17,12 +17,12 @@ using namespace terrace::dmdtest;
 namespace {
 
 bool listed(const RodEngine& e, int i, int j) {
-    const auto p = e.listedPartners(i); // in the scene's numbering, as synchronisedCopy's
+    const auto p = e.listedPartners(i); // in the scene's numbering, as system()'s
     return std::find(p.begin(), p.end(), j) != p.end();
 }
 
 void expectEveryClosePairListed(const RodEngine& e) {
-    const RodSystem s = e.synchronisedCopy();
+    const RodSystem s = e.system();
     const double rm = e.interactionRange();
     int close = 0;
     for (int i = 0; i < s.size(); ++i)

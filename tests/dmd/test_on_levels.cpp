@@ -126,7 +126,7 @@ TEST(OnLevels, ABoundPairSlidingAlongItsLevelIsReflectedNotStuck) {
             EXPECT_GT(e.counts().reflect, 0u);
             EXPECT_EQ(e.counts().up, 0u); // a grazing pair cannot climb
             EXPECT_EQ(e.terrace(0, 1), well);
-            const auto now = e.synchronisedCopy();
+            const auto now = e.system();
             EXPECT_LE(startU(now), level + 1e-9);
             EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
         }

@@ -41,11 +41,11 @@ SphereEngine headOn(double x0, double u, std::vector<double> levels) {
 TEST(Pressure, ReflectionAddsTheHandComputedImpulseVirial) {
     const double m = 18.0, u = 0.5; // Å per time unit; ½μw² = ½·9·1 = 4.5 kJ/mol < 30
     auto e = headOn(3.0, u, {30.0, 60.0});
-    EXPECT_EQ(e.impulseVirial(), 0.0);
+    EXPECT_EQ(e.virial(), 0.0);
     e.advanceTo(10.0);
     ASSERT_EQ(e.counts().reflect, 1u);
     const double d = innerRoot(30.0, 3.0, 3.035);
-    EXPECT_NEAR(e.impulseVirial(), d * 2.0 * m * u, 1e-9 * d * m * u);
+    EXPECT_NEAR(e.virial(), d * 2.0 * m * u, 1e-9 * d * m * u);
 }
 
 // A transmission down a step of ΔE (the well's first level, crossed inwards): the relative speed
@@ -66,5 +66,5 @@ TEST(Pressure, TransmissionsAddTheHandComputedImpulseVirial) {
     e.advanceTo(1.01 * (6.0 - 0.5 * d) / u);
     ASSERT_EQ(e.counts().down, 1u);
     const double w = 2.0 * u, w1 = std::sqrt(w * w - 2.0 * dE / mu);
-    EXPECT_NEAR(e.impulseVirial(), -d * mu * (w1 - w), 1e-9 * d * mu * w);
+    EXPECT_NEAR(e.virial(), -d * mu * (w1 - w), 1e-9 * d * mu * w);
 }

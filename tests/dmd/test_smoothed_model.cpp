@@ -48,8 +48,8 @@ TEST(SmoothedModel, SameEventsAsTheBarePotentialWhileTheSwitchLiesBeyondRm) {
     EXPECT_EQ(smoothed.counts().total(), bare.counts().total());
     EXPECT_EQ(smoothed.counts().up, bare.counts().up);
     EXPECT_EQ(smoothed.statistics()["search_evaluations"], bare.statistics()["search_evaluations"]);
-    const auto a = smoothed.synchronisedCopy();
-    const auto b = bare.synchronisedCopy();
+    const auto a = smoothed.system();
+    const auto b = bare.system();
     for (int i = 0; i < a.size(); ++i) {
         ASSERT_EQ(a.bodies[i].r, b.bodies[i].r) << i;
         ASSERT_EQ(a.bodies[i].v, b.bodies[i].v) << i;

@@ -1,0 +1,148 @@
+#pragma once
+// What a run keeps as it goes, apart from the engine: the plan of its time grid, its position on
+// that grid, the files it grows, and the record of its samples that becomes summary.json.
+#include "analysis/run_analysis.hpp"
+#include "cli/cpu_clock.hpp"
+#include "cli/interrupt.hpp"
+#include "cli/restart.hpp"
+#include "cli/thermo.hpp"
+#include "core/output_file.hpp"
+#include "core/pressure.hpp"
+#include "core/scene.hpp"
+#include "core/snapshot.hpp"
+#include "core/vec.hpp"
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace terrace::cli {
+
+struct RunPlan {
+    double sampleInterval = 0.0;     // time units
+    double thermostatInterval = 0.0; // time units
+    long equilibrationTicks = 0;     // whole thermostat intervals
+    long productionSamples = 0;      // samples after the one at the start of production
+    long trajectoryEvery = 0;        // in samples; 0 = none
+    long thermoEvery = 0;            // in samples; 0 = none
+    long restartEvery = 0;           // in samples; 0 = none
+    long restartEveryTicks = 0;      // in thermostat intervals, during equilibration
+
+    /// The time of production sample s. When the thermostat and sample intervals agree this is
+    /// (ticks + s)·Δt, one grid from t = 0, as runs have always been sampled.
+    double productionTime(long s, double tStart) const;
+};
+
+/// The scene's intervals on the engine's grid (the scene validation has checked that they are
+/// whole multiples: SMD moves in whole steps, outputs come at whole samples).
+RunPlan planRun(const Scene& scene);
+
+/// The analysis settings of a scene (analysis.rdf_max is in σ there, in Å here).
+analysis::StreamingOptions streamingOptions(const Scene& scene);
+
+/// Bytes the run's analysis and per-sample records will hold in memory at most.
+double analysisBytes(const Scene& scene);
+
+/// Where the run stands on its grid: the phase, thermostat ticks and samples done, production's
+/// start and the CPU seconds of each phase before the current engine's stretch.
+struct RunPosition {
+    bool inProduction = false;
+    long tick = 0, sample = 0;
+    double tStart = 0.0, cpuEquilibration = 0.0, cpuProduction = 0.0;
+};
+
+/// The files production grows sample by sample (closed where the scene writes none).
+struct RunFiles {
+    AppendFile trajectory, thermo, samples;
+    /// Each open file reaches the disk: before a restart file that counts their bytes.
+    void sync();
+    /// Their lengths, as a restart file records them.
+    nlohmann::json sizes() const;
+};
+
+nlohmann::json vec3Json(const Vec3& v);
+
+/// Adds one stretch of an engine's life (statistics at its start and end) to the production's
+/// statistics: counters (events.*, steps, ...) add their increase over the stretch, everything
+/// else takes its value at the end. Production is one stretch unless restart points rebuilt the
+/// engine.
+void accumulateStatistics(nlohmann::json& production, const nlohmann::json& start,
+                          const nlohmann::json& end);
+
+/// Collisions (DMD's events up + down + reflect) in engine statistics; 0 for SMD's.
+double collisionCount(const nlohmann::json& statistics);
+
+/// Merges the production's engine statistics into the summary and adds collisions_per_ps
+/// (DMD: up + down + reflect) and steps_per_ps (SMD) where those counters exist.
+void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& production,
+                         double simulatedPs);
+
+/// What a run gathered, handed from the engine loop to the summary.
+struct RunRecord {
+    std::vector<SampleRecord> records; // per production sample: energies, K_trans, virial, …
+    std::unique_ptr<analysis::RunAnalysis> analysis; // null with fewer than 4 samples planned
+    CpuClock analysisClock;                          // CPU time of the analysis
+    Vec3 momentumInitial = Vec3::Zero(), momentumFinal = Vec3::Zero(); // internal units
+    nlohmann::json production = nlohmann::json::object(); // engine statistics over production
+    double simulatedPs = 0.0, cpuSeconds = 0.0, cpuEquilibration = 0.0;
+    double sampleInterval = 0.0, kT = 0.0;
+    double volume = 0.0;                               // Å³
+    VirialKind virialKind = VirialKind::Instantaneous; // what records[k].virial holds
+    int bodies = 0, dof = 0;
+    std::string interruptedBy;         // the signal that stopped the run ("" if none)
+    std::string interruptedIn;         // equilibration | production | analysis
+    std::string failure;               // the first error that ended the run ("" if none)
+    long restartsWritten = 0;          // restart files written over the whole run
+    std::size_t hugePageBytes = 0;     // most of the process seen in huge pages at an engine's end
+    int continuations = 0;             // times the run was continued from a restart file
+    double restartEveryPs = 0.0;       // 0: no restart files
+    std::vector<std::string> warnings; // from the scene (sceneWarnings)
+
+    /// A record for a run of `bodies` bodies in a box of side boxLength (Å) under `plan`, with
+    /// the analysis the scene asks for (none with fewer than 4 samples planned).
+    RunRecord(const Scene& scene, const RunPlan& plan, int bodies, double boxLength,
+              int rotationalDof, VirialKind virialKind);
+    RunRecord() = default;
+
+    void add(const SampleRecord& e, const Snapshot& s) {
+        records.push_back(e);
+        if (!analysis) return;
+        analysisClock.start();
+        analysis->add(s);
+        analysisClock.stop();
+    }
+    /// A sample taken from the engine: the analysis gets only what it reads (the followed
+    /// bodies, and on a g(r) frame every position, read from the engine body by body), so that
+    /// no large system's sample, nor its positions, is held beside the engine (~0.1 GB of
+    /// sample, 24 MB of positions, at 10⁶ rods).
+    template <class E> void addParts(const SampleRecord& e, const E& engine) {
+        records.push_back(e);
+        if (!analysis) return;
+        const Snapshot followed = engine.snapshot(analysis->followedBodies());
+        analysisClock.start();
+        if (analysis->wantsPositions())
+            analysis->add(followed, [&engine](int b) { return engine.position(b); });
+        else
+            analysis->add(followed, nullptr);
+        analysisClock.stop();
+    }
+};
+
+/// Writes summary.json, then the correlation analysis (cancelled by a signal that arrives
+/// during it: more than `tolerated` signals in all), then summary.json again with the analysis'
+/// results.
+/// `analysed`: whether the analysis ran to its end (or was not due: fewer than 4 samples).
+nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
+                                       const std::filesystem::path& dir,
+                                       const InterruptGuard& interrupt, int tolerated,
+                                       bool& analysed);
+
+/// The run's position and accumulators from a restart file: the samples (read back from
+/// samples.bin, after checking that the growing files still hold what the file says they did),
+/// the phase, and what the file carries over. Fills `run` and opens `files` where they were.
+RunPosition resumeRun(const nlohmann::json& restart, const RunPlan& plan,
+                      const std::filesystem::path& dir, int bodies, bool withOrientation,
+                      double boxLength, RunRecord& run, RunFiles& files);
+
+} // namespace terrace::cli

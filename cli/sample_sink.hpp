@@ -1,0 +1,91 @@
+#pragma once
+// Where a production sample goes: its energies into the run's record and thermo.csv, the bodies
+// into samples.bin (with restarts on) and trajectory.xyz (at its interval), and the analysis.
+// Nothing takes a sample whole: at 10⁶ bodies a frame's text alone is ~0.3 GB, and beside the
+// engine it would raise the run's peak, so every file is written piece by piece from the engine.
+#include "cli/run_record.hpp"
+#include "core/engine.hpp"
+#include "core/units.hpp"
+#include "core/xyz.hpp"
+#include <numeric>
+#include <span>
+#include <vector>
+
+namespace terrace::cli {
+
+/// The engine's bodies begin … end−1 as a snapshot, taken when a piece of a frame or of a sample
+/// record is written.
+template <class E> auto bodiesOf(const E& engine) {
+    return [&engine, bodies = std::vector<int>()](int begin, int end) mutable {
+        bodies.resize(static_cast<std::size_t>(end - begin));
+        std::iota(bodies.begin(), bodies.end(), begin);
+        return engine.snapshot(std::span<const int>(bodies));
+    };
+}
+
+/// The engine's bodies as one trajectory frame, handed to `sink` piece by piece.
+template <class E>
+void writeFrame(const E& engine, int n, TrajectoryLayout layout, const PieceSink& sink) {
+    const Snapshot none = engine.snapshot(std::span<const int>()); // its time and box
+    writeXyzFramePieces(n, none.time, none.boxLength, layout, bodiesOf(engine), sink);
+}
+
+/// The engine's bodies and the sample's energies as one samples.bin record, piece by piece.
+template <class E>
+void writeSample(const E& engine, int n, const SampleRecord& e, const PieceSink& sink) {
+    const Snapshot none = engine.snapshot(std::span<const int>()); // its time
+    writeSamplePieces(n, none.time, e, bodiesOf(engine), sink);
+}
+
+class SampleSink {
+public:
+    SampleSink(const RunPlan& plan, int rotationalDof, RunRecord& run, RunFiles& files)
+        : plan_(plan), layout_(layoutFor(rotationalDof)), thermoLayout_{run.virialKind, run.volume,
+                                                                        run.dof, run.bodies},
+          run_(run), files_(files) {}
+
+    /// Production begins: its files are opened empty in `dir` (thermo.csv with its header).
+    void openProduction(const std::filesystem::path& dir, bool restarts) {
+        if (plan_.trajectoryEvery > 0) files_.trajectory = AppendFile(dir / "trajectory.xyz", 0);
+        if (plan_.thermoEvery > 0) {
+            files_.thermo = AppendFile(dir / "thermo.csv", 0);
+            files_.thermo.append(thermoHeader(thermoLayout_));
+        }
+        if (restarts) files_.samples = AppendFile(dir / "samples.bin", 0);
+    }
+
+    /// Production sample `sample` of the engine as it is now; `collisions` since production
+    /// began, `tStart` production's start (time units).
+    template <Engine E>
+    void record(const E& engine, long sample, double tStart, double collisions) {
+        const double u = engine.potentialEnergy(), kin = engine.kineticEnergy();
+        SampleRecord e{units::toPs(engine.time() - tStart), u + kin, u, kin};
+        e.kineticTranslational = engine.translationalKineticEnergy();
+        e.virial = engine.virial();
+        e.collisions = collisions;
+        e.time = engine.time();
+        const int n = run_.bodies;
+        if (plan_.thermoEvery > 0 && sample % plan_.thermoEvery == 0) {
+            const SampleRecord* before =
+                sample > 0 ? &run_.records[sample - plan_.thermoEvery] : nullptr;
+            files_.thermo.append(
+                thermoRow(e, before, engine.continuousPotentialEnergy(), thermoLayout_));
+        }
+        if (files_.samples.isOpen()) // what a continued run reads back
+            files_.samples.appendPieces(
+                [&](const PieceSink& sink) { writeSample(engine, n, e, sink); });
+        if (plan_.trajectoryEvery > 0 && sample % plan_.trajectoryEvery == 0)
+            files_.trajectory.appendPieces(
+                [&](const PieceSink& sink) { writeFrame(engine, n, layout_, sink); });
+        run_.addParts(e, engine);
+    }
+
+private:
+    const RunPlan& plan_;
+    TrajectoryLayout layout_;
+    ThermoLayout thermoLayout_;
+    RunRecord& run_;
+    RunFiles& files_;
+};
+
+} // namespace terrace::cli
