@@ -148,8 +148,8 @@ double ratioOfMeans(const std::vector<Gaps>& g, std::size_t leaveOut) {
 TEST(ConvergenceOrder, HalvingTheTerraceShrinksTheEnergyGapByTheMeasuredFactor) {
     // experiments/convergence.sh, results/convergence/convergence-rods.csv, column order_U at
     // ΔV = kT/2 (N = 512, 4 replicas of 5.4 ps, SMD 0.2 fs reference 4 × 10.8 ps; see
-    // results/convergence/README.md): the gap falls from 2.892 ± 0.032 to 1.345 ± 0.029 kJ/mol, a local order
-    // p = log₂(e(kT/2)/e(kT/4)) = 1.105 ± 0.035.
+    // results/convergence/README.md): the gap falls from 2.892 ± 0.032 to 1.345 ± 0.029 kJ/mol,
+    // a local order p = log₂(e(kT/2)/e(kT/4)) = 1.105 ± 0.035.
     constexpr double measuredOrder = 1.105, measuredOrderError = 0.035;
     const double factor = std::exp2(measuredOrder);
     const double factorError = factor * std::log(2.0) * measuredOrderError;
