@@ -1,3 +1,1 @@
-if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/bench_free_motion.cpp)
-    terrace_bench(bench_free_motion.cpp terrace_core)
-endif()
+terrace_bench(bench_free_motion.cpp terrace_core)

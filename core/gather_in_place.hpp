@@ -1,7 +1,7 @@
 #pragma once
 // Reordering a per-body array in place: a large system's bodies renumbered without a second copy
-// of them beside the first (at 10⁶ rods a copy is 96 MB, which at a restart point set the run's
-// peak memory).
+// of them beside the first (at 10⁶ rods a copy is 96 MB, which at a restart point would set the
+// run's peak memory).
 #include <cstddef>
 #include <utility>
 #include <vector>

@@ -7,12 +7,10 @@
 // in the engine's body order (bodies sorted in space, dmd/engine.hpp): four cache lines, the
 // slots' times first (finding the earliest reads two lines), then the rest of each event, packed
 // in 8 B, and the agenda's size. A body whose agenda outgrows its block keeps the rest in a spill
-// vector, of the same 16-B slots, taken from a pool and given back when the agenda fits again. In
-// the dense rods a body's agenda holds ~7 events (up to ~18), ~6 of them virtual events of its
-// pairs (a truncated search resumes there); LJ spheres hold ~13. The old layout, a std::vector of
-// 48-byte events per body, kept the largest capacity each had reached (16 events, 0.8 KB, for
-// most bodies), where a block holds 15 in 256 B. (With the rest in 12 B, 12 slots to a block, the
-// spheres' spills cost 216 B a body more at 32 768.)
+// vector, of the same 16-B slots, taken from a pool and given back when the agenda fits again.
+// Most of an agenda's events are virtual events of its pairs (a truncated search resumes there),
+// and a block of 15 holds a typical agenda whole; a vector per body would instead keep the largest
+// capacity each had ever reached. Agenda sizes and the memory they take: docs/PERFORMANCE.md.
 //
 // The order of a body's events is that of a vector whose removal moves the last event into the
 // gap: the slots of the block first, then the spill. Times in the engine's unit (100 fs).

@@ -94,7 +94,7 @@ public:
     /// body i, at r (its position now, inside its cell; nullptr: none skipped; reach ≤ edge(),
     /// which holds for the engine's lists, whose cells are made as wide as their reach). With cells
     /// a little wider than the reach, as the engine's are, about 12 of the 27 drop out, mostly the
-    /// corners: a list rebuild then scans ~40 % fewer bodies.
+    /// corners, and a list rebuild scans that many fewer bodies.
     template <class F>
     void forEachNeighbourWithin(int i, const Vec3* r, double reach, F&& f) const {
         if (single()) {

@@ -26,9 +26,9 @@
 // the partners (a prediction reads only these), then their terraces. The capacity is set from the
 // number of bodies expected within reach at the mean density, with room for the liquid's
 // fluctuations; a list that outgrows its record moves whole into a spill taken from a pool (a
-// list is one contiguous run of partners) and back when it fits again. One std::vector per list
-// and per body's terraces cost ~100 B a body more in headers, heap-block overhead and the slack
-// of the largest size each had reached.
+// list is one contiguous run of partners) and back when it fits again. A std::vector per list and
+// per body's terraces would add headers, heap-block overhead and the slack of the largest size
+// each had reached to every body.
 #include "core/huge_pages.hpp"
 #include "core/vec.hpp"
 #include "dmd/prefetch.hpp"
@@ -65,10 +65,8 @@ inline double listSkin(double rm, double numberDensity, double boxLength) {
 }
 
 /// Slots in each body's own record: the bodies expected within reach (r_m + skin, Å) at the mean
-/// density n (Å⁻³), with room for fluctuations, at most the other bodies. The paper's dense rods
-/// expect ~14 and hold 14–15 on average, at most 20–23 at a time (21 slots: in the settled liquid
-/// of 10⁶ rods, one list at a time beyond its record); a list beyond its record only costs a
-/// spill.
+/// density n (Å⁻³), with room for fluctuations, at most the other bodies. The room is sized so
+/// that a list beyond its record is rare; it then only costs a spill.
 inline int listCapacity(double reach, double numberDensity, int nBodies) {
     const double expected = numberDensity * 4.0 / 3.0 * std::numbers::pi * reach * reach * reach;
     const double room = 1.2 * expected + 3.0;

@@ -15,9 +15,9 @@
 //   4. once a sign change is bracketed, refines the root by sampling at the crossing of the
 //      Hermite cubic through the bracket, and returns a time just on the far side of the level.
 // Both refinements stop as soon as the question is answered (the extremum clears the level by
-// more than the cubics' own error, the root is pinned to the time tolerance): on the paper's dense
-// rods a root costs 2–3 samples and a grazing check 1–2, where bisection-safeguarded Newton and a
-// full Brent minimisation took about 9 and 10.
+// more than the cubics' own error, the root is pinned to the time tolerance), because each sample
+// of U is the search's cost; bisection-safeguarded Newton and a full Brent minimisation take
+// several times as many samples (docs/PERFORMANCE.md).
 // Extrema are examined in time order, before the end point, so the earliest crossing wins.
 //
 // Right after an event the pair sits on a level (within round-off of U). The Bannerman rule

@@ -63,7 +63,7 @@ struct alignas(64) BodyBook {
     std::int32_t aboutPrev = -1, aboutNext = -1;
     // The first owner whose entry is about this body (−1: none): here, not in an array of its
     // own, because the book is read anyway wherever the list is (settle checks the partner's
-    // counter, invalidate bumps the body's own), and another array was one more miss.
+    // counter, invalidate bumps the body's own), and another array would be one more miss.
     std::int32_t aboutFirst = -1;
     std::uint16_t agendaFirst = 0; // index of its earliest event (unknownFirst: scan)
     bool unsettled = false;        // listed for settle() to renew its entry
@@ -71,9 +71,9 @@ struct alignas(64) BodyBook {
 static_assert(sizeof(BodyBook) == 64, "a body's scalars fill one cache line");
 
 /// Owner: the engine whose schedule this is (dmd::Engine<K, P>). Nothing here depends on it: it
-/// gives each engine its own copy of these functions, as when they were the engine's members, so
-/// that g++ inlines them as it did then (it weighs a function by its calls, and with the calls of
-/// every engine in one copy it kept some of the small steps out of line: a call more per event).
+/// gives each engine its own copy of these functions, because g++ weighs a function by its calls
+/// when it decides to inline, and with the calls of every engine in one copy it keeps some of the
+/// small steps out of line: a call more per event.
 template <class Owner> class Schedule {
 public:
     using Queue =
@@ -116,7 +116,7 @@ public:
     /// A collision invalidates some 20 events of its two bodies; with one entry per body they
     /// mostly never reach the calendar, which then pushes and pops a third as many entries.
     [[gnu::flatten]] void schedule(int i, const PendingEvent& e) {
-        // (flat: the filing was a call per event)
+        // (flatten: otherwise the filing is a call per event)
         if (agendas_.size(i) == Agendas::inlineEvents) dropStale(i);
         const int last = agendas_.push(i, e);
         // The earliest is kept as events arrive, so that settling a body just refilled needs no

@@ -2,9 +2,8 @@
 // Where the per-body blocks of the engine's bookkeeping (dmd/agendas.hpp, dmd/neighbour_lists.hpp)
 // take an overflow container from: a pool of them, each returned for reuse when its body fits its
 // block again, so that a body that spills now and then allocates nothing in the steady state.
-// A pool keeps what a passing crowd of spills left in it (a lattice start spills ~80 % of the LJ
-// spheres' agendas at once, the liquid then ~10 %: 87 B a body of idle containers at 32 768) until
-// it is compacted.
+// A pool keeps what a passing crowd of spills left in it (a lattice start spills many more agendas
+// at once than the liquid it melts into) until it is compacted.
 #include <cstddef>
 #include <cstdint>
 #include <utility>

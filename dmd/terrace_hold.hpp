@@ -21,9 +21,8 @@
 //     between max(0, c_lo, −c_hi) and max(c_hi, −c_lo);
 // all these bounds widen with T, so over [0, T] r_e ≥ r_lo + ζ(½ − max|c|²) and
 // r_e ≤ r_hi + ζ(½ − min|c|²) (ζ ≥ 0) with the envelopes taken at T. No level can be reached
-// while both stay inside the band. In the paper's dense liquid at ΔV = kT/2 this holds about four
-// in five of the pairs a collision would have the search examine for the whole horizon, often
-// for several.
+// while both stay inside the band. In a dense liquid this holds most of the pairs a collision
+// would have the search examine for the whole horizon, often for several.
 //
 // The smoothed model g(r)·φ(r_e) (core/smoothed_potential.hpp) equals φ wherever r ≤ r_l, so the
 // bands of φ serve it as long as the centre distance stays below r_l too: its upper envelope is
@@ -211,9 +210,8 @@ template <class P> double bandCeiling(const P& p, double rm) {
 /// event the pair sits on a level: 0). through(T) only fails more as T grows (both envelopes
 /// widen monotonically, and rounding keeps that order), so the number of rungs it holds through
 /// gives the answer: every rung is tried, with no branch on the outcome, which no predictor could
-/// guess (in the paper's liquid each of 0, 1, 2, 4 and 8 horizons is the answer for 12–29 % of
-/// pairs). Inlined into its one caller in the engine, which then passes the hold in registers
-/// instead of through memory (−1.5 % instructions on the paper's dense rods).
+/// guess (in a liquid each rung is a common answer). Inlined into its one caller in the engine,
+/// which then passes the hold in registers instead of through memory.
 [[gnu::always_inline]] inline double holdTime(const BandHold& hold, double first, double last) {
     assert(first > 0.0 && last < 0x1p60 * first); // the loop ends, the shift below is defined
     int rungs = 0;

@@ -15,7 +15,7 @@
 // the bodies are numbered so that neighbours in space are neighbours in memory (the engine's Morton
 // order): the lower levels an event walks are those its neighbours' events walked, the upper ones
 // are few and always cached, and no entry is ever stale in it. Memory: 2 nodes of 16 B and one
-// 48-B leaf per body, with no stale entries (a heap of lazy entries holds ~1.75 per body).
+// 48-B leaf per body, with no stale entries (a heap of lazy entries holds more than one per body).
 // The inner nodes are an implicit tree over L leaves (node k's children 2k and 2k + 1, leaves at
 // L … 2L − 1, any L), aligned so that two siblings share a cache line.
 #include "core/huge_pages.hpp"

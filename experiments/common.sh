@@ -15,7 +15,7 @@ SCENES=$EXPERIMENTS/scenes
 RUNS=$OUT/runs
 
 # Run sizes. "full" is sized so that `make -f Makefile.paper all` stays within an hour on two
-# cores (results/README.md lists the measured costs); "quick" only exercises the pipeline.
+# cores (results/runs.md lists the measured costs); "quick" only exercises the pipeline.
 # Every length is a whole number of the intervals of its runs, as terrace requires: of SAMPLE_FS
 # (9 fs: samples and thermostat) for the run sets and the skin trials (runset.sh moves them onto
 # SMD's own grid where that is another, 8 fs at dt = 4 fs), of EXTREME_SAMPLE_FS for the

@@ -8,7 +8,7 @@
 // F are those of the scalar kernel bit for bit; only the order of the sums differs (force on
 // body i, U, and the virial, here Σ f r² rather than Σ r_ij·F_ij), which is round-off.
 //
-// Why: the scalar loop spends 13-15 ns per listed pair, mostly on two branches the predictor
+// Why: the scalar loop spends its time per listed pair mostly on two branches the predictor
 // cannot learn (r < r_u and r > r_l each hold for roughly half the listed pairs) and on the
 // latency of a division and a square root per pair. Here every lane computes the switch and the
 // cutoff is a mask: no data-dependent branch, one vector division and one vector square root per

@@ -47,7 +47,8 @@ template <> struct PairKernel<Smoothed<LJPotential>> {
         const double s6 = s2 * s2 * s2;
         double u = 4.0 * lj.epsilon * s6 * (s6 - 1.0);
         double forceOverR = 24.0 * lj.epsilon * s6 * (2.0 * s6 - 1.0) * inv2;
-        // A branch, not a clamped t in [0, 1] for every pair: measured faster in the pair loop.
+        // A branch, not a clamped t in [0, 1] for every pair: the faster of the two in the scalar
+        // pair loop (docs/PERFORMANCE.md).
         if (r2 > cut.inner() * cut.inner()) { // in the switch: g U, g F - U g' r̂
             const double r = std::sqrt(r2), g = cut.switching(r);
             forceOverR = g * forceOverR - u * cut.switchingSlope(r) * (r * inv2);

@@ -17,6 +17,12 @@ using namespace terrace;
 // The linear rotor's orbit evaluates freeRotate's expression without its renormalisation (the
 // rotated axis has unit length to a few ulp): differences of a few ulp per component.
 constexpr double roundoffTol = 8.0 * std::numeric_limits<double>::epsilon();
+// sinCos's series against the library: about an ulp of values ≤ 1.
+constexpr double sinCosTol = 2.5e-16;
+// A re-based orbit turns by τ from its own start: the angle's round-off grows with |ω|τ.
+constexpr double angleRoundoffPerRadian = 1e-15;
+// An angle summed over 10⁵ flights, |ω|t ~ 1.4e5 rad, carries ~3e-11 of round-off.
+constexpr double summedAngleTol = 1e-9;
 
 Vec3 randomUnit(std::mt19937_64& rng) {
     std::normal_distribution<double> g;
@@ -130,8 +136,8 @@ TEST(SmallAngle, SinCosAgreesWithTheLibrary) {
     for (int k = -4000; k <= 4000; ++k) {
         const double x = 1.2 * k / 4000.0; // beyond π/4 the library itself answers
         const SinCos sc = sinCos(x);
-        EXPECT_NEAR(sc.sin, std::sin(x), 2.5e-16) << x;
-        EXPECT_NEAR(sc.cos, std::cos(x), 2.5e-16) << x;
+        EXPECT_NEAR(sc.sin, std::sin(x), sinCosTol) << x;
+        EXPECT_NEAR(sc.cos, std::cos(x), sinCosTol) << x;
     }
     EXPECT_EQ(sinCos(0.0).sin, 0.0);
     EXPECT_EQ(sinCos(0.0).cos, 1.0);
@@ -213,7 +219,7 @@ TEST(FreeOrbit, AdvancedOrbitFollowsFreeMove) {
             EXPECT_LE((advanced.axis() - moved.s).norm(), roundoffTol) << k << " " << tau0;
             for (double tau : taus)
                 EXPECT_LE((advanced.at(tau).axis - orbit.at(tau0 + tau).axis).norm(),
-                          4.0 * roundoffTol + 1e-15 * std::abs(b.w.norm() * tau))
+                          4.0 * roundoffTol + angleRoundoffPerRadian * std::abs(b.w.norm() * tau))
                     << k << " " << tau0 << " " << tau;
         }
     }
@@ -231,7 +237,7 @@ TEST(FreeOrbit, AdvancedOrbitFollowsFreeMove) {
     EXPECT_NEAR(orbit.axis().norm(), 1.0, 4.0 * std::numeric_limits<double>::epsilon());
     // The angle itself is summed over 10⁵ flights, and |ω|t ~ 1.4e5 rad carries ~3e-11 of
     // round-off: the axes agree to that, not to a few ulp.
-    EXPECT_LE((orbit.axis() - exact.s).norm(), 1e-9);
+    EXPECT_LE((orbit.axis() - exact.s).norm(), summedAngleTol);
 }
 
 // The DMD engine keeps no orbit for a rotor (dmd/body_clocks.hpp keepsOrbit): at every flight it
@@ -255,7 +261,7 @@ TEST(FreeOrbit, ARotorFlownFromItsStateAtEveryFlightStaysOnItsExactRotation) {
     freeMove<LinearRotor>(exact, p, t); // one rotation by the whole angle, ~1.4e5 rad
     EXPECT_NEAR(flown.s.norm(), 1.0, 4.0 * std::numeric_limits<double>::epsilon());
     EXPECT_LE(std::abs(flown.s.dot(flown.w)) / speed, 8.0 * std::numeric_limits<double>::epsilon());
-    EXPECT_LE((flown.s - exact.s).norm(), 1e-9); // the summed angle's round-off, as above
+    EXPECT_LE((flown.s - exact.s).norm(), summedAngleTol);
 }
 
 } // namespace

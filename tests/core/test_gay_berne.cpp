@@ -43,6 +43,13 @@ constexpr double kVanishingFraction = 1e-3;
 constexpr double kRoundOffTol = 64.0 * kEps;
 // The same after the inputs were rotated, each component carrying its own rounding.
 constexpr double kRotationTol = 1e-12;
+// Force and torques at the bottom of a well: zero up to the round-off of its closed-form position.
+constexpr double kStationaryTol = 1e-12;
+// A bound found by bisection holds to its last bisection step (relative; absolute in Å).
+constexpr double kBisectionTol = 1e-12;
+constexpr double kLooseBoundSlack = 1e-9; // Å: the bisection locating the farthest crossing
+// The range of U over no motion is U itself, to the round-off of its interval arithmetic.
+constexpr double kStillRangeTol = 1e-9;
 // Steps of the fourth-order stencil, balancing truncation (~h⁴) against round-off (~eps·U/h).
 // Rotations take a smaller step than for the rods: with κ = 4.4, σ swings by ~(κ − 1)σ0 per radian
 // and the stencil's truncation at 3e-4 rad reaches ~3e-7 along free motion; at 1e-4 the worst seen
@@ -138,10 +145,10 @@ TEST(GayBerneKnownValues, ClassicConfigurations) {
         const PairForce f = p.evaluate(rMin, k.ui, k.uj);
         EXPECT_NEAR(f.U, -k.depth, kExactTol);
         EXPECT_NEAR(p.energy(rMin, k.ui, k.uj), -k.depth, kExactTol);
-        EXPECT_LE(f.F.norm(), 1e-12);
+        EXPECT_LE(f.F.norm(), kStationaryTol);
         // All four are stationary in the orientations too (by symmetry): no torques.
-        EXPECT_LE(f.tauI.norm(), 1e-12);
-        EXPECT_LE(f.tauJ.norm(), 1e-12);
+        EXPECT_LE(f.tauI.norm(), kStationaryTol);
+        EXPECT_LE(f.tauJ.norm(), kStationaryTol);
         // Repulsive just inside contact, attractive beyond the well.
         EXPECT_GT(p.evaluate(0.98 * k.sigma * Vec3::UnitX(), k.ui, k.uj).F.x(), 0.0);
         EXPECT_LT(p.evaluate((k.sigma + 0.5) * Vec3::UnitX(), k.ui, k.uj).F.x(), 0.0);
@@ -423,18 +430,18 @@ TEST(GayBerneBounds, ReachDistanceBoundsEveryCrossing) {
             for (const PairConfig& c : axes) {
                 const double r = outermostCrossing(p, c, u, 0.6 * p.sigmaMin(), reach + p.sigma);
                 farthest = std::max(farthest, r);
-                EXPECT_LE(r, reach * (1.0 + 1e-12)) << "u = " << u;
+                EXPECT_LE(r, reach * (1.0 + kBisectionTol)) << "u = " << u;
             }
             // Not absurdly loose: when κ' ≥ 1 parallel axes side by side have the deepest well and
             // σ = σ0, so the bound exceeds their crossing by σ_max − σ0 at most. (When κ' < 1 the
             // deepest well is end to end, where σ differs from σ_max, and the bound is looser.)
             // At u = −ε_max the well is only touched, which a scan cannot see.
             if (p.kappaPrime >= 1.0 && u > -eMax) {
-                EXPECT_LE(reach - farthest, slack + 1e-9) << "u = " << u;
+                EXPECT_LE(reach - farthest, slack + kLooseBoundSlack) << "u = " << u;
             }
             // The reach bisection of the smoothed cutoff ends at the same place.
             if (u < 0.0 && reach > kBottom * p.sigma + slack) {
-                EXPECT_NEAR(p.lowestEnergyAt(reach), u, 1e-12 * eMax) << "u = " << u;
+                EXPECT_NEAR(p.lowestEnergyAt(reach), u, kBisectionTol * eMax) << "u = " << u;
             }
         }
         // Deeper than the deepest well: never.
@@ -463,8 +470,8 @@ TEST(GayBerneBounds, EnergyRangeHoldsOverTheMotionItCovers) {
             const double u0 = p.energy(rij, ui, uj);
             if (!std::isfinite(u0)) continue;
             const EnergyRange still = p.energyRange(rij, ui, uj, 0.0, 0.0, 0.0);
-            EXPECT_NEAR(still.lo, u0, 1e-9 * std::max(1.0, std::abs(u0)));
-            EXPECT_NEAR(still.hi, u0, 1e-9 * std::max(1.0, std::abs(u0)));
+            EXPECT_NEAR(still.lo, u0, kStillRangeTol * std::max(1.0, std::abs(u0)));
+            EXPECT_NEAR(still.hi, u0, kStillRangeTol * std::max(1.0, std::abs(u0)));
             const double shift = 0.2 * p.sigma * unit(rng);
             const double turnI = 0.3 * unit(rng), turnJ = 0.3 * unit(rng);
             const EnergyRange range = p.energyRange(rij, ui, uj, shift, turnI, turnJ);

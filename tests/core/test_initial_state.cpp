@@ -10,7 +10,16 @@
 using namespace terrace;
 
 namespace {
-constexpr double roundOff = 1e-10; // relative: sums over 512 bodies of O(1) numbers
+constexpr double roundOff = 1e-10;   // relative: sums over 512 bodies of O(1) numbers
+constexpr double densityTol = 1e-12; // ρ* from the box the scene's density set: one cube root
+constexpr double unitTol = 1e-14;    // a normalised axis, a few ulp from unit length
+constexpr double perpendicularTol = 1e-12; // ω·s of ω projected off s, rad per time unit
+constexpr double latticeTol = 1e-9;        // Å: positions on the lattice, to the box's round-off
+// One start's split of kT between translation and rotation is a sample: at N = 4096 its error
+// is ~sqrt(2/(2N)) ≈ 0.016 per degree of freedom, so 0.05 is about three standard errors.
+constexpr double equipartitionTol = 0.05;
+constexpr double orthonormalTol = 1e-13; // |A Aᵀ − 1| of an attitude built from a quaternion
+constexpr double axisTol = 1e-15;        // an explicit axis taken as given, to an ulp
 
 template <class K, class P> void checkThermal(const System<K, P>& sys) {
     const double kin = totalKinetic(sys);
@@ -23,17 +32,18 @@ TEST(InitialState, DenseRodsAtTheStatePoint) {
     const Scene scene = defaultScene();
     const auto sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
     ASSERT_EQ(sys.size(), 512);
-    EXPECT_NEAR(sys.size() * std::pow(scene.potential.sigma, 3) / sys.box.volume(), 0.5, 1e-12);
+    EXPECT_NEAR(sys.size() * std::pow(scene.potential.sigma, 3) / sys.box.volume(), 0.5,
+                densityTol);
     checkThermal(sys);
     double minDistance = 1e300;
     for (int i = 0; i < sys.size(); ++i) {
-        EXPECT_NEAR(sys.bodies[i].s.norm(), 1.0, 1e-14);
-        EXPECT_NEAR(sys.bodies[i].w.dot(sys.bodies[i].s), 0.0, 1e-12);
+        EXPECT_NEAR(sys.bodies[i].s.norm(), 1.0, unitTol);
+        EXPECT_NEAR(sys.bodies[i].w.dot(sys.bodies[i].s), 0.0, perpendicularTol);
         for (int j = i + 1; j < sys.size(); ++j)
             minDistance = std::min(minDistance,
                                    sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r).norm());
     }
-    EXPECT_NEAR(minDistance, sys.box.length / 8, 1e-9); // 8³ simple cubic lattice
+    EXPECT_NEAR(minDistance, sys.box.length / 8, latticeTol); // 8³ simple cubic lattice
 }
 
 TEST(InitialState, EquipartitionOverManyBodies) {
@@ -46,8 +56,8 @@ TEST(InitialState, EquipartitionOverManyBodies) {
         rot += LinearRotor::rotationalKinetic(b, sys.body);
     }
     // per degree of freedom, 3 translational and 2 rotational; statistical error ~ sqrt(2/(2N))
-    EXPECT_NEAR(trans / (3.0 * sys.size()) / (0.5 * sys.kT), 1.0, 0.05);
-    EXPECT_NEAR(rot / (2.0 * sys.size()) / (0.5 * sys.kT), 1.0, 0.05);
+    EXPECT_NEAR(trans / (3.0 * sys.size()) / (0.5 * sys.kT), 1.0, equipartitionTol);
+    EXPECT_NEAR(rot / (2.0 * sys.size()) / (0.5 * sys.kT), 1.0, equipartitionTol);
 }
 
 TEST(InitialState, EveryBodyKind) {
@@ -59,7 +69,7 @@ TEST(InitialState, EveryBodyKind) {
     const auto asym = buildInitialState<AsymmetricTop>(scene, rodPotential(scene));
     checkThermal(asym);
     for (const auto& b : asym.bodies)
-        EXPECT_LT((b.A * b.A.transpose() - Mat3::Identity()).norm(), 1e-13);
+        EXPECT_LT((b.A * b.A.transpose() - Mat3::Identity()).norm(), orthonormalTol);
     scene.potential.kind = "lj";
     scene.body.kind = "sphere";
     checkThermal(buildInitialState<Sphere>(scene, ljPotential(scene)));
@@ -122,11 +132,11 @@ TEST(InitialState, ExplicitOrientationsAreHonoured) {
     b.axis = Vec3(1, 0, 0);
     scene.state.particles = {a, b};
     const auto rods = buildInitialState<LinearRotor>(scene, rodPotential(scene));
-    EXPECT_NEAR((rods.bodies[0].s - Vec3(0, -1, 0)).norm(), 0.0, 1e-15);
-    EXPECT_NEAR((rods.bodies[1].s - Vec3(1, 0, 0)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((rods.bodies[0].s - Vec3(0, -1, 0)).norm(), 0.0, axisTol);
+    EXPECT_NEAR((rods.bodies[1].s - Vec3(1, 0, 0)).norm(), 0.0, axisTol);
     scene.body.kind = "symmetric";
     scene.body.inertia = Vec3(1.0, 1.0, 0.5);
     const auto tops = buildInitialState<SymmetricTop>(scene, rodPotential(scene));
-    EXPECT_NEAR((SymmetricTop::axis(tops.bodies[0]) - Vec3(0, -1, 0)).norm(), 0.0, 1e-15);
-    EXPECT_NEAR((SymmetricTop::axis(tops.bodies[1]) - Vec3(1, 0, 0)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((SymmetricTop::axis(tops.bodies[0]) - Vec3(0, -1, 0)).norm(), 0.0, axisTol);
+    EXPECT_NEAR((SymmetricTop::axis(tops.bodies[1]) - Vec3(1, 0, 0)).norm(), 0.0, axisTol);
 }

@@ -47,6 +47,11 @@ constexpr double kFiniteDifferenceTol = 1e-7;
 constexpr double kVanishingFraction = 1e-3;
 // Identities that hold term by term up to a handful of roundings of the largest term.
 constexpr double kRoundOffTol = 256.0 * kEps;
+// The range of U over no motion is U itself, to the round-off of its bounds' arithmetic.
+constexpr double kStillRangeTol = 1e-9;
+// Moments and centres of mass of a few sites with O(1) coordinates and masses: a few ulp.
+constexpr double kInertiaTol = 1e-14; // g/mol Å², or relative where scaled
+constexpr double kCentreTol = 1e-16;  // Å: the water model's centre, placed at the origin by hand
 // Steps of the fourth-order stencil: truncation ~h⁴ on the wall against round-off ~eps·U/h.
 constexpr double kTranslationStep = 3e-4; // Å
 constexpr double kRotationStep = 3e-4;    // rad
@@ -514,8 +519,8 @@ template <class P> void expectRangeHolds() {
             const double shift = 0.3 * unit(rng), turnI = 0.4 * unit(rng), turnJ = 0.4 * unit(rng);
             const EnergyRange still = model.energyRange(rij, oi, oj, 0.0, 0.0, 0.0);
             const double u0 = model.energy(rij, oi, oj);
-            EXPECT_NEAR(still.lo, u0, 1e-9 * std::max(1.0, std::abs(u0))) << mol.name;
-            EXPECT_NEAR(still.hi, u0, 1e-9 * std::max(1.0, std::abs(u0))) << mol.name;
+            EXPECT_NEAR(still.lo, u0, kStillRangeTol * std::max(1.0, std::abs(u0))) << mol.name;
+            EXPECT_NEAR(still.hi, u0, kStillRangeTol * std::max(1.0, std::abs(u0))) << mol.name;
             const EnergyRange range = model.energyRange(rij, oi, oj, shift, turnI, turnJ);
             const EnergyRange bareRange = bare.energyRange(rij, oi, oj, shift, turnI, turnJ);
             for (int m = 0; m < 50; ++m) {
@@ -557,10 +562,10 @@ TEST(SiteInertia, DumbbellAndPerpendicularAxes) {
                                      {Vec3(0.757, yH, 0), 0.0, 1.0, 1.0},
                                      {Vec3(-0.757, yH, 0), 0.0, 1.0, 1.0}};
     const Mat3 Iw = siteInertiaTensor(water);
-    EXPECT_NEAR(Iw(2, 2), Iw(0, 0) + Iw(1, 1), 1e-14 * Iw(2, 2));
-    EXPECT_NEAR(Iw(0, 0), 16.0 * yO * yO + 2.0 * yH * yH, 1e-14);
-    EXPECT_NEAR(Iw(1, 1), 2.0 * 0.757 * 0.757, 1e-14);
-    EXPECT_LE(siteCentreOfMass(water).norm(), 1e-16);
+    EXPECT_NEAR(Iw(2, 2), Iw(0, 0) + Iw(1, 1), kInertiaTol * Iw(2, 2));
+    EXPECT_NEAR(Iw(0, 0), 16.0 * yO * yO + 2.0 * yH * yH, kInertiaTol);
+    EXPECT_NEAR(Iw(1, 1), 2.0 * 0.757 * 0.757, kInertiaTol);
+    EXPECT_LE(siteCentreOfMass(water).norm(), kCentreTol);
     EXPECT_TRUE(sitesInPrincipalFrame(water));
     // Shifted off the centre of mass, or turned in its plane, it is no longer principal.
     std::vector<Site> shifted = water, turned = water;

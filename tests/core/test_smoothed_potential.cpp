@@ -16,6 +16,13 @@ const RodPotential rod{};
 const Smoothed<RodPotential> model{rod, SmoothedCutoff{2.5 * rod.sigma, 3.0 * rod.sigma}};
 const Smoothed<RodPotential> bareModel{rod, SmoothedCutoff::none()};
 
+// A central difference with h = 1e-6 time units: truncation ~h² and round-off ~eps·U/h.
+constexpr double centralDifferenceTol = 1e-6;
+// The rate by its own formula against the one through force and torques: round-off only.
+constexpr double rateRoundoff = 1e-12;
+// U at a reach found by bisection equals the level to the bisection's resolution (relative).
+constexpr double reachTol = 1e-9;
+
 Vec3 randomUnit(std::mt19937_64& rng) {
     std::normal_distribution<double> g;
     return Vec3(g(rng), g(rng), g(rng)).normalized();
@@ -80,10 +87,11 @@ TEST(SmoothedPotential, RateIsTheDerivativeAlongFreeMotion) {
         const double numeric = (at(h) - at(-h)) / (2.0 * h);
         const EnergyRate e = model.energyRate(rij, v, si, wi, sj, wj);
         EXPECT_DOUBLE_EQ(e.U, model.energy(rij, si, sj));
-        EXPECT_NEAR(e.dUdt, numeric, 1e-6 * (1.0 + std::abs(numeric))) << "r = " << r;
+        EXPECT_NEAR(e.dUdt, numeric, centralDifferenceTol * (1.0 + std::abs(numeric)))
+            << "r = " << r;
         // And the rate through the force and torques (paper eq. 13) agrees.
         EXPECT_NEAR(e.dUdt, dUdt(model.evaluate(rij, si, sj), v, wi, wj),
-                    1e-12 * (1.0 + std::abs(numeric)));
+                    rateRoundoff * (1.0 + std::abs(numeric)));
     }
 }
 
@@ -100,7 +108,7 @@ TEST(SmoothedPotential, ReachOfALevelIsTheLastDistanceAnyOrientationReachesIt) {
         // Parallel axes perpendicular to r_ij give the lowest U (r_e = r − ζ/2): at the reach
         // U_s = u to the bisection's resolution, and no orientation goes below u beyond it.
         const Vec3 s = Vec3::UnitX(), dir = Vec3::UnitZ();
-        EXPECT_NEAR(model.energy(reach * dir, s, s), u, 1e-9 * std::abs(u)) << u;
+        EXPECT_NEAR(model.energy(reach * dir, s, s), u, reachTol * std::abs(u)) << u;
         for (int k = 0; k < 2000; ++k) {
             const double r = reach * (1.0 + 1e-6) + 0.5 * k / 2000.0;
             EXPECT_GT(model.energy(r * randomUnit(rng), randomUnit(rng), randomUnit(rng)), u);
@@ -112,5 +120,6 @@ TEST(SmoothedPotential, ReachOfALevelIsTheLastDistanceAnyOrientationReachesIt) {
     const Smoothed<LJPotential> ljModel{lj, SmoothedCutoff{2.5, 3.0}};
     const double reach = ljModel.reachDistance(-0.01);
     EXPECT_GT(reach, 2.5);
-    EXPECT_NEAR(ljModel.energy(Vec3(reach, 0, 0), Vec3::UnitZ(), Vec3::UnitZ()), -0.01, 1e-11);
+    EXPECT_NEAR(ljModel.energy(Vec3(reach, 0, 0), Vec3::UnitZ(), Vec3::UnitZ()), -0.01,
+                reachTol * 0.01);
 }

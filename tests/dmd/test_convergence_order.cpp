@@ -10,7 +10,7 @@
 // r_m, and the well's bottom (U_min = −3 kJ/mol) is rounded to a multiple of ΔV. Neither is in
 // an asymptotic regime over 2 … ⅛ kT: the experiment's gaps are 9.21, 0.44, 2.89, 1.34, 0.93
 // kJ/mol (the kT one is small by a cancellation of the overbound well, −3 → −4.2, against the
-// lost tail), so no single order describes them (χ²/ν = 170; results/README.md). From kT/2 to
+// lost tail), so no single order describes them (χ²/ν = 170; results/convergence/README.md). From kT/2 to
 // kT/4 the gap is large against its noise and halves cleanly (the well's rounding −3 → −2.1 →
 // −3.15 and the tail together); from kT/4 to kT/8 it falls by 1.44 ± 0.10, as the lost tail
 // ∝ r_m⁻³ predicts (1.39), too little to tell from 1 in a test of this length. The continuous U
@@ -148,8 +148,8 @@ double ratioOfMeans(const std::vector<Gaps>& g, std::size_t leaveOut) {
 TEST(ConvergenceOrder, HalvingTheTerraceShrinksTheEnergyGapByTheMeasuredFactor) {
     // experiments/convergence.sh, results/convergence/convergence-rods.csv, column order_U at
     // ΔV = kT/2 (N = 512, 4 replicas of 5.4 ps, SMD 0.2 fs reference 4 × 10.8 ps; see
-    // results/README.md): the gap falls from 2.892 ± 0.032 to 1.345 ± 0.029 kJ/mol, a local order
-    // p = log₂(e(kT/2)/e(kT/4)) = 1.105 ± 0.035.
+    // results/convergence/README.md): the gap falls from 2.892 ± 0.032 to 1.345 ± 0.029 kJ/mol,
+    // a local order p = log₂(e(kT/2)/e(kT/4)) = 1.105 ± 0.035.
     constexpr double measuredOrder = 1.105, measuredOrderError = 0.035;
     const double factor = std::exp2(measuredOrder);
     const double factorError = factor * std::log(2.0) * measuredOrderError;

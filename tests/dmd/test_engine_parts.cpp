@@ -28,7 +28,10 @@ TEST(HorizonJitter, StaysWithinItsBandAndFollowsTheSeed) {
     EXPECT_TRUE(differs);
     EXPECT_GT(lowest, 0.04 * 0.9);
     EXPECT_LE(highest, 0.04);
-    EXPECT_NEAR(sum / n, 0.04 * 0.95, 0.04 * 0.001);     // uniform: the mean is mid-band
+    // Uniform over [0.9, 1] horizons: the mean's standard error is 0.1/sqrt(12 n) ≈ 9e-5 of the
+    // horizon, so 1e-3 is about ten of them.
+    constexpr double meanTol = 0.001;
+    EXPECT_NEAR(sum / n, 0.04 * 0.95, 0.04 * meanTol);   // uniform: the mean is mid-band
     EXPECT_EQ(seen.size(), static_cast<std::size_t>(n)); // no two horizons coincide
 }
 

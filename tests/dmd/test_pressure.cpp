@@ -14,6 +14,10 @@ using terrace::dmdtest::outerRoot;
 
 namespace {
 
+// The event's separation comes from a root refined to round-off; the hand-computed virial uses
+// the analytic root of the level, so they agree to the root's refinement (relative).
+constexpr double virialTol = 1e-9;
+
 using SphereEngine = dmd::Engine<Sphere, LJPotential>;
 
 /// Two spheres of mass m on the x axis, i at +x0 moving with −u, j at −x0 moving with +u, on the
@@ -45,7 +49,7 @@ TEST(Pressure, ReflectionAddsTheHandComputedImpulseVirial) {
     e.advanceTo(10.0);
     ASSERT_EQ(e.counts().reflect, 1u);
     const double d = innerRoot(30.0, 3.0, 3.035);
-    EXPECT_NEAR(e.virial(), d * 2.0 * m * u, 1e-9 * d * m * u);
+    EXPECT_NEAR(e.virial(), d * 2.0 * m * u, virialTol * d * m * u);
 }
 
 // A transmission down a step of ΔE (the well's first level, crossed inwards): the relative speed
@@ -66,5 +70,5 @@ TEST(Pressure, TransmissionsAddTheHandComputedImpulseVirial) {
     e.advanceTo(1.01 * (6.0 - 0.5 * d) / u);
     ASSERT_EQ(e.counts().down, 1u);
     const double w = 2.0 * u, w1 = std::sqrt(w * w - 2.0 * dE / mu);
-    EXPECT_NEAR(e.virial(), -d * mu * (w1 - w), 1e-9 * d * mu * w);
+    EXPECT_NEAR(e.virial(), -d * mu * (w1 - w), virialTol * d * mu * w);
 }

@@ -11,6 +11,12 @@ namespace {
 
 // Roots are refined until the bracket is ~1e-13 of the largest step; allow that and round-off.
 constexpr double rootTolerance = 1e-12;
+// A grazing event is reported within the tiny window the search probes around the extremum.
+constexpr double grazeTimeTol = 1e-4;
+// Which crossing is found, not how finely: far looser than rootTolerance on purpose.
+constexpr double crossingTimeTol = 1e-9;
+// Shell windows are roots of a quadratic with small integer coefficients: exact to round-off.
+constexpr double shellRoundoff = 1e-15;
 
 SearchSettings settings() {
     SearchSettings s;
@@ -56,7 +62,7 @@ TEST(RootSearch, CatchesAGrazingMaximumJustAboveTheLevel) {
         const SearchResult r = findTerraceExit(f, start, -5.0, 1.0, 0.5, settings());
         if (excess > 0) {
             EXPECT_EQ(r.side, ExitSide::Upper);
-            EXPECT_NEAR(r.t, 0.3, 1e-4); // within the tiny window around the maximum
+            EXPECT_NEAR(r.t, 0.3, grazeTimeTol);
             EXPECT_GE(f(r.t).U, 1.0);
         } else {
             EXPECT_EQ(r.side, ExitSide::None);
@@ -90,7 +96,7 @@ TEST(RootSearch, PastALevelMovingOutwardsIsAnEventNow) {
     auto back = [](double t) { return PairSample{t, -1.0 - 1e-14 + t, 1.0}; };
     const SearchResult r2 = findTerraceExit(back, back(0.0), -1.0, 1.0, 3.0, settings(), true);
     EXPECT_EQ(r2.side, ExitSide::Upper);
-    EXPECT_NEAR(r2.t, 2.0, 1e-10);
+    EXPECT_NEAR(r2.t, 2.0, crossingTimeTol);
 }
 
 // A pair just moved down through a level sits a round-off beyond it (U = level + 2.8e-13) and moves
@@ -112,18 +118,18 @@ TEST(RootSearch, SamplesWithinRoundOffOfTheStartLevelAreOnIt) {
     };
     const SearchResult back = findTerraceExit(turning, turning(0.0), -7.5, 7.5, 0.04, s, true);
     EXPECT_EQ(back.side, ExitSide::Upper);
-    EXPECT_NEAR(back.t, 0.02, 1e-9);
+    EXPECT_NEAR(back.t, 0.02, crossingTimeTol);
 }
 
 TEST(ShellScreening, WindowsOfTheInteractionShell) {
     // Inside, moving out along x from r = 1 at speed 2: leaves r_m = 3 at τ = 1.
     ShellWindow w = shellWindow(Vec3(1, 0, 0), Vec3(2, 0, 0), 3.0);
     EXPECT_EQ(w.enter, 0.0);
-    EXPECT_NEAR(w.exit, 1.0, 1e-15);
+    EXPECT_NEAR(w.exit, 1.0, shellRoundoff);
     // Outside, approaching head-on from 5: enters at τ = 1, leaves at τ = 4.
     w = shellWindow(Vec3(5, 0, 0), Vec3(-2, 0, 0), 3.0);
-    EXPECT_NEAR(w.enter, 1.0, 1e-15);
-    EXPECT_NEAR(w.exit, 4.0, 1e-15);
+    EXPECT_NEAR(w.enter, 1.0, shellRoundoff);
+    EXPECT_NEAR(w.exit, 4.0, shellRoundoff);
     // Passing by at impact parameter 4 > r_m: never inside.
     EXPECT_TRUE(shellWindow(Vec3(5, 4, 0), Vec3(-1, 0, 0), 3.0).empty());
     // Receding: never inside.

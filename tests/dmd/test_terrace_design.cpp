@@ -28,6 +28,15 @@ const Smoothed<RodPotential> rods{RodPotential{3.0, 3.035, 1.0},
                                   SmoothedCutoff{2.5 * 3.035, 3.0 * 3.035}};
 constexpr double ljKT = 1.0, rodKT = 4.2;
 
+// Tolerances.
+constexpr double kValueSlack = 1e-12;   // kJ/mol: a terrace mean may sit on its bound (round-off)
+constexpr double kStrictlyBelow = 1e-6; // kJ/mol: a mean this far below another differs for real
+constexpr double kPlacementTol = 1e-6;  // of x(r_out): the bisection inverting the profile
+constexpr double kVirialTol = 1e-3;     // relative: this test's quadrature of B₂ (400 000 points)
+constexpr double kStationaryTol = 1e-9; // kJ/mol: above the iteration's stop (1e-12 of the step)
+constexpr double kEnergyRoundoff = 1e-12;   // of |K| + |U|: round-off over thousands of crossings
+constexpr double kMomentumRoundoff = 1e-12; // of sqrt(|K| + |U|): the same, for Σp
+
 Scene::Dmd designScene(const std::string& levels, const std::string& values, int n, double dV) {
     Scene::Dmd d;
     d.dV = dV;
@@ -56,8 +65,8 @@ void expectWellFormed(const TerraceDesign& t, double uMin) {
     // one beyond the cap, which carries the cap.
     for (std::size_t s = 0; s + 1 < t.values.size(); ++s) {
         const double lo = s == 0 ? uMin : t.levels[s - 1], hi = t.levels[s];
-        EXPECT_GE(t.values[s], lo - 1e-12) << "terrace slot " << s;
-        EXPECT_LE(t.values[s], hi + 1e-12) << "terrace slot " << s;
+        EXPECT_GE(t.values[s], lo - kValueSlack) << "terrace slot " << s;
+        EXPECT_LE(t.values[s], hi + kValueSlack) << "terrace slot " << s;
     }
     EXPECT_EQ(t.values.back(), t.levels.back());
 }
@@ -95,7 +104,8 @@ TEST(TerraceDesign, DistanceAndVolumePlacementsSpaceTheRadiiEvenly) {
         auto x = [&](double r) { return placement == "distance" ? r : r * r * r; };
         const double h = (x(rOut) - x(rMin)) / n;
         for (int k = 1; k <= n; ++k)
-            EXPECT_NEAR(x(radiusOf(t.levels[k - 1])), x(rMin) + (k - 0.5) * h, 1e-6 * x(rOut))
+            EXPECT_NEAR(x(radiusOf(t.levels[k - 1])), x(rMin) + (k - 0.5) * h,
+                        kPlacementTol * x(rOut))
                 << placement << " level " << k;
     }
 }
@@ -112,9 +122,9 @@ TEST(TerraceDesign, AveragedValuesObeyJensen) {
         expectWellFormed(*t, -3.0);
     int strict = 0;
     for (std::size_t s = 0; s + 1 < byVolume.values.size(); ++s) {
-        EXPECT_LE(byBoltzmann.values[s], byVolume.values[s] + 1e-12);
-        EXPECT_LE(byVirial.values[s], byVolume.values[s] + 1e-12);
-        strict += byBoltzmann.values[s] < byVolume.values[s] - 1e-6;
+        EXPECT_LE(byBoltzmann.values[s], byVolume.values[s] + kValueSlack);
+        EXPECT_LE(byVirial.values[s], byVolume.values[s] + kValueSlack);
+        strict += byBoltzmann.values[s] < byVolume.values[s] - kStrictlyBelow;
     }
     EXPECT_GE(strict, 3); // not equal by accident: the terraces are wide enough to tell
 }
@@ -140,7 +150,7 @@ TEST(TerraceDesign, VirialValuesKeepTheSecondVirialCoefficient) {
         b2V += w * (std::exp(-levels.energy(n) / ljKT) - 1.0);
         b2Midpoint += w * (std::exp(-midLevels.energy(midLevels.terraceOf(u)) / ljKT) - 1.0);
     }
-    EXPECT_NEAR(b2V, b2U, 1e-3 * std::abs(b2U)) << "B2 part, continuous " << b2U;
+    EXPECT_NEAR(b2V, b2U, kVirialTol * std::abs(b2U)) << "B2 part, continuous " << b2U;
     // The midpoints miss it by far more: the check has teeth.
     EXPECT_GT(std::abs(b2Midpoint - b2U), 20.0 * std::abs(b2V - b2U));
 }
@@ -155,7 +165,7 @@ TEST(TerraceDesign, OptimalDesignIsALloydMaxQuantiser) {
         // Stationary: each free level (all but the cap) is the midpoint of its neighbours'
         // energies (terrace 0's held at 0), and each energy the Boltzmann mean of its terrace.
         for (std::size_t k = 0; k + 1 < t.levels.size(); ++k)
-            EXPECT_NEAR(t.levels[k], 0.5 * (t.values[k] + t.values[k + 1]), 1e-9);
+            EXPECT_NEAR(t.levels[k], 0.5 * (t.values[k] + t.values[k + 1]), kStationaryTol);
         // Its error is the lowest of the designs with the same levels counted the same way:
         // uniform levels of the same step with Boltzmann means, and with midpoints.
         const double uCap = 50.0 * kT;
@@ -166,7 +176,7 @@ TEST(TerraceDesign, OptimalDesignIsALloydMaxQuantiser) {
                                      : PairEnergyDensity::build(lj, kT, rIn, rOut, uCap);
         const auto means = terraceValues(t.levels, "boltzmann", density, uMin);
         for (std::size_t s = 0; s < means.size(); ++s)
-            EXPECT_NEAR(t.values[s], means[s], 1e-9);
+            EXPECT_NEAR(t.values[s], means[s], kStationaryTol);
         TerraceDesign uniform;
         for (int k = -3; k <= static_cast<int>(std::floor(5.0 * kT / step + 0.5)); ++k)
             if (k != 0) uniform.levels.push_back((k > 0 ? k - 0.5 : k + 0.5) * step);
@@ -213,8 +223,10 @@ TEST(TerraceDesignEngine, UnequalStepsConserveEnergyAndMomentumToRoundOff) {
         for (int k = 1; k <= 10; ++k) { // 200 fs
             e.advanceTo(k * 0.2);
             scale = std::max(scale, e.kineticEnergy() + std::abs(e.potentialEnergy()));
-            EXPECT_NEAR(e.kineticEnergy() + e.potentialEnergy(), e0, 1e-12 * scale) << spec;
-            EXPECT_LT((e.totalMomentum() - p0).norm(), 1e-12 * std::sqrt(scale)) << spec;
+            EXPECT_NEAR(e.kineticEnergy() + e.potentialEnergy(), e0, kEnergyRoundoff * scale)
+                << spec;
+            EXPECT_LT((e.totalMomentum() - p0).norm(), kMomentumRoundoff * std::sqrt(scale))
+                << spec;
         }
         EXPECT_GT(e.counts().up + e.counts().down, 2000u) << spec; // thousands of crossings
     }

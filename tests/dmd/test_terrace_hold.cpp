@@ -18,6 +18,14 @@ const RodPotential rod{};  // ε 3 kJ/mol, σ 3.035 Å, ζ 1 Å (paper, "Model S
 constexpr double kT = 4.2; // T* = 1.4
 const TerraceLevels halfKT = TerraceLevels::uniform(0.5 * kT); // levels ±1.05, ±3.15, ...
 
+// The bands' edges are roots of U(r_e) = level: U there is exact to its round-off, which grows
+// with the steepness of the wall the level lies on.
+constexpr double levelTol = 1e-12;      // kJ/mol, on the tail and the foot of the wall
+constexpr double steepLevelTol = 1e-11; // kJ/mol, at 3.15 kJ/mol up the wall
+constexpr double capLevelTol = 1e-10;   // kJ/mol, at 50 kJ/mol up the wall
+constexpr double distanceTol = 1e-12;   // Å: a root against its closed form, to round-off
+constexpr double minimumTol = 1e-14;    // Å: r_min = 2^{1/6}σ, a few ulp
+
 double radial(double x) {
     const double s6 = std::pow(rod.sigma / x, 6);
     return 4.0 * rod.epsilon * (s6 * s6 - s6);
@@ -28,14 +36,15 @@ double radial(double x) {
 TEST(TerraceHold, BandEdgesAreTheLevels) {
     // Terrace 0 at kT/2, U in (−1.05, 1.05): the wall between the two levels and the whole tail.
     const TerraceBands b = terraceBands(rod, -1.05, 1.05);
-    EXPECT_NEAR(b.bottom, std::pow(2.0, 1.0 / 6.0) * rod.sigma, 1e-14);
-    EXPECT_NEAR(radial(b.wall.lo), 1.05, 1e-12);
-    EXPECT_NEAR(radial(b.wall.hi), -1.05, 1e-12);
+    EXPECT_NEAR(b.bottom, std::pow(2.0, 1.0 / 6.0) * rod.sigma, minimumTol);
+    EXPECT_NEAR(radial(b.wall.lo), 1.05, levelTol);
+    EXPECT_NEAR(radial(b.wall.hi), -1.05, levelTol);
     EXPECT_LT(b.wall.hi, b.bottom);
-    EXPECT_NEAR(radial(b.tail.lo), -1.05, 1e-12);
+    EXPECT_NEAR(radial(b.tail.lo), -1.05, levelTol);
     EXPECT_EQ(b.tail.hi, INFINITY);
     // Checked independently: U(r_e) = −1.05 at r_e = σ (2 / (1 − √0.65))^(1/6) in the tail.
-    EXPECT_NEAR(b.tail.lo, rod.sigma * std::pow(2.0 / (1.0 - std::sqrt(0.65)), 1.0 / 6.0), 1e-12);
+    EXPECT_NEAR(b.tail.lo, rod.sigma * std::pow(2.0 / (1.0 - std::sqrt(0.65)), 1.0 / 6.0),
+                distanceTol);
 }
 
 TEST(TerraceHold, TerraceHoldingTheMinimumIsOneBand) {
@@ -43,8 +52,8 @@ TEST(TerraceHold, TerraceHoldingTheMinimumIsOneBand) {
     const TerraceBands b = terraceBands(rod, -3.15, -1.05);
     EXPECT_EQ(b.wall.lo, b.tail.lo);
     EXPECT_EQ(b.wall.hi, b.tail.hi);
-    EXPECT_NEAR(radial(b.wall.lo), -1.05, 1e-12);
-    EXPECT_NEAR(radial(b.wall.hi), -1.05, 1e-12);
+    EXPECT_NEAR(radial(b.wall.lo), -1.05, levelTol);
+    EXPECT_NEAR(radial(b.wall.hi), -1.05, levelTol);
     EXPECT_LT(b.wall.lo, b.bottom);
     EXPECT_GT(b.wall.hi, b.bottom);
     // The lowest explicit terrace (no lower level) is the same band.
@@ -55,12 +64,12 @@ TEST(TerraceHold, TerraceHoldingTheMinimumIsOneBand) {
 
 TEST(TerraceHold, RepulsiveTerracesLieOnTheWallOnly) {
     const TerraceBands b = terraceBands(rod, 1.05, 3.15);
-    EXPECT_NEAR(radial(b.wall.lo), 3.15, 1e-11);
-    EXPECT_NEAR(radial(b.wall.hi), 1.05, 1e-12);
+    EXPECT_NEAR(radial(b.wall.lo), 3.15, steepLevelTol);
+    EXPECT_NEAR(radial(b.wall.hi), 1.05, levelTol);
     EXPECT_GE(b.tail.lo, b.tail.hi); // empty: the tail never rises above 0
     const TerraceBands top = terraceBands(rod, 50.0, INFINITY); // highest explicit terrace
     EXPECT_EQ(top.wall.lo, 0.0);
-    EXPECT_NEAR(radial(top.wall.hi), 50.0, 1e-10);
+    EXPECT_NEAR(radial(top.wall.hi), 50.0, capLevelTol);
     // A terrace wholly below the minimum holds no distance at all.
     const TerraceBands none = terraceBands(rod, -5.25, -3.15);
     EXPECT_GE(none.wall.lo, none.wall.hi);

@@ -17,6 +17,8 @@ namespace {
 
 // Pair sums over ~1e4 terms of forces up to ~1e3 kJ/mol/Å in another order: round-off.
 constexpr double sumOrderTolerance = 1e-9;
+// The virial in another summation order: a few ulp of its size per pair summed.
+constexpr double virialUlpsPerPair = 1e-14;
 // Per body, both loops add the same per-pair forces in different orders: a few ulps of the
 // largest term.
 constexpr double loopsAgree = 1e-10;
@@ -92,7 +94,8 @@ void expectEqualsAllPairs(const Case& c, Loop loop) {
     EXPECT_EQ(fast.evaluations, slow.evaluations);
     EXPECT_NEAR(fast.potential, slow.potential, sumOrderTolerance);
     // Σ r·F in another order, and as f r² against r·(f r): ulps of terms of up to ~1e3 kJ/mol.
-    EXPECT_NEAR(fast.virial, slow.virial, 1e-14 * (1.0 + std::abs(slow.virial)) * slow.evaluations);
+    EXPECT_NEAR(fast.virial, slow.virial,
+                virialUlpsPerPair * (1.0 + std::abs(slow.virial)) * slow.evaluations);
     for (std::size_t a = 0; a < slow.force.size(); ++a) {
         const int i = c.list.order[a];
         EXPECT_LT((fast.force[a] - slow.force[i]).norm(), sumOrderTolerance) << "body " << i;
