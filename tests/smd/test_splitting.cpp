@@ -17,7 +17,7 @@ const std::vector<std::string> schemes = {"verlet", "omelyan", "yoshida4"};
 
 Scene sceneFor(const std::string& scheme, double dtFs) {
     Scene s = smd::fixtures::smdScene(sigmaRod, dtFs);
-    s.smd.scheme = scheme;
+    s.smd["scheme"] = scheme;
     return s;
 }
 
