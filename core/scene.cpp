@@ -57,7 +57,7 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     detail::readState(top.section("state"), s);
     detail::checkRepresentable(top, s);
     s.engine = top.choice("engine", s.engine, {"dmd", "smd"});
-    s.dmd = top.section("dmd").object(); // read by dmd/settings.hpp
+    s.dmd = top.section("dmd").object(); // read by dmd/section.hpp
     s.smd = top.section("smd").object(); // read by smd/parameters.hpp
     detail::readRun(top.section("run"), s);
     detail::readOutput(top.section("output"), s);

@@ -93,7 +93,7 @@ struct Scene {
     std::string engine = "dmd"; // dmd | smd
 
     // The engines' own sections, carried as given (an object; --set overrides applied): their
-    // keys, defaults and checks belong to dmd/settings.hpp and smd/parameters.hpp, whose checks
+    // keys, defaults and checks belong to dmd/section.hpp and smd/parameters.hpp, whose checks
     // whoever runs a scene calls (cli/scene_check.hpp), and which write the section back
     // resolved, every key given.
     nlohmann::json dmd = nlohmann::json::object();

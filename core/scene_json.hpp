@@ -3,7 +3,7 @@
 // name: "<origin>: <section.key>: <problem>" (without an origin, "<section.key>: <problem>"). A
 // section's reader lists its keys once (onlyKeys), so that an unknown key is refused; repeated
 // keys are found on the text, before parsing keeps only the last (firstDuplicateKey). The scene's
-// own sections (core/scene_sections.hpp) and the engines' (dmd/settings.hpp, smd/parameters.hpp)
+// own sections (core/scene_sections.hpp) and the engines' (dmd/section.hpp, smd/parameters.hpp)
 // are read with these, so every module words its errors alike.
 #include "core/scene.hpp"
 #include "core/vec.hpp"

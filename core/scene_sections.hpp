@@ -1,7 +1,7 @@
 #pragma once
 // The readers of the scene's own sections, one per section, each reading the keys it owns once
 // and checking them against the sections read before it (sceneFromJson calls them in this
-// order). The engines' sections, dmd and smd, are carried as given: dmd/settings.hpp and
+// order). The engines' sections, dmd and smd, are carried as given: dmd/section.hpp and
 // smd/parameters.hpp read them.
 #include "core/scene.hpp"
 #include "core/scene_json.hpp"
