@@ -1,7 +1,7 @@
 // The body and potential sections: the body kind and its inertia, the pair potential and its
 // parameters, and the sites of a site-site molecule with the mass and moments they imply.
-#include "core/scene_sections.hpp"
 #include "core/initial_state.hpp"
+#include "core/scene_sections.hpp"
 #include "core/site_potential.hpp"
 #include <algorithm>
 #include <cmath>
