@@ -1,12 +1,15 @@
 // A scene made ready to run (cli/scene_check.hpp): the engines' sections read and checked by
 // their owners (dmd/section.hpp, smd/parameters.hpp) with the same one-line errors as the scene's
 // own keys, written back resolved; the keys removed from the scene name what replaces them.
+#include "cli/restart.hpp"
+#include "cli/run_command.hpp"
 #include "cli/scene_check.hpp"
 #include "cli/sweep_plan.hpp"
 #include "dmd/section.hpp"
 #include "smd/parameters.hpp"
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 using namespace terrace;
 using nlohmann::json;
@@ -182,4 +185,25 @@ TEST(SceneCheck, WarningsForLegalButSurprisingValues) {
     EXPECT_EQ(w[0], "dmd.levels: no level lies between the potential minimum U_min = -3 kJ/mol "
                     "and 0, so the terraced potential has no attractive well");
     EXPECT_TRUE(sceneWarnings(ready({{"dmd", {{"levels", {-1.5, 1.0}}}}})).empty());
+}
+
+// A restart file records the resolved scene: one that names the queue "auto" goes on, on the tree
+// that "auto" chose. (This file holds nothing else, so the run stops at its missing bodies, after
+// the scene has been read.)
+TEST(SceneCheck, ARestartFileNamingTheQueueAutoGoesOnWithTheTree) {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terrace-auto-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    json scene = toJson(ready(json::object()));
+    scene["dmd"]["queue"] = "auto";
+    cli::writeRestart(dir, {{"format", cli::restartFormat}, {"scene", scene}});
+    Scene continued;
+    try {
+        cli::continueRun(dir, true, continued);
+        ADD_FAILURE() << "expected the missing bodies to be named";
+    } catch (const std::exception& e) {
+        EXPECT_EQ(std::string(e.what()).find("dmd.queue"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(continued.dmd["queue"], "tree");
+    std::filesystem::remove_all(dir);
 }
