@@ -20,9 +20,9 @@ using RodEngine = dmd::Engine<LinearRotor, RodPotential>;
 Scene denseRods(int n, double dV, const char* queue = "bpq", const char* invalidation = "lazy") {
     Scene s = defaultScene();
     s.state.n = n;
-    s.dmd.dV = dV;
-    s.dmd.queue = queue;
-    s.dmd.invalidation = invalidation;
+    s.dmd["dV"] = dV;
+    s.dmd["queue"] = queue;
+    s.dmd["invalidation"] = invalidation;
     return s;
 }
 

@@ -74,7 +74,7 @@ void ljStandard(benchmark::State& state) {
 void ljLammpsInput(benchmark::State& state) {
     const Scene sc = ljScene(512, 0.5, 1.4, 2.5, 3.0);
     Scene tuned = sc;
-    tuned.smd.skin = state.range(0) / 100.0; // σ/100: LAMMPS's 0.3σ by default
+    tuned.smd["skin"] = state.range(0) / 100.0; // σ/100: LAMMPS's 0.3σ by default
     runSteps<Sphere>(state, tuned, ljPotential(tuned), 500);
 }
 

@@ -37,7 +37,8 @@ int printDesign(const DesignRequest& request) {
     const Scene scene = resolveScene(run);
     return withBodyAndPotential(scene, [&]<BodyKind K, PairPotential P>(const P& bare) {
         const auto model = sceneModel(scene, bare, true);
-        const auto settings = dmd::readDmdSettings(scene.dmd, model, scene.kT(),
+        const dmd::DmdSection section = dmd::readDmdSection(scene.dmd);
+        const auto settings = dmd::readDmdSettings(section, model, scene.kT(),
                                                    std::numeric_limits<double>::infinity());
         const auto& L = settings.levels;
         if (request.profile) {
@@ -46,9 +47,9 @@ int printDesign(const DesignRequest& request) {
         }
         std::printf("# %s: levels %s, values %s, n %d, dV %g kT, model %s; kT = %.6g kJ/mol, "
                     "r_m = %.6g A\n",
-                    scene.name.c_str(), scene.dmd.terraces.levels.c_str(),
-                    scene.dmd.terraces.values.c_str(), scene.dmd.terraces.n, scene.dmd.dV,
-                    scene.dmd.model.c_str(), scene.kT(), settings.rm);
+                    scene.name.c_str(), section.terraces.levels.c_str(),
+                    section.terraces.values.c_str(), section.terraces.n, section.dV,
+                    section.model.c_str(), scene.kT(), settings.rm);
         std::printf("terrace,lower_kJ_per_mol,upper_kJ_per_mol,value_kJ_per_mol\n");
         // Uniform levels are unbounded: print the well and the wall up to 50 kT.
         const int lo = L.isUniform()

@@ -9,6 +9,7 @@
 #include "core/smoothed_potential.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
+#include "dmd/section.hpp"
 #include <memory>
 #include <optional>
 
@@ -37,7 +38,7 @@ template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
 /// The model both engines simulate: the scene's potential with its smoothed cutoff
 /// (core/smoothed_potential.hpp); for DMD with dmd.model = bare, the paper's setting, none.
 template <PairPotential P> Smoothed<P> sceneModel(const Scene& scene, const P& bare, bool dmd) {
-    const bool cut = !(dmd && scene.dmd.model == "bare");
+    const bool cut = !(dmd && dmd::readDmdSection(scene.dmd).model == "bare");
     return Smoothed<P>{bare, cut ? sceneCutoff(scene) : SmoothedCutoff::none()};
 }
 

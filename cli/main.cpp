@@ -14,6 +14,7 @@
 #include "cli/run_driver.hpp"
 #include "cli/sweep_mpi.hpp"
 #include "core/huge_pages.hpp"
+#include "core/measure.hpp"
 #include "core/xyz.hpp"
 #include <algorithm>
 #include <boost/program_options.hpp>
@@ -335,6 +336,7 @@ int main(int argc, char** argv) {
     args.erase(args.begin());
     try {
         hugePagesWanted(); // a misspelt TERRACE_HUGE_PAGES is an error before anything runs
+        measureSwitches(); // and so is a misspelt TERRACE_MEASURE
         if (command == "run") return checkedStdout(runMain(args));
         if (command == "analyse" || command == "analyze") return checkedStdout(analyseMain(args));
         if (command == "compare") return checkedStdout(compareMain(args));

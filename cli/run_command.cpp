@@ -2,6 +2,7 @@
 #include "cli/dispatch.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/restart.hpp"
+#include "cli/scene_check.hpp"
 #include "core/output_file.hpp"
 #include <cstdio>
 #include <fstream>
@@ -11,9 +12,15 @@
 namespace terrace::cli {
 
 Scene resolveScene(const RunRequest& request) {
-    if (request.scenePath.empty())
-        return sceneFromJson(toJson(defaultScene()), "<built-in default scene>", request.overrides);
-    return loadScene(request.scenePath, request.overrides);
+    const std::string origin =
+        request.scenePath.empty() ? "<built-in default scene>" : request.scenePath;
+    // The built-in scene is no key at all: some defaults follow other keys (analysis.rdf_max
+    // the box), which the default scene written out would pin.
+    Scene scene = request.scenePath.empty()
+                      ? sceneFromJson(nlohmann::json::object(), origin, request.overrides)
+                      : loadScene(request.scenePath, request.overrides);
+    resolveEngineSections(scene, origin);
+    return scene;
 }
 
 std::filesystem::path defaultOutput(const Scene& scene) {
@@ -61,7 +68,14 @@ RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scen
     const OutputDirectory output(dir, OutputMode::Continue);
     nlohmann::json restart = readRestart(dir);
     try {
-        scene = sceneFromJson(restart.at("scene"), (dir / "restart.bin").string());
+        nlohmann::json recorded = restart.at("scene");
+        // A restart file records the resolved scene; one that names the queue "auto" ran on the
+        // tree, which is what "auto" chose, and goes on with it.
+        if (recorded.contains("dmd") && recorded["dmd"].value("queue", "") == "auto")
+            recorded["dmd"]["queue"] = "tree";
+        const std::string origin = (dir / "restart.bin").string();
+        scene = sceneFromJson(recorded, origin);
+        resolveEngineSections(scene, origin);
         checkSampleMemory(scene);
         RunTarget target{dir, OutputMode::Continue, quiet, &restart};
         return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);

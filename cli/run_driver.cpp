@@ -4,6 +4,7 @@
 #include "analysis/conservation.hpp"
 #include "analysis/correlations.hpp"
 #include "cli/thermo.hpp"
+#include "smd/parameters.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,7 +19,7 @@ RunPlan planRun(const Scene& scene) {
     auto onGrid = [&](double fs) {
         const double interval = units::fromFs(fs);
         if (scene.engine != "smd") return interval;
-        const double dt = units::fromFs(scene.smd.dt_fs);
+        const double dt = units::fromFs(smd::readSmdSection(scene.smd).dt_fs);
         return std::max(1.0, std::round(interval / dt)) * dt;
     };
     plan.sampleInterval = onGrid(scene.run.sample_fs);

@@ -1,5 +1,6 @@
 #include "cli/sweep_plan.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/scene_check.hpp"
 #include "core/output_file.hpp"
 #include <algorithm>
 #include <map>
@@ -218,9 +219,12 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
         for (const auto& o : run.overrides)
             sets.push_back(overrideArgument(o));
         try {
-            run.scene = plan.scenePath.empty() ? sceneFromJson(toJson(defaultScene()),
-                                                               "<built-in default scene>", sets)
+            const std::string origin =
+                plan.scenePath.empty() ? "<built-in default scene>" : plan.scenePath.string();
+            // The built-in scene as `terrace run` reads it (cli/run_command.cpp): no key at all.
+            run.scene = plan.scenePath.empty() ? sceneFromJson(json::object(), origin, sets)
                                                : loadScene(plan.scenePath.string(), sets);
+            resolveEngineSections(run.scene, origin); // as `terrace run` will: fail now, not then
         } catch (const SceneError& e) {
             rd.fail("run " + run.name, e.what());
         }

@@ -4,7 +4,9 @@
 // are no silent defaults for keys that are present. Absent keys take the documented defaults,
 // which are the paper's dense rods (DESIGN.md "The rod model"). A key that the scene's body kind
 // has no use for is refused rather than ignored, a repeated key is refused (JSON would keep the
-// last), and every interval must fit in the run and lie on the engine's time grid.
+// last), and every interval must fit in the run and lie on the engine's time grid. Each section
+// has one reader that owns its keys (core/scene_sections.hpp); the engines' sections, dmd and
+// smd, are carried as given and read by the engines' modules (Scene::dmd).
 #include "core/vec.hpp"
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -90,62 +92,17 @@ struct Scene {
 
     std::string engine = "dmd"; // dmd | smd
 
-    struct Dmd {
-        double dV = 0.5;            // terrace height in units of kT
-        std::vector<double> levels; // explicit levels U_k in kJ/mol (overrides dV when given)
-        std::vector<double> values; // with levels: the terrace energies V_s, kJ/mol (default
-                                    // midpoints); levels.size() + 1 of them
-        // A terrace design (dmd/terrace_design.hpp): level placement energy | distance | volume
-        // | optimal, terrace values midpoint | volume | boltzmann | virial, and n levels in the
-        // well (0: as many as uniform levels of height dV put there). The default, energy and
-        // midpoint with n = 0, is the paper's uniform terracing.
-        struct Terraces {
-            std::string levels = "energy";
-            std::string values = "midpoint";
-            int n = 0;
-            bool isDefault() const { return levels == "energy" && values == "midpoint" && n == 0; }
-        } terraces;
-        // auto | heap | bpq | tree: the calendar. auto takes the tournament tree over the bodies
-        // (dmd/tournament_queue.hpp), measured the fastest of the three from N 512 to 10^6 on the
-        // dense rods (dmd/settings.hpp). Every choice gives the same trajectory.
-        std::string queue = "auto";
-        std::string invalidation = "lazy"; // lazy | eager
-        double horizon_fs = 4.0;           // virtual-event horizon and largest search step, >= 0.1
-        // smoothed: terrace g(r)·U, the model SMD integrates (ΔV → 0 converges to SMD's model);
-        // bare: the paper's setting, U itself terraced out to r_m whatever potential.cutoff says.
-        std::string model = "smoothed";
-        // Screen pairs by their hold time before searching (dmd/pair_prediction.hpp); off only
-        // to measure what the screen saves: the events are the same either way.
-        bool hold_screen = true;
-        // Number the bodies inside the engine in the Morton (Z-order) order of their cells, so
-        // that neighbours lie close in memory (dmd/engine.hpp); the bodies keep the scene's
-        // numbering outside it. Off only to check that the order changes no observable.
-        bool sort_bodies = true;
-        // With sort_bodies, renumber them afresh once their RMS displacement since the last
-        // numbering reaches this many cell widths (the order's grain): the engine is rebuilt from
-        // its checkpoint at that sample or thermostat tick, as at a restart point. 0: only at the
-        // start and at restart points. Displacements are minimum images, so a value near half the
-        // cells a side or more is never reached. Unset ("auto"): 1 from dmd::prefetchFromBodies
-        // bodies on, where the engine's data outgrow the caches, and 0 below, where the order buys
-        // nothing.
-        std::optional<double> resort_cells;
-    } dmd;
-
-    struct Smd {
-        double dt_fs = 1.8;
-        double skin = 0.3; // Verlet skin, σ
-        // The splitting (smd/splitting.hpp): verlet (the paper's), omelyan, yoshida4.
-        std::string scheme = "verlet";
-        // Keep the bodies inside the engine in the neighbour list's cell order, re-sorted at
-        // every list build (smd/engine.hpp); the bodies keep the scene's numbering outside it and
-        // the trajectory is the same bit for bit. Off only to check that.
-        bool sort_bodies = true;
-    } smd;
+    // The engines' own sections, carried as given (an object; --set overrides applied): their
+    // keys, defaults and checks belong to dmd/section.hpp and smd/parameters.hpp, whose checks
+    // whoever runs a scene calls (cli/scene_check.hpp), and which write the section back
+    // resolved, every key given.
+    nlohmann::json dmd = nlohmann::json::object();
+    nlohmann::json smd = nlohmann::json::object();
 
     // Every interval is honoured exactly or refused. Intervals must fit in the run and lie on the
-    // grid: under SMD, sample_fs and thermostat_fs are whole multiples of smd.dt_fs; time_ps is a
-    // whole multiple of sample_fs, and equilibrate_ps of thermostat_fs or 0 (relative tolerance
-    // limits::gridTolerance on each ratio); sample_fs and thermostat_fs are >= 0.01 fs. The
+    // grid: time_ps is a whole multiple of sample_fs, and equilibrate_ps of thermostat_fs or 0
+    // (relative tolerance limits::gridTolerance on each ratio); sample_fs and thermostat_fs are
+    // >= 0.01 fs; under SMD, both are whole multiples of smd.dt_fs (smd/parameters.hpp). The
     // defaults are whole multiples of 9 fs, so whole numbers of SMD steps at dt = 0.2, 0.5, 1, 1.8
     // and 3 fs.
     struct Run {
@@ -171,12 +128,18 @@ struct Scene {
     struct Analysis {
         int blocks = 8;          // blocks behind every error bar, >= 2
         double max_lag_ps = 0.0; // longest lag of the time correlations; 0 = half the run
-        double rdf_max = 5.0;    // g(r) out to this distance, σ (at most L/2); 0 = L/2
+        // g(r) out to this distance, σ, at most L/2 (0: L/2); when absent 5, or L/2 in a box
+        // narrower than 10 σ.
+        double rdf_max = 5.0;
         double rdf_bin_angstrom = 0.05;
         int rdf_every = 10;       // samples between g(r) frames (90 fs by default)
         int follow_bodies = 4096; // bodies the time correlations follow; 0 = all
         int lags_per_level = 16;  // lags per level of the multiple-tau grid, even, >= 4
     } analysis;
+
+    // One-line notes on values that are legal but probably not meant, left by the readers of
+    // the engines' sections when they resolve them (sceneWarnings).
+    std::vector<std::string> warnings;
 
     double kT() const { return state.temperature * potential.epsilon; } // kJ/mol
     double boxLength() const;                                           // Å, from n and density
@@ -203,23 +166,18 @@ std::optional<std::pair<std::string, nlohmann::json>> parseOverride(const std::s
 nlohmann::json toJson(const Scene& s);
 
 /// One-line warnings for values that are legal but probably not meant (e.g. explicit dmd.levels
-/// that leave out the attractive well); empty when there is nothing to say.
+/// that leave out the attractive well), as the sections' readers left them in s.warnings; empty
+/// when there is nothing to say.
 std::vector<std::string> sceneWarnings(const Scene& s);
 
-/// Limits of what a run can represent, each refused with its reason (core/scene.cpp).
+/// Limits of what a run can represent, each refused with its reason (core/scene_*.cpp).
 namespace limits {
-/// Below this the horizon buys nothing: a thermal pair moves ~1e-3 Å in it (~0.05 Å in the
-/// paper's 4 fs), far below any terrace's width, and virtual events alone would stall the run.
-inline constexpr double minHorizonFs = 0.1;
 /// Samples and thermostat intervals below this resolve nothing: the fastest thermal motion the
 /// time grid admits (minThermalTimeFs) changes by < 10 % between them.
 inline constexpr double minIntervalFs = 0.01;
 /// A thermal body must take at least this long to cross σ (σ·sqrt(m/kT)) or to turn one radian
 /// (sqrt(I/kT)); faster motion lies below the finest horizon, and kT/m overflows long before.
 inline constexpr double minThermalTimeFs = 0.1;
-/// Uniform terraces (dV·kT) in the well, |U_min| / (dV·kT): beyond this a pair's events would
-/// come at round-off spacing of U (terrace_levels' clearance is 1e-6 |U_min|).
-inline constexpr double maxTerracesInWell = 1e5;
 /// Explicit positions within this many box lengths of the origin: the wrap into the box keeps
 /// ~10 of the 16 digits at 1e6 box lengths, no more.
 inline constexpr double maxPositionInBoxLengths = 1e6;
@@ -227,9 +185,6 @@ inline constexpr double maxPositionInBoxLengths = 1e6;
 /// exact in binary).
 inline constexpr double gridTolerance = 1e-9;
 
-/// "" when uniform levels dV·kT leave at most maxTerracesInWell terraces in a well of depth
-/// |uMin|, else "<key>: <why>", blaming state.temperature when even dV = 1 would be too fine.
-std::string terraceCountProblem(double uMin, double dV, double kT);
 } // namespace limits
 
 } // namespace terrace

@@ -50,6 +50,7 @@
 #include "core/pair_potential.hpp"
 #include "core/scene.hpp"
 #include "dmd/pair_energy_density.hpp"
+#include "dmd/section.hpp"
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -227,7 +228,7 @@ inline TerraceDesign optimalDesign(const PairEnergyDensity& density, int nBelow,
 /// midpoint energies (dmd.dV alone), which the engine keeps in closed form. dV in kT; the model's
 /// range bounds the density (for a bare potential, the reach of the level −ΔV/2).
 template <PairPotential P>
-std::optional<TerraceDesign> designTerraces(const Scene::Dmd& dmd, const P& p, double kT) {
+std::optional<TerraceDesign> designTerraces(const DmdSection& dmd, const P& p, double kT) {
     const auto& t = dmd.terraces;
     if (t.levels == "energy" && t.values == "midpoint" && t.n == 0) return std::nullopt;
     const double uMin = p.minimumEnergy();

@@ -9,7 +9,7 @@
 #             smoothed DMD model)
 #   ENGINE  dmd (PARAM = ΔV in kT) | smd (PARAM = dt in fs; Verlet skin tuned for the state by
 #           smd-skin.sh)
-#   OPTION  heap | bpq | tree | eager (DMD queue and invalidation, default auto + lazy: the tree)
+#   OPTION  heap | bpq | tree | eager (DMD queue and invalidation, default tree + lazy)
 #           optimal | virial | boltzmann | distance | volume (DMD terrace design, default the
 #                    paper's uniform levels and midpoints; fronts.sh)
 #           omelyan | yoshida4 (SMD splitting, default the paper's verlet; fronts.sh)

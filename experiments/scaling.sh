@@ -7,7 +7,7 @@
 #   SMD    µs of engine CPU per body-step      (cpu_seconds / (steps · N))
 #   both   analysis CPU per sample (ms) and its share of engine + analysis CPU,
 #          peak resident memory per body (GNU time's maximum RSS / N), whole-run wall seconds
-# DMD runs once per queue of QUEUES (default: tree, the one dmd.queue auto takes; e.g.
+# DMD runs once per queue of QUEUES (default: tree, the default dmd.queue; e.g.
 # QUEUES="tree heap bpq" to compare them by N), for each model of MODELS (default: rods lj).
 #   [QUEUES=…] [MODELS=…] experiments/scaling.sh [TERRACE] [OUT] [N ...]
 # Writes OUT/scaling.csv (default results/scaling). Machine time: ~40 min on a quiet 2-core box.

@@ -12,15 +12,16 @@
 // drifts of other lengths, a force evaluation after every drift).
 // Time only advances in whole steps: advanceTo(t) stops at the first grid point t0 + k dt >= t,
 // so every step is the same symplectic map (the run driver samples on multiples of dt).
-// Body order (smd.sort_bodies, default on): inside the engine the bodies are kept in the list's
-// slot order (cells, see smd/neighbour_list.hpp) and re-sorted at every list build, so that the
-// kicks, drifts and the gather of positions into slots stream through memory instead of jumping
-// around it as the liquid mixes. The slots are filled in the scene's order within each cell
-// whatever the engine's own order, so the pair sums, and with them the trajectory, are the same
-// bit for bit with and without the sort; outside the engine (snapshot(), system(), the sums
-// over all bodies) everything is in the scene's numbering.
-// Units: Å, g/mol, kJ/mol, time unit 100 fs.
+// Body order (on unless TERRACE_MEASURE=no-sort-smd, core/measure.hpp): inside the engine the
+// bodies are kept in the list's slot order (cells, see smd/neighbour_list.hpp) and re-sorted at
+// every list build, so that the kicks, drifts and the gather of positions into slots stream through
+// memory instead of jumping around it as the liquid mixes. The slots are filled in the scene's
+// order within each cell whatever the engine's own order, so the pair sums, and with them the
+// trajectory, are the same bit for bit with and without the sort; outside the engine (snapshot(),
+// system(), the sums over all bodies) everything is in the scene's numbering. Units: Å, g/mol,
+// kJ/mol, time unit 100 fs.
 #include "core/engine.hpp"
+#include "core/measure.hpp"
 #include "core/overlap.hpp"
 #include "core/snapshot.hpp"
 #include "core/system.hpp"
@@ -56,8 +57,8 @@ private:
     Engine(System<K, P> initial, const Scene& scene, bool isStart)
         : sys_(std::move(initial)),
           par_(smd::parameters(scene, sys_.box.length, sys_.potential.range())),
-          scheme_(splitting(scene.smd.scheme)), sigmaUnit_(scene.potential.sigma),
-          sortBodies_(scene.smd.sort_bodies) {
+          scheme_(splitting(readSmdSection(scene.smd).scheme)), sigmaUnit_(scene.potential.sigma),
+          sortBodies_(measureSwitches().sortSmd) {
         for (const auto& b : sys_.bodies)
             if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
                 !K::angularVelocity(b, sys_.body).allFinite())

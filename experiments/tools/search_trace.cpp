@@ -90,7 +90,7 @@ std::ofstream openCsv(const std::filesystem::path& p, const char* header) {
 
 void writeSearchTrace(const std::filesystem::path& dir, double dVInKT) {
     Scene scene = defaultScene();
-    scene.dmd.dV = dVInKT;
+    scene.dmd["dV"] = dVInKT;
     const Rods sys = buildInitialState<LinearRotor>(scene, rodPotential(scene));
     const auto settings = dmd::readDmdSettings(scene.dmd, sys.potential, sys.kT, sys.box.length);
     dmd::SearchSettings search; // as the engine sets it up (dmd/engine.hpp)

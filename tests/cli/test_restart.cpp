@@ -572,7 +572,7 @@ TEST(Restart, ARunRenumbersItsBodiesWhereTheirOrderHasDecayed) {
     Scene scene = watchedScene();
     scene.state.n = 512;
     scene.state.density = 0.5;
-    scene.dmd.resort_cells = 1e-3;
+    scene.dmd["resort_cells"] = 1e-3;
     {
         const RodDmd probe(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
         ASSERT_GE(probe.cellsPerSide(), 3);
@@ -601,7 +601,7 @@ TEST(Restart, ARunRenumbersItsBodiesWhereTheirOrderHasDecayed) {
     for (const char* f : {"thermo.csv", "rdf.csv", "vacf.csv", "oacf.csv", "msd.csv"})
         EXPECT_EQ(readWholeFile(cut / f), readWholeFile(whole / f)) << f;
 
-    scene.dmd.resort_cells = 0.0;
+    scene.dmd["resort_cells"] = 0.0;
     WatchedDmd::rebuilds = 0;
     runWatched(scene, whole);
     EXPECT_EQ(WatchedDmd::rebuilds, 4);

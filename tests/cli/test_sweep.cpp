@@ -81,7 +81,7 @@ TEST(SweepPlan, ZippedKeysCasesLabelsAndCommonSets) {
         EXPECT_DOUBLE_EQ(r.scene.run.time_ps, 0.9);
     }
     EXPECT_DOUBLE_EQ(p.runs[7].scene.state.temperature, 1.4);
-    EXPECT_DOUBLE_EQ(p.runs[7].scene.smd.dt_fs, 1.8);
+    EXPECT_DOUBLE_EQ(p.runs[7].scene.smd["dt_fs"].get<double>(), 1.8);
     // The common overrides are not columns; every key an axis sets is.
     EXPECT_EQ(p.axisKeys, (std::vector<std::string>{"state.density", "state.temperature", "engine",
                                                     "dmd.dV", "smd.dt_fs", "dmd.terraces"}));

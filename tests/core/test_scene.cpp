@@ -1,4 +1,5 @@
 // Scene parsing: defaults equal the paper's dense rods, every key validated, overrides by path.
+#include "core/measure.hpp"
 #include "core/scene.hpp"
 #include <filesystem>
 #include <fstream>
@@ -39,15 +40,24 @@ TEST(Scene, DefaultIsThePapersDenseRods) {
     EXPECT_NEAR(512.0 * std::pow(s.potential.sigma / s.boxLength(), 3), 0.5, 1e-12);
 }
 
+// The engines' sections are compared where they are read (tests/cli/test_scene_check.cpp).
 TEST(Scene, ShippedDenseRodsEqualsTheBuiltInDefault) {
-    // But for the model: the paper's figures terrace the bare potential (dmd.model = bare), the
-    // built-in default the smoothed one that SMD integrates.
-    const Scene file = loadScene((sourceDir() / "experiments/scenes/dense-rods.json").string());
-    EXPECT_EQ(file.dmd.model, "bare");
-    EXPECT_EQ(defaultScene().dmd.model, "smoothed");
-    Scene smoothed = file;
-    smoothed.dmd.model = "smoothed";
-    EXPECT_EQ(toJson(smoothed), toJson(defaultScene()));
+    json file = toJson(loadScene((sourceDir() / "experiments/scenes/dense-rods.json").string()));
+    json builtIn = toJson(defaultScene());
+    for (json* j : {&file, &builtIn}) {
+        j->erase("dmd");
+        j->erase("smd");
+    }
+    EXPECT_EQ(file, builtIn);
+}
+
+TEST(Scene, EngineSectionsAreCarriedAsGiven) {
+    const Scene s = sceneFromJson({{"dmd", {{"dV", 0.25}, {"anything", 1}}}}, "t", {"smd.x=2"});
+    EXPECT_EQ(s.dmd, json({{"dV", 0.25}, {"anything", 1}}));
+    EXPECT_EQ(s.smd, json({{"x", 2}}));
+    EXPECT_EQ(defaultScene().dmd, json::object());
+    EXPECT_EQ(errorOf({{"dmd", 1}}), "test.json: dmd: must be an object");
+    EXPECT_EQ(errorOf({{"smd", {1, 2}}}), "test.json: smd: must be an object");
 }
 
 TEST(Scene, ShippedGasRodsIsThePapersGas) {
@@ -63,7 +73,6 @@ TEST(Scene, RoundTripsThroughJson) {
 
 TEST(Scene, UnknownKeyIsNamed) {
     EXPECT_EQ(errorOf({{"bogus", 1}}), "test.json: bogus: unknown key");
-    EXPECT_EQ(errorOf({{"dmd", {{"dv", 1}}}}), "test.json: dmd.dv: unknown key");
     EXPECT_EQ(errorOf({{"state",
                         {{"particles",
                           json::array({{{"r", {0, 0, 0}}, {"x", 1}}, {{"r", {1, 0, 0}}}})}}}}),
@@ -71,9 +80,6 @@ TEST(Scene, UnknownKeyIsNamed) {
 }
 
 TEST(Scene, BadValuesAreNamed) {
-    EXPECT_NE(errorOf({{"dmd", {{"dV", 0}}}}).find("dmd.dV: must be > 0"), std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"dV", -1}}}}).find("dmd.dV"), std::string::npos);
-    EXPECT_NE(errorOf({{"smd", {{"dt_fs", 0}}}}).find("smd.dt_fs"), std::string::npos);
     EXPECT_NE(errorOf({{"state", {{"n", 1}}}}).find("state.n"), std::string::npos);
     EXPECT_NE(errorOf({{"state", {{"temperature", 0}}}}).find("state.temperature"),
               std::string::npos);
@@ -81,27 +87,11 @@ TEST(Scene, BadValuesAreNamed) {
               std::string::npos);
     EXPECT_NE(errorOf({{"engine", "lammps"}}).find("engine: must be one of dmd | smd"),
               std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"queue", "forest"}}}}).find("dmd.queue"), std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"queue", "forest"}}}}).find("auto | bpq | heap | tree"),
-              std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"sort_bodies", "yes"}}}}).find("dmd.sort_bodies"),
-              std::string::npos);
-    EXPECT_NE(errorOf({{"smd", {{"sort_bodies", 1}}}}).find("smd.sort_bodies"), std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"resort_cells", -1}}}}).find("dmd.resort_cells: must be >= 0"),
-              std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", {3.0, 2.5}}}}}).find("potential.cutoff: must be"),
               std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", {0.0, 2.5}}}}}).find("potential.cutoff"),
               std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"cutoff", 2.5}}}}).find("potential.cutoff: must be [r_l"),
-              std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"model", "exact"}}}}).find("dmd.model"), std::string::npos);
-    // The old SMD keys name their new home.
-    EXPECT_NE(errorOf({{"smd", {{"r_l", 2.5}}}}).find("smd.r_l: has moved to potential.cutoff"),
-              std::string::npos);
-    EXPECT_NE(errorOf({{"smd", {{"r_u", 3.0}}}}).find("smd.r_u: has moved to potential.cutoff"),
-              std::string::npos);
-    EXPECT_NE(errorOf({{"dmd", {{"levels", {1.0, 0.5}}}}}).find("strictly increasing"),
               std::string::npos);
     EXPECT_NE(errorOf({{"potential", {{"kind", "lj"}}}}).find("potential.kind"), std::string::npos);
     EXPECT_NE(
@@ -112,28 +102,18 @@ TEST(Scene, BadValuesAreNamed) {
 
 TEST(Scene, OverridesByDottedPath) {
     const Scene s = sceneFromJson(json::object(), "t",
-                                  {"dmd.dV=0.125", "engine=smd", "dmd.queue=heap", "name=x y"});
-    EXPECT_DOUBLE_EQ(s.dmd.dV, 0.125);
+                                  {"dmd.dV=0.125", "engine=smd", "dmd.queue=heap", "name=x y",
+                                   "state.n=64", "run.time_ps=0.9"});
+    EXPECT_EQ(s.dmd, json({{"dV", 0.125}, {"queue", "heap"}}));
     EXPECT_EQ(s.engine, "smd");
-    EXPECT_EQ(s.dmd.queue, "heap");
-    EXPECT_EQ(defaultScene().dmd.queue, "auto"); // chosen by N (dmd/settings.hpp)
-    EXPECT_EQ(sceneFromJson(json::object(), "t", {"dmd.queue=bpq"}).dmd.queue, "bpq");
-    EXPECT_EQ(sceneFromJson(json::object(), "t", {"dmd.queue=auto"}).dmd.queue, "auto");
-    EXPECT_TRUE(defaultScene().dmd.sort_bodies);
-    EXPECT_FALSE(sceneFromJson(json::object(), "t", {"dmd.sort_bodies=false"}).dmd.sort_bodies);
-    EXPECT_TRUE(defaultScene().smd.sort_bodies);
-    EXPECT_FALSE(sceneFromJson(json::object(), "t", {"smd.sort_bodies=false"}).smd.sort_bodies);
-    EXPECT_FALSE(defaultScene().dmd.resort_cells); // auto: set by the engine from N
-    EXPECT_FALSE(sceneFromJson(json::object(), "t", {"dmd.resort_cells=auto"}).dmd.resort_cells);
-    const Scene never = sceneFromJson(json::object(), "t", {"dmd.resort_cells=0"});
-    EXPECT_EQ(never.dmd.resort_cells, 0.0);
-    // The resolved scene names it only when it is set, and reads back.
-    EXPECT_FALSE(toJson(defaultScene())["dmd"].contains("resort_cells"));
-    EXPECT_EQ(sceneFromJson(toJson(never), "t").dmd.resort_cells, 0.0);
+    EXPECT_EQ(s.state.n, 64);
+    EXPECT_DOUBLE_EQ(s.run.time_ps, 0.9);
     EXPECT_EQ(s.name, "x y");
     EXPECT_NE(errorOf(json::object(), {"dmd.dV"}).find("key.path=value"), std::string::npos);
-    EXPECT_NE(errorOf(json::object(), {"dmd.nope=1"}).find("dmd.nope: unknown key"),
+    EXPECT_NE(errorOf(json::object(), {"state.nope=1"}).find("state.nope: unknown key"),
               std::string::npos);
+    EXPECT_EQ(errorOf({{"state", {{"n", 8}}}}, {"state.n.x=1"}),
+              "test.json: state.n: is not an object");
 }
 
 TEST(Scene, FileThatIsNotJsonIsAShortError) {
@@ -316,9 +296,6 @@ TEST(Scene, ADirectoryOrAnUnreadableFileIsNamed) {
 }
 
 TEST(Scene, IntervalsLongerThanTheRunAreRefused) {
-    EXPECT_EQ(errorOf({{"engine", "smd"}, {"run", {{"time_ps", 0.001}, {"sample_fs", 1.8}}}}),
-              "test.json: smd.dt_fs: 1.8 fs is longer than run.time_ps = 0.001 ps: no step would "
-              "be taken");
     EXPECT_EQ(errorOf({{"run", {{"time_ps", 0.005}}}}),
               "test.json: run.sample_fs: 9 fs is longer than run.time_ps = 0.005 ps: no sample "
               "would be taken");
@@ -339,20 +316,8 @@ TEST(Scene, IntervalsLongerThanTheRunAreRefused) {
 }
 
 TEST(Scene, IntervalsLieOnTheGrid) {
-    // 9 / 1.8 is not exact in binary: the default SMD scene must pass.
-    EXPECT_EQ(errorOf({{"engine", "smd"}}), "");
-    EXPECT_EQ(errorOf({{"engine", "smd"}, {"smd", {{"dt_fs", 0.2}}}}), "");
-    EXPECT_EQ(
-        errorOf({{"engine", "smd"}, {"run", {{"sample_fs", 10}}}}),
-        "test.json: run.sample_fs: must be a whole multiple of smd.dt_fs = 1.8 fs, got 10 fs; "
-        "nearest valid: 9 or 10.8 fs");
-    EXPECT_EQ(errorOf({{"engine", "smd"}, {"smd", {{"dt_fs", 4}}}}),
-              "test.json: run.sample_fs: must be a whole multiple of smd.dt_fs = 4 fs, got 9 fs; "
-              "nearest valid: 8 or 12 fs");
-    EXPECT_EQ(errorOf({{"engine", "smd"}, {"run", {{"thermostat_fs", 1}}}}),
-              "test.json: run.thermostat_fs: must be a whole multiple of smd.dt_fs = 1.8 fs, got 1 "
-              "fs; nearest valid: 1.8 fs");
-    EXPECT_EQ(errorOf({{"run", {{"sample_fs", 10}, {"thermostat_fs", 1}}}}), ""); // DMD: any time
+    // SMD's own grid, smd.dt_fs, is checked with the smd section (tests/cli/test_scene_check.cpp).
+    EXPECT_EQ(errorOf({{"run", {{"sample_fs", 10}, {"thermostat_fs", 1}}}}), "");
     EXPECT_EQ(
         errorOf({{"output", {{"trajectory_every_fs", 0.001}}}}),
         "test.json: output.trajectory_every_fs: must be a whole multiple of run.sample_fs = 9 "
@@ -405,9 +370,6 @@ TEST(Scene, RunLengthsAreWholeNumbersOfTheirIntervals) {
     // The other keys say why first: an interval longer than the run, one off SMD's grid.
     EXPECT_NE(errorOf({{"run", {{"time_ps", 0.005}}}}).find("run.sample_fs: 9 fs is longer"),
               std::string::npos);
-    EXPECT_NE(errorOf({{"engine", "smd"}, {"run", {{"sample_fs", 10}, {"time_ps", 1}}}})
-                  .find("run.sample_fs: must be a whole multiple of smd.dt_fs"),
-              std::string::npos);
     // Overrides are validated the same way.
     EXPECT_EQ(errorOf(json::object(), {"run.time_ps=0.5"}),
               "test.json: run.time_ps: must be a whole multiple of run.sample_fs = 9 fs, got 0.5 "
@@ -437,12 +399,7 @@ TEST(Scene, ThermostatAndRestartKeys) {
               "test.json: output.thermo_every_fs: must be >= 0, got -9");
 }
 
-TEST(Scene, FloorsOfHorizonAndIntervals) {
-    EXPECT_EQ(errorOf({{"dmd", {{"horizon_fs", 1e-6}}}}),
-              "test.json: dmd.horizon_fs: must be >= 0.1 fs, got 1e-06: a thermal pair moves ~1e-3 "
-              "Å in 0.1 fs, so a shorter horizon only multiplies virtual events (the paper uses 4 "
-              "fs)");
-    EXPECT_EQ(errorOf({{"dmd", {{"horizon_fs", 0.1}}}}), "");
+TEST(Scene, FloorsOfIntervals) {
     EXPECT_EQ(
         errorOf({{"run", {{"sample_fs", 1e-6}}}}),
         "test.json: run.sample_fs: must be >= 0.01 fs, got 1e-06: thermal motion hardly "
@@ -454,17 +411,8 @@ TEST(Scene, FloorsOfHorizonAndIntervals) {
 }
 
 TEST(Scene, TemperaturesAndMassesARunCanRepresent) {
-    EXPECT_EQ(errorOf({{"state", {{"temperature", 1e-10}}}}),
-              "test.json: state.temperature: kT = 3e-10 kJ/mol with dmd.dV = 0.5 makes 2e+10 "
-              "terraces of 1.5e-10 kJ/mol in the well (U_min = -3 kJ/mol), more than the 100000 a "
-              "run can represent (levels would crowd the minimum at round-off); raise "
-              "state.temperature");
-    EXPECT_EQ(errorOf({{"dmd", {{"dV", 1e-6}}}}),
-              "test.json: dmd.dV: kT = 4.2 kJ/mol with dmd.dV = 1e-06 makes 714286 terraces of "
-              "4.2e-06 kJ/mol in the well (U_min = -3 kJ/mol), more than the 100000 a run can "
-              "represent (levels would crowd the minimum at round-off); raise dmd.dV");
-    // SMD has no terraces: a cold SMD run is legal.
-    EXPECT_EQ(errorOf({{"engine", "smd"}, {"state", {{"temperature", 1e-10}}}}), "");
+    // How many terraces a temperature allows is DMD's to say (tests/cli/test_scene_check.cpp).
+    EXPECT_EQ(errorOf({{"state", {{"temperature", 1e-10}}}}), "");
     EXPECT_EQ(errorOf({{"body", {{"mass", 1e-300}}}}),
               "test.json: body.mass: 1e-300 at state.temperature 1.4 makes a thermal body cross σ "
               "in 1.48093e-148 fs, faster than the 0.1 fs the time grid resolves");
@@ -479,14 +427,25 @@ TEST(Scene, TemperaturesAndMassesARunCanRepresent) {
               "number");
 }
 
-TEST(Scene, WarningsForLegalButSurprisingValues) {
-    EXPECT_TRUE(sceneWarnings(defaultScene()).empty());
-    const Scene repulsive = sceneFromJson({{"dmd", {{"levels", {0.5, 1.0, 2.0}}}}}, "t");
-    const auto w = sceneWarnings(repulsive);
-    ASSERT_EQ(w.size(), 1u);
-    EXPECT_EQ(w[0], "dmd.levels: no level lies between the potential minimum U_min = -3 kJ/mol "
-                    "and 0, so the terraced potential has no attractive well");
-    EXPECT_TRUE(sceneWarnings(sceneFromJson({{"dmd", {{"levels", {-1.5, 1.0}}}}}, "t")).empty());
+// A measurement switch lives in the environment, not in the scene: a misspelt one is an error.
+TEST(Scene, MeasurementSwitchesAreReadStrictly) {
+    const MeasureSwitches none = parseMeasureSwitches("");
+    EXPECT_TRUE(none.holdScreen && none.sortDmd && none.sortSmd);
+    const MeasureSwitches all = parseMeasureSwitches("no-hold-screen,no-sort-dmd,no-sort-smd");
+    EXPECT_FALSE(all.holdScreen || all.sortDmd || all.sortSmd);
+    const MeasureSwitches one = parseMeasureSwitches("no-sort-smd");
+    EXPECT_TRUE(one.holdScreen && one.sortDmd);
+    EXPECT_FALSE(one.sortSmd);
+    for (const char* bad :
+         {"no-sort", "no-sort-dmd,", ",no-sort-dmd", "hold_screen", " no-sort-smd"})
+        EXPECT_THROW(parseMeasureSwitches(bad), std::invalid_argument) << bad;
+    try {
+        parseMeasureSwitches("no-hold-screen,sort");
+    } catch (const std::invalid_argument& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "TERRACE_MEASURE: unknown switch \"sort\" (known: no-hold-screen, no-sort-dmd, "
+                  "no-sort-smd, separated by commas)");
+    }
 }
 
 // The name goes into scene.json and summary.json: bytes that are not UTF-8 would stop them.
@@ -603,6 +562,16 @@ TEST(Scene, AnalysisKeysAreReadCheckedAndWrittenOut) {
               "test.json: analysis.rdf_every: must be in [1, 1073741824], got 0");
     EXPECT_EQ(errorOf({{"analysis", {{"rdf_bin", 0.1}}}}),
               "test.json: analysis.rdf_bin: unknown key");
+    // g(r) reaches half the box at most (the default box, N 512 at ρ* 0.5, is 10.08 σ wide);
+    // absent, rdf_max is 5 σ, or L/2 in a narrower box.
+    EXPECT_EQ(errorOf({{"analysis", {{"rdf_max", 6.0}}}}),
+              "test.json: analysis.rdf_max: 6 σ reaches past half the box, L/2 = 5.03968 σ "
+              "(15.2954 Å): give at most 5.0396, or 0 for L/2");
+    EXPECT_EQ(errorOf({{"analysis", {{"rdf_max", 5.0396}}}}), "");
+    EXPECT_EQ(errorOf({{"analysis", {{"rdf_max", 0}}}}), "");
+    const Scene small = sceneFromJson({{"state", {{"n", 64}}}}, "t");
+    EXPECT_DOUBLE_EQ(small.analysis.rdf_max, 0.5 * small.boxLength() / small.potential.sigma);
+    EXPECT_EQ(toJson(sceneFromJson(toJson(small), "again")), toJson(small));
     // The default box (N 512, ρ* 0.5) is 30.6 Å wide: a 20 Å bin leaves g(r) no bin.
     EXPECT_NE(errorOf({{"analysis", {{"rdf_bin_angstrom", 20.0}}}}).find("wider than half the box"),
               std::string::npos);

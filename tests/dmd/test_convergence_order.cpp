@@ -57,9 +57,9 @@ Scene rodScene(std::uint64_t seed, double dV, double dtFs, double rl = 2.5, doub
     s.state.n = bodies;
     s.state.density = 0.5;
     s.state.temperature = 1.4;
-    s.dmd.model = "smoothed";
-    s.dmd.dV = dV;
-    s.smd.dt_fs = dtFs;
+    s.dmd["model"] = "smoothed";
+    s.dmd["dV"] = dV;
+    s.smd["dt_fs"] = dtFs;
     return s;
 }
 

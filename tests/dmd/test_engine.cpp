@@ -4,6 +4,7 @@
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "test_systems.hpp"
+#include "tests/measure_guard.hpp"
 #include "tests/sample_parts.hpp"
 #include <algorithm>
 #include <array>
@@ -77,8 +78,8 @@ TEST(Engine, BookkeptTerracedEnergyEqualsRecomputedAtEverySample) {
 
 TEST(Engine, HeapAndBoundedQueueGiveTheSameTrajectory) {
     Scene heap = denseScene(), bpq = denseScene();
-    heap.dmd.queue = "heap";
-    bpq.dmd.queue = "bpq";
+    heap.dmd["queue"] = "heap";
+    bpq.dmd["queue"] = "bpq";
     RodEngine a(rodSystem(heap), heap), b(rodSystem(bpq), bpq);
     for (int k = 1; k <= 20; ++k) {
         a.advanceTo(units::fromFs(25.0 * k));
@@ -96,9 +97,9 @@ TEST(Engine, HeapAndBoundedQueueGiveTheSameTrajectory) {
 TEST(Engine, TreeAndHeapGiveTheSameTrajectory) {
     for (const char* invalidation : {"lazy", "eager"}) {
         Scene heap = denseScene(), tree = denseScene();
-        heap.dmd.queue = "heap";
-        tree.dmd.queue = "tree";
-        heap.dmd.invalidation = tree.dmd.invalidation = invalidation;
+        heap.dmd["queue"] = "heap";
+        tree.dmd["queue"] = "tree";
+        heap.dmd["invalidation"] = tree.dmd["invalidation"] = invalidation;
         RodEngine a(rodSystem(heap), heap), b(rodSystem(tree), tree);
         for (int k = 1; k <= 20; ++k) {
             a.advanceTo(units::fromFs(25.0 * k));
@@ -144,11 +145,11 @@ TEST(Engine, HoldScreenChangesNoCollision) {
     EXPECT_EQ(count(searched, "searches_screened"), screenedAtStart);
 }
 
-// dmd.queue = auto takes the tournament tree, at every size; an explicit choice stands. The engine
-// reports the queue it took.
-TEST(Engine, AutoQueueIsTheTreeAndAChoiceStands) {
+// The calendar is the tournament tree unless the scene chooses another; the choice stands, and
+// the engine reports the queue it took.
+TEST(Engine, TheQueueIsTheTreeUnlessChosen) {
     Scene s = denseScene();
-    ASSERT_EQ(s.dmd.queue, "auto");
+    ASSERT_FALSE(s.dmd.contains("queue"));
     const auto potential = rodPotential(s);
     const auto kind = [&] {
         return dmd::readDmdSettings(s.dmd, potential, s.kT(), s.boxLength()).queue;
@@ -156,13 +157,13 @@ TEST(Engine, AutoQueueIsTheTreeAndAChoiceStands) {
     EXPECT_EQ(kind(), dmd::QueueKind::Tree);
     const Scene small = denseScene();
     EXPECT_EQ(RodEngine(rodSystem(small), small).statistics()["queue"], "tree");
-    s.dmd.queue = "bpq";
+    s.dmd["queue"] = "bpq";
     EXPECT_EQ(kind(), dmd::QueueKind::BoundedPriority);
     EXPECT_EQ(RodEngine(rodSystem(s), s).statistics()["queue"], "bpq");
-    s.dmd.queue = "heap";
+    s.dmd["queue"] = "heap";
     EXPECT_EQ(kind(), dmd::QueueKind::Heap);
     EXPECT_EQ(RodEngine(rodSystem(s), s).statistics()["queue"], "heap");
-    s.dmd.queue = "tree";
+    s.dmd["queue"] = "tree";
     EXPECT_EQ(kind(), dmd::QueueKind::Tree);
 }
 
@@ -176,17 +177,21 @@ TEST(Engine, PartsOfASampleAreTheWholeSnapshotsOwn) {
     terrace::testing::expectPartsOfTheSnapshot(e);
 }
 
-// Inside the engine the bodies are numbered in the Morton order of their cells (dmd.sort_bodies,
-// for memory locality); outside, they keep the scene's numbering. The order changes only which
-// pair is predicted first, and so which horizon each search draws: with and without it 512 dense
-// rods undergo the same collisions over 100 fs, the terraced energy is the same integer sum, and
-// every body, taken by its scene number, agrees to round-off grown by the chaos of the liquid (as
-// with the hold screen above). Snapshots, copies and checkpoints come in the scene's order.
+// Inside the engine the bodies are numbered in the Morton order of their cells (unless
+// TERRACE_MEASURE=no-sort-dmd, for memory locality); outside, they keep the scene's numbering. The
+// order changes only which pair is predicted first, and so which horizon each search draws: with
+// and without it 512 dense rods undergo the same collisions over 100 fs, the terraced energy is the
+// same integer sum, and every body, taken by its scene number, agrees to round-off grown by the
+// chaos of the liquid (as with the hold screen above). Snapshots, copies and checkpoints come in
+// the scene's order.
 TEST(Engine, BodyOrderChangesNoObservable) {
-    Scene sorted = rodScene(512, 0.5, 1.4, 0.5), given = sorted;
-    given.dmd.sort_bodies = false;
+    const Scene sorted = rodScene(512, 0.5, 1.4, 0.5);
     const RodSystem start = rodSystem(sorted);
-    RodEngine a(start, sorted), b(start, given);
+    RodEngine a(start, sorted);
+    RodEngine b = [&] {
+        const terrace::testing::MeasureGuard unsorted("no-sort-dmd");
+        return RodEngine(start, sorted);
+    }();
     ASSERT_GE(a.cellsPerSide(), 3);
     int moved = 0;
     for (int k = 0; k < start.size(); ++k) {
@@ -250,18 +255,18 @@ TEST(Engine, OrderDecaysWhenTheBodiesHaveMovedTheirShareOfACell) {
     EXPECT_EQ(probe.resortDistance(), 0.0); // auto: never below dmd::prefetchFromBodies bodies
     for (const double factor : {0.99, 1.01}) {
         Scene t = s;
-        t.dmd.resort_cells = factor * cells;
+        t.dmd["resort_cells"] = factor * cells;
         RodEngine e(start, t);
         e.advanceTo(units::fromFs(30.0));
         EXPECT_EQ(e.counts().total(), probe.counts().total());
         EXPECT_EQ(e.orderHasDecayed(), factor < 1.0) << factor;
     }
     Scene never = s, unsorted = s;
-    never.dmd.resort_cells = 0.0;
-    unsorted.dmd.sort_bodies = false;
-    unsorted.dmd.resort_cells = 1e-6;
-    for (const Scene& t : {never, unsorted}) {
-        RodEngine e(start, t);
+    never.dmd["resort_cells"] = 0.0;
+    unsorted.dmd["resort_cells"] = 1e-6;
+    for (const std::string measure : {"", "no-sort-dmd"}) {
+        const terrace::testing::MeasureGuard guard(measure);
+        RodEngine e(start, measure.empty() ? never : unsorted);
         e.advanceTo(units::fromFs(30.0));
         EXPECT_FALSE(e.orderHasDecayed());
         EXPECT_EQ(e.resortDistance(), 0.0);
@@ -285,7 +290,7 @@ TEST(Engine, OrderDecaysWhenTheBodiesHaveMovedTheirShareOfACell) {
     const double bigCells = std::sqrt(sampled / 4096) / (large.boxLength() / big.cellsPerSide());
     // (Tight: another 4 096 bodies would give an RMS ~0.6 % away.)
     for (const double factor : {0.9999, 1.0001}) {
-        large.dmd.resort_cells = factor * bigCells;
+        large.dmd["resort_cells"] = factor * bigCells;
         RodEngine e(bigStart, large);
         e.advanceTo(units::fromFs(10.0));
         EXPECT_EQ(e.orderHasDecayed(), factor < 1.0) << factor;
@@ -329,10 +334,10 @@ TEST(Engine, RenumberingInsideAdvanceToIsTheRebuildOfARestartPoint) {
 TEST(Engine, LazyAndEagerInvalidationGiveTheSameTrajectory) {
     for (const char* queue : {"heap", "tree"}) {
         Scene lazy = rodScene(512, 0.5, 1.4, 0.5);
-        lazy.dmd.queue = queue;
+        lazy.dmd["queue"] = queue;
         Scene eager = lazy;
-        lazy.dmd.invalidation = "lazy";
-        eager.dmd.invalidation = "eager";
+        lazy.dmd["invalidation"] = "lazy";
+        eager.dmd["invalidation"] = "eager";
         RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
         a.advanceTo(units::fromPs(1.0));
         b.advanceTo(units::fromPs(1.0));
@@ -354,9 +359,10 @@ TEST(Engine, LazyAndEagerInvalidationGiveTheSameTrajectory) {
 // every predicted event popped some eighteen.
 TEST(Engine, CalendarHoldsOneEntryPerBody) {
     Scene lazy = denseScene(), eager = denseScene();
-    lazy.dmd.queue = eager.dmd.queue = "heap"; // the tree holds one entry per body by its shape
-    lazy.dmd.invalidation = "lazy";
-    eager.dmd.invalidation = "eager";
+    lazy.dmd["queue"] = eager.dmd["queue"] =
+        "heap"; // the tree holds one entry per body by its shape
+    lazy.dmd["invalidation"] = "lazy";
+    eager.dmd["invalidation"] = "eager";
     RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
     const std::size_t n = static_cast<std::size_t>(a.system().size());
     for (int k = 0; k < 200; ++k) {
@@ -440,22 +446,22 @@ std::string errorOf(const Scene& s, const RodSystem& sys) {
 TEST(Engine, BadSettingsAreErrorsNamingTheKey) {
     const RodSystem sys = rodSystem(denseScene());
     Scene s = denseScene();
-    s.dmd.dV = 0.0;
+    s.dmd["dV"] = 0.0;
     EXPECT_NE(errorOf(s, sys).find("dmd.dV"), std::string::npos);
     s = denseScene();
-    s.dmd.queue = "fifo";
+    s.dmd["queue"] = "fifo";
     EXPECT_NE(errorOf(s, sys).find("dmd.queue"), std::string::npos);
     s = denseScene();
-    s.dmd.invalidation = "never";
+    s.dmd["invalidation"] = "never";
     EXPECT_NE(errorOf(s, sys).find("dmd.invalidation"), std::string::npos);
     s = denseScene();
-    s.dmd.horizon_fs = -1.0;
+    s.dmd["horizon_fs"] = -1.0;
     EXPECT_NE(errorOf(s, sys).find("dmd.horizon_fs"), std::string::npos);
     s = denseScene();
-    s.dmd.levels = {-3.0, -1.0, 1.0}; // −3 = −ε, the potential's minimum
+    s.dmd["levels"] = {-3.0, -1.0, 1.0}; // −3 = −ε, the potential's minimum
     EXPECT_NE(errorOf(s, sys).find("dmd.levels"), std::string::npos);
     s = denseScene();
-    s.dmd.dV = 2.0 / 1.4; // ΔV/2 = ε: the level −ΔV/2 sits on the minimum
+    s.dmd["dV"] = 2.0 / 1.4; // ΔV/2 = ε: the level −ΔV/2 sits on the minimum
     EXPECT_NE(errorOf(s, sys).find("minimum"), std::string::npos);
     RodSystem tiny = sys;
     tiny.box.length = 9.0; // < 2 r_m ≈ 9.96 Å at ΔV = kT/2
@@ -501,7 +507,7 @@ TEST(Engine, AStoppedClockIsReportedNotSpunOn) {
 // (terrace −1 at ΔV = kT/2), one turning, are put on terrace 0 by hand.
 TEST(Engine, APairBeyondItsTerraceIsReported) {
     Scene s = defaultScene();
-    s.dmd.dV = 0.5;
+    s.dmd["dV"] = 0.5;
     RodEngine e(turningPairInTheWell(), s);
     e.runEvents(100); // consistent: runs
     ASSERT_EQ(e.terrace(0, 1), -1);
@@ -575,9 +581,9 @@ TEST(Engine, BookkeepingStaysBoundedWithoutCollisions) {
     for (const char* queue : {"bpq", "heap", "tree"})
         for (const char* invalidation : {"lazy", "eager"}) {
             Scene s = defaultScene();
-            s.dmd.dV = 0.5;
-            s.dmd.queue = queue;
-            s.dmd.invalidation = invalidation;
+            s.dmd["dV"] = 0.5;
+            s.dmd["queue"] = queue;
+            s.dmd["invalidation"] = invalidation;
             RodEngine e(turningPairInTheWell(), s);
             ASSERT_EQ(e.terrace(0, 1), -1);
             e.runEvents(70000); // past the bounded queue's first retuning of its bins

@@ -35,9 +35,10 @@ Scene ljOnLevels(int n, std::uint64_t seed) {
     s.state.n = n;
     s.state.density = 0.5;
     s.state.temperature = 1.5;
-    s.dmd.levels = {-0.773698093056,    -0.384073183559108, -0.134413246758263, -0.0268379482306181,
-                    0.0268379482306181, 1.96097465688762,   6.63611895325291,   17.5152640663382,
-                    42.9488718509674,   103.802544402859};
+    s.dmd["levels"] = {-0.773698093056,     -0.384073183559108, -0.134413246758263,
+                       -0.0268379482306181, 0.0268379482306181, 1.96097465688762,
+                       6.63611895325291,    17.5152640663382,   42.9488718509674,
+                       103.802544402859};
     return s;
 }
 
@@ -82,15 +83,16 @@ TEST(LatticeOnLevels, ReportedSceneRunsInEverySeed) {
         LJEngine e(sys, s);
         // Neighbours 1.25 σ apart sit on the lowest level; none may have an event at t = 0.
         const double within = 1e-12;
-        EXPECT_EQ(checkPairsOnTheLevel(e, sys, s.dmd.levels[0], within), 1479) << seed;
+        EXPECT_EQ(checkPairsOnTheLevel(e, sys, s.dmd["levels"][0].get<double>(), within), 1479)
+            << seed;
         e.setStallLimit(10000);
         runConserving(e, 1000.0);
         EXPECT_GT(e.counts().down, 1000u) << seed;
     }
     for (const char* queue : {"heap", "bpq"}) {
         Scene s = ljOnLevels(500, 5);
-        s.dmd.queue = queue;
-        s.dmd.invalidation = "eager";
+        s.dmd["queue"] = queue;
+        s.dmd["invalidation"] = "eager";
         LJEngine e(buildInitialState<Sphere, LJPotential>(s, ljPotential(s)), s);
         e.setStallLimit(10000);
         runConserving(e, 300.0);
@@ -108,9 +110,11 @@ TEST(LatticeOnLevels, LennardJonesLatticeAtEachLevelsRadius) {
             s.state.density = 1.0 / (spacing * spacing * spacing);
             const auto sys = buildInitialState<Sphere, LJPotential>(s, ljPotential(s));
             const Vec3 r01 = sys.box.minimumImage(sys.bodies[0].r - sys.bodies[1].r);
-            s.dmd.levels[level] = sys.potential.evaluate(r01, Vec3::UnitZ(), Vec3::UnitZ()).U;
+            s.dmd["levels"][level] = sys.potential.evaluate(r01, Vec3::UnitZ(), Vec3::UnitZ()).U;
             LJEngine e(sys, s);
-            EXPECT_EQ(checkPairsOnTheLevel(e, sys, s.dmd.levels[level], 1e-12), 3 * 512) << spacing;
+            EXPECT_EQ(checkPairsOnTheLevel(e, sys, s.dmd["levels"][level].get<double>(), 1e-12),
+                      3 * 512)
+                << spacing;
             e.setStallLimit(10000);
             runConserving(e, 200.0);
         }
@@ -128,9 +132,9 @@ TEST(LatticeOnLevels, AlignedRodLatticeOnALevel) {
             sys.potential.evaluate(r01, sys.bodies[0].s, sys.bodies[1].s).U; // −2.92 kJ/mol
         Scene s = rodScene(512, 0.5, 1.4, 0.5);
         s.seed = seed;
-        s.dmd.levels.clear();
+        s.dmd["levels"].clear();
         for (int k = 0; k < 8; ++k)
-            s.dmd.levels.push_back(level + 2.1 * k);
+            s.dmd["levels"].push_back(level + 2.1 * k);
         RodEngine e(sys, s);
         EXPECT_EQ(checkPairsOnTheLevel(e, sys, level, 1e-12), 3 * 512);
         e.setStallLimit(10000);

@@ -77,7 +77,7 @@ template <class Engine> void rescaleFor(Engine& e, double ps, double kT) {
 
 /// The scene's lattice melted by SMD with rescaling.
 template <class M> Bodies<M> meltedStart(Scene s) {
-    s.smd.dt_fs = meltDtFs;
+    s.smd["dt_fs"] = meltDtFs;
     Smd<M> melting(buildInitialState<typename M::Kind>(s, model<M>(s)), s);
     rescaleFor(melting, meltPs, s.kT());
     return melting.system();
@@ -141,7 +141,7 @@ TYPED_TEST(Models, SmdEnergyErrorFallsAsTheStepSquared) {
     const Bodies<M> start = meltedStart<M>(modelScene(M::scene));
     auto largestError = [&](double dtFs) {
         Scene s = modelScene(M::scene);
-        s.smd.dt_fs = dtFs;
+        s.smd["dt_fs"] = dtFs;
         Smd<M> e(start, s);
         const double e0 = totalEnergy(e);
         double worst = 0.0;
@@ -169,15 +169,15 @@ TYPED_TEST(Models, DmdConvergesToSmdAsTheTerraceShrinks) {
     const Bodies<M> start = meltedStart<M>(modelScene(M::scene));
     constexpr double spanFs = 9.0; // short of the liquid's chaos, which would amplify any gap
     Scene ref = modelScene(M::scene);
-    ref.smd.dt_fs = 0.2;
+    ref.smd["dt_fs"] = 0.2;
     Smd<M> reference(start, ref);
     reference.advanceTo(units::fromFs(spanFs));
     const std::vector<double> dVs{0.5, 0.125, 0.03125, 0.0078125};
     std::vector<double> gaps;
     for (const double dV : dVs) {
         Scene s = modelScene(M::scene);
-        s.dmd.model = "smoothed"; // the model SMD integrates (dense-rods asks for the bare one)
-        s.dmd.dV = dV;
+        s.dmd["model"] = "smoothed"; // the model SMD integrates (dense-rods asks for the bare one)
+        s.dmd["dV"] = dV;
         Dmd<M> e(start, s);
         e.advanceTo(units::fromFs(spanFs));
         gaps.push_back(rmsDistance(e.system(), reference.system()));

@@ -32,16 +32,16 @@ Scene sceneWithLowestLevel(double lowest) {
     s.potential.epsilon = 1.0;
     s.potential.sigma = 5.0;
     s.state.temperature = 1.5;
-    s.dmd.levels = {lowest,
-                    -0.384073183559108,
-                    -0.134413246758263,
-                    -0.0268379482306181,
-                    0.0268379482306181,
-                    1.96097465688762,
-                    6.63611895325291,
-                    17.5152640663382,
-                    42.9488718509674,
-                    103.802544402859};
+    s.dmd["levels"] = {lowest,
+                       -0.384073183559108,
+                       -0.134413246758263,
+                       -0.0268379482306181,
+                       0.0268379482306181,
+                       1.96097465688762,
+                       6.63611895325291,
+                       17.5152640663382,
+                       42.9488718509674,
+                       103.802544402859};
     return s;
 }
 
@@ -154,7 +154,7 @@ TEST(OnLevels, APairPassingTangentToALevelGoesOn) {
             for (int k = 0; k < std::abs(ulps); ++k)
                 level = std::nextafter(level, ulps > 0 ? 1.0 : -1.0);
             Scene s = sceneWithLowestLevel(-0.773698093056);
-            s.dmd.levels[p.level] = level;
+            s.dmd["levels"][p.level] = level;
             LJEngine e(sys, s);
             const double e0 = totalEnergy(e);
             e.setStallLimit(1000);

@@ -34,7 +34,7 @@ SphereEngine headOn(double x0, double u, std::vector<double> levels) {
     sys.bodies[1].r = Vec3(20.0 - x0, 20.0, 20.0);
     sys.bodies[1].v = Vec3(u, 0.0, 0.0);
     Scene scene;
-    scene.dmd.levels = std::move(levels);
+    scene.dmd["levels"] = std::move(levels);
     return SphereEngine(sys, scene);
 }
 

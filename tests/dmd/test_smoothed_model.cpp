@@ -61,7 +61,8 @@ TEST(SmoothedModel, LevelsInTheSwitchKeepEnergyMomentaAndMissNoEvent) {
     ModelEngine e(buildInitialState<LinearRotor>(s, modelOf(s)), s);
     const double rl = s.potential.r_l * s.potential.sigma;
     ASSERT_GT(e.interactionRange(), rl); // levels lie in the switch
-    ASSERT_LT(e.interactionRange(), rodPotential(s).reachDistance(-0.5 * s.dmd.dV * s.kT()));
+    ASSERT_LT(e.interactionRange(),
+              rodPotential(s).reachDistance(-0.5 * s.dmd["dV"].get<double>() * s.kT()));
     const double e0 = totalEnergy(e);
     for (int k = 1; k <= 500; ++k) { // 1 ps, some 2·10⁴ transmissions
         e.advanceTo(units::fromFs(2.0 * k));
@@ -107,7 +108,7 @@ dmd::Engine<Sphere, Smoothed<LJPotential>> grazingPass(double b, double L0) {
     sys.bodies[0].v = Vec3(0.3, 0.0, 0.0);
     sys.bodies[1].r = Vec3(20.0, 20.0, 20.0);
     Scene scene;
-    scene.dmd.levels = {L0, 1.0};
+    scene.dmd["levels"] = {L0, 1.0};
     return {sys, scene};
 }
 

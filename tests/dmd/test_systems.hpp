@@ -20,7 +20,7 @@ inline Scene rodScene(int n, double density, double temperature, double dVInKT) 
     s.state.n = n;
     s.state.density = density;
     s.state.temperature = temperature;
-    s.dmd.dV = dVInKT;
+    s.dmd["dV"] = dVInKT;
     return s;
 }
 

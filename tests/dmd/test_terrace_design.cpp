@@ -37,8 +37,8 @@ constexpr double kStationaryTol = 1e-9; // kJ/mol: above the iteration's stop (1
 constexpr double kEnergyRoundoff = 1e-12;   // of |K| + |U|: round-off over thousands of crossings
 constexpr double kMomentumRoundoff = 1e-12; // of sqrt(|K| + |U|): the same, for Σp
 
-Scene::Dmd designScene(const std::string& levels, const std::string& values, int n, double dV) {
-    Scene::Dmd d;
+DmdSection designScene(const std::string& levels, const std::string& values, int n, double dV) {
+    DmdSection d;
     d.dV = dV;
     d.terraces.levels = levels;
     d.terraces.values = values;
@@ -46,7 +46,7 @@ Scene::Dmd designScene(const std::string& levels, const std::string& values, int
     return d;
 }
 
-TerraceDesign design(const Scene::Dmd& d, const auto& p, double kT) {
+TerraceDesign design(const DmdSection& d, const auto& p, double kT) {
     const auto t = designTerraces(d, p, kT);
     EXPECT_TRUE(t.has_value());
     return *t;
@@ -247,21 +247,22 @@ TEST(TerraceLevelsValues, GivenValuesAreTheTerraceEnergies) {
 
 TEST(TerraceDesignScene, KeysReadAndRefused) {
     const nlohmann::json base = toJson(defaultScene());
-    const Scene s = sceneFromJson(base, "t", {R"(dmd.terraces={"levels":"optimal","n":3})"});
-    EXPECT_EQ(s.dmd.terraces.levels, "optimal");
-    EXPECT_EQ(s.dmd.terraces.values, "boltzmann");
-    EXPECT_EQ(s.dmd.terraces.n, 3);
-    EXPECT_EQ(toJson(sceneFromJson(toJson(s), "again")), toJson(s));
-    EXPECT_THROW(sceneFromJson(base, "t", {R"(dmd.terraces={"levels":"log"})"}), SceneError);
-    EXPECT_THROW(
-        sceneFromJson(base, "t", {R"(dmd.terraces={"levels":"optimal","values":"midpoint"})"}),
-        SceneError);
-    EXPECT_THROW(sceneFromJson(base, "t", {R"(dmd.terraces={"levels":"distance","m":3})"}),
-                 SceneError);
-    EXPECT_THROW(sceneFromJson(base, "t", {"dmd.levels=[-1,1]", "dmd.values=[0,0]"}), SceneError);
-    EXPECT_THROW(sceneFromJson(base, "t", {"dmd.values=[0,0,1]"}), SceneError);
-    const Scene v = sceneFromJson(base, "t", {"dmd.levels=[-1,1]", "dmd.values=[-1.5,0,2]"});
-    EXPECT_EQ(v.dmd.values, (std::vector<double>{-1.5, 0.0, 2.0}));
+    auto section = [&](const std::vector<std::string>& sets) {
+        Scene s = sceneFromJson(base, "t", sets);
+        return resolveDmdSection(s, "t");
+    };
+    const DmdSection d = section({R"(dmd.terraces={"levels":"optimal","n":3})"});
+    EXPECT_EQ(d.terraces.levels, "optimal");
+    EXPECT_EQ(d.terraces.values, "boltzmann");
+    EXPECT_EQ(d.terraces.n, 3);
+    EXPECT_EQ(dmd::toJson(readDmdSection(dmd::toJson(d))), dmd::toJson(d));
+    EXPECT_THROW(section({R"(dmd.terraces={"levels":"log"})"}), SceneError);
+    EXPECT_THROW(section({R"(dmd.terraces={"levels":"optimal","values":"midpoint"})"}), SceneError);
+    EXPECT_THROW(section({R"(dmd.terraces={"levels":"distance","m":3})"}), SceneError);
+    EXPECT_THROW(section({"dmd.levels=[-1,1]", "dmd.values=[0,0]"}), SceneError);
+    EXPECT_THROW(section({"dmd.values=[0,0,1]"}), SceneError);
+    const DmdSection v = section({"dmd.levels=[-1,1]", "dmd.values=[-1.5,0,2]"});
+    EXPECT_EQ(v.values, (std::vector<double>{-1.5, 0.0, 2.0}));
 }
 
 } // namespace

@@ -30,7 +30,7 @@ using RodEngine = dmd::Engine<LinearRotor, RodPotential>;
 
 Scene sceneWithDV(double dVInKT) {
     Scene s;
-    s.dmd.dV = dVInKT;
+    s.dmd["dV"] = dVInKT;
     return s;
 }
 
@@ -133,7 +133,7 @@ dmd::Engine<Sphere, LJPotential> grazingPass(double b, double L0) {
     sys.bodies[0].v = Vec3(0.3, 0.0, 0.0);
     sys.bodies[1].r = Vec3(20.0, 20.0, 20.0);
     Scene scene;
-    scene.dmd.levels = {L0, 1.0};
+    scene.dmd["levels"] = {L0, 1.0};
     return dmd::Engine<Sphere, LJPotential>(sys, scene);
 }
 

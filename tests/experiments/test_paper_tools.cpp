@@ -293,6 +293,7 @@ TEST(Configurational, TwoSpheresGiveTheirPairEnergyAndVirial) {
     scene.potential.sigma = 1.0;
     scene.state.n = 2;
     scene.state.density = 0.01;
+    scene.analysis.rdf_max = 0.0; // L/2: two bodies make a box narrower than the default's 10 σ
     std::ofstream(d / "scene.json") << terrace::toJson(scene).dump(2);
     // Two frames: a pair 1.2σ apart (inside r_l = 2.5σ: the bare LJ) moving apart at 0.5 Å per
     // time unit each, then 2.0σ apart at rest, across the box's periodic boundary.

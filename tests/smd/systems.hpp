@@ -90,7 +90,7 @@ inline Scene smdScene(double sigma, double dtFs) {
     Scene s;
     s.engine = "smd";
     s.potential.sigma = sigma;
-    s.smd.dt_fs = dtFs;
+    s.smd["dt_fs"] = dtFs;
     return s;
 }
 

@@ -7,6 +7,7 @@
 #include "core/symmetric_top.hpp"
 #include "smd/engine.hpp"
 #include "systems.hpp"
+#include "tests/measure_guard.hpp"
 #include "tests/sample_parts.hpp"
 #include <gtest/gtest.h>
 #include <memory>
@@ -50,10 +51,10 @@ TEST(Engine, RejectsBadParameters) {
         edit(s);
         return [s, &sys] { RodEngine e(sys, s); };
     };
-    expectSceneError(with([](Scene& s) { s.smd.dt_fs = 0.0; }), "smd.dt_fs");
-    expectSceneError(with([](Scene& s) { s.smd.dt_fs = -1.0; }), "smd.dt_fs");
-    expectSceneError(with([](Scene& s) { s.smd.dt_fs = std::nan(""); }), "smd.dt_fs");
-    expectSceneError(with([](Scene& s) { s.smd.skin = -0.1; }), "smd.skin");
+    expectSceneError(with([](Scene& s) { s.smd["dt_fs"] = 0.0; }), "smd.dt_fs");
+    expectSceneError(with([](Scene& s) { s.smd["dt_fs"] = -1.0; }), "smd.dt_fs");
+    expectSceneError(with([](Scene& s) { s.smd["dt_fs"] = std::nan(""); }), "smd.dt_fs");
+    expectSceneError(with([](Scene& s) { s.smd["skin"] = -0.1; }), "smd.skin");
     // 6³ rods at ρ* = 0.5: L ≈ 7.56σ < 2(4 + 0.3)σ.
     auto wide = sys;
     wide.potential.cut = SmoothedCutoff{2.5 * sigmaRod, 4.0 * sigmaRod};
@@ -230,17 +231,20 @@ TEST(Engine, OverlappingBodiesAreNamedNotBlamedOnTheTimeStep) {
 }
 
 // Inside the engine the bodies follow the neighbour list's cell order, re-sorted at every list
-// build (smd.sort_bodies, default on); outside it they keep the scene's numbering. The slots are
-// filled in the scene's order whatever the engine's, so every sum runs in the same order: with
+// build (unless TERRACE_MEASURE=no-sort-smd); outside it they keep the scene's numbering. The slots
+// are filled in the scene's order whatever the engine's, so every sum runs in the same order: with
 // and without the sort the trajectory is the same bit for bit, by scene number, through list
 // rebuilds, thermostat rescales and a rebuild of the engine from its bodies and checkpoint.
 // 12³ rods at ρ* = 0.5: nine cells per edge, some 20 list builds.
 TEST(Engine, BodyOrderChangesNoObservable) {
-    Scene sorted = smd::fixtures::smdScene(sigmaRod, 1.8), given = sorted;
-    given.smd.sort_bodies = false;
+    const Scene sorted = smd::fixtures::smdScene(sigmaRod, 1.8);
     const auto start = smd::fixtures::rods(12, 0.5, 1.4, 11);
+    auto unsorted = [&](auto&&... args) {
+        const terrace::testing::MeasureGuard measure("no-sort-smd");
+        return std::make_unique<RodEngine>(args...);
+    };
     auto a = std::make_unique<RodEngine>(start, sorted);
-    auto b = std::make_unique<RodEngine>(start, given);
+    auto b = unsorted(start, sorted);
     auto expectSame = [&] {
         const Snapshot sa = a->snapshot(), sb = b->snapshot();
         ASSERT_EQ(sa.size(), sb.size());
@@ -279,7 +283,7 @@ TEST(Engine, BodyOrderChangesNoObservable) {
     EXPECT_GT(b->neighbourRebuilds(), 3);
     // Engines rebuilt from their bodies and checkpoints (a restart point) go on the same way.
     a = std::make_unique<RodEngine>(a->system(), sorted, a->checkpoint());
-    b = std::make_unique<RodEngine>(b->system(), given, b->checkpoint());
+    b = unsorted(b->system(), sorted, b->checkpoint());
     expectSame();
     a->advanceTo(300 * dt);
     b->advanceTo(300 * dt);

@@ -21,7 +21,7 @@ constexpr double orderConditionTol = 1e-14;
 
 Scene sceneFor(const std::string& scheme, double dtFs) {
     Scene s = smd::fixtures::smdScene(sigmaRod, dtFs);
-    s.smd.scheme = scheme;
+    s.smd["scheme"] = scheme;
     return s;
 }
 

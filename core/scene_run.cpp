@@ -1,0 +1,99 @@
+// The run, output and analysis sections: run lengths and intervals, what is written when, and
+// the analysis accumulated as the run goes. Each interval fits in the run and lies on its grid
+// (core/scene.hpp Scene::Run); SMD's own grid, smd.dt_fs, is checked by smd/parameters.hpp.
+#include "core/scene_sections.hpp"
+#include <cmath>
+
+namespace terrace::detail {
+
+namespace {
+
+std::string longerThanTheRun(const Scene& s) {
+    return " is longer than run.time_ps = " + showNumber(s.run.time_ps) + " ps";
+}
+
+/// An output interval (in `unit`, fsPerUnit fs each) of 0 (none) or whole samples within the run.
+void requireOutputInterval(const JsonSection& out, const std::string& key, double value,
+                           const char* unit, double fsPerUnit, const std::string& what,
+                           const Scene& s) {
+    if (!(value > 0.0)) return;
+    if (value * fsPerUnit > s.run.time_ps * 1000.0)
+        out.fail(key, showNumber(value) + " " + unit + longerThanTheRun(s) + ": no " + what +
+                          " would be written");
+    requireOnGrid(out, out.name(key), value, unit, fsPerUnit, "run.sample_fs", s.run.sample_fs);
+}
+
+} // namespace
+
+void readRun(const JsonSection& run, Scene& s) {
+    run.onlyKeys({"equilibrate_ps", "time_ps", "sample_fs", "thermostat_fs"});
+    auto& r = s.run;
+    r.equilibrate_ps = run.number("equilibrate_ps", r.equilibrate_ps, 0, 1e9);
+    r.time_ps = run.number("time_ps", r.time_ps, 0, 1e9, true);
+    r.sample_fs = run.number("sample_fs", r.sample_fs, 0, 1e9, true);
+    r.thermostat_fs = run.number("thermostat_fs", r.thermostat_fs, 0, 1e9, true);
+    for (const char* key : {"sample_fs", "thermostat_fs"}) {
+        const double value = key == std::string("sample_fs") ? r.sample_fs : r.thermostat_fs;
+        if (value < limits::minIntervalFs)
+            run.fail(key, "must be >= " + showNumber(limits::minIntervalFs) + " fs, got " +
+                              showNumber(value) +
+                              ": thermal motion hardly changes in so short an interval (bodies "
+                              "take >= 0.1 fs to cross σ or turn a radian)");
+    }
+    if (r.sample_fs > r.time_ps * 1000.0)
+        run.fail("sample_fs", showNumber(r.sample_fs) + " fs" + longerThanTheRun(s) +
+                                  ": no sample would be taken");
+    if (r.equilibrate_ps > 0.0 && r.thermostat_fs > r.equilibrate_ps * 1000.0)
+        run.fail("thermostat_fs",
+                 showNumber(r.thermostat_fs) + " fs is longer than run.equilibrate_ps = " +
+                     showNumber(r.equilibrate_ps) + " ps: equilibration would never rescale");
+    // Run lengths are whole numbers of their intervals: equilibration (if any) ends on a rescale
+    // and production on a sample, at the times asked for, not the last whole interval before.
+    if (r.equilibrate_ps > 0.0)
+        requireOnGrid(run, "run.equilibrate_ps", r.equilibrate_ps, "ps", 1000.0,
+                      "run.thermostat_fs", r.thermostat_fs);
+    requireOnGrid(run, "run.time_ps", r.time_ps, "ps", 1000.0, "run.sample_fs", r.sample_fs);
+}
+
+void readOutput(const JsonSection& out, Scene& s) {
+    out.onlyKeys({"trajectory_every_fs", "restart_every_ps", "thermo_every_fs"});
+    auto& o = s.output;
+    o.trajectory_every_fs = out.number("trajectory_every_fs", o.trajectory_every_fs, 0, 1e9);
+    o.restart_every_ps = out.number("restart_every_ps", o.restart_every_ps, 0, 1e9);
+    o.thermo_every_fs = out.number("thermo_every_fs", o.thermo_every_fs, 0, 1e9);
+    // Output is written at samples: its intervals are whole numbers of them within the run.
+    requireOutputInterval(out, "trajectory_every_fs", o.trajectory_every_fs, "fs", 1.0, "frame", s);
+    requireOutputInterval(out, "thermo_every_fs", o.thermo_every_fs, "fs", 1.0, "thermo row", s);
+    requireOutputInterval(out, "restart_every_ps", o.restart_every_ps, "ps", 1000.0, "restart file",
+                          s);
+}
+
+void readAnalysis(const JsonSection& an, Scene& s) {
+    an.onlyKeys({"blocks", "max_lag_ps", "rdf_max", "rdf_bin_angstrom", "rdf_every",
+                 "follow_bodies", "lags_per_level"});
+    auto& a = s.analysis;
+    // g(r) reaches L/2 at most: beyond, a pair's nearest image is no longer the only one.
+    const double halfBox = 0.5 * s.boxLength(), halfBoxSigma = halfBox / s.potential.sigma;
+    a.blocks = static_cast<int>(an.integer("blocks", a.blocks, 2, 10000));
+    a.max_lag_ps = an.number("max_lag_ps", a.max_lag_ps, 0, 1e9);
+    a.rdf_max = an.number("rdf_max", std::min(a.rdf_max, halfBoxSigma), 0, 1e6);
+    if (a.rdf_max > halfBoxSigma)
+        an.fail("rdf_max", showNumber(a.rdf_max) +
+                               " σ reaches past half the box, L/2 = " + showNumber(halfBoxSigma) +
+                               " σ (" + showNumber(halfBox) + " Å): give at most " +
+                               showNumber(std::floor(halfBoxSigma * 1e4) / 1e4) + ", or 0 for L/2");
+    a.rdf_bin_angstrom = an.number("rdf_bin_angstrom", a.rdf_bin_angstrom, 1e-6, 1e6);
+    a.rdf_every = static_cast<int>(an.integer("rdf_every", a.rdf_every, 1, 1 << 30));
+    a.follow_bodies = static_cast<int>(an.integer("follow_bodies", a.follow_bodies, 0, 100000000));
+    a.lags_per_level = static_cast<int>(an.integer("lags_per_level", a.lags_per_level, 4, 4096));
+    if (a.lags_per_level % 2 != 0)
+        an.fail("lags_per_level", std::to_string(a.lags_per_level) +
+                                      " is odd: each level adds the upper half of its lags, so "
+                                      "the number must be even");
+    if (a.rdf_bin_angstrom > halfBox)
+        an.fail("rdf_bin_angstrom", showNumber(a.rdf_bin_angstrom) +
+                                        " Å is wider than half the box, " + showNumber(halfBox) +
+                                        " Å: g(r) has no bin");
+}
+
+} // namespace terrace::detail

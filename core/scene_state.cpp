@@ -1,0 +1,156 @@
+// The state section: a lattice start (n, density, orientations) or explicit bodies, at a
+// temperature; and what a run can represent of it (kT, thermal motion, explicit values).
+#include "core/scene_sections.hpp"
+#include "core/units.hpp"
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace terrace::detail {
+
+namespace {
+
+/// An axis given beside an orientation must name the same axis, to well past round-off.
+constexpr double axisAgreement = 1e-9;
+
+std::optional<Quat> readOrientation(const JsonSection& p) {
+    if (!p.has("orientation")) return std::nullopt;
+    const auto& q = p.at("orientation");
+    if (!q.is_array() || q.size() != 4 || !q[0].is_number() || !q[1].is_number() ||
+        !q[2].is_number() || !q[3].is_number())
+        p.fail("orientation", "must be a quaternion [w, x, y, z]");
+    Quat quat(q[0].get<double>(), q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+    if (!std::isfinite(quat.norm()))
+        p.fail("orientation",
+               "is too large: its norm " + showNumber(quat.norm()) + " overflows a double");
+    if (!(quat.norm() > 1e-12)) p.fail("orientation", "must be non-zero");
+    return quat.normalized();
+}
+
+/// One body of state.particles; axis and orientation made to agree (core/scene.hpp ParticleSpec).
+ParticleSpec readParticle(const JsonSection& p, const std::string& kind) {
+    p.onlyKeys({"r", "v", "axis", "orientation", "omega"});
+    if (kind == "sphere")
+        for (const char* key : {"axis", "orientation", "omega"})
+            if (p.has(key))
+                p.fail(key, "a sphere has no orientation or rotation (body.kind is sphere)");
+    ParticleSpec s;
+    if (!p.has("r")) p.fail("r", "missing");
+    s.r = p.vec3("r");
+    if (p.has("v")) s.v = p.vec3("v");
+    if (p.has("omega")) s.omega = p.vec3("omega");
+    if (p.has("axis")) {
+        s.axis = p.vec3("axis");
+        if (s.axis.norm() < 1e-12) p.fail("axis", "must be non-zero");
+        s.axis.normalize();
+    }
+    s.orientation = readOrientation(p);
+    // One orientation per body: the axis is the image of the body z axis, q * ẑ (core/xyz.cpp).
+    if (s.orientation) {
+        const Vec3 image = *s.orientation * Vec3::UnitZ();
+        if (p.has("axis") && !((image - s.axis).norm() <= axisAgreement)) {
+            auto show = [](double x) { return std::abs(x) < 1e-12 ? 0.0 : x; }; // no -2e-16
+            std::ostringstream o;
+            o << "disagrees with " << p.name("orientation")
+              << ", whose image of the body z axis is [" << show(image.x()) << ", "
+              << show(image.y()) << ", " << show(image.z())
+              << "]; give one of them, or both agreeing within " << axisAgreement;
+            p.fail("axis", o.str());
+        }
+        s.axis = image;
+    } else if (p.has("axis")) {
+        // The spin of an asymmetric top about its axis changes its motion: it must be given.
+        if (kind == "asymmetric")
+            p.fail("axis", "an asymmetric top needs .orientation: an axis leaves its rotation "
+                           "about that axis undetermined");
+        // A symmetric top's turn about its unique axis is immaterial: take the least rotation.
+        if (kind == "symmetric") s.orientation = Quat::FromTwoVectors(Vec3::UnitZ(), s.axis);
+    }
+    return s;
+}
+
+/// Refuse a body whose thermal motion is faster than the time grid resolves: `time` is the time
+/// to cross σ (or turn a radian) in fs at the scene's kT, `timeAtDefault` the same at the default
+/// temperature, which tells whether the temperature or the body is to blame.
+void requireResolvedMotion(const JsonSection& top, const std::string& key, const std::string& what,
+                           double value, double time, double timeAtDefault, double temperature) {
+    if (time >= limits::minThermalTimeFs) return;
+    const bool hot = timeAtDefault >= limits::minThermalTimeFs;
+    top.refuse(hot ? "state.temperature" : key,
+               (hot ? showNumber(temperature) + " with " + key + " = " + showNumber(value)
+                    : showNumber(value) + " at state.temperature " + showNumber(temperature)) +
+                   " makes a thermal body " + what + " in " + showNumber(time) +
+                   " fs, faster than the " + showNumber(limits::minThermalTimeFs) +
+                   " fs the time grid resolves");
+}
+
+} // namespace
+
+void readState(const JsonSection& st, Scene& s) {
+    st.onlyKeys({"n", "density", "temperature", "orientations", "lattice_aspect", "particles"});
+    auto& state = s.state;
+    state.lattice_aspect = st.number("lattice_aspect", state.lattice_aspect, 1.0, 100.0);
+    state.n = static_cast<int>(st.integer("n", state.n, 2, 100000000));
+    state.density = st.number("density", state.density, 0.0, 10.0, true);
+    state.temperature = st.number("temperature", state.temperature, 0,
+                                  std::numeric_limits<double>::infinity(), true);
+    state.orientations = st.choice("orientations", state.orientations, {"aligned", "random"});
+    if (!st.has("particles")) return;
+    const auto& list = st.at("particles");
+    if (!list.is_array()) st.fail("particles", "must be an array");
+    if (list.size() < 2) st.fail("particles", "needs at least 2 bodies");
+    if (st.has("n") && st.at("n") != list.size())
+        st.fail("n", "disagrees with the length of state.particles");
+    if (st.has("orientations"))
+        st.fail("orientations",
+                "applies to lattice starts only: state.particles gives each orientation");
+    if (st.has("lattice_aspect"))
+        st.fail("lattice_aspect",
+                "applies to lattice starts only: state.particles gives each position");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const JsonSection p(list[i], st.name("particles[" + std::to_string(i) + "]"), st.origin());
+        state.particles.push_back(readParticle(p, s.body.kind));
+    }
+    state.n = static_cast<int>(list.size());
+}
+
+void checkRepresentable(const JsonSection& top, const Scene& s) {
+    const double kT = s.kT();
+    if (!(std::isfinite(kT) && kT > 0.0))
+        top.refuse("state.temperature",
+                   "kT = T*·ε = " + showNumber(kT) + " kJ/mol is not a positive finite number");
+    const double kTDefault = Scene{}.state.temperature * s.potential.epsilon;
+    auto crossing = [&](double m, double e) {
+        return units::toFs(s.potential.sigma * std::sqrt(m / e));
+    };
+    requireResolvedMotion(top, "body.mass", "cross σ", s.body.mass, crossing(s.body.mass, kT),
+                          crossing(s.body.mass, kTDefault), s.state.temperature);
+    const Vec3& I = s.body.inertia;
+    auto turning = [](double i, double e) { return units::toFs(std::sqrt(i / e)); };
+    for (int a = 0; a < 3; ++a) {
+        const bool used = s.body.kind == "symmetric" || s.body.kind == "asymmetric" ||
+                          (s.body.kind == "linear" && a == 0);
+        if (used)
+            requireResolvedMotion(top, "body.inertia", "turn one radian", I[a], turning(I[a], kT),
+                                  turning(I[a], kTDefault), s.state.temperature);
+    }
+    // Explicit bodies: positions that survive the wrap into the box, energies that are finite.
+    const double reach = limits::maxPositionInBoxLengths * s.boxLength();
+    for (std::size_t i = 0; i < s.state.particles.size(); ++i) {
+        const auto& p = s.state.particles[i];
+        const std::string name = "state.particles[" + std::to_string(i) + "]";
+        if (!(p.r.norm() <= reach))
+            top.refuse(name + ".r",
+                       "lies " + showNumber(p.r.norm()) + " Å from the origin, beyond " +
+                           showNumber(limits::maxPositionInBoxLengths) +
+                           " box lengths: the wrap into the box would lose its digits");
+        const double kinetic = 0.5 * s.body.mass * (p.v * units::psPerTimeUnit).squaredNorm();
+        if (!std::isfinite(kinetic))
+            top.refuse(name + ".v", "its kinetic energy ½mv² overflows a double");
+        const double spin = 0.5 * I.maxCoeff() * (p.omega * units::psPerTimeUnit).squaredNorm();
+        if (!std::isfinite(spin))
+            top.refuse(name + ".omega", "its rotational energy ½Iω² overflows a double");
+    }
+}
+
+} // namespace terrace::detail

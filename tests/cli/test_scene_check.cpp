@@ -1,0 +1,209 @@
+// A scene made ready to run (cli/scene_check.hpp): the engines' sections read and checked by
+// their owners (dmd/section.hpp, smd/parameters.hpp) with the same one-line errors as the scene's
+// own keys, written back resolved; the keys removed from the scene name what replaces them.
+#include "cli/restart.hpp"
+#include "cli/run_command.hpp"
+#include "cli/scene_check.hpp"
+#include "cli/sweep_plan.hpp"
+#include "dmd/section.hpp"
+#include "smd/parameters.hpp"
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+using namespace terrace;
+using nlohmann::json;
+
+namespace {
+
+Scene ready(const json& j, const std::vector<std::string>& overrides = {}) {
+    Scene s = sceneFromJson(j, "test.json", overrides);
+    cli::resolveEngineSections(s, "test.json");
+    return s;
+}
+
+std::string errorOf(const json& j, const std::vector<std::string>& overrides = {}) {
+    try {
+        ready(j, overrides);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::filesystem::path sourceDir() {
+    return std::filesystem::path(TERRACE_SOURCE_DIR);
+}
+
+} // namespace
+
+TEST(SceneCheck, DefaultsAreWrittenBackInFull) {
+    const Scene s = ready(json::object());
+    EXPECT_EQ(s.dmd, json({{"dV", 0.5},
+                           {"queue", "tree"},
+                           {"invalidation", "lazy"},
+                           {"horizon_fs", 4.0},
+                           {"model", "smoothed"}}));
+    EXPECT_EQ(s.smd, json({{"dt_fs", 1.8}, {"skin", 0.3}, {"scheme", "verlet"}}));
+    const Scene again = ready(toJson(s));
+    EXPECT_EQ(toJson(again), toJson(s));
+}
+
+TEST(SceneCheck, ShippedDenseRodsEqualsTheBuiltInDefault) {
+    // But for the model: the paper's figures terrace the bare potential (dmd.model = bare), the
+    // built-in default the smoothed one that SMD integrates.
+    Scene file = loadScene((sourceDir() / "experiments/scenes/dense-rods.json").string());
+    cli::resolveEngineSections(file, "dense-rods.json");
+    EXPECT_EQ(file.dmd["model"], "bare");
+    file.dmd["model"] = "smoothed";
+    EXPECT_EQ(toJson(file), toJson(ready(json::object())));
+}
+
+TEST(SceneCheck, EveryShippedSceneIsReady) {
+    for (const auto& entry :
+         std::filesystem::directory_iterator(sourceDir() / "experiments/scenes"))
+        for (const char* engine : {"dmd", "smd"}) {
+            Scene s = loadScene(entry.path().string(), {std::string("engine=") + engine});
+            EXPECT_NO_THROW(cli::resolveEngineSections(s, entry.path().string()))
+                << entry.path() << " " << engine;
+        }
+}
+
+// The sweep planner checks every run's scene as `terrace run` will, before any runs.
+TEST(SceneCheck, EveryShippedSweepPlans) {
+    for (const auto& entry :
+         std::filesystem::directory_iterator(sourceDir() / "experiments/sweeps"))
+        EXPECT_NO_THROW(cli::loadSweep(entry.path(), {})) << entry.path();
+    const auto sweeps = sourceDir() / "experiments/sweeps";
+    try {
+        cli::loadSweep(sweeps / "example.json", {"dmd.queue=auto"});
+        FAIL() << "a sweep whose runs use a removed key must fail before it runs";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("dmd.queue: \"auto\" has been removed"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(SceneCheck, UnknownAndBadKeysAreNamed) {
+    EXPECT_EQ(errorOf({{"dmd", {{"dv", 1}}}}), "test.json: dmd.dv: unknown key");
+    EXPECT_NE(errorOf(json::object(), {"dmd.nope=1"}).find("test.json: dmd.nope: unknown key"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"dV", 0}}}}).find("dmd.dV: must be > 0"), std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"dV", -1}}}}).find("dmd.dV"), std::string::npos);
+    EXPECT_NE(errorOf({{"smd", {{"dt_fs", 0}}}}).find("smd.dt_fs"), std::string::npos);
+    EXPECT_EQ(errorOf({{"dmd", {{"queue", "forest"}}}}),
+              "test.json: dmd.queue: must be one of bpq | heap | tree, got \"forest\"");
+    EXPECT_NE(errorOf({{"dmd", {{"resort_cells", -1}}}}).find("dmd.resort_cells: must be >= 0"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"model", "exact"}}}}).find("dmd.model"), std::string::npos);
+    EXPECT_NE(errorOf({{"dmd", {{"levels", {1.0, 0.5}}}}}).find("strictly increasing"),
+              std::string::npos);
+    EXPECT_EQ(errorOf({{"dmd", {{"terraces", 3}}}}), "test.json: dmd.terraces: must be an object");
+    // The old SMD keys name their new home.
+    EXPECT_NE(errorOf({{"smd", {{"r_l", 2.5}}}}).find("smd.r_l: has moved to potential.cutoff"),
+              std::string::npos);
+    EXPECT_NE(errorOf({{"smd", {{"r_u", 3.0}}}}).find("smd.r_u: has moved to potential.cutoff"),
+              std::string::npos);
+    // An SMD run's dmd section is checked too: a misspelt key is never silently ignored.
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"dmd", {{"dv", 1}}}}), "test.json: dmd.dv: unknown key");
+}
+
+// docs/CHANGES.md "Removed scene keys": each old key is one line naming its replacement.
+TEST(SceneCheck, RemovedKeysNameTheirReplacement) {
+    EXPECT_EQ(errorOf({{"dmd", {{"queue", "auto"}}}}),
+              "test.json: dmd.queue: \"auto\" has been removed: use \"tree\", the same queue (the "
+              "default)");
+    EXPECT_EQ(errorOf({{"dmd", {{"hold_screen", false}}}}),
+              "test.json: dmd.hold_screen: has been removed from the scene (the hold-time screen "
+              "is always on): to measure without it, set TERRACE_MEASURE=no-hold-screen in the "
+              "environment");
+    EXPECT_EQ(errorOf({{"dmd", {{"sort_bodies", true}}}}),
+              "test.json: dmd.sort_bodies: has been removed from the scene (DMD always keeps its "
+              "bodies in the Morton order of their cells): to measure without it, set "
+              "TERRACE_MEASURE=no-sort-dmd in the environment");
+    EXPECT_EQ(errorOf({{"smd", {{"sort_bodies", false}}}}),
+              "test.json: smd.sort_bodies: has been removed from the scene (SMD always keeps its "
+              "bodies in cell order): to measure without it, set TERRACE_MEASURE=no-sort-smd in "
+              "the environment");
+}
+
+TEST(SceneCheck, ResortCellsIsWrittenOnlyWhenSet) {
+    EXPECT_FALSE(ready(json::object()).dmd.contains("resort_cells")); // auto: set from N
+    EXPECT_FALSE(ready(json::object(), {"dmd.resort_cells=auto"}).dmd.contains("resort_cells"));
+    const Scene never = ready(json::object(), {"dmd.resort_cells=0"});
+    EXPECT_EQ(never.dmd["resort_cells"], 0.0);
+    EXPECT_EQ(ready(toJson(never)).dmd["resort_cells"], 0.0);
+}
+
+TEST(SceneCheck, SmdIntervalsLieOnItsGrid) {
+    // 9 / 1.8 is not exact in binary: the default SMD scene must pass.
+    EXPECT_EQ(errorOf({{"engine", "smd"}}), "");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"smd", {{"dt_fs", 0.2}}}}), "");
+    EXPECT_EQ(
+        errorOf({{"engine", "smd"}, {"run", {{"sample_fs", 10}}}}),
+        "test.json: run.sample_fs: must be a whole multiple of smd.dt_fs = 1.8 fs, got 10 fs; "
+        "nearest valid: 9 or 10.8 fs");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"smd", {{"dt_fs", 4}}}}),
+              "test.json: run.sample_fs: must be a whole multiple of smd.dt_fs = 4 fs, got 9 fs; "
+              "nearest valid: 8 or 12 fs");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"run", {{"thermostat_fs", 1}}}}),
+              "test.json: run.thermostat_fs: must be a whole multiple of smd.dt_fs = 1.8 fs, got 1 "
+              "fs; nearest valid: 1.8 fs");
+    EXPECT_NE(errorOf({{"engine", "smd"}, {"run", {{"sample_fs", 10}, {"time_ps", 1}}}})
+                  .find("run.sample_fs: must be a whole multiple of smd.dt_fs"),
+              std::string::npos);
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"smd", {{"dt_fs", 20}}}, {"run", {{"time_ps", 0.009}}}}),
+              "test.json: smd.dt_fs: 20 fs is longer than run.time_ps = 0.009 ps: no step would "
+              "be taken");
+    EXPECT_EQ(errorOf({{"smd", {{"dt_fs", 4}}}}), ""); // DMD runs take no SMD steps
+}
+
+TEST(SceneCheck, HorizonAndTerraceCountARunCanRepresent) {
+    EXPECT_EQ(errorOf({{"dmd", {{"horizon_fs", 1e-6}}}}),
+              "test.json: dmd.horizon_fs: must be >= 0.1 fs, got 1e-06: a thermal pair moves ~1e-3 "
+              "Å in 0.1 fs, so a shorter horizon only multiplies virtual events (the paper uses 4 "
+              "fs)");
+    EXPECT_EQ(errorOf({{"dmd", {{"horizon_fs", 0.1}}}}), "");
+    EXPECT_EQ(errorOf({{"state", {{"temperature", 1e-10}}}}),
+              "test.json: state.temperature: kT = 3e-10 kJ/mol with dmd.dV = 0.5 makes 2e+10 "
+              "terraces of 1.5e-10 kJ/mol in the well (U_min = -3 kJ/mol), more than the 100000 a "
+              "run can represent (levels would crowd the minimum at round-off); raise "
+              "state.temperature");
+    EXPECT_EQ(errorOf({{"dmd", {{"dV", 1e-6}}}}),
+              "test.json: dmd.dV: kT = 4.2 kJ/mol with dmd.dV = 1e-06 makes 714286 terraces of "
+              "4.2e-06 kJ/mol in the well (U_min = -3 kJ/mol), more than the 100000 a run can "
+              "represent (levels would crowd the minimum at round-off); raise dmd.dV");
+    // SMD has no terraces: a cold SMD run is legal.
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"state", {{"temperature", 1e-10}}}}), "");
+}
+
+TEST(SceneCheck, WarningsForLegalButSurprisingValues) {
+    EXPECT_TRUE(sceneWarnings(ready(json::object())).empty());
+    const auto w = sceneWarnings(ready({{"dmd", {{"levels", {0.5, 1.0, 2.0}}}}}));
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_EQ(w[0], "dmd.levels: no level lies between the potential minimum U_min = -3 kJ/mol "
+                    "and 0, so the terraced potential has no attractive well");
+    EXPECT_TRUE(sceneWarnings(ready({{"dmd", {{"levels", {-1.5, 1.0}}}}})).empty());
+}
+
+// A restart file records the resolved scene: one that names the queue "auto" goes on, on the tree
+// that "auto" chose. (This file holds nothing else, so the run stops at its missing bodies, after
+// the scene has been read.)
+TEST(SceneCheck, ARestartFileNamingTheQueueAutoGoesOnWithTheTree) {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("terrace-auto-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    json scene = toJson(ready(json::object()));
+    scene["dmd"]["queue"] = "auto";
+    cli::writeRestart(dir, {{"format", cli::restartFormat}, {"scene", scene}});
+    Scene continued;
+    try {
+        cli::continueRun(dir, true, continued);
+        ADD_FAILURE() << "expected the missing bodies to be named";
+    } catch (const std::exception& e) {
+        EXPECT_EQ(std::string(e.what()).find("dmd.queue"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(continued.dmd["queue"], "tree");
+    std::filesystem::remove_all(dir);
+}
