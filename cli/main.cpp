@@ -6,7 +6,6 @@
 //   terrace design [SCENE] [--set key.path=value]... [--profile]
 //   terrace sweep SWEEP.json [--out DIR] [-j N] [--set key.path=value]... [--retry-failed]
 #include "analysis/compare.hpp"
-#include "analysis/correlations.hpp"
 #include "analysis/run_analysis.hpp"
 #include "cli/design_command.hpp"
 #include "cli/output_dir.hpp"

@@ -39,7 +39,8 @@ namespace terrace::cli {
 /// What SampleRecord::virial holds: SMD's virial at the sample, or DMD's running impulse virial.
 enum class VirialKind { Instantaneous, Impulse };
 
-/// Blocks behind the pressure's error (as analysis::Options' default for the correlations).
+/// Blocks behind the pressure's error (as analysis::StreamingOptions' default for the
+/// correlations).
 inline constexpr int pressureBlocks = 8;
 
 /// The two terms of P_k in kJ/mol/Å³, per sample that has a pressure (DMD: all but the first):
