@@ -58,7 +58,8 @@ StreamingCorrelations::StreamingCorrelations(int bodies, double sampleIntervalPs
     // exactly the lags that every origin reaches on this grid, so the FFT changes no lag and no
     // set of origins, and the curves are those of the direct sums within round-off, while the
     // coarser levels go on as before. A wider window would move lags of the coarser levels onto
-    // every origin (other values, not round-off), for memory 2W · 9 doubles a followed body.
+    // every origin (other values, not round-off), for memory 2W · 9 doubles a followed body,
+    // and cost more per sample than the decimated levels it would replace.
     windowed_ =
         std::make_unique<WindowedCorrelation>(m, p_, firstLagOfLevel_[1], planned_, fine_, groups_);
     ring_.assign(levels_, std::vector<double>());

@@ -25,8 +25,12 @@
 // fine block are those of the direct sums. The MSD's blocks are groups of bodies.
 //
 // Memory: 2W samples × 9 doubles per followed body, and a fixed scratch for a few bodies at a
-// time; independent of the run's length. Cost per sample and body O(log W), against O(W) for
-// the direct sums over the same lags (reference/direct_correlations.hpp).
+// time; independent of the run's length. Work per sample and body: two real FFTs of 2W points
+// for each of the 15 series per W samples, O(log W), against O(W) for the direct sums over the
+// same lags (reference/direct_correlations.hpp). The constant is large: 15 transforms, where
+// the direct sums need 3 + 3 + 1 + 3 products per lag; at a window of 16 the direct sums are
+// the cheaper, and the transforms pay only for windows several times wider
+// (bench/bench_analysis.cpp measures the product's cost per sample).
 #include "core/snapshot.hpp"
 #include <complex>
 #include <cstddef>
