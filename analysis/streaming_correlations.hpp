@@ -55,11 +55,8 @@ public:
     void addFollowed(const Snapshot& followed);
     /// The bodies followed (indices into a whole sample), in order.
     const std::vector<int>& followedBodies() const { return follow_; }
-    long samples() const { return seen_; }
     int followed() const { return static_cast<int>(follow_.size()); }
     int levels() const { return levels_; }
-    /// The lags (in samples) of the grid, up to the plan's maxLag.
-    const std::vector<int>& lags() const { return lag_; }
 
     /// Some body's axis changed since the first sample (orientational curves mean something).
     bool rotating() const { return rotating_; }

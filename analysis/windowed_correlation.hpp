@@ -61,7 +61,6 @@ public:
     void add(const Snapshot& frame, const int* index);
     /// The sums over every origin of the samples added so far (the last blocks included).
     LagSums sums() const;
-    int window() const { return w_; }
     std::size_t bytes() const;
 
 private:
