@@ -7,34 +7,26 @@
 // over F frames. N(N−1)/2 rather than N²/2 makes uniformly random points give g = 1 exactly in
 // expectation at any N (no 1 − 1/N bias). Bins run up to L/2, where a sphere round a body still
 // lies inside the minimum-image cell, so every shell is counted completely. Lengths in Å.
+// The pairs are counted as a run goes by rdf_accumulator.hpp (cell list out to r_max), in tests
+// also by reference/all_pairs_rdf.hpp (every pair).
 // (Allen and Tildesley, Computer Simulation of Liquids, 2nd ed., sec. 8.2.)
 //
 // Error bars: the frames are cut into B contiguous blocks of time; each block gives its own g(r),
 // and the error is the standard error of the block values (block_average.hpp).
-#include "core/snapshot.hpp"
 #include <vector>
 
 namespace terrace::analysis {
 
 struct RadialDistribution {
-    double binWidth = 0.0;       // Å
-    std::vector<double> r;       // bin centres, Å
-    std::vector<double> g, err;  // g(r) and one standard error
-    double partnerDensity = 0.0; // (N−1)/V, Å⁻³: the density seen by one body
+    double binWidth = 0.0;      // Å
+    std::vector<double> r;      // bin centres, Å
+    std::vector<double> g, err; // g(r) and one standard error
 };
-
-/// g(r) of the centres of mass over all frames (equal N and box length in all), B time blocks.
-RadialDistribution radialDistribution(const std::vector<Snapshot>& frames, double binWidth,
-                                      int blocks);
 
 /// g(r) from per-block pair histograms (h[b][k] over framesInBlock[b] frames of N bodies in a box
 /// of edge length Å): the normalisation and block errors above, shared by rdf_accumulator.hpp.
 RadialDistribution distributionFromHistograms(const std::vector<std::vector<double>>& histogram,
                                               const std::vector<double>& framesInBlock, int bodies,
                                               double length, double binWidth);
-
-/// Mean number of neighbours within rMax of a body: 4π ρ' ∫₀^rMax g r² dr over whole bins
-/// (bins whose upper edge ≤ rMax), ρ' = (N−1)/V.
-double coordinationNumber(const RadialDistribution& rdf, double rMax);
 
 } // namespace terrace::analysis

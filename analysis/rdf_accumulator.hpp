@@ -3,10 +3,10 @@
 // time O(N) per frame: pairs are found through a cell list of cells at least r_max wide (each
 // body meets the bodies of its own and the 26 neighbouring cells; the 13 forward neighbours and
 // the cell itself give every pair once). Boxes fewer than three cells wide are counted over all
-// pairs, as rdf.hpp does. Normalisation and block errors are those of rdf.hpp: the frames are
-// cut into B contiguous blocks of a planned number of frames, g per block, the spread of the
-// blocks gives the error. With r_max = L/2, one frame every sample and the planned number of
-// frames all seen, the histogram is rdf.hpp's, count for count.
+// pairs. Normalisation and block errors are those of rdf.hpp: the frames are cut into B
+// contiguous blocks of a planned number of frames, g per block, the spread of the blocks gives
+// the error. With r_max = L/2, one frame every sample and the planned number of frames all seen,
+// the histogram is that of every pair (reference/all_pairs_rdf.hpp), count for count.
 #include "analysis/rdf.hpp"
 #include "core/snapshot.hpp"
 #include <cstddef>

@@ -1,8 +1,9 @@
 #include "analysis/run_analysis.hpp"
-#include "analysis/correlations.hpp"
-#include "analysis/dynamic_correlations.hpp"
+#include "analysis/csv.hpp"
+#include "analysis/curves.hpp"
 #include "analysis/rdf_accumulator.hpp"
 #include "analysis/streaming_correlations.hpp"
+#include "core/output_file.hpp"
 #include "core/units.hpp"
 #include <algorithm>
 #include <cmath>
@@ -12,8 +13,45 @@ namespace terrace::analysis {
 
 namespace {
 
-/// g(r) far from a body should be 1: averaged over the outer fifth of its range.
+/// g(r) far from a body should be 1: "g at large r" is its mean over the outer fifth of its
+/// range, r ≥ 0.8 r_max ([0.4, 0.5] L when g(r) runs out to L/2).
 constexpr double largeRFraction = 0.8;
+
+/// Summary entries of a g(r): bins, and g averaged over r ≥ from (Å) with a rough error.
+nlohmann::json rdfSummary(const RadialDistribution& rdf, double from) {
+    double sum = 0.0, var = 0.0;
+    int count = 0;
+    for (std::size_t k = 0; k < rdf.r.size(); ++k)
+        if (rdf.r[k] >= from) sum += rdf.g[k], var += rdf.err[k] * rdf.err[k], ++count;
+    nlohmann::json j{{"bin_angstrom", rdf.binWidth}, {"bins", rdf.r.size()}};
+    if (count > 0) {
+        // Bins treated as independent for the error of their mean (neighbouring bins of g(r)
+        // share frames, so this is a rough guide, not a rigorous error).
+        j["g_large_r"] = sum / count;
+        j["g_large_r_err"] = std::sqrt(var) / count;
+        j["large_r_from_angstrom"] = from;
+    }
+    return j;
+}
+
+/// Writes rdf.csv, vacf.csv, msd.csv and, for rotating bodies, oacf.csv (else removes a stale
+/// one) into dir, created if needed.
+void writeCurveFiles(const std::filesystem::path& dir, const RadialDistribution& rdf,
+                     const SampledCurve& vacf, const OrientationalCorrelation* oacf,
+                     const SampledCurve& msd) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throwIoError("create the directory", dir, ec.value());
+    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
+    if (oacf)
+        writeCsv(dir / "oacf.csv",
+                 {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
+                  {oacf->c1.tPs, oacf->c1.value, oacf->c1.err, oacf->c2.value, oacf->c2.err}});
+    else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
+        throwIoError("remove", dir / "oacf.csv", ec.value());
+    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+}
 
 } // namespace
 
@@ -30,11 +68,10 @@ RunAnalysis::RunAnalysis(int bodies, double boxLength, double sampleIntervalPs, 
         throw std::invalid_argument("analysis: max_lag_ps must be ≥ 0 (0: half the span)");
     // A short run still gets its files: fewer blocks (at least two samples each).
     blocks_ = static_cast<int>(std::min<long>(options.blocks, plannedSamples / 2));
-    const int samples = static_cast<int>(std::min<long>(plannedSamples, 1L << 30));
     StreamingCorrelationPlan plan;
     plan.samples = plannedSamples;
     plan.blocks = blocks_;
-    plan.maxLag = lagFor(options.maxLagPs, sampleIntervalPs, samples, blocks_);
+    plan.maxLag = lagFor(options.maxLagPs, sampleIntervalPs, plannedSamples, blocks_);
     plan.lagsPerLevel = options.lagsPerLevel;
     plan.followBodies = options.followBodies;
     correlations_ = std::make_unique<StreamingCorrelations>(bodies, sampleIntervalPs, plan);
@@ -82,10 +119,10 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir) const {
     const Diffusion d = diffusionFromMsd(msd);
     const Diffusion gk = greenKuboDiffusion(vacf, v2);
 
-    detail::writeCurveFiles(dir, rdf, vacf, rotating ? &oacf : nullptr, msd);
+    writeCurveFiles(dir, rdf, vacf, rotating ? &oacf : nullptr, msd);
 
     const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
-    nlohmann::json rdfEntry = detail::rdfSummary(rdf, largeRFraction * rdf_->rMax());
+    nlohmann::json rdfEntry = rdfSummary(rdf, largeRFraction * rdf_->rMax());
     rdfEntry["r_max_angstrom"] = rdf_->rMax();
     rdfEntry["frames"] = rdf_->frames();
     rdfEntry["every_samples"] = options_.rdfEvery;

@@ -1,17 +1,28 @@
 #pragma once
 // The analysis of a run, accumulated sample by sample as the run goes (either engine, and
-// `terrace analyse` on a trajectory), in memory that does not grow with the run's length:
+// `terrace analyse` on a trajectory), in memory that does not grow with the run's length
+// (DESIGN.md "Analysis"):
 //
 //   g(r)              rdf_accumulator.hpp: a cell list out to r_max, O(N) per frame, one frame
 //                     every `rdfEvery` samples
-//   VACF, OACF, MSD   streaming_correlations.hpp: multiple-tau lags up to maxLag, following at
-//                     most `followBodies` bodies
+//   VACF, OACF, MSD   streaming_correlations.hpp: lags 0 … p − 1 by FFT over windows, longer
+//                     lags by multiple-tau up to maxLag, following at most `followBodies` bodies
 //
-// It writes the files and summary entries of correlations.hpp (rdf.csv, vacf.csv, oacf.csv,
-// msd.csv; D by Einstein and Green–Kubo, each with its block error). The blocks of time origins
-// and of g(r) frames are laid out over the planned number of samples, as the post-hoc analysis
-// lays them over the samples it is given: a run that reaches its planned length gets the same
-// blocks. A run stopped early is analysed over the samples it has, its last blocks short or empty.
+// It writes, into the run's directory:
+//
+//   rdf.csv   r_angstrom,g,err                 centre-of-mass g(r), bins up to r_max (rdf.hpp)
+//   vacf.csv  t_ps,c,err                       ⟨v(0)·v(t)⟩/⟨v²⟩ (curves.hpp)
+//   oacf.csv  t_ps,c1,c1_err,c2,c2_err         ⟨s(0)·s(t)⟩ and ⟨P₂(s(0)·s(t))⟩
+//   msd.csv   t_ps,msd_angstrom2,err           ⟨|r(t) − r(0)|²⟩
+//
+// and returns the summary entries (D by Einstein and Green–Kubo, each with its block error; g at
+// large r). err is one standard error from `blocks` block estimates (block_average.hpp).
+// oacf.csv is written only when the bodies rotate (some axis changes between samples); for
+// spheres, whose axis is a constant placeholder, any stale oacf.csv in the directory is removed,
+// and the summary's "oacf" entry says so. The blocks of time origins and of g(r) frames are laid
+// out over the planned number of samples, as the reference analysis lays them over the samples
+// it is given: a run that reaches its planned length gets the same blocks. A run stopped early is
+// analysed over the samples it has, its last blocks short or empty.
 #include "analysis/rdf_accumulator.hpp" // and PositionOf
 #include "core/snapshot.hpp"
 #include <cstddef>

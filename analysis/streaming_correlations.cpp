@@ -1,5 +1,6 @@
 #include "analysis/streaming_correlations.hpp"
 #include "analysis/block_average.hpp"
+#include "analysis/windowed_correlation.hpp"
 #include "core/units.hpp"
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,8 @@ namespace {
 
 constexpr int rows = 9; // v, s, r: three components each
 
-/// Relative spread of sample intervals tolerated as equally spaced (as dynamic_correlations).
+/// Relative spread of sample intervals tolerated as "equally spaced": times come back from text
+/// trajectories through a fs → time-unit conversion, which costs a few ulps, never 1e-9.
 constexpr double spacingTolerance = 1e-9;
 
 } // namespace
@@ -32,7 +34,7 @@ StreamingCorrelations::StreamingCorrelations(int bodies, double sampleIntervalPs
         throw std::invalid_argument("time correlations: the lag must lie within the run");
     if (!(sampleIntervalPs > 0.0)) throw std::invalid_argument("sample interval must be > 0");
     dtUnits_ = units::fromPs(sampleIntervalPs);
-    fine_ = fineBlockCount(static_cast<int>(std::min<long>(planned_, 1L << 30)), blocks_);
+    fine_ = fineBlockCount(planned_, blocks_);
 
     const int m = plan.followBodies > 0 ? std::min(plan.followBodies, bodies) : bodies;
     for (int k = 0; k < m; ++k)
@@ -52,24 +54,23 @@ StreamingCorrelations::StreamingCorrelations(int bodies, double sampleIntervalPs
     }
     firstLagOfLevel_.push_back(static_cast<int>(lag_.size()));
 
-    ring_.assign(levels_, std::vector<double>(std::size_t(p_) * rows * m, 0.0));
+    // Level 0 (lags 0 … p − 1, every origin) is summed by FFT over windows of W = p samples:
+    // exactly the lags that every origin reaches on this grid, so the FFT changes no lag and no
+    // set of origins, and the curves are those of the direct sums within round-off, while the
+    // coarser levels go on as before. A wider window would move lags of the coarser levels onto
+    // every origin (other values, not round-off), for memory 2W · 9 doubles a followed body,
+    // and cost more per sample than the decimated levels it would replace.
+    windowed_ =
+        std::make_unique<WindowedCorrelation>(m, p_, firstLagOfLevel_[1], planned_, fine_, groups_);
+    ring_.assign(levels_, std::vector<double>());
+    for (int l = 1; l < levels_; ++l)
+        ring_[l].assign(std::size_t(p_) * rows * m, 0.0);
     slotFine_.assign(levels_, std::vector<int>(p_, 0));
     const std::size_t g = lag_.size();
-    vv_.assign(fine_, std::vector<double>(g, 0.0));
-    ss_ = s2_ = origins_ = vv_;
-    msd_.assign(groups_, std::vector<double>(g, 0.0));
-    msdOrigins_.assign(g, 0.0);
-}
-
-int StreamingCorrelations::fineBlockOf(long t) const {
-    // Fine block f holds origins [⌊fT/F⌋, ⌊(f+1)T/F⌋) (OriginBlocks); beyond the plan: the last.
-    if (t >= planned_) return fine_ - 1;
-    long f = (t * fine_) / planned_; // a first guess, then corrected exactly
-    while (f > 0 && (f * planned_) / fine_ > t)
-        --f;
-    while (f + 1 < fine_ && ((f + 1) * planned_) / fine_ <= t)
-        ++f;
-    return static_cast<int>(f);
+    tau_.vv.assign(fine_, std::vector<double>(g, 0.0));
+    tau_.ss = tau_.s2 = tau_.origins = tau_.vv;
+    tau_.msd.assign(groups_, std::vector<double>(g, 0.0));
+    tau_.msdOrigins.assign(g, 0.0);
 }
 
 void StreamingCorrelations::add(const Snapshot& frame) {
@@ -108,8 +109,9 @@ void StreamingCorrelations::record(const Snapshot& frame, const int* index) {
             rotating_ = frame.axis[entry(k)] != firstAxis_[k];
 
     const long t = seen_;
-    const int fine = fineBlockOf(t);
-    for (int l = 0; l < levels_; ++l) {
+    const int fine = fineBlockOfSample(t, planned_, fine_);
+    windowed_->add(frame, index);
+    for (int l = 1; l < levels_; ++l) {
         if (t & ((1L << l) - 1)) break; // level l keeps every 2^l-th sample only
         const long index = t >> l;
         const int slot = static_cast<int>(index % p_);
@@ -144,7 +146,7 @@ void StreamingCorrelations::correlate(int level, int slot, int originSlot, int g
         ss += c, s2 += c * c;
     }
     const int f = slotFine_[level][originSlot];
-    vv_[f][g] += vv, ss_[f][g] += ss, s2_[f][g] += s2, origins_[f][g] += 1.0;
+    tau_.vv[f][g] += vv, tau_.ss[f][g] += ss, tau_.s2[f][g] += s2, tau_.origins[f][g] += 1.0;
     for (int b = 0; b < groups_; ++b) {
         const int first = (b * m) / groups_, last = ((b + 1) * m) / groups_;
         double d2 = 0.0;
@@ -154,22 +156,32 @@ void StreamingCorrelations::correlate(int level, int slot, int originSlot, int g
                          dz = now[8 * m + k] - then[8 * m + k];
             d2 += dx * dx + dy * dy + dz * dz;
         }
-        msd_[b][g] += d2;
+        tau_.msd[b][g] += d2;
     }
-    msdOrigins_[g] += 1.0;
+    tau_.msdOrigins[g] += 1.0;
 }
 
-int StreamingCorrelations::usedLags() const {
-    int used = 0;
-    for (std::size_t g = 0; g < lag_.size(); ++g)
-        if (msdOrigins_[g] > 0.0) used = static_cast<int>(g) + 1;
-    return used;
+LagSums StreamingCorrelations::sums() const {
+    LagSums all = tau_;
+    const LagSums linear = windowed_->sums();
+    const std::size_t lags = linear.msdOrigins.size(); // the grid's first lags, 0 … p − 1
+    for (std::size_t f = 0; f < all.vv.size(); ++f)
+        for (std::size_t g = 0; g < lags; ++g) {
+            all.vv[f][g] = linear.vv[f][g], all.ss[f][g] = linear.ss[f][g];
+            all.s2[f][g] = linear.s2[f][g], all.origins[f][g] = linear.origins[f][g];
+        }
+    for (std::size_t b = 0; b < all.msd.size(); ++b)
+        for (std::size_t g = 0; g < lags; ++g)
+            all.msd[b][g] = linear.msd[b][g];
+    for (std::size_t g = 0; g < lags; ++g)
+        all.msdOrigins[g] = linear.msdOrigins[g];
+    return all;
 }
 
-SampledCurve StreamingCorrelations::emptyCurve() const {
+SampledCurve StreamingCorrelations::emptyCurve(const LagSums& sums) const {
     SampledCurve c;
     c.blocks = blocks_;
-    for (int g = 0; g < usedLags(); ++g)
+    for (std::size_t g = 0; g < lag_.size() && sums.msdOrigins[g] > 0.0; ++g)
         c.tPs.push_back(lag_[g] * dtPs_);
     return c;
 }
@@ -195,8 +207,9 @@ void setFine(SampledCurve& c, const std::vector<std::vector<double>>& sums,
 
 SampledCurve StreamingCorrelations::velocity(double* meanSquareVelocity) const {
     if (seen_ < 2) throw std::invalid_argument("time correlations need ≥ 2 samples");
-    SampledCurve c = emptyCurve();
-    setFine(c, vv_, origins_, followed());
+    const LagSums sums = this->sums();
+    SampledCurve c = emptyCurve(sums);
+    setFine(c, sums.vv, sums.origins, followed());
     // ⟨v²⟩ pooled over all origins, then each fine block normalised by its own ⟨v²⟩.
     double sw = 0.0, swv = 0.0;
     for (std::size_t f = 0; f < c.fineValue.size(); ++f)
@@ -217,9 +230,10 @@ SampledCurve StreamingCorrelations::velocity(double* meanSquareVelocity) const {
 
 OrientationalCorrelation StreamingCorrelations::orientation() const {
     if (seen_ < 2) throw std::invalid_argument("time correlations need ≥ 2 samples");
-    OrientationalCorrelation out{emptyCurve(), emptyCurve()};
-    setFine(out.c1, ss_, origins_, followed());
-    setFine(out.c2, s2_, origins_, followed());
+    const LagSums sums = this->sums();
+    OrientationalCorrelation out{emptyCurve(sums), emptyCurve(sums)};
+    setFine(out.c1, sums.ss, sums.origins, followed());
+    setFine(out.c2, sums.s2, sums.origins, followed());
     for (auto& block : out.c2.fineValue)
         for (double& v : block)
             v = 1.5 * v - 0.5; // P₂ of ⟨(s(0)·s(t))²⟩, linear per block
@@ -230,15 +244,18 @@ OrientationalCorrelation StreamingCorrelations::orientation() const {
 
 SampledCurve StreamingCorrelations::displacement() const {
     if (seen_ < 2) throw std::invalid_argument("time correlations need ≥ 2 samples");
-    SampledCurve c = emptyCurve();
+    const LagSums sums = this->sums();
+    SampledCurve c = emptyCurve(sums);
     c.blocks = groups_;
     const int m = followed();
     for (int b = 0; b < groups_; ++b) {
         const double members = ((b + 1) * m) / groups_ - (b * m) / groups_;
         std::vector<double> value(c.tPs.size(), 0.0), weight(c.tPs.size(), 0.0);
         for (std::size_t g = 0; g < c.tPs.size(); ++g) {
-            weight[g] = msdOrigins_[g] * members;
-            value[g] = weight[g] > 0.0 ? msd_[b][g] / weight[g] : 0.0;
+            weight[g] = sums.msdOrigins[g] * members;
+            // A squared displacement is never negative; FFT round-off may leave −1e-16 where
+            // bodies stand still.
+            value[g] = weight[g] > 0.0 ? std::max(0.0, sums.msd[b][g] / weight[g]) : 0.0;
         }
         c.fineValue.push_back(std::move(value));
         c.fineWeight.push_back(std::move(weight));
@@ -248,7 +265,7 @@ SampledCurve StreamingCorrelations::displacement() const {
 }
 
 std::size_t StreamingCorrelations::bytes() const {
-    std::size_t b = 0;
+    std::size_t b = windowed_->bytes();
     for (const auto& r : ring_)
         b += r.size() * sizeof(double);
     b += (4 * std::size_t(fine_) + groups_ + 1) * lag_.size() * sizeof(double);

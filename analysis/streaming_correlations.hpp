@@ -3,33 +3,35 @@
 // that memory and time per sample grow only with the logarithm of the longest lag, never with
 // the run's length:
 //
-//   level 0   the last p samples; lags 0, 1, …, p−1                     (every time origin)
+//   level 0   lags 0, 1, …, p−1, every time origin: by FFT over overlapping windows of p
+//             samples (windowed_correlation.hpp)
 //   level l   every 2^l-th sample, the last p of them; lags j·2^l, j = p/2 … p−1
-//             (time origins every 2^l samples)
+//             (time origins every 2^l samples), by direct sums as the samples arrive
 //
 // The lag grid is that of the multiple-tau correlator of J. Ramírez, S. K. Sukumaran,
 // B. Vorselaars and A. E. Likhtman, J. Chem. Phys. 133, 154103 (2010), but the coarser levels
 // keep every 2^l-th sample (decimation) instead of the mean of 2^l samples. Why: averaging
 // biases every quadratic observable — for the MSD of a diffusing body by −2D·2^l per level, up to
 // 1/(3j) ≈ 4 % of the value at p = 16 — while decimation leaves each correlation an exact sum
-// over a subset of the time origins: unbiased, equal within round-off to the post-hoc sums
-// (dynamic_correlations.hpp) at lags below p, and within their error bars beyond, with fewer
-// origins at long lags where neighbouring origins carry little new information anyway.
+// over a subset of the time origins: unbiased, equal within round-off to the all-origins sums
+// (reference/direct_correlations.hpp) at lags below p, and within their error bars beyond, with
+// fewer origins at long lags where neighbouring origins carry little new information anyway.
 //
 // Sums per lag: Σ_i v_i(t0)·v_i(t0+k), Σ_i s_i(t0)·s_i(t0+k), Σ_i (s_i(t0)·s_i(t0+k))² (the
-// P₂ correlation, as Σ_ab Q_ab(0) Q_ab(t) of dynamic_correlations.hpp) and Σ_i |r_i(t0+k) −
-// r_i(t0)|² over the followed bodies. Error bars as in dynamic_correlations.hpp: the time origins
-// fall into 4B fine blocks of the planned run (so that a run of the planned length gives the same
-// blocks as the post-hoc analysis of its samples), regrouped lag by lag into B coarse blocks; the
-// MSD's B blocks are groups of bodies.
+// P₂ correlation) and Σ_i |r_i(t0+k) − r_i(t0)|² over the followed bodies. Error bars as in
+// curves.hpp: the time origins fall into 4B fine blocks of the planned run (so that a run of the
+// planned length gives the same blocks as the reference analysis of its samples), regrouped lag
+// by lag into B coarse blocks; the MSD's B blocks are groups of bodies.
 //
 // Large systems: the time correlations follow at most `followBodies` bodies, evenly spread over
 // the index range (all when N is no larger), so that their memory stays fixed as N grows. The
 // curves are then averages over those bodies, and their block errors say what that leaves.
-// Memory: levels × p × 9 doubles per followed body.
-#include "analysis/dynamic_correlations.hpp"
+// Memory: (levels − 1) × p × 9 doubles per followed body, and 2p × 9 for the FFT windows.
+#include "analysis/curves.hpp"
+#include "analysis/windowed_correlation.hpp"
 #include "core/snapshot.hpp"
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace terrace::analysis {
@@ -53,11 +55,8 @@ public:
     void addFollowed(const Snapshot& followed);
     /// The bodies followed (indices into a whole sample), in order.
     const std::vector<int>& followedBodies() const { return follow_; }
-    long samples() const { return seen_; }
     int followed() const { return static_cast<int>(follow_.size()); }
     int levels() const { return levels_; }
-    /// The lags (in samples) of the grid, up to the plan's maxLag.
-    const std::vector<int>& lags() const { return lag_; }
 
     /// Some body's axis changed since the first sample (orientational curves mean something).
     bool rotating() const { return rotating_; }
@@ -69,26 +68,26 @@ public:
     std::size_t bytes() const;
 
 private:
-    int fineBlockOf(long sample) const;
     /// frame's entry for followed body k: index[k], or k when index is null.
     void record(const Snapshot& frame, const int* index);
     void correlate(int level, int slot, int originSlot, int lagIndex);
-    SampledCurve emptyCurve() const;
-    int usedLags() const;
+    /// The sums of every lag: the linear lags from the windows, the coarser levels from tau_.
+    LagSums sums() const;
+    /// The grid's lags that have origins, in ps.
+    SampledCurve emptyCurve(const LagSums& sums) const;
 
     int bodies_, p_, levels_ = 1, fine_, blocks_, groups_;
     long planned_;
     double dtPs_;
-    std::vector<int> follow_;                // followed body indices
-    std::vector<int> lag_, lagLevel_, lagJ_; // grid
-    std::vector<int> firstLagOfLevel_;       // index into the grid
-    // ring_[level]: p slots × 9 rows × M followed bodies, structure of arrays per slot
+    std::vector<int> follow_;                       // followed body indices
+    std::vector<int> lag_, lagLevel_, lagJ_;        // grid
+    std::vector<int> firstLagOfLevel_;              // index into the grid
+    std::unique_ptr<WindowedCorrelation> windowed_; // level 0, by FFT
+    // ring_[level ≥ 1]: p slots × 9 rows × M followed bodies, structure of arrays per slot
     // (vx vy vz sx sy sz rx ry rz), so the sums over bodies stream through memory.
     std::vector<std::vector<double>> ring_;
     std::vector<std::vector<int>> slotFine_; // fine block of the sample in each slot
-    std::vector<std::vector<double>> vv_, ss_, s2_, origins_; // [fine block][lag]
-    std::vector<std::vector<double>> msd_;                    // [group][lag]
-    std::vector<double> msdOrigins_;                          // [lag]
+    LagSums tau_;                            // the coarser levels' sums (level 0's unused)
     std::vector<Vec3> firstAxis_;
     double firstTime_ = 0.0, dtUnits_ = 0.0;
     long seen_ = 0;

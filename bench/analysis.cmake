@@ -1,3 +1,2 @@
-# Cost of the correlation analysis of one run (analysis/bench/bench_analysis.cpp).
-add_executable(bench_analysis ${PROJECT_SOURCE_DIR}/analysis/bench/bench_analysis.cpp)
-target_link_libraries(bench_analysis PRIVATE terrace_analysis benchmark::benchmark)
+# Cost per sample of the analysis a run accumulates (bench/bench_analysis.cpp).
+terrace_bench(bench_analysis.cpp terrace_analysis)

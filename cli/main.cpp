@@ -6,8 +6,7 @@
 //   terrace design [SCENE] [--set key.path=value]... [--profile]
 //   terrace sweep SWEEP.json [--out DIR] [-j N] [--set key.path=value]... [--retry-failed]
 #include "analysis/compare.hpp"
-#include "analysis/correlations.hpp"
-#include "analysis/run_analysis.hpp"
+#include "cli/analyse_command.hpp"
 #include "cli/design_command.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run_command.hpp"
@@ -177,53 +176,7 @@ int analyseMain(const std::vector<std::string>& args) {
         return 0;
     }
     if (args.size() != 1) throw po::error("analyse takes exactly one directory");
-    const std::filesystem::path dir = args[0];
-    // The CSVs go into DIR: not while a run is writing there.
-    const cli::OutputDirectory claimed(dir, cli::OutputMode::Continue);
-    // Two passes, never holding the trajectory: the first counts the whole frames (the blocks
-    // of the analysis are laid out over them), the second streams them into the accumulators.
-    const std::string path = (dir / "trajectory.xyz").string();
-    std::string partial;
-    int bodies = 0;
-    double boxLength = 0.0, firstTime = 0.0, secondTime = 0.0;
-    const long frames = forEachTrajectoryFrame(
-        path,
-        [&, k = 0L](Snapshot&& f) mutable {
-            if (k == 0) bodies = f.size(), boxLength = f.boxLength, firstTime = f.time;
-            if (k == 1) secondTime = f.time;
-            ++k;
-        },
-        &partial);
-    if (!partial.empty()) std::fprintf(stderr, "terrace: warning: %s\n", partial.c_str());
-    if (frames < 4)
-        throw TrajectoryError(path + ": " + std::to_string(frames) +
-                              " whole frames, too few to correlate (at least 4)");
-    // The run's own analysis settings where its scene.json is there, else the defaults.
-    analysis::StreamingOptions options;
-    options.rdfMaxAngstrom = 0.0; // without a scene: out to L/2
-    if (std::filesystem::exists(dir / "scene.json")) {
-        const Scene scene = loadScene((dir / "scene.json").string());
-        options = cli::streamingOptions(scene);
-        // g(r) frames as far apart in time as in the run (trajectory frames are sparser).
-        const double frameFs = units::toFs(secondTime - firstTime);
-        options.rdfEvery =
-            std::max(1, static_cast<int>(
-                            std::lround(scene.analysis.rdf_every * scene.run.sample_fs / frameFs)));
-    }
-    analysis::RunAnalysis accumulated(bodies, boxLength, units::toPs(secondTime - firstTime),
-                                      frames, options);
-    long fed = 0;
-    std::string cutShort; // the same frame as in the first pass, already reported
-    forEachTrajectoryFrame(
-        path,
-        [&](Snapshot&& f) {
-            if (fed++ < frames) accumulated.add(f);
-        },
-        &cutShort);
-    const auto summary = accumulated.write(dir);
-    std::printf("%ld frames analysed; wrote the correlation CSVs in %s/\n", frames, dir.c_str());
-    std::printf("%s\n", summary.dump().c_str());
-    return 0;
+    return cli::analyseRun(args[0]);
 }
 
 int designMain(const std::vector<std::string>& args) {

@@ -40,7 +40,8 @@ namespace terrace::cli {
 /// What SampleRecord::virial holds (core/pressure.hpp).
 using terrace::VirialKind;
 
-/// Blocks behind the pressure's error (as analysis::Options' default for the correlations).
+/// Blocks behind the pressure's error (as analysis::StreamingOptions' default for the
+/// correlations).
 inline constexpr int pressureBlocks = 8;
 
 /// The two terms of P_k in kJ/mol/Å³, per sample that has a pressure (DMD: all but the first):

@@ -1,7 +1,8 @@
 // Regression compare: an independent re-run agrees, a shifted curve does not.
 #include "analysis/compare.hpp"
-#include "analysis/correlations.hpp"
 #include "analysis/csv.hpp"
+#include "analysis/reference/all_pairs_rdf.hpp"
+#include "analysis/reference/direct_correlations.hpp"
 #include "synthetic_samples.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
@@ -21,6 +22,21 @@ constexpr double interval = 0.1, decayRate = 0.5, length = 30.0, kT = 4.2, mass 
 /// The project's default regression threshold.
 constexpr double tolSigma = 3.0;
 
+/// The curves of a run on every lag (the reference's all-origins sums, so that the comparison
+/// has many points), in the files and columns a run writes.
+void writeRun(const std::vector<Snapshot>& run, const fs::path& dir) {
+    constexpr int blocks = 8;
+    const double dtPs = reference::sampleIntervalPs(run);
+    const int maxLag = lagFor(0.0, dtPs, static_cast<long>(run.size()), blocks);
+    const SampledCurve vacf = reference::velocityAutocorrelation(run, maxLag, blocks),
+                       msd = reference::meanSquaredDisplacement(run, maxLag, blocks);
+    const RadialDistribution rdf = reference::radialDistribution(run, 0.05, blocks);
+    fs::create_directories(dir);
+    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
+    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+}
+
 struct Runs : ::testing::Test {
     static fs::path root;
     static void SetUpTestSuite() {
@@ -29,9 +45,9 @@ struct Runs : ::testing::Test {
             fs::temp_directory_path() / ("terrace_analysis_compare_" + std::to_string(::getpid()));
         fs::remove_all(root);
         for (auto [name, seed] : {std::pair{"a", 101u}, std::pair{"b", 202u}})
-            writeCorrelations(synthetic::ornsteinUhlenbeck(samples, bodies, interval, length, kT,
-                                                           mass, decayRate, seed),
-                              root / name);
+            writeRun(synthetic::ornsteinUhlenbeck(samples, bodies, interval, length, kT, mass,
+                                                  decayRate, seed),
+                     root / name);
     }
     static void TearDownTestSuite() { fs::remove_all(root); }
     /// B's vacf.csv with its columns changed by f, written as a new file.

@@ -1,27 +1,35 @@
-// The streaming analysis against the post-hoc one it replaces in runs: g(r) count for count, the
-// time correlations within round-off on the lags where both use every origin, exact sums over the
-// origins they use on the coarser levels, and agreement within error of what both estimate.
-#include "analysis/correlations.hpp"
+// The product's streaming analysis against the reference (all samples in memory, every pair,
+// direct sums over every origin): g(r) count for count, the time correlations within round-off
+// on the lags where both use every origin (the FFT windows), exact sums over the origins they
+// use on the coarser multiple-tau levels, and agreement within error of what both estimate.
 #include "analysis/csv.hpp"
-#include "analysis/dynamic_correlations.hpp"
-#include "analysis/rdf.hpp"
 #include "analysis/rdf_accumulator.hpp"
+#include "analysis/reference/all_pairs_rdf.hpp"
+#include "analysis/reference/direct_correlations.hpp"
 #include "analysis/run_analysis.hpp"
 #include "analysis/streaming_correlations.hpp"
 #include "core/units.hpp"
 #include "synthetic_samples.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
+#include <map>
 #include <unistd.h>
 
 using namespace terrace;
 using namespace terrace::analysis;
+using namespace terrace::analysis::reference;
 namespace fs = std::filesystem;
 
 namespace {
 
-/// Sums of the same terms in another order.
+/// Sums of the same terms in another order, or by FFT.
 constexpr double roundOff = 1e-12;
+/// Block errors are spreads of nearly equal block values: round-off of the values, amplified.
+constexpr double errRoundOff = 1e-9;
+/// CSV values against the reference's: 17 digits written, each side's round-off as above.
+constexpr double fileRoundOff = 1e-9;
+/// MSD by FFT of displacements (Å, from the window's first sample) against direct sums, Å².
+constexpr double msdRoundOff = 1e-9;
 
 bool near(double a, double b, double relative) {
     return std::abs(a - b) <= relative * std::max({1.0, std::abs(a), std::abs(b)});
@@ -53,17 +61,17 @@ struct ScratchDirectory {
 
 } // namespace
 
-TEST(RdfAccumulator, OutToHalfTheBoxCountsWhatThePostHocAnalysisCounts) {
+TEST(RdfAccumulator, OutToHalfTheBoxCountsWhatTheReferenceCounts) {
     const auto samples = synthetic::freeRotors(40, 300, 0.1, 20.0, 4.2, 18.0, 1.154, 3);
-    const RadialDistribution posthoc = radialDistribution(samples, 0.1, 8);
+    const RadialDistribution allPairs = radialDistribution(samples, 0.1, 8);
     RdfAccumulator acc(300, 20.0, 0.1, 10.0, 40, 8);
     for (const auto& s : samples)
         acc.add(s);
     const RadialDistribution streamed = acc.result();
-    ASSERT_EQ(streamed.r.size(), posthoc.r.size());
-    for (std::size_t k = 0; k < posthoc.r.size(); ++k) {
-        EXPECT_EQ(streamed.g[k], posthoc.g[k]) << "bin " << k;
-        EXPECT_EQ(streamed.err[k], posthoc.err[k]) << "bin " << k;
+    ASSERT_EQ(streamed.r.size(), allPairs.r.size());
+    for (std::size_t k = 0; k < allPairs.r.size(); ++k) {
+        EXPECT_EQ(streamed.g[k], allPairs.g[k]) << "bin " << k;
+        EXPECT_EQ(streamed.err[k], allPairs.err[k]) << "bin " << k;
     }
 }
 
@@ -80,7 +88,7 @@ TEST(RdfAccumulator, CellListFindsEveryPairWithinItsRange) {
     EXPECT_DOUBLE_EQ(acc.rMax(), 6.0);
     for (std::size_t k = 0; k < near6.r.size(); ++k) {
         EXPECT_TRUE(near(near6.g[k], all.g[k], roundOff)) << "bin " << k;
-        EXPECT_TRUE(near(near6.err[k], all.err[k], 1e-9)) << "bin " << k;
+        EXPECT_TRUE(near(near6.err[k], all.err[k], errRoundOff)) << "bin " << k;
     }
 }
 
@@ -90,36 +98,37 @@ TEST(RdfAccumulator, FramesBeyondThoseCountedLeaveLaterBlocksOut) {
     for (const auto& s : samples)
         acc.add(s);
     const RadialDistribution part = acc.result();
-    const RadialDistribution posthoc = radialDistribution(samples, 0.1, 2);
+    const RadialDistribution allPairs = radialDistribution(samples, 0.1, 2);
     for (std::size_t k = 0; k < part.r.size(); ++k)
-        EXPECT_TRUE(near(part.g[k], posthoc.g[k], roundOff)) << "bin " << k;
+        EXPECT_TRUE(near(part.g[k], allPairs.g[k], roundOff)) << "bin " << k;
     EXPECT_THROW(RdfAccumulator(100, 15.0, 0.1, 7.6, 16, 4), std::invalid_argument);
     EXPECT_THROW(RdfAccumulator(100, 15.0, 0.0, 7.0, 16, 4), std::invalid_argument);
     EXPECT_THROW(RdfAccumulator(100, 15.0, 0.1, 7.0, 3, 4), std::invalid_argument);
 }
 
-TEST(StreamingCorrelations, LagsBelowTheFirstLevelMatchThePostHocCurvesToRoundOff) {
+TEST(StreamingCorrelations, LagsBelowTheFirstLevelMatchTheDirectSumsToRoundOff) {
     const auto samples = synthetic::freeRotors(120, 50, 0.05, 25.0, 4.2, 18.0, 1.154, 21);
     const int maxLag = 59, blocks = 4;
     const auto streamed = fed(samples, maxLag, blocks);
     double v2a = 0.0, v2b = 0.0;
     const SampledCurve vacf = streamed.velocity(&v2a),
-                       vacfPost = velocityAutocorrelation(samples, maxLag, blocks, &v2b);
+                       vacfRef = velocityAutocorrelation(samples, maxLag, blocks, &v2b);
     const auto oacf = streamed.orientation();
-    const auto oacfPost = orientationalAutocorrelation(samples, maxLag, blocks);
+    const auto oacfRef = orientationalAutocorrelation(samples, maxLag, blocks);
     const SampledCurve msd = streamed.displacement(),
-                       msdPost = meanSquaredDisplacement(samples, maxLag, blocks);
+                       msdRef = meanSquaredDisplacement(samples, maxLag, blocks);
     EXPECT_TRUE(near(v2a, v2b, roundOff));
     ASSERT_TRUE(streamed.rotating());
     for (int k = 0; k < 16; ++k) {
-        EXPECT_DOUBLE_EQ(vacf.tPs[k], vacfPost.tPs[k]);
-        EXPECT_TRUE(near(vacf.value[k], vacfPost.value[k], roundOff)) << "lag " << k;
-        EXPECT_TRUE(near(vacf.err[k], vacfPost.err[k], 1e-9)) << "lag " << k;
-        EXPECT_TRUE(near(oacf.c1.value[k], oacfPost.c1.value[k], roundOff)) << "lag " << k;
-        EXPECT_TRUE(near(oacf.c2.value[k], oacfPost.c2.value[k], roundOff)) << "lag " << k;
-        EXPECT_TRUE(near(oacf.c2.err[k], oacfPost.c2.err[k], 1e-9)) << "lag " << k;
-        // The post-hoc MSD goes through FFTs of positions ~25 Å: round-off ~1e-13 Å² of 25².
-        EXPECT_NEAR(msd.value[k], msdPost.value[k], 1e-9) << "lag " << k;
+        EXPECT_DOUBLE_EQ(vacf.tPs[k], vacfRef.tPs[k]);
+        EXPECT_TRUE(near(vacf.value[k], vacfRef.value[k], roundOff)) << "lag " << k;
+        EXPECT_TRUE(near(vacf.err[k], vacfRef.err[k], errRoundOff)) << "lag " << k;
+        EXPECT_TRUE(near(oacf.c1.value[k], oacfRef.c1.value[k], roundOff)) << "lag " << k;
+        EXPECT_TRUE(near(oacf.c2.value[k], oacfRef.c2.value[k], roundOff)) << "lag " << k;
+        EXPECT_TRUE(near(oacf.c2.err[k], oacfRef.c2.err[k], errRoundOff)) << "lag " << k;
+        // The windows' MSD goes through FFTs of displacements of a few Å: round-off ~1e-15 Å².
+        EXPECT_NEAR(msd.value[k], msdRef.value[k], msdRoundOff) << "lag " << k;
+        EXPECT_TRUE(near(msd.err[k], msdRef.err[k], errRoundOff)) << "lag " << k;
     }
 }
 
@@ -129,11 +138,10 @@ TEST(StreamingCorrelations, CoarseLevelsAreExactSumsOverEveryTwoToTheLthOrigin) 
     const auto streamed = fed(samples, maxLag, 4, p);
     const auto oacf = streamed.orientation();
     const SampledCurve msd = streamed.displacement();
-    const auto& lags = streamed.lags();
-    ASSERT_EQ(lags.back(), 96); // level 4: j·16, j = 4 … 7 up to 99
-    ASSERT_EQ(oacf.c1.tPs.size(), lags.size());
-    for (std::size_t g = 0; g < lags.size(); ++g) {
-        const int k = lags[g];
+    const double dtPs = sampleIntervalPs(samples);
+    ASSERT_EQ(std::lround(oacf.c1.tPs.back() / dtPs), 96); // level 4: j·16, j = 4 … 7 up to 99
+    for (std::size_t g = 0; g < oacf.c1.tPs.size(); ++g) {
+        const int k = static_cast<int>(std::lround(oacf.c1.tPs[g] / dtPs));
         int level = 0;
         while (k >= (p << level))
             ++level;
@@ -151,7 +159,7 @@ TEST(StreamingCorrelations, CoarseLevelsAreExactSumsOverEveryTwoToTheLthOrigin) 
     }
 }
 
-TEST(StreamingCorrelations, DiffusionAgreesWithThePostHocEstimateWithinError) {
+TEST(StreamingCorrelations, DiffusionAgreesWithTheReferenceEstimateWithinError) {
     // Brownian walkers, D = 0.5 Å² per time unit: the Einstein fit of both analyses must agree
     // with each other and with D within their block errors.
     const double d = 0.5, h = 0.1;
@@ -192,8 +200,11 @@ TEST(StreamingCorrelations, MemoryDoesNotGrowWithTheSamplesAddedAndFollowsTheCap
         c.add(s);
     EXPECT_EQ(c.bytes(), before);
     EXPECT_EQ(c.followed(), 64);
-    StreamingCorrelationPlan all{300, 100, 4, 16, 0};
-    EXPECT_GT(StreamingCorrelations(500, 0.005, all).bytes(), 6 * before);
+    // Memory grows with the followed bodies (7.9 times as many beyond the first: 500 against
+    // 64), above a fixed FFT scratch.
+    StreamingCorrelationPlan all{300, 100, 4, 16, 0}, one{300, 100, 4, 16, 1};
+    const std::size_t fixed = StreamingCorrelations(500, 0.005, one).bytes();
+    EXPECT_GT(StreamingCorrelations(500, 0.005, all).bytes() - fixed, 7 * (before - fixed));
 }
 
 TEST(StreamingCorrelations, RefusesUnequalSpacingAndBadPlans) {
@@ -210,34 +221,49 @@ TEST(StreamingCorrelations, RefusesUnequalSpacingAndBadPlans) {
                  std::invalid_argument);
 }
 
-TEST(RunAnalysis, WritesTheFilesOfThePostHocAnalysisWithTheSameNumbersAtShortLags) {
+TEST(RunAnalysis, WritesTheReferenceCurvesAtShortLagsAndItsGAtLargeR) {
     const auto samples = synthetic::freeRotors(64, 200, 0.1, 25.0, 4.2, 18.0, 1.154, 11);
-    const ScratchDirectory a("stream"), b("posthoc");
+    const ScratchDirectory a("stream");
     StreamingOptions options;
     options.rdfBinAngstrom = 0.1;
-    options.rdfMaxAngstrom = 0.0; // L/2, as the post-hoc analysis
+    options.rdfMaxAngstrom = 0.0; // L/2, as the reference
     RunAnalysis run(200, 25.0, sampleIntervalPs(samples), 64, options);
     for (const auto& s : samples)
         run.add(s);
-    const auto streamed = run.write(a.path);
-    const auto posthoc = writeCorrelations(samples, b.path, {8, 0.0, 0.1});
-    for (const char* file : {"rdf.csv", "vacf.csv", "oacf.csv", "msd.csv"}) {
-        const CsvTable x = readCsv(a.path / file), y = readCsv(b.path / file);
-        ASSERT_EQ(x.header, y.header) << file;
-        const int rows = std::string(file) == "rdf.csv" ? y.rows() : 16;
+    const auto summary = run.write(a.path);
+    const int maxLag = lagFor(0.0, sampleIntervalPs(samples), 64, 8);
+    const SampledCurve vacf = velocityAutocorrelation(samples, maxLag, 8),
+                       msd = meanSquaredDisplacement(samples, maxLag, 8);
+    const auto oacf = orientationalAutocorrelation(samples, maxLag, 8);
+    const RadialDistribution rdf = radialDistribution(samples, 0.1, 8);
+    const std::map<std::string, std::vector<std::vector<double>>> expected{
+        {"rdf.csv", {rdf.r, rdf.g, rdf.err}},
+        {"vacf.csv", {vacf.tPs, vacf.value, vacf.err}},
+        {"oacf.csv", {oacf.c1.tPs, oacf.c1.value, oacf.c1.err, oacf.c2.value, oacf.c2.err}},
+        {"msd.csv", {msd.tPs, msd.value, msd.err}}};
+    for (const auto& [file, columns] : expected) {
+        const CsvTable x = readCsv(a.path / file);
+        const int rows = file == "rdf.csv" ? static_cast<int>(rdf.r.size()) : 16;
         ASSERT_GE(x.rows(), rows) << file;
-        for (std::size_t c = 0; c < x.columns.size(); ++c)
+        ASSERT_EQ(x.columns.size(), columns.size()) << file;
+        for (std::size_t c = 0; c < columns.size(); ++c)
             for (int r = 0; r < rows; ++r)
-                EXPECT_NEAR(x.columns[c][r], y.columns[c][r],
-                            1e-9 * std::max(1.0, std::abs(y.columns[c][r])))
+                EXPECT_NEAR(x.columns[c][r], columns[c][r],
+                            fileRoundOff * std::max(1.0, std::abs(columns[c][r])))
                     << file << " column " << c << " row " << r;
     }
-    EXPECT_EQ(streamed["samples"], 64);
-    EXPECT_EQ(streamed["rdf"]["g_large_r"], posthoc["rdf"]["g_large_r"]);
-    EXPECT_TRUE(streamed["diffusion"]["green_kubo_err"].is_number());
-    // The grid's last lag at or before the post-hoc one (lags 0 … 15, then 16, 18, … 30).
-    EXPECT_NEAR(streamed["max_lag_ps"].get<double>(), 0.30, 1e-12);
-    EXPECT_NEAR(posthoc["max_lag_ps"].get<double>(), 0.31, 1e-12);
+    EXPECT_EQ(summary["samples"], 64);
+    // g at large r: the mean over the outer fifth of g(r)'s range, r ≥ 0.8 r_max.
+    double sum = 0.0;
+    int bins = 0;
+    for (std::size_t k = 0; k < rdf.r.size(); ++k)
+        if (rdf.r[k] >= 0.8 * 12.5) sum += rdf.g[k], ++bins;
+    EXPECT_NEAR(summary["rdf"]["g_large_r"].get<double>(), sum / bins, roundOff);
+    EXPECT_EQ(summary["rdf"]["large_r_from_angstrom"].get<double>(), 0.8 * 12.5);
+    EXPECT_TRUE(summary["diffusion"]["green_kubo_err"].is_number());
+    // The grid's last lag at or before the requested 31 (lags 0 … 15, then 16, 18, … 30).
+    EXPECT_EQ(maxLag, 31);
+    EXPECT_NEAR(summary["max_lag_ps"].get<double>(), 0.30, 1e-12);
 }
 
 TEST(RunAnalysis, ARunStoppedEarlyIsAnalysedOverTheSamplesItHas) {

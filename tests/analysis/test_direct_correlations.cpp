@@ -1,6 +1,8 @@
-// VACF, OACF and MSD of samples whose correlations are known exactly or analytically.
-#include "analysis/dynamic_correlations.hpp"
-#include "analysis/time_correlation.hpp"
+// The reference VACF, OACF and MSD (direct sums over every origin) on samples whose correlations
+// are known exactly or analytically, and the block and diffusion arithmetic of curves.hpp. The
+// product's streaming curves are tested against this reference (test_streaming_analysis.cpp).
+#include "analysis/curves.hpp"
+#include "analysis/reference/direct_correlations.hpp"
 #include "synthetic_samples.hpp"
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <cmath>
@@ -8,14 +10,15 @@
 
 using namespace terrace;
 using namespace terrace::analysis;
+using namespace terrace::analysis::reference;
 
 namespace {
 
 /// Exact identities (VACF of free flight, averages the code must reproduce sample by sample):
-/// round-off of FFT sums over a few thousand terms.
+/// round-off of sums over a few thousand terms.
 constexpr double roundOff = 1e-12;
 /// MSD of free flight: |r(t) − r(0)|² from unwrapped positions of ~100 Å loses ~1e-14 relative
-/// to cancellation, amplified by the FFT; 1e-9 relative still catches any wrong lag or weight.
+/// to cancellation; 1e-9 relative still catches any wrong lag or weight.
 constexpr double msdRelativeTolerance = 1e-9;
 /// Statistical check of an average over N bodies of a quantity bounded by 1 in magnitude:
 /// 5 standard errors of the mean (its standard deviation is at most 1).
@@ -59,7 +62,7 @@ double rotorP2(double x) {
 
 } // namespace
 
-TEST(DynamicCorrelations, VacfOfFreeParticlesIsOne) {
+TEST(DirectCorrelations, VacfOfFreeParticlesIsOne) {
     const auto samples = synthetic::freeRotors(60, 40, 0.1, 30.0, kT, mass, inertia, 1);
     const auto vacf = velocityAutocorrelation(samples, 29, 4);
     for (std::size_t k = 0; k < vacf.value.size(); ++k) {
@@ -69,7 +72,7 @@ TEST(DynamicCorrelations, VacfOfFreeParticlesIsOne) {
     }
 }
 
-TEST(DynamicCorrelations, MsdOfFreeFlightIsMeanSquareSpeedTimesTimeSquared) {
+TEST(DirectCorrelations, MsdOfFreeFlightIsMeanSquareSpeedTimesTimeSquared) {
     const auto samples = synthetic::freeRotors(50, 30, 0.2, 30.0, kT, mass, inertia, 2);
     double v2 = 0.0; // Å²/ps²
     for (const Vec3& v : samples[0].velocity)
@@ -82,7 +85,7 @@ TEST(DynamicCorrelations, MsdOfFreeFlightIsMeanSquareSpeedTimesTimeSquared) {
     }
 }
 
-TEST(DynamicCorrelations, MsdEqualsDirectSumOverOriginsAndBodies) {
+TEST(DirectCorrelations, MsdEqualsDirectSumOverOriginsAndBodies) {
     const int t = 80, n = 12, maxLag = 39, blocks = 4;
     const auto samples = synthetic::randomWalk(t, n, 0.1, 20.0, 0.3, 3);
     const auto msd = meanSquaredDisplacement(samples, maxLag, blocks);
@@ -99,7 +102,7 @@ TEST(DynamicCorrelations, MsdEqualsDirectSumOverOriginsAndBodies) {
     }
 }
 
-TEST(DynamicCorrelations, DiffusionCoefficientOfARandomWalk) {
+TEST(DirectCorrelations, DiffusionCoefficientOfARandomWalk) {
     const double d = 0.05; // Å² per time unit = 0.5 Å²/ps
     const auto samples = synthetic::randomWalk(400, 200, 0.1, 40.0, d, 4);
     const auto msd = meanSquaredDisplacement(samples, 199, 8);
@@ -112,13 +115,13 @@ TEST(DynamicCorrelations, DiffusionCoefficientOfARandomWalk) {
     EXPECT_NEAR(fit.toPs, 149 * 0.01, 1e-12);
 }
 
-TEST(DynamicCorrelations, RotorCurveClosedFormMatchesRayleighQuadrature) {
+TEST(DirectCorrelations, RotorCurveClosedFormMatchesRayleighQuadrature) {
     for (double x : {0.0, 0.3, 1.0, 1.7, 2.5, 4.0, 6.0})
         EXPECT_NEAR(rotorCos(x), rotorCosQuadrature(x), 1e-9) << "x = " << x;
     EXPECT_LT(rotorCos(2.5), 0.0); // the anti-correlation of free rotors
 }
 
-TEST(DynamicCorrelations, OacfOfFreeRotorsEqualsTheirSampleAverageExactly) {
+TEST(DirectCorrelations, OacfOfFreeRotorsEqualsTheirSampleAverageExactly) {
     const int t = 40, n = 50;
     const double h = 0.05;
     const auto samples = synthetic::freeRotors(t, n, h, 30.0, kT, mass, inertia, 5);
@@ -136,7 +139,7 @@ TEST(DynamicCorrelations, OacfOfFreeRotorsEqualsTheirSampleAverageExactly) {
     EXPECT_NEAR(oacf.c2.value[0], 1.0, roundOff);
 }
 
-TEST(DynamicCorrelations, OacfOfMaxwellBoltzmannRotorsMatchesAnalyticForm) {
+TEST(DirectCorrelations, OacfOfMaxwellBoltzmannRotorsMatchesAnalyticForm) {
     const int t = 100, n = 20000;
     const double h = 0.05; // 5 fs; x reaches 49 · 0.05 · 1.91 ≈ 4.7, past the minimum
     const auto samples = synthetic::freeRotors(t, n, h, 60.0, kT, mass, inertia, 6);
@@ -151,7 +154,7 @@ TEST(DynamicCorrelations, OacfOfMaxwellBoltzmannRotorsMatchesAnalyticForm) {
     }
 }
 
-TEST(DynamicCorrelations, CoarseBlocksHaveEqualOriginsInTimeOrder) {
+TEST(DirectCorrelations, CoarseBlocksHaveEqualOriginsInTimeOrder) {
     // Fine blocks of 10 origins, the last three empty at this lag: 5 valid → groups 0,0,1,1,1?
     // Midpoints 5, 15, 25, 35, 45 of 50 origins, two coarse blocks: 0, 0, 1, 1, 1.
     const std::vector<int> two = coarseBlocks({10, 10, 10, 10, 10, 0, 0, 0}, 2);
@@ -160,7 +163,7 @@ TEST(DynamicCorrelations, CoarseBlocksHaveEqualOriginsInTimeOrder) {
     EXPECT_EQ(four, (std::vector<int>{0, 0, 1, 1, 2, 2, 3, 3}));
 }
 
-TEST(DynamicCorrelations, ErrorBarsAreHonestOutToTheLongestLag) {
+TEST(DirectCorrelations, ErrorBarsAreHonestOutToTheLongestLag) {
     // Ornstein–Uhlenbeck velocities, VACF e^{−γt} exactly known. With B blocks, (c − exact)/err
     // is Student-t with B − 1 degrees of freedom: ⟨z²⟩ = (B − 1)/(B − 3) = 1.4 for B = 8, at
     // short and at long lags alike (fixed blocks of origins give ~2 beyond one block length).
@@ -182,13 +185,13 @@ TEST(DynamicCorrelations, ErrorBarsAreHonestOutToTheLongestLag) {
     EXPECT_NEAR(longLags / nLong, 1.4, tDistributionSpread);
 }
 
-TEST(DynamicCorrelations, SpheresDoNotRotateRodsDo) {
+TEST(DirectCorrelations, SpheresDoNotRotateRodsDo) {
     auto samples = synthetic::emptySamples(10, 3, 0.1, 10.0);
     EXPECT_FALSE(axesRotate(samples));
     EXPECT_TRUE(axesRotate(synthetic::freeRotors(10, 3, 0.1, 10.0, kT, mass, inertia, 7)));
 }
 
-TEST(DynamicCorrelations, RejectsUnequalSpacingAndTooLongLags) {
+TEST(DirectCorrelations, RejectsUnequalSpacingAndTooLongLags) {
     auto samples = synthetic::freeRotors(20, 3, 0.1, 10.0, kT, mass, inertia, 8);
     EXPECT_THROW(velocityAutocorrelation(samples, largestLag(20, 4) + 1, 4), std::invalid_argument);
     EXPECT_THROW(velocityAutocorrelation(samples, 5, 1), std::invalid_argument);

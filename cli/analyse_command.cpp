@@ -1,0 +1,64 @@
+#include "cli/analyse_command.hpp"
+#include "analysis/run_analysis.hpp"
+#include "cli/output_dir.hpp"
+#include "cli/run_driver.hpp"
+#include "core/scene.hpp"
+#include "core/units.hpp"
+#include "core/xyz.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace terrace::cli {
+
+int analyseRun(const std::filesystem::path& dir) {
+    // The CSVs go into DIR: not while a run is writing there.
+    const OutputDirectory claimed(dir, OutputMode::Continue);
+    // Two passes, never holding the trajectory: the first counts the whole frames (the blocks
+    // of the analysis are laid out over them), the second streams them into the accumulators.
+    const std::string path = (dir / "trajectory.xyz").string();
+    std::string partial;
+    int bodies = 0;
+    double boxLength = 0.0, firstTime = 0.0, secondTime = 0.0;
+    const long frames = forEachTrajectoryFrame(
+        path,
+        [&, k = 0L](Snapshot&& f) mutable {
+            if (k == 0) bodies = f.size(), boxLength = f.boxLength, firstTime = f.time;
+            if (k == 1) secondTime = f.time;
+            ++k;
+        },
+        &partial);
+    if (!partial.empty()) std::fprintf(stderr, "terrace: warning: %s\n", partial.c_str());
+    if (frames < 4)
+        throw TrajectoryError(path + ": " + std::to_string(frames) +
+                              " whole frames, too few to correlate (at least 4)");
+    // The run's own analysis settings where its scene.json is there, else the defaults.
+    analysis::StreamingOptions options;
+    options.rdfMaxAngstrom = 0.0; // without a scene: out to L/2
+    if (std::filesystem::exists(dir / "scene.json")) {
+        const Scene scene = loadScene((dir / "scene.json").string());
+        options = streamingOptions(scene);
+        // g(r) frames as far apart in time as in the run (trajectory frames are sparser).
+        const double frameFs = units::toFs(secondTime - firstTime);
+        options.rdfEvery =
+            std::max(1, static_cast<int>(
+                            std::lround(scene.analysis.rdf_every * scene.run.sample_fs / frameFs)));
+    }
+    analysis::RunAnalysis accumulated(bodies, boxLength, units::toPs(secondTime - firstTime),
+                                      frames, options);
+    long fed = 0;
+    std::string cutShort; // the same frame as in the first pass, already reported
+    forEachTrajectoryFrame(
+        path,
+        [&](Snapshot&& f) {
+            if (fed++ < frames) accumulated.add(f);
+        },
+        &cutShort);
+    const auto summary = accumulated.write(dir);
+    std::printf("%ld frames analysed; wrote the correlation CSVs in %s/\n", frames, dir.c_str());
+    std::printf("%s\n", summary.dump().c_str());
+    return 0;
+}
+
+} // namespace terrace::cli
