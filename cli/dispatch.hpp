@@ -56,40 +56,39 @@ System<K, P> startingSystem(const Scene& scene, const P& potential, const RunTar
     return sys;
 }
 
-/// The engine a run starts with: built from the scene, or, when continuing, from the restart
-/// file's bodies and checkpoint. These leave `*target.resume` as they are read: kept, they would
-/// sit beside the engine for the whole continued run (~130 B a rod), above the peak of the run
-/// before it; the DMD engine also frees the checkpoint's pairs once it has read them.
-template <class E, BodyKind K, PairPotential P>
-std::unique_ptr<E> startingEngine(const Scene& scene, const P& potential, const RunTarget& target) {
-    if (!target.resume)
-        return std::make_unique<E>(startingSystem<K, P>(scene, potential, target), scene);
+/// The engine a run starts with: from the scene's initial state, or, when continuing, from the
+/// restart file's bodies and checkpoint. `make(system, checkpoint)` builds an engine (checkpoint
+/// null at the start; else it may be spent). These leave `*target.resume` as they are read: kept,
+/// they would sit beside the engine for the whole continued run (~130 B a rod), above the peak of
+/// the run before it; the DMD engine also frees the checkpoint's pairs once it has read them.
+template <class E, BodyKind K, PairPotential P, class Make>
+std::unique_ptr<E> startingEngine(const Scene& scene, const P& potential, const RunTarget& target,
+                                  const Make& make) {
+    if (!target.resume) return make(startingSystem<K, P>(scene, potential, target), nullptr);
     auto start = startingSystem<K, P>(scene, potential, target);
     target.resume->erase("bodies");
     nlohmann::json checkpoint = std::move(target.resume->at("engine"));
     target.resume->erase("engine");
-    return std::make_unique<E>(std::move(start), scene, std::move(checkpoint));
+    return make(std::move(start), &checkpoint);
 }
 
 /// A restart point's engine, built as a run continued from its file builds it.
-template <class E> auto rebuildFromCheckpoint(const Scene& scene) {
-    return [&scene](auto&& released) {
-        return std::make_unique<E>(std::move(released.system), scene,
-                                   std::move(released.checkpoint));
-    };
+template <class Make> auto rebuildWith(const Make& make) {
+    return
+        [make](auto&& released) { return make(std::move(released.system), &released.checkpoint); };
 }
 
-/// Builds the engine, claims the output directory unless the caller holds it (a continued run
-/// claims it before reading the restart file), and drives the run. The directory is claimed only
-/// after the engine is built, so that a scene refused by the engine's own checks leaves nothing
-/// behind.
-template <template <class, class> class Engine, BodyKind K, PairPotential P>
-RunOutcome buildAndDrive(const Scene& scene, const P& potential, const RunTarget& target) {
-    using E = Engine<K, P>;
-    std::unique_ptr<E> engine = startingEngine<E, K, P>(scene, potential, target);
+/// Builds the engine with `make` (startingEngine), claims the output directory unless the caller
+/// holds it (a continued run claims it before reading the restart file), and drives the run. The
+/// directory is claimed only after the engine is built, so that a scene refused by the engine's
+/// own checks leaves nothing behind.
+template <class E, BodyKind K, PairPotential P, class Make>
+RunOutcome buildAndDrive(const Scene& scene, const P& potential, const RunTarget& target,
+                         const Make& make) {
+    std::unique_ptr<E> engine = startingEngine<E, K, P>(scene, potential, target, make);
     std::optional<OutputDirectory> output;
     if (target.mode != OutputMode::Continue) output.emplace(target.dir, target.mode);
-    return drive(engine, rebuildFromCheckpoint<E>(scene), scene, target, K::rotationalDof);
+    return drive(engine, rebuildWith(make), scene, target, K::rotationalDof);
 }
 
 } // namespace terrace::cli

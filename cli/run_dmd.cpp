@@ -6,7 +6,18 @@ namespace terrace::cli {
 
 RunOutcome runDmd(const Scene& scene, const RunTarget& target) {
     return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) {
-        return buildAndDrive<dmd::Engine, K>(scene, sceneModel(scene, potential, true), target);
+        const auto model = sceneModel(scene, potential, true);
+        using M = std::remove_const_t<decltype(model)>;
+        using E = dmd::Engine<K, M>;
+        // Read once: every engine of the run (restart points rebuild it) takes a copy.
+        const dmd::DmdSettings settings =
+            dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
+        auto make = [&settings, seed = scene.seed](System<K, M>&& system,
+                                                   nlohmann::json* checkpoint) {
+            if (!checkpoint) return std::make_unique<E>(std::move(system), settings, seed);
+            return std::make_unique<E>(std::move(system), settings, seed, std::move(*checkpoint));
+        };
+        return buildAndDrive<E, K>(scene, model, target, make);
     });
 }
 

@@ -6,7 +6,16 @@ namespace terrace::cli {
 
 RunOutcome runSmd(const Scene& scene, const RunTarget& target) {
     return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) {
-        return buildAndDrive<smd::Engine, K>(scene, sceneModel(scene, potential, false), target);
+        const auto model = sceneModel(scene, potential, false);
+        using M = std::remove_const_t<decltype(model)>;
+        using E = smd::Engine<K, M>;
+        // Read once: every engine of the run (restart points rebuild it) takes a copy.
+        const smd::SmdSettings settings = smd::smdSettings(scene, scene.boxLength(), model.range());
+        auto make = [&settings](System<K, M>&& system, nlohmann::json* checkpoint) {
+            if (!checkpoint) return std::make_unique<E>(std::move(system), settings);
+            return std::make_unique<E>(std::move(system), settings, *checkpoint);
+        };
+        return buildAndDrive<E, K>(scene, model, target, make);
     });
 }
 

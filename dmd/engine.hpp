@@ -91,6 +91,11 @@ class Engine : private PairPrediction<K, P, Engine<K, P>>,
 public:
     using State = typename K::State;
 
+    /// An engine of the bodies `initial` under `settings`; `seed` (the scene's) starts the
+    /// horizon stream.
+    Engine(System<K, P> initial, DmdSettings settings, std::uint64_t seed)
+        : Engine(initial, std::move(settings), seed, nullptr, nullptr) {}
+    /// The settings read from the scene's dmd section (readDmdSettings), and its seed.
     Engine(System<K, P> initial, const Scene& scene) : Engine(std::move(initial), scene, nullptr) {}
 
     /// Resumes from a checkpoint() taken with every clock at one time (right after advanceTo):
@@ -106,6 +111,9 @@ public:
     /// peak of a run's rebuilds; ~100 B a body for LJ spheres). `checkpoint` is then spent.
     Engine(System<K, P> initial, const Scene& scene, nlohmann::json&& checkpoint)
         : Engine(std::move(initial), scene, &checkpoint, &checkpoint) {}
+    Engine(System<K, P> initial, DmdSettings settings, std::uint64_t seed,
+           nlohmann::json&& checkpoint)
+        : Engine(initial, std::move(settings), seed, &checkpoint, &checkpoint) {}
 
 private:
     Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume,

@@ -51,14 +51,24 @@ template <BodyKind K, PairPotential P> class Engine {
         "SMD integrates a smoothed potential (core/smoothed_potential.hpp)");
 
 public:
-    Engine(System<K, P> initial, const Scene& scene) : Engine(std::move(initial), scene, true) {}
+    Engine(System<K, P> initial, SmdSettings settings)
+        : Engine(initial, std::move(settings), true) {}
+    /// The settings read from the scene (smdSettings).
+    Engine(System<K, P> initial, const Scene& scene)
+        : Engine(initial, settingsOf(scene, initial), true) {}
 
 private:
-    Engine(System<K, P> initial, const Scene& scene, bool isStart)
-        : sys_(std::move(initial)),
-          par_(smd::parameters(scene, sys_.box.length, sys_.potential.range())),
-          scheme_(splitting(readSmdSection(scene.smd).scheme)), sigmaUnit_(scene.potential.sigma),
-          sortBodies_(measureSwitches().sortSmd) {
+    static SmdSettings settingsOf(const Scene& scene, const System<K, P>& s) {
+        return smdSettings(scene, s.box.length, s.potential.range());
+    }
+    void resumeSteps(const nlohmann::json& checkpoint) {
+        steps_ = checkpoint.at("steps").get<long>();
+        if (steps_ < 0) throw SceneError("restart: a negative SMD step count");
+    }
+    // `initial` is moved from: a reference, so that the settings may be read from it first.
+    Engine(System<K, P>& initial, SmdSettings settings, bool isStart)
+        : sys_(std::move(initial)), par_(settings.par), scheme_(std::move(settings.scheme)),
+          sigmaUnit_(settings.sigma), sortBodies_(settings.sortBodies) {
         for (const auto& b : sys_.bodies)
             if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
                 !K::angularVelocity(b, sys_.body).allFinite())
@@ -89,10 +99,13 @@ public:
     /// bit.
     /// The bodies came from a running engine: the start's overlap check is not repeated (a hot
     /// run may hold pairs far up the wall that no start would be allowed).
+    Engine(System<K, P> initial, SmdSettings settings, const nlohmann::json& checkpoint)
+        : Engine(initial, std::move(settings), false) {
+        resumeSteps(checkpoint);
+    }
     Engine(System<K, P> initial, const Scene& scene, const nlohmann::json& checkpoint)
-        : Engine(std::move(initial), scene, false) {
-        steps_ = checkpoint.at("steps").get<long>();
-        if (steps_ < 0) throw SceneError("restart: a negative SMD step count");
+        : Engine(initial, settingsOf(scene, initial), false) {
+        resumeSteps(checkpoint);
     }
 
     /// The step count: with the bodies, all a resumed engine needs.

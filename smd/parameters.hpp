@@ -10,9 +10,11 @@
 // hold two cutoffs plus skins, L >= 2 (r_u + skin), so that a pair within reach has exactly one
 // periodic image within reach. The bodies' cell order is a measurement switch
 // (TERRACE_MEASURE=no-sort-smd, core/measure.hpp), not a key.
+#include "core/measure.hpp"
 #include "core/scene.hpp"
 #include "core/scene_json.hpp"
 #include "core/units.hpp"
+#include "smd/splitting.hpp"
 #include <cmath>
 #include <string>
 
@@ -87,6 +89,22 @@ inline Parameters parameters(const Scene& scene, double boxLength, double range)
                          " Å is shorter than 2·(r_u + skin) = " + showNumber(needed) +
                          " Å; use more bodies, a lower density, or a smaller r_u or smd.skin");
     return p;
+}
+
+/// Everything the SMD engine takes from a scene, read and checked once: the step and skin, the
+/// splitting, σ (the unit its statistics give the skin and cutoffs in) and whether it keeps its
+/// bodies in cell order (TERRACE_MEASURE=no-sort-smd turns that off, to measure it).
+struct SmdSettings {
+    Parameters par;
+    Splitting scheme;
+    double sigma = 0.0; // Å
+    bool sortBodies = true;
+};
+
+/// The SMD settings of `scene` for a box of edge boxLength (Å) and a model of range r_u (Å).
+inline SmdSettings smdSettings(const Scene& scene, double boxLength, double range) {
+    return {parameters(scene, boxLength, range), splitting(readSmdSection(scene.smd).scheme),
+            scene.potential.sigma, measureSwitches().sortSmd};
 }
 
 } // namespace terrace::smd

@@ -431,9 +431,13 @@ cli::RunOutcome runWatched(const Scene& scene, const std::filesystem::path& dir,
         std::filesystem::remove_all(dir);
         std::filesystem::create_directories(dir);
     }
-    auto engine = cli::startingEngine<WatchedDmd, LinearRotor>(scene, rodPotential(scene), target);
-    return cli::drive(engine, cli::rebuildFromCheckpoint<WatchedDmd>(scene), scene, target,
-                      LinearRotor::rotationalDof);
+    auto make = [&scene](System<LinearRotor, RodPotential>&& s, nlohmann::json* checkpoint) {
+        if (!checkpoint) return std::make_unique<WatchedDmd>(std::move(s), scene);
+        return std::make_unique<WatchedDmd>(std::move(s), scene, std::move(*checkpoint));
+    };
+    auto engine =
+        cli::startingEngine<WatchedDmd, LinearRotor>(scene, rodPotential(scene), target, make);
+    return cli::drive(engine, cli::rebuildWith(make), scene, target, LinearRotor::rotationalDof);
 }
 
 std::filesystem::path scratch(const std::string& name) {
