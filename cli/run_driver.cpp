@@ -406,8 +406,15 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
     return at;
 }
 
-RunOutcome finishRun(const Scene& scene, RunRecord& run, const std::filesystem::path& dir,
+RunOutcome finishRun(const Scene& scene, RunRecord& run, const RunPosition& at,
+                     const EngineEnd& last, const std::filesystem::path& dir,
                      const InterruptGuard& interrupt, bool stopped, bool restarts) {
+    if (at.inProduction) {
+        run.simulatedPs = units::toPs(last.time - at.tStart);
+        run.momentumFinal = last.momentum;
+    }
+    run.cpuSeconds = at.cpuProduction;
+    run.cpuEquilibration = at.cpuEquilibration;
     RunOutcome outcome;
     bool analysed = false;
     try {

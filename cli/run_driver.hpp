@@ -48,9 +48,11 @@ struct RunOutcome {
     int exitStatus = 0;
 };
 
-/// The summary and analysis written after the loop, the first error raised again, and the
-/// restart files of a run that went to its end removed.
-RunOutcome finishRun(const Scene& scene, RunRecord& run, const std::filesystem::path& dir,
+/// After the loop: the run's times and momenta from where it stands (`at`) and where its last
+/// engine ended, the summary and analysis written, the first error raised again, and the restart
+/// files of a run that went to its end removed.
+RunOutcome finishRun(const Scene& scene, RunRecord& run, const RunPosition& at,
+                     const EngineEnd& last, const std::filesystem::path& dir,
                      const InterruptGuard& interrupt, bool stopped, bool restarts);
 
 /// scene.json and initial.xyz of a fresh run.
@@ -148,14 +150,8 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
             guarded([&] { restarts.take(engine, interrupt.signalName(), false, cpu.seconds()); });
     }
     (at.inProduction ? at.cpuProduction : at.cpuEquilibration) += cpu.seconds();
-    const EngineEnd& last = restarts.end(engine.get());
-    if (at.inProduction) {
-        run.simulatedPs = units::toPs(last.time - at.tStart);
-        run.momentumFinal = last.momentum;
-    }
-    run.cpuSeconds = at.cpuProduction;
-    run.cpuEquilibration = at.cpuEquilibration;
-    return finishRun(scene, run, target.dir, interrupt, stopped, restarts.on());
+    return finishRun(scene, run, at, restarts.end(engine.get()), target.dir, interrupt, stopped,
+                     restarts.on());
 }
 
 } // namespace terrace::cli

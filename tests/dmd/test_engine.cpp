@@ -304,8 +304,8 @@ TEST(Engine, OrderDecaysWhenTheBodiesHaveMovedTheirShareOfACell) {
 TEST(Engine, RenumberingInsideAdvanceToIsTheRebuildOfARestartPoint) {
     const Scene s = rodScene(512, 0.5, 1.4, 0.5);
     Scene renumbering = s, never = s;
-    renumbering.dmd.resort_cells = 1e-3;
-    never.dmd.resort_cells = 0.0;
+    renumbering.dmd["resort_cells"] = 1e-3;
+    never.dmd["resort_cells"] = 0.0;
     RodEngine a(rodSystem(s), renumbering);
     auto b = std::make_unique<RodEngine>(rodSystem(s), never);
     constexpr int samples = 5;
