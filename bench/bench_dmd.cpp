@@ -7,10 +7,13 @@
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "dmd/engine.hpp"
+#include "dmd/testing.hpp"
 #include <benchmark/benchmark.h>
 #include <cmath>
 #include <ctime>
 #include <sys/resource.h>
+
+using terrace::dmd::testing::Probe;
 
 namespace {
 
@@ -51,13 +54,13 @@ void DenseRods(benchmark::State& state) {
     const double dV = state.range(0) / 100.0;
     RodEngine e = equilibrated(denseRods(512, dV));
     const double e0 = e.kineticEnergy() + e.potentialEnergy();
-    const dmd::EventCounts c0 = e.counts();
+    const dmd::EventCounts c0 = Probe::counts(e);
     const double t0 = e.time(), span = units::fromPs(0.5);
     const double cpu0 = cpuSeconds();
     for (auto _ : state)
         e.advanceTo(e.time() + span);
     const double cpu = cpuSeconds() - cpu0;
-    const dmd::EventCounts& c = e.counts();
+    const dmd::EventCounts& c = Probe::counts(e);
     const double ps = units::toPs(e.time() - t0);
     // The engine alone: the CLI's cpu_seconds_per_ps also holds the analysis of the samples.
     state.counters["cpu_s_per_ps"] = cpu / ps;
@@ -106,7 +109,7 @@ void HoldScreenRatio(benchmark::State& state) {
     for (auto _ : state) {
         auto timeRun = [&](bool screen, double& samples) {
             RodEngine e = equilibrated(denseRods(512, 0.5));
-            e.setHoldScreen(screen);
+            Probe::setHoldScreen(e, screen);
             const double before = e.statistics()["search_evaluations"].get<double>();
             const double start = cpuSeconds();
             e.advanceTo(e.time() + span);
@@ -132,14 +135,14 @@ void CostPerEvent(benchmark::State& state) {
     const Scene s = denseRods(n, 0.5);
     RodEngine e(buildInitialState<LinearRotor>(s, rodPotential(s)), s);
     e.advanceTo(units::fromFs(40.0));
-    const std::uint64_t before = e.counts().total();
+    const std::uint64_t before = Probe::counts(e).total();
     for (auto _ : state)
         e.advanceTo(e.time() + units::fromFs(5.0));
-    const double events = double(e.counts().total() - before);
+    const double events = double(Probe::counts(e).total() - before);
     state.counters["events"] = benchmark::Counter(events, benchmark::Counter::kIsRate);
     state.counters["ns_per_event"] = benchmark::Counter(
         events * 1e-9, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-    state.counters["engine_bytes_per_body"] = double(e.bytesReserved()) / n;
+    state.counters["engine_bytes_per_body"] = double(Probe::bytesReserved(e)) / n;
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     // Process-wide peak: meaningful for the largest N, which runs last.

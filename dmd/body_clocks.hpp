@@ -12,8 +12,9 @@
 // the cache line its event bookkeeping reads anyway.
 //
 // Apart from the engine so that its event loop reads as the algorithm: every event starts by
-// bringing its bodies to now. A mixin (CRTP), as dmd/pair_prediction.hpp: BodyClocks is a base of
-// the engine, owns the orbits and moves the engine's bodies. Units: Å, time unit 100 fs.
+// bringing its bodies to now. Functions of the engine's shared state (dmd/engine_state.hpp), which
+// holds the bodies, their books and the orbits: the clocks keep nothing of their own.
+// Units: Å, time unit 100 fs.
 #include "core/asymmetric_top.hpp"
 #include "core/free_orbit.hpp"
 #include "core/linear_rotor.hpp"
@@ -21,6 +22,7 @@
 #include "core/symmetric_top.hpp"
 #include "core/system.hpp"
 #include "core/vec.hpp"
+#include "dmd/engine_state.hpp"
 #include <cmath>
 #include <type_traits>
 #include <vector>
@@ -40,92 +42,86 @@ namespace terrace::dmd {
 ///   afresh at every τ): built, a copy.
 template <BodyKind K> inline constexpr bool keepsOrbit = std::is_same_v<K, AsymmetricTop>;
 
-/// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
-template <BodyKind K, PairPotential P, class Engine> class BodyClocks {
-protected:
-    using State = typename K::State;
+// The functions below are declared inline, as the members they once were implicitly: g++ gives
+// inline-declared functions a larger budget, and without it kept positionNow out of line in the
+// list rebuild's scan (~1.5 % more instructions in a run of the dense rods).
 
-    /// Each body's orbit from its state at its clock (all clocks set).
-    void cacheOrbits() {
-        Engine& engine = self();
-        if constexpr (keepsOrbit<K>) orbit_.reserve(engine.sys_.bodies.size());
-        for (int i = 0; i < engine.sys_.size(); ++i) {
-            if constexpr (keepsOrbit<K>)
-                orbit_.emplace_back(engine.sys_.bodies[i], engine.sys_.body);
-            engine.schedule_.book(i).axisRate = axisRateBound(engine.sys_.bodies[i]);
-        }
+/// A bound on how fast the body's long axis turns in free flight, |ṡ| = |ω × s| ≤ |ω| (rad per
+/// time unit): |ω| itself for a linear rotor, whose ω is constant; for a top, whose |ω| varies,
+/// the largest |ω| its rotational energy allows, 2T = Σ I_k ω_k² ≥ I_min |ω|².
+template <BodyKind K>
+inline double axisRateBound(const typename K::State& b, const BodyParams& body) {
+    if constexpr (K::rotationalDof == 0) {
+        return 0.0;
+    } else if constexpr (std::is_same_v<K, LinearRotor>) {
+        return b.w.norm();
+    } else {
+        return std::sqrt(2.0 * K::rotationalKinetic(b, body) / body.inertia.minCoeff());
     }
+}
 
-    Vec3 positionNow(int i) const {
-        const Engine& engine = self();
-        const State& b = engine.sys_.bodies[i];
-        return translated(b.r, b.v, engine.time_ - engine.schedule_.book(i).clock);
+/// Each body's orbit from its state at its clock (all clocks set).
+template <BodyKind K, PairPotential P> inline void cacheOrbits(EngineState<K, P>& s) {
+    if constexpr (keepsOrbit<K>) s.orbit.reserve(s.sys.bodies.size());
+    for (int i = 0; i < s.sys.size(); ++i) {
+        if constexpr (keepsOrbit<K>) s.orbit.emplace_back(s.sys.bodies[i], s.sys.body);
+        s.schedule.book(i).axisRate = axisRateBound<K>(s.sys.bodies[i], s.sys.body);
     }
+}
 
-    void bringToNow(int i) {
-        Engine& engine = self();
-        const double dt = engine.time_ - engine.schedule_.book(i).clock;
-        engine.schedule_.book(i).clock = engine.time_;
-        if constexpr (std::is_same_v<K, LinearRotor>) {
-            // A rotor's ω is constant in free flight: its orbit, turned on by dt, gives its new
-            // axis (FreeOrbit::advancedBy), and |ω| in the book stays.
-            State& b = engine.sys_.bodies[i];
-            b.r = translated(b.r, b.v, dt);
-            b.s = orbitOf(i).advancedBy(dt).axis(); // from b.s before it turns
-        } else {
-            freeMove<K>(engine.sys_.bodies[i], engine.sys_.body, dt);
-            refreshOrbit(i);
-        }
+/// Body i's free orbit from its state at its clock: the kept one, or one built from the state
+/// (a value, not a reference).
+template <BodyKind K, PairPotential P>
+inline decltype(auto) orbitOf(const EngineState<K, P>& s, int i) {
+    if constexpr (keepsOrbit<K>)
+        return s.orbit[i];
+    else if constexpr (std::is_same_v<K, LinearRotor>)
+        return FreeOrbit<K>(s.sys.bodies[i], s.schedule.book(i).axisRate);
+    else
+        return FreeOrbit<K>(s.sys.bodies[i], s.sys.body);
+}
+
+template <BodyKind K, PairPotential P> inline Vec3 positionNow(const EngineState<K, P>& s, int i) {
+    const typename K::State& b = s.sys.bodies[i];
+    return translated(b.r, b.v, s.time - s.schedule.book(i).clock);
+}
+
+/// The engine's body i as it is now, its stored state moved freely from its clock.
+template <BodyKind K, PairPotential P>
+inline typename K::State stateNow(const EngineState<K, P>& s, int i) {
+    typename K::State b = s.sys.bodies[i];
+    freeMove<K>(b, s.sys.body, s.time - s.schedule.book(i).clock);
+    return b;
+}
+
+/// The cached orbit is rebuilt after every change of a stored state other than a rotor's free
+/// flight, which bringToNow follows by turning the orbit itself (impulse, rescale, free motion
+/// of other kinds).
+template <BodyKind K, PairPotential P> inline void refreshOrbit(EngineState<K, P>& s, int i) {
+    if constexpr (keepsOrbit<K>) s.orbit[i] = FreeOrbit<K>(s.sys.bodies[i], s.sys.body);
+    s.schedule.book(i).axisRate = axisRateBound<K>(s.sys.bodies[i], s.sys.body);
+}
+
+template <BodyKind K, PairPotential P> inline void bringToNow(EngineState<K, P>& s, int i) {
+    const double dt = s.time - s.schedule.book(i).clock;
+    s.schedule.book(i).clock = s.time;
+    if constexpr (std::is_same_v<K, LinearRotor>) {
+        // A rotor's ω is constant in free flight: its orbit, turned on by dt, gives its new
+        // axis (FreeOrbit::advancedBy), and |ω| in the book stays.
+        typename K::State& b = s.sys.bodies[i];
+        b.r = translated(b.r, b.v, dt);
+        b.s = orbitOf(s, i).advancedBy(dt).axis(); // from b.s before it turns
+    } else {
+        freeMove<K>(s.sys.bodies[i], s.sys.body, dt);
+        refreshOrbit(s, i);
     }
-    /// The cached orbit is rebuilt after every change of a stored state other than a rotor's free
-    /// flight, which bringToNow follows by turning the orbit itself (impulse, rescale, free motion
-    /// of other kinds).
-    void refreshOrbit(int i) {
-        Engine& engine = self();
-        if constexpr (keepsOrbit<K>)
-            orbit_[i] = FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body);
-        engine.schedule_.book(i).axisRate = axisRateBound(engine.sys_.bodies[i]);
-    }
+}
 
-    /// A bound on how fast the body's long axis turns in free flight, |ṡ| = |ω × s| ≤ |ω| (rad per
-    /// time unit): |ω| itself for a linear rotor, whose ω is constant; for a top, whose |ω| varies,
-    /// the largest |ω| its rotational energy allows, 2T = Σ I_k ω_k² ≥ I_min |ω|².
-    double axisRateBound(const State& b) const {
-        const BodyParams& body = self().sys_.body;
-        if constexpr (K::rotationalDof == 0) {
-            return 0.0;
-        } else if constexpr (std::is_same_v<K, LinearRotor>) {
-            return b.w.norm();
-        } else {
-            return std::sqrt(2.0 * K::rotationalKinetic(b, body) / body.inertia.minCoeff());
-        }
-    }
-
-    void synchronise(double t) {
-        Engine& engine = self();
-        engine.time_ = t;
-        for (int i = 0; i < engine.sys_.size(); ++i)
-            bringToNow(i);
-    }
-
-    /// Body i's free orbit from its state at its clock: the kept one, or one built from the state
-    /// (a value, not a reference).
-    decltype(auto) orbitOf(int i) const {
-        const Engine& engine = self();
-        if constexpr (keepsOrbit<K>)
-            return orbit_[i];
-        else if constexpr (std::is_same_v<K, LinearRotor>)
-            return FreeOrbit<K>(engine.sys_.bodies[i], engine.schedule_.book(i).axisRate);
-        else
-            return FreeOrbit<K>(engine.sys_.bodies[i], engine.sys_.body);
-    }
-
-    // each body's free orbit from its state at its clock, where kept (keepsOrbit); else empty
-    BodyArray<FreeOrbit<K>> orbit_;
-
-private:
-    const Engine& self() const { return static_cast<const Engine&>(*this); }
-    Engine& self() { return static_cast<Engine&>(*this); }
-};
+/// Every clock brought to t.
+template <BodyKind K, PairPotential P> inline void synchronise(EngineState<K, P>& s, double t) {
+    s.time = t;
+    for (int i = 0; i < s.sys.size(); ++i)
+        bringToNow(s, i);
+}
 
 } // namespace terrace::dmd

@@ -29,8 +29,10 @@
 //   dmd/engine_start.hpp — the start from a scene or from a checkpoint, and the checkpoint.
 // Here: a cell list with crossing events from which per-body candidate lists with a skin are
 // rebuilt by relist events (dmd/neighbour_lists.hpp; a body's pairs are screened from its list
-// only); sample events that synchronise all clocks. The schedule is a member; the other three are
-// mixins (CRTP bases of the engine: one object, no indirection in the pair loop).
+// only); sample events that synchronise all clocks. What more than one part reads — bodies,
+// settings, schedule, lists, cells, orbits, time — is the engine's shared state
+// (dmd/engine_state.hpp), a member handed to the parts by reference; the prediction, which keeps
+// state of its own, is a member beside it (no virtual call, no pointer in the pair loop).
 // A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error
 // (dmd/stall_watch.hpp).
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
@@ -44,6 +46,7 @@
 #include "dmd/cell_list.hpp"
 #include "dmd/collision_rule.hpp"
 #include "dmd/engine_start.hpp"
+#include "dmd/engine_state.hpp"
 #include "dmd/event.hpp"
 #include "dmd/neighbour_lists.hpp"
 #include "dmd/pair_prediction.hpp"
@@ -71,22 +74,14 @@ struct EventCounts {
     }
 };
 
-/// From this many bodies on, the engine's data (~1 KB a body) outgrow the caches, and the engine
-/// asks for bodies ahead of their use.
-inline constexpr int prefetchFromBodies = 16384;
+namespace testing {
+struct Probe;
+}
 
-template <BodyKind K, PairPotential P>
-class Engine : private PairPrediction<K, P, Engine<K, P>>,
-               private BodyClocks<K, P, Engine<K, P>>,
-               private EngineStart<K, P, Engine<K, P>> {
-    // The engine's mixins: parts of this one object, each in its own header (no virtual call,
-    // no pointer between them); each reads and sets the engine's members, as a friend.
-    using Prediction = PairPrediction<K, P, Engine>; // the searches, dmd/pair_prediction.hpp
-    using Clocks = BodyClocks<K, P, Engine>;         // clocks and orbits, dmd/body_clocks.hpp
-    using Start = EngineStart<K, P, Engine>;         // start and restart, dmd/engine_start.hpp
-    friend Prediction;
-    friend Clocks;
-    friend Start;
+template <BodyKind K, PairPotential P> class Engine {
+    using Shared = EngineState<K, P>;        // what the parts share, dmd/engine_state.hpp
+    using Prediction = PairPrediction<K, P>; // the searches, dmd/pair_prediction.hpp
+    using Moving = typename Prediction::Moving;
 
 public:
     using State = typename K::State;
@@ -121,31 +116,28 @@ private:
         : Engine(initial,
                  readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length),
                  scene.seed, resume, spent) {}
-    // The settings are read before anything is built: the prediction base, built first, needs them.
     Engine(System<K, P>& initial, DmdSettings settings, std::uint64_t seed,
            const nlohmann::json* resume, nlohmann::json* spent)
-        : Prediction(settings, initial.potential, seed, initial.size()), sys_(std::move(initial)),
-          settings_(std::move(settings)), lists_(makeLists(settings_.rm, sys_)),
-          cells_(sys_.box.length, settings_.rm + lists_.skin(), sys_.size()),
-          schedule_(sys_.size(), settings_.eager, settings_.horizon), listedBefore_(sys_.size(), 0),
-          scanned_(64), seed_(seed) {
-        checkBodies();
-        if (settings_.sortBodies) sortBodiesByCell();
-        if (resume) resumeClocks(*resume);
-        cacheOrbits();
-        schedule_.openCalendar(settings_.queue, settings_.horizon, time_);
-        for (int i = 0; i < sys_.size(); ++i)
-            cells_.insert(i, sys_.bodies[i].r);
-        for (int i = 0; i < sys_.size(); ++i)
+        : s_(std::move(initial), std::move(settings)),
+          predict_(s_.settings, s_.sys.potential, seed, s_.sys.size()),
+          listedBefore_(s_.sys.size(), 0), scanned_(64), seed_(seed) {
+        checkBodies(s_.sys);
+        if (s_.settings.sortBodies) sortBodiesByCell();
+        if (resume) resumeClocks(s_, predict_.jitter(), *resume);
+        cacheOrbits(s_);
+        s_.schedule.openCalendar(s_.settings.queue, s_.settings.horizon, s_.time);
+        for (int i = 0; i < s_.sys.size(); ++i)
+            s_.cells.insert(i, s_.sys.bodies[i].r);
+        for (int i = 0; i < s_.sys.size(); ++i)
             rebuildList(i);
         if (resume)
-            resumeTerraces(*resume);
+            resumeTerraces(s_, *resume);
         else
-            assignInitialTerraces();
+            assignInitialTerraces(s_, predict_.search().levelTolerance);
         if (spent) *spent = nlohmann::json(); // resume points to it: read no more from here on
         countTerraces();
-        visitQueue([&](auto& q) { this->predictAll(q); }); // (this->: g++ 12 needs it here)
-        schedule_.retuneBins(time_);
+        visitQueue([&](auto& q) { predict_.predictAll(s_, q); });
+        s_.schedule.retuneBins(s_.time);
         anchorOrder();
     }
 
@@ -155,7 +147,7 @@ public:
     /// Process every event before t, then bring all clocks to t. The bodies are numbered afresh
     /// first where their cell order has decayed (renumberBodies).
     void advanceTo(double t) {
-        if (!(t >= time_)) throw std::invalid_argument("dmd: advanceTo into the past");
+        if (!(t >= s_.time)) throw std::invalid_argument("dmd: advanceTo into the past");
         requireEvents();
         if (orderHasDecayed()) renumberBodies();
         visitQueue([&](auto& q) {
@@ -166,69 +158,69 @@ public:
             while (step(q)) {
             }
         });
-        synchronise(t);
+        synchronise(s_, t);
         // A pass over the bodies like the one just made, and only when most spills are idle.
-        schedule_.compactSpills();
-        lists_.compactSpills();
+        s_.schedule.compactSpills();
+        s_.lists.compactSpills();
         ++counts_.sample;
     }
-    double time() const { return time_; }
+    double time() const { return s_.time; }
     /// The bodies as they are now, in the scene's order; built body by body, without a copy of
     /// the whole system (a sample of 10⁶ bodies would hold both at once).
     Snapshot snapshot() const {
-        const int n = sys_.size();
-        Snapshot s = emptySnapshot<K>(time_, sys_.box.length, static_cast<std::size_t>(n));
+        const int n = s_.sys.size();
+        Snapshot s = emptySnapshot<K>(s_.time, s_.sys.box.length, static_cast<std::size_t>(n));
         for (int b = 0; b < n; ++b)
-            appendBody<K>(s, stateNow(engineIndex(b)), sys_.body);
+            appendBody<K>(s, stateNow(s_, s_.engineIndex(b)), s_.sys.body);
         return s;
     }
     /// The bodies `bodies` (the scene's numbers) as they are now, in that order.
     Snapshot snapshot(std::span<const int> bodies) const {
-        Snapshot s = emptySnapshot<K>(time_, sys_.box.length, bodies.size());
+        Snapshot s = emptySnapshot<K>(s_.time, s_.sys.box.length, bodies.size());
         for (const int b : bodies)
-            appendBody<K>(s, stateNow(engineIndex(b)), sys_.body);
+            appendBody<K>(s, stateNow(s_, s_.engineIndex(b)), s_.sys.body);
         return s;
     }
     /// Body b's position now (b: the scene's number).
-    Vec3 position(int b) const { return positionNow(engineIndex(b)); }
+    Vec3 position(int b) const { return positionNow(s_, s_.engineIndex(b)); }
     /// Every body's position now, in the scene's order (the snapshot's other fields empty).
     Snapshot positions() const {
-        const int n = sys_.size();
-        Snapshot s = positionsOnly(time_, sys_.box.length, static_cast<std::size_t>(n));
+        const int n = s_.sys.size();
+        Snapshot s = positionsOnly(s_.time, s_.sys.box.length, static_cast<std::size_t>(n));
         for (int b = 0; b < n; ++b)
             s.position.push_back(position(b));
         return s;
     }
-    double kineticEnergy() const { return totalKinetic(sys_); } // constant in free flight
+    double kineticEnergy() const { return totalKinetic(s_.sys); } // constant in free flight
     double potentialEnergy() const {
-        if (settings_.levels.isUniform())
-            return static_cast<double>(terraceSum_) * settings_.levels.step();
+        if (s_.settings.levels.isUniform())
+            return static_cast<double>(terraceSum_) * s_.settings.levels.step();
         // Explicit levels: Σ count × V over the terraces, the same sum whatever the order in
         // which the pairs reached them.
-        const auto& L = settings_.levels;
+        const auto& L = s_.settings.levels;
         double e = 0.0;
         for (std::size_t s = 0; s < terraceCount_.size(); ++s)
             if (terraceCount_[s] != 0)
                 e += static_cast<double>(terraceCount_[s]) * L.energy(L.lowestTerrace() + int(s));
         return e;
     }
-    Vec3 totalMomentum() const { return terrace::totalMomentum(sys_); }
+    Vec3 totalMomentum() const { return terrace::totalMomentum(s_.sys); }
     /// ½ m Σ v² (kJ/mol): velocities change only at events, so the stored ones are those of now.
-    double translationalKineticEnergy() const { return translationalKinetic(sys_); }
+    double translationalKineticEnergy() const { return translationalKinetic(s_.sys); }
     /// Σ r_ij·Δp_i over every collision (transmission or reflection) since the run began, Δp_i
     /// the impulse on i (kJ/mol × time unit). Over an interval Δt the pressure is
     /// P = (2 K_trans + ΔW/Δt)/(3V): the impulse form of the virial (Alder & Wainwright,
     /// J. Chem. Phys. 33, 1439 (1960); Allen & Tildesley, 2nd ed., sec. 3.7).
     static constexpr VirialKind virialKind = VirialKind::Impulse;
-    double virial() const { return impulseVirial_; }
+    double virial() const { return s_.impulseVirial; }
     /// The continuous U of the model at time() (kJ/mol), un-terraced: the smoothed potential over
     /// every pair within its range, or for a bare one (no cutoff) within r_m, the range terraced.
     /// O(N) by a cell list of its own; for output, not for the dynamics.
     double continuousPotentialEnergy() const {
         const System<K, P> s = system();
-        double range = settings_.rm;
-        if constexpr (requires { sys_.potential.range(); })
-            if (std::isfinite(sys_.potential.range())) range = sys_.potential.range();
+        double range = s_.settings.rm;
+        if constexpr (requires { s_.sys.potential.range(); })
+            if (std::isfinite(s_.sys.potential.range())) range = s_.sys.potential.range();
         CellList cells(s.box.length, range, s.size());
         for (int i = 0; i < s.size(); ++i)
             cells.insert(i, s.bodies[i].r);
@@ -245,11 +237,11 @@ public:
     }
     void rescaleTemperature(double kT) {
         requireEvents();
-        synchronise(time_);
-        rescaleToTemperature(sys_, kT);
-        for (int i = 0; i < sys_.size(); ++i)
-            refreshOrbit(i);
-        repredictAll();
+        synchronise(s_, s_.time);
+        rescaleToTemperature(s_.sys, kT);
+        for (int i = 0; i < s_.sys.size(); ++i)
+            refreshOrbit(s_, i);
+        predict_.repredictAll(s_);
     }
     nlohmann::json statistics() const {
         nlohmann::json j;
@@ -261,46 +253,46 @@ public:
                        {"cell", counts_.cell},
                        {"relist", counts_.relist},
                        {"sample", counts_.sample}};
-        j["dV_kJ_per_mol"] = settings_.levels.isUniform() ? nlohmann::json(terraceHeight())
-                                                          : nlohmann::json(nullptr);
-        j["r_m_angstrom"] = settings_.rm;
-        if constexpr (requires { sys_.potential.range(); })
-            j["model"] = std::isfinite(sys_.potential.range()) ? "smoothed" : "bare";
-        j["queue"] = queueName(settings_.queue);
-        j["invalidation"] = settings_.eager ? "eager" : "lazy";
-        j["max_queue_size"] = schedule_.maxQueueSize();
-        j["cleanups"] = schedule_.cleanups();
+        j["dV_kJ_per_mol"] = s_.settings.levels.isUniform() ? nlohmann::json(s_.terraceHeight())
+                                                            : nlohmann::json(nullptr);
+        j["r_m_angstrom"] = s_.settings.rm;
+        if constexpr (requires { s_.sys.potential.range(); })
+            j["model"] = std::isfinite(s_.sys.potential.range()) ? "smoothed" : "bare";
+        j["queue"] = queueName(s_.settings.queue);
+        j["invalidation"] = s_.settings.eager ? "eager" : "lazy";
+        j["max_queue_size"] = s_.schedule.maxQueueSize();
+        j["cleanups"] = s_.schedule.cleanups();
         j["stale_events"] = staleEvents_;
-        j["stale_in_agendas"] = schedule_.staleInAgendas();
-        j["cells_per_side"] = cells_.cellsPerSide();
-        const double n = static_cast<double>(sys_.bodies.size());
-        const auto sched = schedule_.memory(); // one pass over the agendas
+        j["stale_in_agendas"] = s_.schedule.staleInAgendas();
+        j["cells_per_side"] = s_.cells.cellsPerSide();
+        const double n = static_cast<double>(s_.sys.bodies.size());
+        const auto sched = s_.schedule.memory(); // one pass over the agendas
         j["agenda_events_per_body"] = static_cast<double>(sched.agendaEvents) / n;
         std::size_t listed = 0;
         int longest = 0;
-        for (int i = 0; i < sys_.size(); ++i) {
-            listed += static_cast<std::size_t>(lists_.size(i));
-            longest = std::max(longest, lists_.size(i));
+        for (int i = 0; i < s_.sys.size(); ++i) {
+            listed += static_cast<std::size_t>(s_.lists.size(i));
+            longest = std::max(longest, s_.lists.size(i));
         }
         j["list_partners_per_body"] = static_cast<double>(listed) / n;
         j["list_partners_max"] = longest;
-        j["list_capacity"] = lists_.capacity();
-        j["lists_spilled"] = lists_.spilled();
+        j["list_capacity"] = s_.lists.capacity();
+        j["lists_spilled"] = s_.lists.spilled();
         // What a body costs in memory now, by part (bytes per body).
         for (const auto& [part, bytes] : memoryByPart(sched))
             j["memory_bytes_per_body"][part] = static_cast<double>(bytes) / n;
-        j["search_evaluations"] = evaluations_;
-        j["searches_screened"] = screened_;
+        j["search_evaluations"] = predict_.evaluations;
+        j["searches_screened"] = predict_.screened;
         j["resorts"] = resorts_;
         return j;
     }
     /// What a resumed engine needs beyond the bodies (dmd/engine_start.hpp).
-    using Start::checkpoint;
+    nlohmann::json checkpoint() const { return checkpointOf(s_, predict_.jitter()); }
     /// All bodies brought to time(): the system as it is now, its bodies in the scene's order.
     System<K, P> system() const {
-        System<K, P> s = sys_;
+        System<K, P> s = s_.sys;
         for (int i = 0; i < s.size(); ++i)
-            s.bodies[sceneIndex(i)] = stateNow(i);
+            s.bodies[s_.sceneIndex(i)] = stateNow(s_, i);
         return s;
     }
     /// The bodies and the checkpoint, moved out: what the event loop alone needs is freed first
@@ -309,41 +301,23 @@ public:
     Released<System<K, P>> release() && {
         shed();
         nlohmann::json c = checkpoint();
-        return {releaseSystem(std::move(*this)), std::move(c)};
+        return {releaseBodies(s_), std::move(c)};
     }
 
-    // ---- for tests and benchmarks ----
+private:
+    // Tests, benchmarks and tools look inside through this one friend (dmd/testing.hpp); what
+    // runs use is the Engine contract above.
+    friend struct testing::Probe;
 
-    /// Process n events (samples excluded); clocks stay local, time() is the last event's time.
-    void runEvents(std::uint64_t n) {
-        requireEvents();
-        visitQueue([&](auto& q) {
-            for (std::uint64_t k = 0; k < n; ++k)
-                if (!step(q)) throw std::logic_error("dmd: sample event outside advanceTo");
-        });
-    }
     /// Whether pairs are screened by their hold time before a search (on by default; off only to
     /// measure what the screen saves, or to check that it changes no event). Every pair is
     /// predicted afresh.
     void setHoldScreen(bool on) {
         requireEvents();
-        holdScreen_ = on;
-        synchronise(time_);
-        repredictAll();
+        predict_.holdScreen = on;
+        synchronise(s_, s_.time);
+        predict_.repredictAll(s_);
     }
-    /// Consecutive events at one instant tolerated before the clock counts as stopped.
-    void setStallLimit(std::uint64_t n) { stallWatch_.setLimit(n); }
-    /// The terrace index the engine holds for the pair (i, j) (the scene's numbering).
-    int terrace(int i, int j) const { return lists_.terrace(engineIndex(i), engineIndex(j)); }
-    /// Puts the pair (i, j) on terrace n whatever its U: bookkeeping corrupted on purpose, to test
-    /// that the engine reports it.
-    void overrideTerrace(int i, int j, int n) { moveTerrace(engineIndex(i), engineIndex(j), n); }
-    /// The lists and the pairs' terraces, in the engine's numbering of the bodies (sceneIndex).
-    const NeighbourLists& neighbourLists() const { return lists_; }
-    int cellsPerSide() const { return cells_.cellsPerSide(); }
-    const TerraceLevels& levels() const { return settings_.levels; }
-    double interactionRange() const { return settings_.rm; }
-    const EventCounts& counts() const { return counts_; }
     /// Whether the cell order of the bodies has decayed as the liquid diffused: the RMS
     /// displacement, since they were numbered, of a fixed sample of them (every anchorStride_-th
     /// in the engine's order, so spread over the box) has reached dmd.resort_cells cell widths
@@ -355,101 +329,40 @@ public:
         double sum = 0.0;
         for (std::size_t k = 0; k < orderAnchors_.size(); ++k) {
             const int i = static_cast<int>(k) * anchorStride_;
-            sum +=
-                sys_.box.minimumImage(positionNow(i) - orderAnchors_[k], inverseBox_).squaredNorm();
+            sum += s_.sys.box.minimumImage(positionNow(s_, i) - orderAnchors_[k], s_.inverseBox)
+                       .squaredNorm();
         }
         return sum >= resortSquared_ * static_cast<double>(orderAnchors_.size());
     }
-    /// The number of bodies orderHasDecayed follows (0: none; every anchorStride_-th, ≤ 4 096).
-    std::size_t orderSampleBodies() const { return orderAnchors_.size(); }
     /// Frees what only the event loop needs (the calendar, the agendas and the orbits, ~0.4 KB a
     /// body) from an engine about to be dropped at a restart or re-sort point, so that its
     /// checkpoint, then the next engine, take their room instead of adding to the run's peak. The
     /// bodies, clocks, lists and terraces stay: checkpoint(), the reads of the bodies
-    /// (system, releaseSystem) and destruction may follow, and no advanceTo.
+    /// (system, release) and destruction may follow, and no advanceTo.
     void shed() {
-        schedule_.shed();
-        BodyArray<FreeOrbit<K>>().swap(orbit_);
+        s_.schedule.shed();
+        BodyArray<FreeOrbit<K>>().swap(s_.orbit);
         shed_ = true;
     }
-    /// The RMS displacement at which orderHasDecayed (Å; 0: never).
-    double resortDistance() const {
-        return orderAnchors_.empty() ? 0.0 : std::sqrt(resortSquared_);
-    }
-    /// The engine's body i as it is at time(), its stored state moved freely from its clock.
-    State stateNow(int i) const {
-        State b = sys_.bodies[i];
-        freeMove<K>(b, sys_.body, time_ - schedule_.book(i).clock);
-        return b;
-    }
-    /// The engine's number of the scene's body b, and the scene's number of the engine's body i:
-    /// inside, the bodies are numbered in the Morton order of their cells (sortBodiesByCell).
-    int engineIndex(int b) const { return engineIndex_.empty() ? b : engineIndex_[b]; }
-    int sceneIndex(int i) const { return sceneIndex_.empty() ? i : sceneIndex_[i]; }
-    /// The partners listed for the scene's body b, in the scene's numbering.
-    std::vector<int> listedPartners(int b) const {
-        std::vector<int> p;
-        for (const int j : lists_.partners(engineIndex(b)))
-            p.push_back(sceneIndex(j));
-        return p;
-    }
-    /// Terraced energy recomputed from scratch from U of every pair (all pairs, O(N²)). On a
-    /// level this rounds by U alone, so compare with potentialEnergy() only away from levels.
-    double terracedEnergyFromScratch() const {
-        const System<K, P> s = system();
-        double e = 0.0;
-        for (int i = 0; i < s.size(); ++i)
-            for (int j = i + 1; j < s.size(); ++j) {
-                const Vec3 rij = s.box.minimumImage(s.bodies[i].r - s.bodies[j].r);
-                if (rij.norm() > settings_.rm) continue;
-                const double U = s.potential.energy(rij, orientationOf<P, K>(s.bodies[i]),
-                                                    orientationOf<P, K>(s.bodies[j]));
-                e += settings_.levels.energy(settings_.levels.terraceOf(U));
-            }
-        return e;
-    }
-    std::size_t queueSize() const { return schedule_.queueSize(); }
-    /// Bytes the engine holds, by part (the heap blocks' own overhead not counted).
-    std::vector<std::pair<const char*, std::size_t>> memoryByPart() const {
-        return memoryByPart(schedule_.memory());
-    }
+    /// Bytes the engine holds, by part (the heap blocks' own overhead not counted), from the
+    /// schedule's (one pass over the agendas).
     std::vector<std::pair<const char*, std::size_t>>
-    memoryByPart(const typename Schedule<Engine>::Memory& sched) const {
-        return {{"states", sys_.bodies.capacity() * sizeof(State)},
-                {"orbits", orbit_.capacity() * sizeof(FreeOrbit<K>)},
-                {"books", sched.books},
-                {"agendas", sched.agendas},
-                {"calendar", sched.calendar},
-                {"lists", lists_.bytesReserved()}, // and the pairs' terraces
-                {"cells", cells_.bytesReserved()},
-                {"other", (listedBefore_.capacity() + scanned_.capacity()) * sizeof(int) +
-                              terraceCount_.capacity() * sizeof(std::int64_t) +
-                              (sceneIndex_.capacity() + engineIndex_.capacity()) * sizeof(int) +
-                              orderAnchors_.capacity() * sizeof(Vec3) + this->predictionBytes()}};
-    }
-    std::size_t bytesReserved() const {
-        std::size_t b = 0;
-        for (const auto& part : memoryByPart())
-            b += part.second;
-        return b;
+    memoryByPart(const typename Schedule<Shared>::Memory& sched) const {
+        return {
+            {"states", s_.sys.bodies.capacity() * sizeof(State)},
+            {"orbits", s_.orbit.capacity() * sizeof(FreeOrbit<K>)},
+            {"books", sched.books},
+            {"agendas", sched.agendas},
+            {"calendar", sched.calendar},
+            {"lists", s_.lists.bytesReserved()}, // and the pairs' terraces
+            {"cells", s_.cells.bytesReserved()},
+            {"other", (listedBefore_.capacity() + scanned_.capacity()) * sizeof(int) +
+                          terraceCount_.capacity() * sizeof(std::int64_t) +
+                          (s_.sceneNumber.capacity() + s_.engineNumber.capacity()) * sizeof(int) +
+                          orderAnchors_.capacity() * sizeof(Vec3) + predict_.predictionBytes()}};
     }
 
-private:
-    // What the engine takes of its bases (the rest of them is their own).
-    using Clocks::orbit_, Clocks::orbitOf, Clocks::cacheOrbits, Clocks::positionNow,
-        Clocks::bringToNow, Clocks::refreshOrbit, Clocks::synchronise;
-    using Prediction::predictAll, Prediction::repredictAll, Prediction::predictBody,
-        Prediction::predictPair, Prediction::movingNow, Prediction::pairEvent, Prediction::schedule,
-        Prediction::scheduleBodyEvent, Prediction::planCellCrossing, Prediction::planRelist;
-    using Prediction::search_, Prediction::jitter_, Prediction::holdScreen_,
-        Prediction::evaluations_, Prediction::screened_;
-    using Start::checkBodies, Start::assignInitialTerraces, Start::resumeClocks,
-        Start::resumeTerraces;
-    using typename Prediction::Moving;
-
-    template <class F> void visitQueue(F&& f) { schedule_.visitQueue(std::forward<F>(f)); }
-
-    double terraceHeight() const { return settings_.levels.smallestStep(); }
+    template <class F> void visitQueue(F&& f) { s_.schedule.visitQueue(std::forward<F>(f)); }
 
     /// Numbers the bodies in the Morton (Z-order) order of their cells, those of one cell in the
     /// scene's order: bodies close in space then lie close in every per-body array (states,
@@ -460,22 +373,22 @@ private:
     /// diffuses from one rebuild to the next. Outside the engine the bodies keep the scene's
     /// numbering (system, snapshot, checkpoint, terrace, messages).
     void sortBodiesByCell() {
-        const int n = sys_.size();
-        if (cells_.single() || n < 2) return;
+        const int n = s_.sys.size();
+        if (s_.cells.single() || n < 2) return;
         std::vector<std::pair<std::uint64_t, int>> key(n);
         for (int b = 0; b < n; ++b)
-            key[b] = {cells_.mortonCode(sys_.bodies[b].r), b};
+            key[b] = {s_.cells.mortonCode(s_.sys.bodies[b].r), b};
         std::sort(key.begin(), key.end());
-        sceneIndex_.resize(n);
-        engineIndex_.resize(n);
+        s_.sceneNumber.resize(n);
+        s_.engineNumber.resize(n);
         for (int i = 0; i < n; ++i) {
-            sceneIndex_[i] = key[i].second;
-            engineIndex_[key[i].second] = i;
+            s_.sceneNumber[i] = key[i].second;
+            s_.engineNumber[key[i].second] = i;
         }
         std::vector<std::pair<std::uint64_t, int>>().swap(key);
         // In place: the engine's other arrays are allocated by now (not yet filled), and a sorted
         // copy beside them (96 B a rod) was a restart point's peak.
-        gatherInPlace(sys_.bodies, [&](int i) { return sceneIndex_[i]; });
+        gatherInPlace(s_.sys.bodies, [&](int i) { return s_.sceneNumber[i]; });
     }
 
     /// Numbers the bodies afresh in the cell order of where they are now, by rebuilding the engine
@@ -485,21 +398,21 @@ private:
     void renumberBodies() {
         const EventCounts counts = counts_;
         const std::uint64_t stale = staleEvents_, resorts = resorts_ + 1;
-        const auto evaluations = evaluations_, screened = screened_;
-        const bool holdScreen = holdScreen_;
+        const auto evaluations = predict_.evaluations, screened = predict_.screened;
+        const bool holdScreen = predict_.holdScreen;
         const std::uint64_t stallLimit = stallWatch_.limit();
         const std::uint64_t seed = seed_;
-        DmdSettings settings = settings_;
+        DmdSettings settings = s_.settings;
         Released<System<K, P>> kept = std::move(*this).release();
         { const Engine dropped = std::move(*this); }
         *this = Engine(kept.system, std::move(settings), seed, &kept.checkpoint, &kept.checkpoint);
         counts_ = counts;
         staleEvents_ = stale;
         resorts_ = resorts;
-        evaluations_ = evaluations;
-        screened_ = screened;
+        predict_.evaluations = evaluations;
+        predict_.screened = screened;
         stallWatch_.setLimit(stallLimit);
-        if (holdScreen != holdScreen_) setHoldScreen(holdScreen);
+        if (holdScreen != predict_.holdScreen) setHoldScreen(holdScreen);
     }
 
     /// After shed() only the bodies, the checkpoint and destruction are left.
@@ -508,16 +421,16 @@ private:
     }
 
     /// Where the sample that orderHasDecayed follows stands now, just numbered (every clock is
-    /// at time_ when an engine is built).
+    /// at s_.time when an engine is built).
     void anchorOrder() {
-        const int n = sys_.size();
-        const double cells = settings_.resortCells.value_or(n >= prefetchFromBodies ? 1.0 : 0.0);
-        if (!settings_.sortBodies || cells_.single() || !(cells > 0.0)) return;
+        const int n = s_.sys.size();
+        const double cells = s_.settings.resortCells.value_or(n >= prefetchFromBodies ? 1.0 : 0.0);
+        if (!s_.settings.sortBodies || s_.cells.single() || !(cells > 0.0)) return;
         anchorStride_ = std::max(1, (n + orderSampleSize - 1) / orderSampleSize);
         orderAnchors_.clear();
         for (int i = 0; i < n; i += anchorStride_)
-            orderAnchors_.push_back(sys_.bodies[i].r);
-        const double width = sys_.box.length / cells_.cellsPerSide();
+            orderAnchors_.push_back(s_.sys.bodies[i].r);
+        const double width = s_.sys.box.length / s_.cells.cellsPerSide();
         resortSquared_ = cells * width * cells * width;
     }
 
@@ -530,21 +443,21 @@ private:
             if (q.empty()) throw std::logic_error("dmd: no event left (nothing moves)");
             const Event e = q.top();
             q.pop();
-            if (prefetching_ && !q.empty()) prefetchNext(q);
+            if (s_.prefetching && !q.empty()) prefetchNext(q);
             if (e.kind == EventKind::Sample) return false;
-            if (!schedule_.isCurrentEntry(e)) { // superseded, or its owner has been invalidated
+            if (!s_.schedule.isCurrentEntry(e)) { // superseded, or its owner has been invalidated
                 ++staleEvents_;
                 continue;
             }
-            schedule_.takeFromAgenda(e);
-            if (e.j >= 0 && schedule_.book(e.j).counter != e.countJ) {
+            s_.schedule.takeFromAgenda(e);
+            if (e.j >= 0 && s_.schedule.book(e.j).counter != e.countJ) {
                 // the partner has moved on since
                 ++staleEvents_;
-                schedule_.settle(q, time_);
+                s_.schedule.settle(q, s_.time);
                 continue;
             }
-            stallWatch_.check(time_, e.time, e.i, e.j, [&](int k) { return sceneIndex(k); });
-            time_ = e.time;
+            stallWatch_.check(s_.time, e.time, e.i, e.j, [&](int k) { return s_.sceneIndex(k); });
+            s_.time = e.time;
             switch (e.kind) {
             case EventKind::Collision:
                 collide(q, e);
@@ -564,8 +477,8 @@ private:
             case EventKind::Sample:
                 break;
             }
-            schedule_.settle(q, time_);
-            schedule_.afterEvent(q, time_);
+            s_.schedule.settle(q, s_.time);
+            s_.schedule.afterEvent(q, s_.time);
             return true;
         }
     }
@@ -599,7 +512,7 @@ private:
         if (i < 0) return;
         prefetchShared(i);
         if (partner <= -2) {
-            this->prefetchBody(pairPartnerOfRootCode(partner));
+            predict_.prefetchBody(s_, pairPartnerOfRootCode(partner));
             return;
         }
         prefetchOwn(i);
@@ -608,31 +521,31 @@ private:
         prefetchOwn(partner);
     }
     [[gnu::always_inline]] void prefetchShared(int i) const {
-        schedule_.prefetch(i);
-        this->prefetchBody(i);
-        lists_.prefetch(i);
+        s_.schedule.prefetch(i);
+        predict_.prefetchBody(s_, i);
+        s_.lists.prefetch(i);
     }
     [[gnu::always_inline]] void prefetchOwn(int i) const {
-        this->prefetchPlan(i);
-        cells_.prefetch(i);
+        predict_.prefetchPlan(i);
+        s_.cells.prefetch(i);
     }
 
     template <class Q> void collide(Q& q, const Event& e) {
         const int i = e.i, j = e.j;
-        bringToNow(i);
-        bringToNow(j);
-        State &bi = sys_.bodies[i], &bj = sys_.bodies[j];
-        const Vec3 rij = sys_.box.minimumImage(bi.r - bj.r);
+        bringToNow(s_, i);
+        bringToNow(s_, j);
+        State &bi = s_.sys.bodies[i], &bj = s_.sys.bodies[j];
+        const Vec3 rij = s_.sys.box.minimumImage(bi.r - bj.r);
         const PairForce f =
-            sys_.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
-        const int n = lists_.terrace(i, j);
+            s_.sys.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
+        const int n = s_.lists.terrace(i, j);
         const int target = n + (e.side > 0 ? 1 : -1);
-        const double dE = settings_.levels.energy(target) - settings_.levels.energy(n);
-        const Impulse impulse = solveImpulse(impulseCoefficients<K>(f, bi, bj, sys_.body), dE);
-        applyImpulse<K>(bi, bj, f, impulse.S, sys_.body);
-        impulseVirial_ += impulse.S * rij.dot(f.F); // Δp_i = S F_ij
-        refreshOrbit(i);
-        refreshOrbit(j);
+        const double dE = s_.settings.levels.energy(target) - s_.settings.levels.energy(n);
+        const Impulse impulse = solveImpulse(impulseCoefficients<K>(f, bi, bj, s_.sys.body), dE);
+        applyImpulse<K>(bi, bj, f, impulse.S, s_.sys.body);
+        s_.impulseVirial += impulse.S * rij.dot(f.F); // Δp_i = S F_ij
+        refreshOrbit(s_, i);
+        refreshOrbit(s_, j);
         switch (impulse.outcome) {
         case Outcome::Up:
             ++counts_.up;
@@ -645,37 +558,39 @@ private:
             break;
         }
         if (impulse.outcome != Outcome::Reflect) moveTerrace(i, j, target);
-        schedule_.invalidate(q, i, prefetching_);
-        schedule_.invalidate(q, j, prefetching_);
+        s_.schedule.invalidate(q, i, s_.prefetching);
+        s_.schedule.invalidate(q, j, s_.prefetching);
         // The pair's own search starts from the evaluation above: U and the force are those of
         // now, only the rate changes with the new velocities.
         const PairSample start{0.0, f.U,
-                               dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys_.body),
-                                    K::angularVelocity(bj, sys_.body))};
-        predictBody(i, -1, j, &start);
-        predictBody(j, i, -1);
+                               dUdt(f, bi.v - bj.v, K::angularVelocity(bi, s_.sys.body),
+                                    K::angularVelocity(bj, s_.sys.body))};
+        predict_.predictBody(s_, i, -1, j, &start);
+        predict_.predictBody(s_, j, i, -1);
     }
 
     template <class Q> void resume(Q& q, const Event& e) {
         if (e.j < 0) { // a body's entry event: some pair of i comes within r_m now
-            schedule_.invalidate(q, e.i, prefetching_);
-            predictBody(e.i, -1);
+            s_.schedule.invalidate(q, e.i, s_.prefetching);
+            predict_.predictBody(s_, e.i, -1);
             return;
         }
         // A pair dropped from the lists since: relist predicts it afresh if it comes back.
-        const auto& listed = lists_.partners(e.i);
+        const auto& listed = s_.lists.partners(e.i);
         if (std::find(listed.begin(), listed.end(), e.j) == listed.end()) return;
         // The search starts afresh here (dmd/event.hpp: a virtual event keeps no U).
-        const double entry = predictPair(movingNow(e.i), e.i, e.j, nullptr);
-        if (std::isfinite(entry)) schedule(e.i, pairEvent(EventKind::Virtual, e.j, entry));
+        const double entry =
+            predict_.predictPair(s_, predict_.movingNow(s_, e.i), e.i, e.j, nullptr);
+        if (std::isfinite(entry))
+            s_.schedule.schedule(e.i, predict_.pairEvent(s_, EventKind::Virtual, e.j, entry));
     }
 
     /// The cell only serves list rebuilds: nothing about i's pairs changes.
     void crossCell(const Event& e) {
-        bringToNow(e.i);
-        cells_.cross(e.i, e.side / 2, e.side % 2 ? 1 : -1);
-        planCellCrossing(e.i);
-        scheduleBodyEvent(e.i);
+        bringToNow(s_, e.i);
+        s_.cells.cross(e.i, e.side / 2, e.side % 2 ? 1 : -1);
+        predict_.planCellCrossing(s_, e.i);
+        predict_.scheduleBodyEvent(s_, e.i);
     }
 
     /// i has moved its relist distance: partners may have come within reach. Its motion is
@@ -686,63 +601,65 @@ private:
     void relist(int i) {
         // The old partners' records are rewritten at the end (i leaves them, and joins those it
         // keeps): asked for now, they come while the cells are scanned.
-        if (prefetching_)
-            for (const int j : lists_.partners(i))
-                lists_.prefetch(j);
-        bringToNow(i);
+        if (s_.prefetching)
+            for (const int j : s_.lists.partners(i))
+                s_.lists.prefetch(j);
+        bringToNow(s_, i);
         if (++listStamp_ == 0) { // wrapped: no stamp of an earlier rebuild may match
             std::fill(listedBefore_.begin(), listedBefore_.end(), 0u);
             listStamp_ = 1;
         }
-        for (const int j : lists_.partners(i))
+        for (const int j : s_.lists.partners(i))
             listedBefore_[j] = listStamp_;
         rebuildList(i);
-        const Moving mi = movingNow(i);
-        for (const int j : lists_.partners(i)) {
+        const Moving mi = predict_.movingNow(s_, i);
+        for (const int j : s_.lists.partners(i)) {
             if (listedBefore_[j] == listStamp_) continue;
-            const double entry = predictPair(mi, i, j, nullptr);
-            if (std::isfinite(entry)) schedule(i, pairEvent(EventKind::Virtual, j, entry));
+            const double entry = predict_.predictPair(s_, mi, i, j, nullptr);
+            if (std::isfinite(entry))
+                s_.schedule.schedule(i, predict_.pairEvent(s_, EventKind::Virtual, j, entry));
         }
-        planRelist(i);
-        scheduleBodyEvent(i);
+        predict_.planRelist(s_, i);
+        predict_.scheduleBodyEvent(s_, i);
     }
 
     /// i's list from the cells: every j within r_m + skin now, listed on both sides.
     void rebuildList(int i) {
-        const Vec3 ri = positionNow(i);
-        const double reach = settings_.rm + lists_.skin();
+        const Vec3 ri = positionNow(s_, i);
+        const double reach = s_.settings.rm + s_.lists.skin();
         // First the candidates (~110 in the dense rods, one in eight within reach), then their
         // distances, each body's position and clock asked of the caches `ahead` bodies early:
         // a cell's bodies are a chain through memory, and one body fetched at a time would keep
         // every miss of a large system waiting on the one before.
         std::size_t scanned = 0;
-        cells_.forEachNeighbourWithin(i, &ri, reach, [&](int j) {
+        s_.cells.forEachNeighbourWithin(i, &ri, reach, [&](int j) {
             if (scanned == scanned_.size()) scanned_.resize(2 * scanned);
             scanned_[scanned++] = j;
         });
         constexpr std::size_t ahead = 8;
-        for (std::size_t k = 0; prefetching_ && k < std::min(ahead, scanned); ++k)
+        for (std::size_t k = 0; s_.prefetching && k < std::min(ahead, scanned); ++k)
             prefetchWhere(scanned_[k]);
         // Every candidate is written and the count advanced by the test, without a branch:
         // whether one is within reach is a coin toss. The order is the scan's.
         std::size_t within = 0;
         for (std::size_t k = 0; k < scanned; ++k) {
-            if (prefetching_ && k + ahead < scanned) prefetchWhere(scanned_[k + ahead]);
+            if (s_.prefetching && k + ahead < scanned) prefetchWhere(scanned_[k + ahead]);
             const int j = scanned_[k];
             scanned_[within] = j;
-            within += sys_.box.minimumImage(ri - positionNow(j), inverseBox_).squaredNorm() <=
-                      reach * reach;
+            within +=
+                s_.sys.box.minimumImage(ri - positionNow(s_, j), s_.inverseBox).squaredNorm() <=
+                reach * reach;
         }
-        lists_.rebuild(i, std::span<const int>(scanned_.data(), within), ri);
+        s_.lists.rebuild(i, std::span<const int>(scanned_.data(), within), ri);
     }
 
     /// Puts the pair (i, j) on terrace n, keeping the energy's sums.
     void moveTerrace(int i, int j, int n) {
-        const int was = lists_.terrace(i, j);
-        lists_.setTerrace(i, j, n);
+        const int was = s_.lists.terrace(i, j);
+        s_.lists.setTerrace(i, j, n);
         terraceSum_ += n - was;
         if (!terraceCount_.empty()) {
-            const int lowest = settings_.levels.lowestTerrace();
+            const int lowest = s_.settings.levels.lowestTerrace();
             if (was != 0) --terraceCount_[was - lowest];
             if (n != 0) ++terraceCount_[n - lowest];
         }
@@ -751,43 +668,27 @@ private:
     /// moveTerrace, so that a sample does not visit every list.
     void countTerraces() {
         terraceSum_ = 0; // an integer sum: exact however many events
-        const auto& L = settings_.levels;
+        const auto& L = s_.settings.levels;
         if (!L.isUniform()) terraceCount_.assign(L.highestTerrace() - L.lowestTerrace() + 1, 0);
-        lists_.forEachPairOffZero([&](int, int, int n) {
+        s_.lists.forEachPairOffZero([&](int, int, int n) {
             terraceSum_ += n;
             if (!terraceCount_.empty()) ++terraceCount_[n - L.lowestTerrace()];
         });
     }
 
-    /// Asks the caches for what positionNow(j) reads: its position, velocity and clock.
+    /// Asks the caches for what positionNow(s_, j) reads: its position, velocity and clock.
     [[gnu::always_inline]] void prefetchWhere(int j) const {
-        prefetchLines(&sys_.bodies[j], 2 * sizeof(Vec3)); // r and v lead the state
-        schedule_.prefetchBook(j);
+        prefetchLines(&s_.sys.bodies[j], 2 * sizeof(Vec3)); // r and v lead the state
+        s_.schedule.prefetchBook(j);
     }
 
-    static NeighbourLists makeLists(double rm, const System<K, P>& sys) {
-        const double density = sys.size() / sys.box.volume();
-        const double skin = listSkin(rm, density, sys.box.length);
-        return NeighbourLists(sys.size(), skin, listCapacity(rm + skin, density, sys.size()));
-    }
-
-    System<K, P> sys_;
-    DmdSettings settings_;
-    NeighbourLists
-        lists_; // and the pairs' terraces; before cells_: the cell width follows the skin
-    CellList cells_;
-    Schedule<Engine> schedule_;   // each body's book, agenda and calendar entry (dmd/schedule.hpp)
+    Shared s_;                    // bodies, settings, schedule, lists, cells, orbits, time
+    Prediction predict_;          // the searches' own: settings, horizon stream, plans, counters
     std::int64_t terraceSum_ = 0; // Σ of the pairs' terrace indices
     std::vector<std::int64_t> terraceCount_;  // pairs per terrace (explicit levels only)
     std::vector<std::uint32_t> listedBefore_; // relist: stamp of the list being rebuilt
     std::vector<int> scanned_; // rebuildList: scanned bodies, those within reach first
     std::uint32_t listStamp_ = 0;
-    // Whether the engine asks the caches for bodies ahead of their use: only where its data
-    // outgrow them (at N = 512, where everything is cached, the prefetches cost ~2 %).
-    bool prefetching_ = sys_.size() >= prefetchFromBodies;
-    // The scene's number of each body and the engine's number of each scene body (empty: the
-    // same numbering, sortBodiesByCell not applied).
-    std::vector<int> sceneIndex_, engineIndex_;
     // orderHasDecayed's sample: where every anchorStride_-th body was when numbered (Å), and the
     // square of the RMS displacement that ends the order (Å²). ≤ 4 096 bodies give the RMS to ~1 %.
     static constexpr int orderSampleSize = 4096;
@@ -798,9 +699,6 @@ private:
     std::uint64_t seed_;        // the scene's: the horizon stream's, kept for renumberBodies
     std::uint64_t resorts_ = 0; // renumberBodies since the start or the checkpoint
     bool shed_ = false;         // shed(): fit only for a checkpoint, the bodies and destruction
-    double time_ = 0.0;
-    double impulseVirial_ = 0.0; // Σ r_ij·Δp_i over collisions, kJ/mol × time unit
-    double inverseBox_ = 1.0 / sys_.box.length; // 1/L (Å⁻¹) for minimum images; NVE: L is fixed
     EventCounts counts_;
     std::uint64_t staleEvents_ = 0;
 };

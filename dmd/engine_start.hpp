@@ -13,13 +13,17 @@
 // held beside the engine at every restart point).
 //
 // Apart from the engine because it runs once, before the first event: the event loop reads better
-// without it. A mixin (CRTP), as dmd/pair_prediction.hpp: EngineStart is a base of the engine,
-// with no state of its own, and sets the engine's members. Units: Å, kJ/mol, time unit 100 fs.
+// without it. Functions of the engine's shared state (dmd/engine_state.hpp), with nothing of their
+// own; of the prediction's they take only the horizon stream and the level tolerance.
+// Units: Å, kJ/mol, time unit 100 fs.
 #include "core/gather_in_place.hpp"
 #include "core/overlap.hpp"
 #include "core/pair_potential.hpp"
 #include "core/scene.hpp"
 #include "core/system.hpp"
+#include "dmd/body_clocks.hpp"
+#include "dmd/engine_state.hpp"
+#include "dmd/horizon_jitter.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -74,133 +78,111 @@ inline std::vector<PairTerrace> pairTerraces(const nlohmann::json& terraces) {
     return pairs;
 }
 
-template <BodyKind K, PairPotential P> class Engine;
+/// What a resumed engine needs beyond the bodies: the time, the impulse virial, every pair off
+/// terrace 0, and the horizon stream's position. Clocks must all be at s.time (right after
+/// advanceTo).
+template <BodyKind K, PairPotential P>
+nlohmann::json checkpointOf(const EngineState<K, P>& s, const HorizonJitter& jitter) {
+    for (int i = 0; i < s.sys.size(); ++i)
+        if (s.schedule.book(i).clock != s.time)
+            throw std::logic_error("dmd: checkpoint with clocks not at one time");
+    // Counted first: grown by doubling, the bytes held up to twice their size while the
+    // next engine was built from them (the peak of a run with restart points).
+    std::size_t count = 0;
+    s.lists.forEachPairOffZero([&](int, int, int) { ++count; });
+    std::vector<std::uint8_t> pairs;
+    pairs.reserve(count * sizeof(PairTerrace));
+    // In the scene's numbering of the bodies, whatever the engine's own.
+    s.lists.forEachPairOffZero([&](int i, int j, int n) {
+        const int a = s.sceneIndex(i), b = s.sceneIndex(j);
+        appendPairTerrace(pairs, {std::min(a, b), std::max(a, b), n});
+    });
+    const auto stream = jitter.position();
+    return {{"time", s.time},
+            {"impulse_virial", s.impulseVirial},
+            {"terraces", nlohmann::json::binary(std::move(pairs))},
+            {"horizon_stream", {{"state", stream.state}, {"ready", stream.ready}}}};
+}
 
-/// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
-template <BodyKind K, PairPotential P, class Engine> class EngineStart {
-public:
-    /// What a resumed engine needs beyond the bodies: the time, every pair off terrace 0, and the
-    /// horizon stream's position. Clocks must all be at time() (call right after advanceTo).
-    nlohmann::json checkpoint() const {
-        const Engine& engine = self();
-        for (int i = 0; i < engine.sys_.size(); ++i)
-            if (engine.schedule_.book(i).clock != engine.time_)
-                throw std::logic_error("dmd: checkpoint with clocks not at one time");
-        // Counted first: grown by doubling, the bytes held up to twice their size while the
-        // next engine was built from them (the peak of a run with restart points).
-        std::size_t count = 0;
-        engine.lists_.forEachPairOffZero([&](int, int, int) { ++count; });
-        std::vector<std::uint8_t> pairs;
-        pairs.reserve(count * sizeof(PairTerrace));
-        // In the scene's numbering of the bodies, whatever the engine's own.
-        engine.lists_.forEachPairOffZero([&](int i, int j, int n) {
-            const int a = engine.sceneIndex(i), b = engine.sceneIndex(j);
-            appendPairTerrace(pairs, {std::min(a, b), std::max(a, b), n});
+/// The bodies at s.time, in the scene's order, moved out of the state rather than copied beside
+/// it (96 B a rod, a tenth of the engine's memory). The state is then fit only to be destroyed.
+template <BodyKind K, PairPotential P> System<K, P> releaseBodies(EngineState<K, P>& s) {
+    auto& bodies = s.sys.bodies;
+    const int n = s.sys.size();
+    for (int i = 0; i < n; ++i)
+        bodies[i] = stateNow(s, i); // reads body i and its clock alone
+    // Engine order to the scene's, in place: scene body b is engine body engineIndex(b).
+    gatherInPlace(bodies, [&](int b) { return s.engineIndex(b); });
+    return std::move(s.sys);
+}
+
+template <BodyKind K, PairPotential P> void checkBodies(const System<K, P>& sys) {
+    for (int i = 0; i < sys.size(); ++i) {
+        const typename K::State& b = sys.bodies[i];
+        if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
+            !K::angularVelocity(b, sys.body).allFinite())
+            throw SceneError("state: body " + std::to_string(i) + " has a non-finite value");
+    }
+    if (!(sys.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
+}
+
+/// Terrace of every pair from U at the start; a pair on a level (within the search's level
+/// tolerance, kJ/mol) goes to the terrace it is heading into, so that the start holds no zero-time
+/// event.
+template <BodyKind K, PairPotential P>
+void assignInitialTerraces(EngineState<K, P>& s, double levelTolerance) {
+    const System<K, P>& sys = s.sys;
+    const double uMin = sys.potential.minimumEnergy();
+    for (int i = 0; i < sys.size(); ++i)
+        s.cells.forEachNeighbour(i, [&](int j) {
+            if (j < i) return;
+            const typename K::State &bi = sys.bodies[i], &bj = sys.bodies[j];
+            const Vec3 rij = sys.box.minimumImage(bi.r - bj.r);
+            if (rij.norm() > s.settings.rm) return;
+            const PairForce f =
+                sys.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
+            if (overlapsAtStart(f.U, uMin)) throwOverlap(s.sceneIndex(i), s.sceneIndex(j), f.U);
+            const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys.body),
+                                     K::angularVelocity(bj, sys.body));
+            s.lists.setTerrace(i, j, s.settings.levels.terraceOf(f.U, rate, levelTolerance));
         });
-        const auto stream = engine.jitter_.position();
-        return {{"time", engine.time_},
-                {"impulse_virial", engine.impulseVirial_},
-                {"terraces", nlohmann::json::binary(std::move(pairs))},
-                {"horizon_stream", {{"state", stream.state}, {"ready", stream.ready}}}};
-    }
+}
 
-    /// The bodies at time(), in the scene's order, as system() gives them, but moved
-    /// out of the engine rather than copied beside it (96 B a rod, a tenth of the engine's
-    /// memory). The engine is then fit only to be destroyed. Called as releaseSystem(engine).
-    static System<K, P> release(Engine& engine) {
-        auto& bodies = engine.sys_.bodies;
-        const int n = engine.sys_.size();
-        for (int i = 0; i < n; ++i)
-            bodies[i] = engine.stateNow(i); // reads body i and its clock alone
-        // Engine order to the scene's, in place: scene body b is engine body engineIndex(b).
-        gatherInPlace(bodies, [&](int b) { return engine.engineIndex(b); });
-        return std::move(engine.sys_);
-    }
+/// The time, the impulse virial and the horizon stream's position of a checkpoint.
+template <BodyKind K, PairPotential P>
+void resumeClocks(EngineState<K, P>& s, HorizonJitter& jitter, const nlohmann::json& c) {
+    s.time = c.at("time").get<double>();
+    if (!std::isfinite(s.time) || s.time < 0.0)
+        throw SceneError("restart: the DMD time is not a finite time >= 0");
+    s.impulseVirial = c.at("impulse_virial").get<double>();
+    if (!std::isfinite(s.impulseVirial))
+        throw SceneError("restart: the DMD impulse virial is not finite");
+    for (int i = 0; i < s.sys.size(); ++i)
+        s.schedule.book(i).clock = s.time;
+    const auto& stream = c.at("horizon_stream");
+    jitter.resumeAt({stream.at("state").get<std::uint64_t>(), stream.at("ready").get<double>()});
+}
 
-protected:
-    using State = typename K::State;
-
-    void checkBodies() const {
-        const System<K, P>& sys = self().sys_;
-        for (int i = 0; i < sys.size(); ++i) {
-            const State& b = sys.bodies[i];
-            if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
-                !K::angularVelocity(b, sys.body).allFinite())
-                throw SceneError("state: body " + std::to_string(i) + " has a non-finite value");
-        }
-        if (!(sys.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
-    }
-
-    /// Terrace of every pair from U at the start; a pair on a level (within the search's level
-    /// tolerance) goes to the terrace it is heading into, so that the start holds no zero-time
-    /// event.
-    void assignInitialTerraces() {
-        Engine& engine = self();
-        const System<K, P>& sys = engine.sys_;
-        const double uMin = sys.potential.minimumEnergy();
-        for (int i = 0; i < sys.size(); ++i)
-            engine.cells_.forEachNeighbour(i, [&](int j) {
-                if (j < i) return;
-                const State &bi = sys.bodies[i], &bj = sys.bodies[j];
-                const Vec3 rij = sys.box.minimumImage(bi.r - bj.r);
-                if (rij.norm() > engine.settings_.rm) return;
-                const PairForce f =
-                    sys.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
-                if (overlapsAtStart(f.U, uMin))
-                    throwOverlap(engine.sceneIndex(i), engine.sceneIndex(j), f.U);
-                const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys.body),
-                                         K::angularVelocity(bj, sys.body));
-                engine.lists_.setTerrace(
-                    i, j,
-                    engine.settings_.levels.terraceOf(f.U, rate, engine.search_.levelTolerance));
-            });
-    }
-
-    void resumeClocks(const nlohmann::json& c) {
-        Engine& engine = self();
-        engine.time_ = c.at("time").get<double>();
-        if (!std::isfinite(engine.time_) || engine.time_ < 0.0)
-            throw SceneError("restart: the DMD time is not a finite time >= 0");
-        engine.impulseVirial_ = c.at("impulse_virial").get<double>();
-        if (!std::isfinite(engine.impulseVirial_))
-            throw SceneError("restart: the DMD impulse virial is not finite");
-        for (int i = 0; i < engine.sys_.size(); ++i)
-            engine.schedule_.book(i).clock = engine.time_;
-        const auto& stream = c.at("horizon_stream");
-        engine.jitter_.resumeAt(
-            {stream.at("state").get<std::uint64_t>(), stream.at("ready").get<double>()});
-    }
-
-    /// The terraces of a checkpoint; pairs it does not list are on terrace 0. A pair listed
-    /// beyond r_m, or out of range, means the file does not belong to these bodies. The file
-    /// numbers the bodies as the scene does; the engine's numbering is set before this.
-    void resumeTerraces(const nlohmann::json& c) {
-        Engine& engine = self();
-        const System<K, P>& sys = engine.sys_;
-        forEachPairTerrace(c.at("terraces"), [&](const PairTerrace& p) {
-            const int i = p.i, j = p.j, n = p.terrace;
-            if (i < 0 || j < 0 || i >= sys.size() || j >= sys.size() || i == j)
-                throw SceneError("restart: terrace of a pair of bodies that do not exist");
-            // A pair leaves terrace 0 at r_m exactly: a sample there may read r a round-off
-            // beyond it.
-            const int a = engine.engineIndex(i), b = engine.engineIndex(j);
-            const Vec3 rij = sys.box.minimumImage(sys.bodies[a].r - sys.bodies[b].r);
-            if (rij.norm() > engine.settings_.rm * (1.0 + resumeRangeTolerance))
-                throw SceneError("restart: bodies " + std::to_string(i) + " and " +
-                                 std::to_string(j) + " are held on terrace " + std::to_string(n) +
-                                 " beyond the interaction range");
-            engine.lists_.setTerrace(std::min(a, b), std::max(a, b), n);
-        });
-    }
-
-private:
-    const Engine& self() const { return static_cast<const Engine&>(*this); }
-    Engine& self() { return static_cast<Engine&>(*this); }
-};
-
-/// A restart point's bodies (EngineStart::release): moved out of an engine about to be dropped.
-template <BodyKind K, PairPotential P> System<K, P> releaseSystem(Engine<K, P>&& engine) {
-    return EngineStart<K, P, Engine<K, P>>::release(engine);
+/// The terraces of a checkpoint; pairs it does not list are on terrace 0. A pair listed
+/// beyond r_m, or out of range, means the file does not belong to these bodies. The file
+/// numbers the bodies as the scene does; the engine's numbering is set before this.
+template <BodyKind K, PairPotential P>
+void resumeTerraces(EngineState<K, P>& s, const nlohmann::json& c) {
+    const System<K, P>& sys = s.sys;
+    forEachPairTerrace(c.at("terraces"), [&](const PairTerrace& p) {
+        const int i = p.i, j = p.j, n = p.terrace;
+        if (i < 0 || j < 0 || i >= sys.size() || j >= sys.size() || i == j)
+            throw SceneError("restart: terrace of a pair of bodies that do not exist");
+        // A pair leaves terrace 0 at r_m exactly: a sample there may read r a round-off
+        // beyond it.
+        const int a = s.engineIndex(i), b = s.engineIndex(j);
+        const Vec3 rij = sys.box.minimumImage(sys.bodies[a].r - sys.bodies[b].r);
+        if (rij.norm() > s.settings.rm * (1.0 + resumeRangeTolerance))
+            throw SceneError("restart: bodies " + std::to_string(i) + " and " + std::to_string(j) +
+                             " are held on terrace " + std::to_string(n) +
+                             " beyond the interaction range");
+        s.lists.setTerrace(std::min(a, b), std::max(a, b), n);
+    });
 }
 
 } // namespace terrace::dmd

@@ -12,17 +12,18 @@
 // their stored states. Of a body's own events — cell crossing, relist, entry — only the earliest
 // is planned in its agenda. Every event found is filed in the schedule (dmd/schedule.hpp).
 //
-// Apart from the engine (dmd/engine.hpp), whose event loop calls it after every event, as a
-// mixin: PairPrediction is the engine's base (CRTP), so that it reads the engine's bodies, orbits,
-// clocks, lists, cells and terraces as members of one object — no reference to follow, no call
-// through a pointer, in the pair loop. It owns what only prediction uses: the search settings, the
-// horizon stream, the bands and ceiling of the hold screen, the bodies' plans and the search
-// counters; it reads the engine's own members by name (engine.sys_, engine.time_, …), as a
-// friend. Units: Å, kJ/mol, time unit 100 fs.
+// Apart from the engine (dmd/engine.hpp), whose event loop calls it after every event. It owns
+// what only prediction uses: the search settings, the horizon stream, the bands and ceiling of the
+// hold screen, the bodies' plans and the search counters; the bodies, orbits, clocks, lists, cells
+// and terraces it reads from the engine's shared state (dmd/engine_state.hpp), handed to every
+// call by reference. The engine holds both by value: in the pair loop no pointer is followed and
+// no call is virtual. Units: Å, kJ/mol, time unit 100 fs.
 #include "core/free_orbit.hpp"
 #include "core/system.hpp"
 #include "core/units.hpp"
+#include "dmd/body_clocks.hpp"
 #include "dmd/cell_list.hpp"
+#include "dmd/engine_state.hpp"
 #include "dmd/event.hpp"
 #include "dmd/horizon_jitter.hpp"
 #include "dmd/neighbour_lists.hpp"
@@ -81,10 +82,10 @@ struct BodyPlan {
     std::int8_t cellSide = 0;                               // as Event::side
 };
 
-/// Engine: the class deriving from this one (dmd::Engine<K, P>), a friend of it.
-template <BodyKind K, PairPotential P, class Engine> class PairPrediction {
-protected:
+template <BodyKind K, PairPotential P> class PairPrediction {
+public:
     using State = typename K::State;
+    using Shared = EngineState<K, P>;
 
     /// The search's settings from the engine's: its largest step the horizon, its tolerances
     /// fractions of the terrace height.
@@ -92,7 +93,7 @@ protected:
         : jitter_(settings.horizon, horizonJitter, seed), plans_(bodies),
           ceiling_(bandCeiling(potential, settings.rm)) {
         const double terraceHeight = settings.levels.smallestStep();
-        holdScreen_ = settings.holdScreen;
+        holdScreen = settings.holdScreen;
         search_.maxStep = settings.horizon;
         search_.nudge = nudgeFraction * settings.horizon;
         search_.grazeWindow = grazeFraction * terraceHeight;
@@ -108,53 +109,49 @@ protected:
     };
 
     /// Predicts every pair of every body from now and gives each body its calendar entry.
-    template <class Q> void predictAll(Q& q) {
-        Engine& engine = self();
-        for (int i = 0; i < engine.sys_.size(); ++i) {
+    template <class Q> void predictAll(Shared& s, Q& q) {
+        for (int i = 0; i < s.sys.size(); ++i) {
             double entry = std::numeric_limits<double>::infinity();
-            const Moving mi = movingNow(i);
-            for (const int j : engine.lists_.partners(i))
-                if (j > i) entry = std::min(entry, predictPair(mi, i, j, nullptr));
-            scheduleBodyEvents(i, entry);
+            const Moving mi = movingNow(s, i);
+            for (const int j : s.lists.partners(i))
+                if (j > i) entry = std::min(entry, predictPair(s, mi, i, j, nullptr));
+            scheduleBodyEvents(s, i, entry);
         }
-        engine.schedule_.settle(q, engine.time_);
-        engine.schedule_.resetCleanupThreshold(q.size());
+        s.schedule.settle(q, s.time);
+        s.schedule.resetCleanupThreshold(q.size());
     }
 
     /// Forgets every pending event and predicts all pairs from now (all clocks at now).
-    void repredictAll() {
-        Engine& engine = self();
-        engine.schedule_.visitQueue([&](auto& q) {
-            engine.schedule_.forgetAll(q);
-            predictAll(q);
+    void repredictAll(Shared& s) {
+        s.schedule.visitQueue([&](auto& q) {
+            s.schedule.forgetAll(q);
+            predictAll(s, q);
         });
     }
 
     /// Predicts every pair of i except (i, exclude); (i, partner) has just been resolved.
     /// partnerStart: the sample of (i, partner) now, when the caller has it.
-    void predictBody(int i, int exclude, int partner = -1,
+    void predictBody(Shared& s, int i, int exclude, int partner = -1,
                      const PairSample* partnerStart = nullptr) {
-        const Engine& engine = self();
         double entry = std::numeric_limits<double>::infinity();
-        const Moving mi = movingNow(i);
-        const auto partners = engine.lists_.partners(i);
+        const Moving mi = movingNow(s, i);
+        const auto partners = s.lists.partners(i);
         // The partners' states are fetched `ahead` predictions before theirs: they are scattered
         // in memory, each prediction starts by reading its partner, and one prediction (~0.1–0.2
         // µs) is shorter than a miss of a large system's memory (~0.4 µs on a virtual machine).
         constexpr std::size_t ahead = 3;
-        if (engine.prefetching_)
+        if (s.prefetching)
             for (std::size_t k = 0; k < std::min(ahead, partners.size()); ++k)
-                prefetchBody(partners[k]);
+                prefetchBody(s, partners[k]);
         for (std::size_t k = 0; k < partners.size(); ++k) {
-            if (engine.prefetching_ && k + ahead < partners.size())
-                prefetchBody(partners[k + ahead]);
+            if (s.prefetching && k + ahead < partners.size()) prefetchBody(s, partners[k + ahead]);
             const int j = partners[k];
             if (j != exclude)
-                entry =
-                    std::min(entry, j == partner ? predictPair(mi, i, j, partnerStart, true, int(k))
-                                                 : predictPair(mi, i, j, nullptr, false, int(k)));
+                entry = std::min(entry, j == partner
+                                            ? predictPair(s, mi, i, j, partnerStart, true, int(k))
+                                            : predictPair(s, mi, i, j, nullptr, false, int(k)));
         }
-        scheduleBodyEvents(i, entry);
+        scheduleBodyEvents(s, i, entry);
     }
 
     /// Asks the caches for body i's plan, which i's events read and rewrite (all but the virtual
@@ -162,12 +159,11 @@ protected:
     [[gnu::always_inline]] void prefetchPlan(int i) const { __builtin_prefetch(&plans_[i]); }
 
     /// Asks the caches for what predictPair reads of body j first.
-    [[gnu::always_inline]] void prefetchBody(int j) const {
-        const Engine& engine = self();
-        prefetchLines(&engine.sys_.bodies[j], sizeof(State));
+    [[gnu::always_inline]] void prefetchBody(const Shared& s, int j) const {
+        prefetchLines(&s.sys.bodies[j], sizeof(State));
         if constexpr (keepsOrbit<K>)
-            prefetchLines(&engine.orbit_[j], sizeof(engine.orbit_[j])); // none kept: none asked for
-        __builtin_prefetch(&engine.schedule_.book(j));
+            prefetchLines(&s.orbit[j], sizeof(s.orbit[j])); // none kept: none asked for
+        __builtin_prefetch(&s.schedule.book(j));
     }
 
     /// Body i's own events: its next cell crossing, its next list rebuild and, when some pair of i
@@ -175,47 +171,45 @@ protected:
     /// body instead of one per approaching pair; should i have no event before then, it
     /// re-predicts all its pairs). Only the earliest of the three is scheduled: most are overtaken
     /// by a collision of i, and the others are planned again when it is processed.
-    void scheduleBodyEvents(int i, double entry) {
+    void scheduleBodyEvents(Shared& s, int i, double entry) {
         plans_[i].entry = entry;
-        planCellCrossing(i);
-        planRelist(i);
-        scheduleBodyEvent(i);
+        planCellCrossing(s, i);
+        planRelist(s, i);
+        scheduleBodyEvent(s, i);
     }
 
     /// Queues the earliest of i's planned body events (ties: cell, relist, entry).
-    void scheduleBodyEvent(int i) {
+    void scheduleBodyEvent(Shared& s, int i) {
         const BodyPlan& p = plans_[i];
         if (p.cell <= p.relist && p.cell <= p.entry) {
             if (!std::isfinite(p.cell)) return;
             PendingEvent e = bodyEvent(EventKind::CellCrossing, p.cell);
             e.side = p.cellSide;
-            schedule(i, e);
+            schedule(s, i, e);
         } else if (p.relist <= p.entry) {
-            schedule(i, bodyEvent(EventKind::Relist, p.relist));
+            schedule(s, i, bodyEvent(EventKind::Relist, p.relist));
         } else {
-            schedule(i, bodyEvent(EventKind::Virtual, p.entry));
+            schedule(s, i, bodyEvent(EventKind::Virtual, p.entry));
         }
     }
 
     /// When i will have moved (1 − relistMargin) of the relist distance from its list's anchor.
-    void planRelist(int i) {
-        const Engine& engine = self();
-        const double radius = engine.lists_.relistDistance() * (1.0 - relistMargin);
-        const Vec3 moved = engine.positionNow(i) - engine.lists_.anchor(i);
+    void planRelist(const Shared& s, int i) {
+        const double radius = s.lists.relistDistance() * (1.0 - relistMargin);
+        const Vec3 moved = positionNow(s, i) - s.lists.anchor(i);
         // Already out (an event tied with the rebuild came first): rebuild now.
         const double dt = moved.squaredNorm() >= radius * radius
                               ? 0.0
-                              : shellWindow(moved, engine.sys_.bodies[i].v, radius).exit;
-        plans_[i].relist = engine.time_ + dt;
+                              : shellWindow(moved, s.sys.bodies[i].v, radius).exit;
+        plans_[i].relist = s.time + dt;
     }
 
-    void planCellCrossing(int i) {
-        const Engine& engine = self();
-        const State& b = engine.sys_.bodies[i];
+    void planCellCrossing(const Shared& s, int i) {
+        const State& b = s.sys.bodies[i];
         int axis = 0, dir = 0;
-        const double dt = engine.cells_.crossingTime(
-            i, b.r + b.v * (engine.time_ - engine.schedule_.book(i).clock), b.v, axis, dir);
-        plans_[i].cell = engine.time_ + dt;
+        const double dt = s.cells.crossingTime(i, b.r + b.v * (s.time - s.schedule.book(i).clock),
+                                               b.v, axis, dir);
+        plans_[i].cell = s.time + dt;
         plans_[i].cellSide = static_cast<std::int8_t>(2 * axis + (dir > 0 ? 1 : 0));
     }
 
@@ -223,38 +217,35 @@ protected:
     /// the jittered horizon; a truncated search leaves a virtual event holding its end point.
     /// A pair entering r_m only beyond the horizon is not searched: its entry time (absolute) is
     /// returned for the caller to schedule; +∞ otherwise.
-    /// mi is body i brought to now (movingNow(i)), prepared once for all pairs of i; slot: where j
-    /// likely sits in i's list (−1: unknown).
-    double predictPair(const Moving& mi, int i, int j, const PairSample* resumeFrom,
+    /// mi is body i brought to now (movingNow(s, i)), prepared once for all pairs of i; slot: where
+    /// j likely sits in i's list (−1: unknown).
+    double predictPair(Shared& s, const Moving& mi, int i, int j, const PairSample* resumeFrom,
                        bool afterEvent = false, int slot = -1) {
-        Engine& engine = self();
         constexpr double none = std::numeric_limits<double>::infinity();
-        const State& bj0 = engine.sys_.bodies[j];
-        const double dtj = engine.time_ - engine.schedule_.book(j).clock;
-        const Vec3 r0 =
-            engine.sys_.box.minimumImage(mi.r - translated(bj0.r, bj0.v, dtj), engine.inverseBox_);
+        const State& bj0 = s.sys.bodies[j];
+        const double dtj = s.time - s.schedule.book(j).clock;
+        const Vec3 r0 = s.sys.box.minimumImage(mi.r - translated(bj0.r, bj0.v, dtj), s.inverseBox);
         const Vec3 w = mi.v - bj0.v;
         // Only a pair inside r_m (up to round-off) can be bound; skip the lookup for the rest.
         constexpr double boundSlack = 1.0 + 1e-6;
-        const bool maybeBound =
-            r0.squaredNorm() <= engine.settings_.rm * engine.settings_.rm * boundSlack;
-        const int n = maybeBound ? engine.lists_.terrace(i, j, slot) : 0;
+        const bool maybeBound = r0.squaredNorm() <= s.settings.rm * s.settings.rm * boundSlack;
+        const int n = maybeBound ? s.lists.terrace(i, j, slot) : 0;
         // A bound pair must reach a level before |r_ij| = r_m; in the worst orientation it does
         // so exactly there, so the shell must not cut its search short.
         const ShellWindow win = n != 0 ? ShellWindow{0.0, std::numeric_limits<double>::infinity()}
-                                       : shellWindow(r0, w, engine.settings_.rm);
+                                       : shellWindow(r0, w, s.settings.rm);
         if (win.empty()) return none;
         const double horizon = jitter_.next();
-        if (win.enter > horizon) return engine.time_ + win.enter;
+        if (win.enter > horizon) return s.time + win.enter;
         // Body j's attitude now serves the hold screen; its orbit from now is built only for a
         // search. Its orbit at its clock (built, for a rotor) gives both: taken once.
-        const auto& orbitJAtClock = engine.orbitOf(j);
+        const auto& orbitJAtClock = orbitOf(s, j);
         const auto ajNow = orbitJAtClock.startOf(dtj);
         const auto sampleWith = [&](double tau, const auto& attitudes) {
             const auto& [ai, aj] = attitudes;
             const EnergyRate e =
-                energyAndRate(engine.sys_.potential, translated(r0, w, tau), w,
-                              orientationOf<P>(ai), ai.w, orientationOf<P>(aj), aj.w);
+                energyAndRate(s.sys.potential, translated(r0, w, tau), w, orientationOf<P>(ai),
+                              ai.w, orientationOf<P>(aj), aj.w);
             return PairSample{tau, e.U, e.dUdt};
         };
         const std::array now{mi.now, ajNow};
@@ -262,23 +253,23 @@ protected:
             // Not for the pair just resolved: it sits on a level, where the screen answers 0 (it
             // could hold only a root found farther from the level than the screen's edge margin;
             // a search is right either way).
-            if (holdScreen_ && !afterEvent) {
+            if (holdScreen && !afterEvent) {
                 // No level within reach for a while: no samples now, a fresh search then.
-                const double hold = holdOnTerrace(now, i, j, r0, w, n, horizon, win.exit);
+                const double hold = holdOnTerrace(s, now, i, j, r0, w, n, horizon, win.exit);
                 if (hold == none) return none; // out of r_m before it could change terrace
                 if (hold > 0.0) {
-                    schedule(i, pairEvent(EventKind::Virtual, j, engine.time_ + hold));
-                    ++screened_;
+                    schedule(s, i, pairEvent(s, EventKind::Virtual, j, s.time + hold));
+                    ++screened;
                     return none;
                 }
             }
         if constexpr (!HoldScreenable<P> && RangeBounded<P>)
-            if (holdScreen_ && !afterEvent) { // as above, with the potential's own bounds
-                const double hold = holdInRange(now, i, j, r0, w, n, horizon, win.exit);
+            if (holdScreen && !afterEvent) { // as above, with the potential's own bounds
+                const double hold = holdInRange(s, now, i, j, r0, w, n, horizon, win.exit);
                 if (hold == none) return none;
                 if (hold > 0.0) {
-                    schedule(i, pairEvent(EventKind::Virtual, j, engine.time_ + hold));
-                    ++screened_;
+                    schedule(s, i, pairEvent(s, EventKind::Virtual, j, s.time + hold));
+                    ++screened;
                     return none;
                 }
             }
@@ -289,21 +280,21 @@ protected:
             start = *resumeFrom;
         } else {
             start = win.enter == 0.0 ? sampleWith(0.0, now) : eval(win.enter);
-            ++evaluations_;
-            if (!afterEvent) checkOnTerrace(start.U, i, j, n);
+            ++evaluations;
+            if (!afterEvent) checkOnTerrace(s, start.U, i, j, n);
         }
         const double tEnd = std::min(win.exit, horizon);
         const SearchResult r = findTerraceExit(
-            eval, start, engine.settings_.levels.lower(n), engine.settings_.levels.upper(n), tEnd,
-            pairSearch(w, engine.schedule_.book(i).axisRate + engine.schedule_.book(j).axisRate),
+            eval, start, s.settings.levels.lower(n), s.settings.levels.upper(n), tEnd,
+            pairSearch(s, w, s.schedule.book(i).axisRate + s.schedule.book(j).axisRate),
             afterEvent);
-        evaluations_ += r.evaluations;
+        evaluations += r.evaluations;
         if (r.side != ExitSide::None) {
-            PendingEvent e = pairEvent(EventKind::Collision, j, engine.time_ + r.t);
+            PendingEvent e = pairEvent(s, EventKind::Collision, j, s.time + r.t);
             e.side = static_cast<std::int8_t>(r.side);
-            schedule(i, e);
+            schedule(s, i, e);
         } else if (win.exit > horizon) {
-            schedule(i, pairEvent(EventKind::Virtual, j, engine.time_ + r.end.t));
+            schedule(s, i, pairEvent(s, EventKind::Virtual, j, s.time + r.end.t));
         }
         return none;
     }
@@ -313,16 +304,13 @@ protected:
     /// once, rather than left to loop on a reflection at one instant until the stall detector
     /// fires. A pair can sit past a level by round-off only (an event due now), far below the
     /// margin.
-    void checkOnTerrace(double U, int i, int j, int n) const {
-        const Engine& engine = self();
-        const double margin = missedEventMargin * engine.terraceHeight();
-        if (U >= engine.settings_.levels.lower(n) - margin &&
-            U <= engine.settings_.levels.upper(n) + margin)
+    void checkOnTerrace(const Shared& s, double U, int i, int j, int n) const {
+        const double margin = missedEventMargin * s.terraceHeight();
+        if (U >= s.settings.levels.lower(n) - margin && U <= s.settings.levels.upper(n) + margin)
             return;
-        throw std::logic_error("dmd: bodies " + std::to_string(engine.sceneIndex(i)) + " and " +
-                               std::to_string(engine.sceneIndex(j)) +
-                               " have U = " + std::to_string(U) +
-                               " kJ/mol at t = " + std::to_string(units::toFs(engine.time_)) +
+        throw std::logic_error("dmd: bodies " + std::to_string(s.sceneIndex(i)) + " and " +
+                               std::to_string(s.sceneIndex(j)) + " have U = " + std::to_string(U) +
+                               " kJ/mol at t = " + std::to_string(units::toFs(s.time)) +
                                " fs, beyond the levels of " + "their terrace " + std::to_string(n) +
                                ": an event was missed");
     }
@@ -332,9 +320,8 @@ protected:
     /// r_m at windowExit; otherwise the longest of horizon, 2·horizon, … up to maxHoldHorizons
     /// horizons, or 0 when not even through the horizon (then the search must look).
     template <class Attitudes>
-    double holdOnTerrace(const Attitudes& now, int i, int j, const Vec3& r0, const Vec3& w, int n,
-                         double horizon, double windowExit) {
-        const Engine& engine = self();
+    double holdOnTerrace(const Shared& s, const Attitudes& now, int i, int j, const Vec3& r0,
+                         const Vec3& w, int n, double horizon, double windowExit) {
         const auto& [ai, aj] = now;
         PairMotion m;
         m.speedSquared = w.x() * w.x() + w.y() * w.y() + w.z() * w.z();
@@ -347,13 +334,13 @@ protected:
             m.cRate = spin.x() * (si.y() * sj.z() - si.z() * sj.y()) +
                       spin.y() * (si.z() * sj.x() - si.x() * sj.z()) +
                       spin.z() * (si.x() * sj.y() - si.y() * sj.x());
-            m.turn = engine.schedule_.book(i).axisRate + engine.schedule_.book(j).axisRate;
+            m.turn = s.schedule.book(i).axisRate + s.schedule.book(j).axisRate;
             // |s̈| = |ω|² for a linear rotor (uniform rotation), so |c̈| ≤ Ω²; a top's ω wanders.
             if constexpr (std::is_same_v<K, LinearRotor>) m.turnCurvature = m.turn * m.turn;
         }
-        const auto& form = bandPotential(engine.sys_.potential);
+        const auto& form = bandPotential(s.sys.potential);
         const double x = form.effectiveDistance(m.r, m.c);
-        const TerraceBands& b = bands_.of(n, form, engine.settings_.levels);
+        const TerraceBands& b = bands_.of(n, form, s.settings.levels);
         const BandHold hold(x <= b.bottom ? b.wall : b.tail, m, form.alignmentLength(), ceiling_);
         const double longest = maxHoldHorizons * horizon;
         if (windowExit <= longest && hold.through(windowExit))
@@ -367,19 +354,18 @@ protected:
     /// uses), so U stays in energyRange(…, |w|T, Ω_i T, Ω_j T); the pair holds through T while
     /// that range lies inside its terrace. The range only widens with T.
     template <class Attitudes>
-    double holdInRange(const Attitudes& now, int i, int j, const Vec3& r0, const Vec3& w, int n,
-                       double horizon, double windowExit) const {
-        const Engine& engine = self();
+    double holdInRange(const Shared& s, const Attitudes& now, int i, int j, const Vec3& r0,
+                       const Vec3& w, int n, double horizon, double windowExit) const {
         const auto& [ai, aj] = now;
         const double speed = w.norm();
-        const double spinI = engine.schedule_.book(i).axisRate;
-        const double spinJ = engine.schedule_.book(j).axisRate;
-        const TerraceLevels& levels = engine.settings_.levels;
+        const double spinI = s.schedule.book(i).axisRate;
+        const double spinJ = s.schedule.book(j).axisRate;
+        const TerraceLevels& levels = s.settings.levels;
         // Far from round-off in U and in g(r), far below any terrace.
-        const double margin = rangeMargin * engine.terraceHeight();
+        const double margin = rangeMargin * s.terraceHeight();
         const double lower = levels.lower(n) + margin, upper = levels.upper(n) - margin;
         const auto through = [&](double T) {
-            const EnergyRange u = engine.sys_.potential.energyRange(
+            const EnergyRange u = s.sys.potential.energyRange(
                 r0, orientationOf<P>(ai), orientationOf<P>(aj), speed * T, spinI * T, spinJ * T);
             return u.lo > lower && u.hi < upper;
         };
@@ -395,29 +381,28 @@ protected:
     /// The search settings for a pair with relative velocity w and summed angular speed turn: the
     /// step shortened where the pair would move more than stepShiftFraction r_m or turn more
     /// than stepTurn in one, or where a body's extent would carry its sites or ends farther.
-    SearchSettings pairSearch(const Vec3& w, double turn) const {
-        const Engine& engine = self();
-        SearchSettings s = search_;
-        const double shift = stepShiftFraction * engine.settings_.rm;
+    SearchSettings pairSearch(const Shared& s, const Vec3& w, double turn) const {
+        SearchSettings search = search_;
+        const double shift = stepShiftFraction * s.settings.rm;
         const double w2 = w.squaredNorm();
-        if (w2 * s.maxStep * s.maxStep > shift * shift) s.maxStep = shift / std::sqrt(w2);
-        if (turn * s.maxStep > stepTurn) s.maxStep = stepTurn / turn;
+        if (w2 * search.maxStep * search.maxStep > shift * shift)
+            search.maxStep = shift / std::sqrt(w2);
+        if (turn * search.maxStep > stepTurn) search.maxStep = stepTurn / turn;
         // Where U is shaped by points off the centres (a molecule's sites, an ellipsoid's ends),
         // those move by up to extent·turn per time unit besides: the same shift bounds them.
-        if constexpr (requires { bandPotential(engine.sys_.potential).extent(); }) {
-            const double arm = bandPotential(engine.sys_.potential).extent() * turn;
-            if (arm * s.maxStep > shift) s.maxStep = shift / arm;
+        if constexpr (requires { bandPotential(s.sys.potential).extent(); }) {
+            const double arm = bandPotential(s.sys.potential).extent() * turn;
+            if (arm * search.maxStep > shift) search.maxStep = shift / arm;
         }
-        return s;
+        return search;
     }
 
     /// Body i as the search sees it now, from its orbit cached at its clock: the stored state is
     /// not touched.
-    Moving movingNow(int i) const {
-        const Engine& engine = self();
-        const State& b = engine.sys_.bodies[i];
-        const double dt = engine.time_ - engine.schedule_.book(i).clock;
-        Moving m{translated(b.r, b.v, dt), b.v, engine.orbitOf(i).from(dt), {}};
+    Moving movingNow(const Shared& s, int i) const {
+        const State& b = s.sys.bodies[i];
+        const double dt = s.time - s.schedule.book(i).clock;
+        Moving m{translated(b.r, b.v, dt), b.v, orbitOf(s, i).from(dt), {}};
         m.now = m.orbit.at(0.0);
         return m;
     }
@@ -430,34 +415,36 @@ protected:
     }
 
     /// An event of a pair with partner j, stamped with j's counter as of now.
-    PendingEvent pairEvent(EventKind kind, int j, double t) const {
+    PendingEvent pairEvent(const Shared& s, EventKind kind, int j, double t) const {
         PendingEvent e = bodyEvent(kind, t);
         e.j = j;
-        e.countJ = self().schedule_.book(j).counter;
+        e.countJ = s.schedule.book(j).counter;
         return e;
     }
 
     /// Files e in the agenda of its owner i (dmd/schedule.hpp).
-    void schedule(int i, const PendingEvent& e) { self().schedule_.schedule(i, e); }
+    void schedule(Shared& s, int i, const PendingEvent& e) { s.schedule.schedule(i, e); }
 
     std::size_t predictionBytes() const {
         return plans_.capacity() * sizeof(BodyPlan) + bands_.bytesReserved();
     }
 
-    SearchSettings search_;
-    HorizonJitter jitter_;
-    std::uint64_t evaluations_ = 0, screened_ = 0;
-    bool holdScreen_ = true;
+    /// The search's settings and the horizon stream (the start and checkpoint read them).
+    const SearchSettings& search() const { return search_; }
+    HorizonJitter& jitter() { return jitter_; }
+    const HorizonJitter& jitter() const { return jitter_; }
+
+    // What the engine's statistics report; carried over when the engine is rebuilt.
+    std::uint64_t evaluations = 0, screened = 0;
+    bool holdScreen = true; // whether pairs are screened by their hold time before a search
 
 private:
+    SearchSettings search_;
+    HorizonJitter jitter_;
     BodyArray<BodyPlan> plans_;
     TerraceBandTable bands_; // effective-distance bands of the terraces (hold screen)
     // The hold screen's ceiling on r (dmd/terrace_hold.hpp bandCeiling), Å.
     double ceiling_;
-
-    // The engine, which this object is (its members are what prediction reads, as a friend).
-    const Engine& self() const { return static_cast<const Engine&>(*this); }
-    Engine& self() { return static_cast<Engine&>(*this); }
 };
 
 } // namespace terrace::dmd

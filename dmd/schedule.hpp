@@ -70,10 +70,11 @@ struct alignas(64) BodyBook {
 };
 static_assert(sizeof(BodyBook) == 64, "a body's scalars fill one cache line");
 
-/// Owner: the engine whose schedule this is (dmd::Engine<K, P>). Nothing here depends on it: it
-/// gives each engine its own copy of these functions, because g++ weighs a function by its calls
-/// when it decides to inline, and with the calls of every engine in one copy it keeps some of the
-/// small steps out of line: a call more per event.
+/// Owner: the engine state whose schedule this is (dmd::EngineState<K, P>). Nothing here depends
+/// on it: it gives each engine its own copy of these functions, as when they were the engine's
+/// members, so
+/// that g++ inlines them as it did then (it weighs a function by its calls, and with the calls of
+/// every engine in one copy it kept some of the small steps out of line: a call more per event).
 template <class Owner> class Schedule {
 public:
     using Queue =

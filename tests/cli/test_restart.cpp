@@ -11,12 +11,15 @@
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "dmd/engine.hpp"
+#include "dmd/testing.hpp"
 #include "smd/engine.hpp"
 #include <array>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <set>
 #include <unistd.h>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 
@@ -181,7 +184,7 @@ DmdPoint dmdPointAt(double t) {
     scene.state.n = 216;
     RodDmd engine(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
     engine.advanceTo(t);
-    return {scene, engine.system(), engine.checkpoint(), engine.interactionRange()};
+    return {scene, engine.system(), engine.checkpoint(), Probe::interactionRange(engine)};
 }
 
 } // namespace
@@ -219,7 +222,8 @@ TEST(Restart, ADmdCheckpointsCompactTerracesAreTheEnginesPairs) {
     std::set<std::array<int, 3>> held;
     for (int i = 0; i < scene.state.n; ++i)
         for (int j = i + 1; j < scene.state.n; ++j)
-            if (engine.terrace(i, j) != 0) held.insert({i, j, engine.terrace(i, j)});
+            if (Probe::terrace(engine, i, j) != 0)
+                held.insert({i, j, Probe::terrace(engine, i, j)});
     EXPECT_GT(held.size(), std::size_t(scene.state.n)); // a dense liquid: several pairs per body
     EXPECT_EQ(decoded, held);
     EXPECT_EQ(stored.at("terraces").get_binary().size(), 12 * held.size());
@@ -458,10 +462,10 @@ TEST(Restart, BodiesReleasedFromADmdEngineAreItsSynchronisedCopy) {
     dropped.advanceTo(0.5);
     int renumbered = 0;
     for (int b = 0; b < scene.state.n; ++b)
-        renumbered += kept.engineIndex(b) != b;
+        renumbered += Probe::engineIndex(kept, b) != b;
     ASSERT_GT(renumbered, scene.state.n / 2);
     const auto copy = kept.system();
-    const auto released = dmd::releaseSystem(std::move(dropped));
+    const auto released = Probe::releaseSystem(std::move(dropped));
     ASSERT_EQ(released.size(), copy.size());
     for (int b = 0; b < copy.size(); ++b)
         ASSERT_TRUE(sameBits(released.bodies[b], copy.bodies[b])) << "body " << b;
@@ -531,32 +535,32 @@ TEST(Restart, ARebuiltDmdEngineUndergoesTheCollisionsOfOneThatGoesOn) {
     const auto start = buildInitialState<LinearRotor>(scene, rodPotential(scene));
     RodDmd goesOn(start, scene);
     auto rebuilt = std::make_unique<RodDmd>(start, scene);
-    ASSERT_GE(goesOn.cellsPerSide(), 3);
+    ASSERT_GE(Probe::cellsPerSide(goesOn), 3);
     const double t1 = units::fromFs(50.0);
     goesOn.advanceTo(t1);
     rebuilt->advanceTo(t1);
     auto collisions = [](const dmd::EventCounts& c) {
         return std::array<std::uint64_t, 3>{c.up, c.down, c.reflect};
     };
-    const auto before = collisions(rebuilt->counts());
-    ASSERT_EQ(before, collisions(goesOn.counts()));
+    const auto before = collisions(Probe::counts(*rebuilt));
+    ASSERT_EQ(before, collisions(Probe::counts(goesOn)));
     const nlohmann::json checkpoint = rebuilt->checkpoint();
-    auto sys = dmd::releaseSystem(std::move(*rebuilt));
+    auto sys = Probe::releaseSystem(std::move(*rebuilt));
     rebuilt = std::make_unique<RodDmd>(std::move(sys), scene, checkpoint);
     int renumbered = 0; // the lattice's order was the cells' at the start; the liquid's is not
     for (int b = 0; b < scene.state.n; ++b)
-        renumbered += rebuilt->engineIndex(b) != goesOn.engineIndex(b);
+        renumbered += Probe::engineIndex(*rebuilt, b) != Probe::engineIndex(goesOn, b);
     EXPECT_GT(renumbered, 0);
     for (int k = 1; k <= 50; ++k) {
         const double t = t1 + units::fromFs(2.0 * k);
         goesOn.advanceTo(t);
         rebuilt->advanceTo(t);
-        auto sum = collisions(rebuilt->counts());
+        auto sum = collisions(Probe::counts(*rebuilt));
         for (int m = 0; m < 3; ++m)
             sum[m] += before[m];
-        ASSERT_EQ(sum, collisions(goesOn.counts())) << 50 + 2 * k << " fs";
+        ASSERT_EQ(sum, collisions(Probe::counts(goesOn))) << 50 + 2 * k << " fs";
     }
-    EXPECT_GT(goesOn.counts().up + goesOn.counts().down, 1000u);
+    EXPECT_GT(Probe::counts(goesOn).up + Probe::counts(goesOn).down, 1000u);
     EXPECT_EQ(rebuilt->potentialEnergy(), goesOn.potentialEnergy());
     const Snapshot a = rebuilt->snapshot(), b = goesOn.snapshot();
     double largest = 0.0;
@@ -579,7 +583,7 @@ TEST(Restart, ARunRenumbersItsBodiesWhereTheirOrderHasDecayed) {
     scene.dmd["resort_cells"] = 1e-3;
     {
         const RodDmd probe(buildInitialState<LinearRotor>(scene, rodPotential(scene)), scene);
-        ASSERT_GE(probe.cellsPerSide(), 3);
+        ASSERT_GE(Probe::cellsPerSide(probe), 3);
     }
     const auto whole = scratch("resort-whole"), cut = scratch("resort-cut");
     WatchedDmd::rebuilds = WatchedDmd::besideAnother = 0, WatchedDmd::failAt = 0;
@@ -647,18 +651,19 @@ TEST(Restart, ADmdEngineThatShedItsEventsGivesTheSameCheckpointAndBodies) {
     engine.advanceTo(0.5);
     const nlohmann::json before = engine.checkpoint();
     const auto copy = engine.system();
-    const std::size_t bytes = engine.bytesReserved();
+    const std::size_t bytes = Probe::bytesReserved(engine);
     std::size_t eventLoop = 0; // what shed() frees
-    for (const auto& [part, size] : engine.memoryByPart())
+    for (const auto& [part, size] : Probe::memoryByPart(engine))
         if (std::string(part) == "agendas" || std::string(part) == "orbits" ||
             std::string(part) == "calendar")
             eventLoop += size;
     ASSERT_GT(eventLoop, 300u * 512u);
-    engine.shed();
-    EXPECT_LE(engine.bytesReserved(), bytes - eventLoop + 1024); // an empty calendar's few bytes
+    Probe::shed(engine);
+    EXPECT_LE(Probe::bytesReserved(engine),
+              bytes - eventLoop + 1024); // an empty calendar's few bytes
     EXPECT_EQ(engine.checkpoint(), before);
     EXPECT_THROW(engine.advanceTo(1.0), std::logic_error);
-    const auto released = dmd::releaseSystem(std::move(engine));
+    const auto released = Probe::releaseSystem(std::move(engine));
     for (int b = 0; b < copy.size(); ++b)
         ASSERT_TRUE(sameBits(released.bodies[b], copy.bodies[b])) << "body " << b;
 }

@@ -1,7 +1,10 @@
 // Long-run conservation and the extremes of the state space (validation tier).
+#include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <gtest/gtest.h>
 #include <string>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 using namespace terrace::dmdtest;
@@ -24,8 +27,8 @@ void expectHealthy(const RodEngine& e, double e0, const std::string& what) {
             << what;
     EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::max(1.0, std::abs(e0))) << what;
     EXPECT_LT(e.totalMomentum().norm(), momentumTolerance) << what;
-    EXPECT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(),
-                bookkeepingTol * e.levels().step())
+    EXPECT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e),
+                bookkeepingTol * Probe::levels(e).step())
         << what;
 }
 
@@ -35,8 +38,8 @@ TEST(Conservation, AMillionEventsKeepEnergyAndMomentum) {
     const Scene s = rodScene(256, 0.5, 1.4, 0.5);
     RodEngine e(rodSystem(s), s);
     const double e0 = totalEnergy(e);
-    e.runEvents(1000000);
-    EXPECT_GT(e.counts().up + e.counts().down + e.counts().reflect, 100000u);
+    Probe::runEvents(e, 1000000);
+    EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down + Probe::counts(e).reflect, 100000u);
     // The last event left its pair exactly on a level, where rounding U is a coin toss: compare
     // the bookkeeping with the recomputed energy a moment later, between events.
     e.advanceTo(e.time() + units::fromFs(0.1));
@@ -62,7 +65,7 @@ TEST(Conservation, ExtremesRunCleanly) {
         const double e0 = totalEnergy(e);
         e.advanceTo(units::fromPs(x.ps));
         EXPECT_DOUBLE_EQ(e.time(), units::fromPs(x.ps)) << x.name;
-        EXPECT_GT(e.counts().total(), 10u) << x.name;
+        EXPECT_GT(Probe::counts(e).total(), 10u) << x.name;
         expectHealthy(e, e0, x.name);
     }
 }
@@ -79,8 +82,8 @@ TEST(Conservation, HotPairsOnTheWallAreNotMissed) {
         RodEngine e(rodSystem(s), s);
         for (int k = 1; k <= 500; ++k) {
             e.advanceTo(units::fromFs(2.0 * k));
-            ASSERT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(),
-                        bookkeepingTol * e.levels().step())
+            ASSERT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e),
+                        bookkeepingTol * Probe::levels(e).step())
                 << "seed " << seed << ", " << 2 * k << " fs";
         }
     }

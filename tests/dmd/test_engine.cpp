@@ -3,6 +3,7 @@
 #include "core/asymmetric_top.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
+#include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include "tests/measure_guard.hpp"
 #include "tests/sample_parts.hpp"
@@ -11,6 +12,8 @@
 #include <gtest/gtest.h>
 #include <span>
 #include <string>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 using namespace terrace::dmdtest;
@@ -57,8 +60,8 @@ TEST(Engine, ShortRunConservesEnergyAndMomentum) {
     const Scene s = denseScene();
     RodEngine e(rodSystem(s), s);
     const double e0 = totalEnergy(e);
-    e.runEvents(100000);
-    EXPECT_GT(e.counts().up + e.counts().down, 1000u);
+    Probe::runEvents(e, 100000);
+    EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down, 1000u);
     EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
     EXPECT_LT(e.totalMomentum().norm(), momentumTolerance);
 }
@@ -66,14 +69,14 @@ TEST(Engine, ShortRunConservesEnergyAndMomentum) {
 TEST(Engine, BookkeptTerracedEnergyEqualsRecomputedAtEverySample) {
     const Scene s = denseScene();
     RodEngine e(rodSystem(s), s);
-    const double dV = e.levels().step();
+    const double dV = Probe::levels(e).step();
     for (int k = 1; k <= 100; ++k) {
         e.advanceTo(units::fromFs(10.0 * k));
         // Sample times fall between events, never on a level: any disagreement is a whole ΔV.
-        ASSERT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6 * dV)
+        ASSERT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e), 1e-6 * dV)
             << "sample " << k;
     }
-    EXPECT_GT(e.counts().up, 100u);
+    EXPECT_GT(Probe::counts(e).up, 100u);
 }
 
 TEST(Engine, HeapAndBoundedQueueGiveTheSameTrajectory) {
@@ -85,8 +88,8 @@ TEST(Engine, HeapAndBoundedQueueGiveTheSameTrajectory) {
         a.advanceTo(units::fromFs(25.0 * k));
         b.advanceTo(units::fromFs(25.0 * k));
     }
-    EXPECT_GT(a.counts().total(), 5000u);
-    EXPECT_EQ(a.counts().total(), b.counts().total());
+    EXPECT_GT(Probe::counts(a).total(), 5000u);
+    EXPECT_EQ(Probe::counts(a).total(), Probe::counts(b).total());
     EXPECT_TRUE(sameBodies(a.system(), b.system())); // bit for bit
 }
 
@@ -105,8 +108,8 @@ TEST(Engine, TreeAndHeapGiveTheSameTrajectory) {
             a.advanceTo(units::fromFs(25.0 * k));
             b.advanceTo(units::fromFs(25.0 * k));
         }
-        EXPECT_GT(a.counts().total(), 5000u);
-        EXPECT_EQ(a.counts().total(), b.counts().total()) << invalidation;
+        EXPECT_GT(Probe::counts(a).total(), 5000u);
+        EXPECT_EQ(Probe::counts(a).total(), Probe::counts(b).total()) << invalidation;
         EXPECT_TRUE(sameBodies(a.system(), b.system())) << invalidation;
         EXPECT_EQ(b.statistics()["queue"], "tree");
         if (std::string(invalidation) == "lazy") {
@@ -124,15 +127,17 @@ TEST(Engine, TreeAndHeapGiveTheSameTrajectory) {
 TEST(Engine, HoldScreenChangesNoCollision) {
     const Scene s = rodScene(512, 0.5, 1.4, 0.5);
     RodEngine screened(rodSystem(s), s), searched(rodSystem(s), s);
-    screened.setHoldScreen(true); // the same fresh start for both
-    searched.setHoldScreen(false);
+    Probe::setHoldScreen(screened, true); // the same fresh start for both
+    Probe::setHoldScreen(searched, false);
     const auto count = [](const RodEngine& e, const char* key) {
         return e.statistics()[key].get<double>();
     };
     const double screenedAtStart = count(searched, "searches_screened");
     expectSameCollisions(screened, searched, 50);
     if (HasFatalFailure()) return;
-    EXPECT_GT(screened.counts().up + screened.counts().down + screened.counts().reflect, 1000u);
+    EXPECT_GT(Probe::counts(screened).up + Probe::counts(screened).down +
+                  Probe::counts(screened).reflect,
+              1000u);
     const RodSystem a = screened.system(), b = searched.system();
     double largest = 0.0;
     for (int i = 0; i < a.size(); ++i)
@@ -171,7 +176,7 @@ TEST(Engine, TheQueueIsTheTreeUnlessChosen) {
 TEST(Engine, PartsOfASampleAreTheWholeSnapshotsOwn) {
     const Scene s = rodScene(216, 0.5, 1.4, 0.5);
     RodEngine e(rodSystem(s), s);
-    e.runEvents(3000);
+    Probe::runEvents(e, 3000);
     terrace::testing::expectPartsOfTheSnapshot(e);
     e.advanceTo(e.time() + 0.05);
     terrace::testing::expectPartsOfTheSnapshot(e);
@@ -192,19 +197,19 @@ TEST(Engine, BodyOrderChangesNoObservable) {
         const terrace::testing::MeasureGuard unsorted("no-sort-dmd");
         return RodEngine(start, sorted);
     }();
-    ASSERT_GE(a.cellsPerSide(), 3);
+    ASSERT_GE(Probe::cellsPerSide(a), 3);
     int moved = 0;
     for (int k = 0; k < start.size(); ++k) {
-        ASSERT_EQ(a.engineIndex(a.sceneIndex(k)), k);
-        ASSERT_EQ(b.sceneIndex(k), k);
-        moved += a.sceneIndex(k) != k;
+        ASSERT_EQ(Probe::engineIndex(a, Probe::sceneIndex(a, k)), k);
+        ASSERT_EQ(Probe::sceneIndex(b, k), k);
+        moved += Probe::sceneIndex(a, k) != k;
     }
     EXPECT_GT(moved, start.size() / 2); // the lattice's order is not the cells' Morton order
     // At the start both engines hand the bodies back in the order given, the same bit for bit.
     EXPECT_TRUE(sameBodies(a.system(), b.system()));
     expectSameCollisions(a, b, 50);
     if (HasFatalFailure()) return;
-    EXPECT_GT(a.counts().up + a.counts().down + a.counts().reflect, 1000u);
+    EXPECT_GT(Probe::counts(a).up + Probe::counts(a).down + Probe::counts(a).reflect, 1000u);
     EXPECT_EQ(a.potentialEnergy(), b.potentialEnergy());
     EXPECT_NEAR(a.kineticEnergy(), b.kineticEnergy(), 1e-9 * b.kineticEnergy());
     EXPECT_NEAR(a.continuousPotentialEnergy(), b.continuousPotentialEnergy(),
@@ -219,7 +224,7 @@ TEST(Engine, BodyOrderChangesNoObservable) {
     EXPECT_LT(largest, 1e-9);
     for (int i = 0; i < start.size(); i += 37)
         for (int j = i + 1; j < start.size(); j += 11)
-            ASSERT_EQ(a.terrace(i, j), b.terrace(i, j)) << i << " " << j;
+            ASSERT_EQ(Probe::terrace(a, i, j), Probe::terrace(b, i, j)) << i << " " << j;
     // The checkpoint lists the same pairs on the same terraces, by scene number.
     auto pairs = [](const RodEngine& e) {
         std::vector<std::array<int, 3>> list;
@@ -241,25 +246,27 @@ TEST(Engine, OrderDecaysWhenTheBodiesHaveMovedTheirShareOfACell) {
     Scene s = rodScene(512, 0.5, 1.4, 0.5);
     const RodSystem start = rodSystem(s);
     RodEngine probe(start, s);
-    ASSERT_GE(probe.cellsPerSide(), 3);
-    EXPECT_FALSE(probe.orderHasDecayed());
+    ASSERT_GE(Probe::cellsPerSide(probe), 3);
+    EXPECT_FALSE(Probe::orderHasDecayed(probe));
     probe.advanceTo(units::fromFs(30.0));
     const Snapshot now = probe.snapshot();
     double sum = 0.0;
     for (int i = 0; i < now.size(); ++i)
         sum += start.box.minimumImage(now.position[i] - start.bodies[i].r).squaredNorm();
-    const double cells = std::sqrt(sum / now.size()) / (start.box.length / probe.cellsPerSide());
+    const double cells =
+        std::sqrt(sum / now.size()) / (start.box.length / Probe::cellsPerSide(probe));
     ASSERT_GT(cells, 0.01);
     ASSERT_LT(cells, 1.0);
-    EXPECT_FALSE(probe.orderHasDecayed());
-    EXPECT_EQ(probe.resortDistance(), 0.0); // auto: never below dmd::prefetchFromBodies bodies
+    EXPECT_FALSE(Probe::orderHasDecayed(probe));
+    EXPECT_EQ(Probe::resortDistance(probe),
+              0.0); // auto: never below dmd::prefetchFromBodies bodies
     for (const double factor : {0.99, 1.01}) {
         Scene t = s;
         t.dmd["resort_cells"] = factor * cells;
         RodEngine e(start, t);
         e.advanceTo(units::fromFs(30.0));
-        EXPECT_EQ(e.counts().total(), probe.counts().total());
-        EXPECT_EQ(e.orderHasDecayed(), factor < 1.0) << factor;
+        EXPECT_EQ(Probe::counts(e).total(), Probe::counts(probe).total());
+        EXPECT_EQ(Probe::orderHasDecayed(e), factor < 1.0) << factor;
     }
     Scene never = s, unsorted = s;
     never.dmd["resort_cells"] = 0.0;
@@ -268,8 +275,8 @@ TEST(Engine, OrderDecaysWhenTheBodiesHaveMovedTheirShareOfACell) {
         const terrace::testing::MeasureGuard guard(measure);
         RodEngine e(start, measure.empty() ? never : unsorted);
         e.advanceTo(units::fromFs(30.0));
-        EXPECT_FALSE(e.orderHasDecayed());
-        EXPECT_EQ(e.resortDistance(), 0.0);
+        EXPECT_FALSE(Probe::orderHasDecayed(e));
+        EXPECT_EQ(Probe::resortDistance(e), 0.0);
     }
     // From dmd::prefetchFromBodies bodies on, auto is one cell width; above 4 096 bodies the
     // sample is every stride-th body in the engine's numbering (16 384: every fourth), and the
@@ -277,23 +284,24 @@ TEST(Engine, OrderDecaysWhenTheBodiesHaveMovedTheirShareOfACell) {
     Scene large = rodScene(dmd::prefetchFromBodies, 0.5, 1.4, 0.5);
     const RodSystem bigStart = rodSystem(large);
     RodEngine big(bigStart, large);
-    EXPECT_NEAR(big.resortDistance(), large.boxLength() / big.cellsPerSide(), 1e-12);
-    ASSERT_EQ(big.orderSampleBodies(), 4096u);
+    EXPECT_NEAR(Probe::resortDistance(big), large.boxLength() / Probe::cellsPerSide(big), 1e-12);
+    ASSERT_EQ(Probe::orderSampleBodies(big), 4096u);
     big.advanceTo(units::fromFs(10.0));
     const Snapshot bigNow = big.snapshot();
     double sampled = 0.0;
     for (int k = 0; k < 4096; ++k) {
-        const int b = big.sceneIndex(4 * k);
+        const int b = Probe::sceneIndex(big, 4 * k);
         sampled +=
             bigStart.box.minimumImage(bigNow.position[b] - bigStart.bodies[b].r).squaredNorm();
     }
-    const double bigCells = std::sqrt(sampled / 4096) / (large.boxLength() / big.cellsPerSide());
+    const double bigCells =
+        std::sqrt(sampled / 4096) / (large.boxLength() / Probe::cellsPerSide(big));
     // (Tight: another 4 096 bodies would give an RMS ~0.6 % away.)
     for (const double factor : {0.9999, 1.0001}) {
         large.dmd["resort_cells"] = factor * bigCells;
         RodEngine e(bigStart, large);
         e.advanceTo(units::fromFs(10.0));
-        EXPECT_EQ(e.orderHasDecayed(), factor < 1.0) << factor;
+        EXPECT_EQ(Probe::orderHasDecayed(e), factor < 1.0) << factor;
     }
 }
 
@@ -323,7 +331,8 @@ TEST(Engine, RenumberingInsideAdvanceToIsTheRebuildOfARestartPoint) {
     EXPECT_TRUE(sameBodies(a.system(), b->system())); // bit for bit
     EXPECT_EQ(a.potentialEnergy(), b->potentialEnergy());
     EXPECT_EQ(a.virial(), b->virial());
-    EXPECT_GT(a.counts().up + a.counts().down, 0u); // the counters carried over the rebuilds
+    EXPECT_GT(Probe::counts(a).up + Probe::counts(a).down,
+              0u); // the counters carried over the rebuilds
 }
 
 // Both modes push the same calendar entries in the same order (one erases what the other leaves
@@ -341,9 +350,9 @@ TEST(Engine, LazyAndEagerInvalidationGiveTheSameTrajectory) {
         RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
         a.advanceTo(units::fromPs(1.0));
         b.advanceTo(units::fromPs(1.0));
-        EXPECT_EQ(a.counts().total(), b.counts().total()) << queue;
-        EXPECT_EQ(a.counts().up, b.counts().up);
-        EXPECT_EQ(a.counts().reflect, b.counts().reflect);
+        EXPECT_EQ(Probe::counts(a).total(), Probe::counts(b).total()) << queue;
+        EXPECT_EQ(Probe::counts(a).up, Probe::counts(b).up);
+        EXPECT_EQ(Probe::counts(a).reflect, Probe::counts(b).reflect);
         EXPECT_TRUE(sameBodies(a.system(), b.system())) << queue;
         EXPECT_EQ(b.statistics()["stale_events"], 0); // eager leaves nothing stale in the queue
         if (std::string(queue) == "heap") {
@@ -366,11 +375,12 @@ TEST(Engine, CalendarHoldsOneEntryPerBody) {
     RodEngine a(rodSystem(lazy), lazy), b(rodSystem(eager), eager);
     const std::size_t n = static_cast<std::size_t>(a.system().size());
     for (int k = 0; k < 200; ++k) {
-        b.runEvents(100);
-        ASSERT_LE(b.queueSize(), n) << "after " << 100 * (k + 1) << " events";
+        Probe::runEvents(b, 100);
+        ASSERT_LE(Probe::queueSize(b), n) << "after " << 100 * (k + 1) << " events";
     }
-    a.runEvents(20000);
-    const double collisions = a.counts().up + a.counts().down + a.counts().reflect;
+    Probe::runEvents(a, 20000);
+    const double collisions =
+        Probe::counts(a).up + Probe::counts(a).down + Probe::counts(a).reflect;
     EXPECT_LT(a.statistics()["stale_events"].get<double>(), 3.0 * collisions);
 }
 
@@ -395,7 +405,9 @@ TEST(Engine, TimeReversalReturnsToTheStart) {
     RodEngine forward(start, s);
     const double t = units::fromFs(200.0);
     forward.advanceTo(t);
-    EXPECT_GT(forward.counts().up + forward.counts().down + forward.counts().reflect, 200u);
+    EXPECT_GT(Probe::counts(forward).up + Probe::counts(forward).down +
+                  Probe::counts(forward).reflect,
+              200u);
     RodSystem reversed = forward.system();
     for (auto& b : reversed.bodies) {
         b.v = -b.v;
@@ -426,8 +438,8 @@ TEST(Engine, IsolatedClusterConservesAngularMomentum) {
     const Scene s = rodScene(27, 0.5, 1.4, 0.5);
     RodEngine e(sys, s);
     const Vec3 l0 = totalAngularMomentum(e.system());
-    e.runEvents(20000);
-    EXPECT_GT(e.counts().up + e.counts().down, 500u);
+    Probe::runEvents(e, 20000);
+    EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down, 500u);
     const Vec3 l1 = totalAngularMomentum(e.system());
     EXPECT_LT((l1 - l0).norm(), angularTolerance * std::max(1.0, l0.norm()));
 }
@@ -473,10 +485,10 @@ TEST(Engine, FewerThanThreeCellsPerSideStillWork) {
     RodEngine e(rodSystem(s), s);
     EXPECT_EQ(e.statistics()["cells_per_side"], 1);
     const double e0 = totalEnergy(e);
-    e.runEvents(20000);
+    Probe::runEvents(e, 20000);
     EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
     e.advanceTo(e.time() + units::fromFs(0.1)); // off the level the last event left a pair on
-    EXPECT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6);
+    EXPECT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e), 1e-6);
 }
 
 // Head-on pairs on a lattice all meet at the same instant. The stall detector, set low, reports
@@ -489,7 +501,7 @@ TEST(Engine, AStoppedClockIsReportedNotSpunOn) {
     }
     const Scene s = rodScene(64, 0.5, 1.4, 0.5);
     RodEngine strict(sys, s);
-    strict.setStallLimit(3);
+    Probe::setStallLimit(strict, 3);
     try {
         strict.advanceTo(units::fromFs(200.0));
         ADD_FAILURE() << "expected the stall detector to fire";
@@ -499,7 +511,7 @@ TEST(Engine, AStoppedClockIsReportedNotSpunOn) {
     RodEngine normal(sys, s);
     normal.advanceTo(units::fromFs(200.0));
     EXPECT_DOUBLE_EQ(normal.time(), units::fromFs(200.0));
-    EXPECT_GT(normal.counts().down, 16u);
+    EXPECT_GT(Probe::counts(normal).down, 16u);
 }
 
 // Bookkeeping that no longer describes the system (a pair on the wrong terrace, as a missed event
@@ -509,11 +521,11 @@ TEST(Engine, APairBeyondItsTerraceIsReported) {
     Scene s = defaultScene();
     s.dmd["dV"] = 0.5;
     RodEngine e(turningPairInTheWell(), s);
-    e.runEvents(100); // consistent: runs
-    ASSERT_EQ(e.terrace(0, 1), -1);
-    e.overrideTerrace(0, 1, 0);
+    Probe::runEvents(e, 100); // consistent: runs
+    ASSERT_EQ(Probe::terrace(e, 0, 1), -1);
+    Probe::overrideTerrace(e, 0, 1, 0);
     try {
-        e.runEvents(100);
+        Probe::runEvents(e, 100);
         ADD_FAILURE() << "expected the missed event to be reported";
     } catch (const std::logic_error& err) {
         EXPECT_NE(std::string(err.what()).find("an event was missed"), std::string::npos)
@@ -531,10 +543,11 @@ template <class K, class P> void expectConservation(const Scene& s, const P& pot
     for (int k = 1; k <= 20; ++k) {
         e.advanceTo(units::fromFs(10.0 * k));
         // A missed crossing (a search or a hold screen trusting a wrong bound) shows here.
-        ASSERT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6 * e.levels().step())
+        ASSERT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e),
+                    1e-6 * Probe::levels(e).step())
             << K::name << " at " << 10 * k << " fs";
     }
-    EXPECT_GT(e.counts().up + e.counts().down, 100u) << K::name;
+    EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down, 100u) << K::name;
     EXPECT_NEAR(e.kineticEnergy() + e.potentialEnergy(), e0, energyTolerance * std::abs(e0))
         << K::name;
 }
@@ -568,7 +581,7 @@ TEST(Engine, HotLennardJonesGasWithoutAnAttractiveTerraceAdvances) {
     const double e0 = e.kineticEnergy() + e.potentialEnergy();
     e.advanceTo(units::fromFs(2000.0));
     EXPECT_EQ(e.time(), units::fromFs(2000.0));
-    EXPECT_GT(e.counts().up + e.counts().down, 40u);
+    EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down, 40u);
     EXPECT_NEAR(e.kineticEnergy() + e.potentialEnergy(), e0, energyTolerance * std::abs(e0));
 }
 
@@ -585,12 +598,12 @@ TEST(Engine, BookkeepingStaysBoundedWithoutCollisions) {
             s.dmd["queue"] = queue;
             s.dmd["invalidation"] = invalidation;
             RodEngine e(turningPairInTheWell(), s);
-            ASSERT_EQ(e.terrace(0, 1), -1);
-            e.runEvents(70000); // past the bounded queue's first retuning of its bins
-            const std::size_t early = e.bytesReserved();
-            e.runEvents(200000);
-            EXPECT_EQ(e.counts().virtualEvents, 270000u) << queue << ", " << invalidation;
-            EXPECT_LT(e.bytesReserved(), early + early / 10)
+            ASSERT_EQ(Probe::terrace(e, 0, 1), -1);
+            Probe::runEvents(e, 70000); // past the bounded queue's first retuning of its bins
+            const std::size_t early = Probe::bytesReserved(e);
+            Probe::runEvents(e, 200000);
+            EXPECT_EQ(Probe::counts(e).virtualEvents, 270000u) << queue << ", " << invalidation;
+            EXPECT_LT(Probe::bytesReserved(e), early + early / 10)
                 << queue << ", " << invalidation << ": grew from " << early;
         }
 }

@@ -7,10 +7,13 @@
 // reflections went on at one instant forever.
 #include "core/lj_potential.hpp"
 #include "core/sphere.hpp"
+#include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 using namespace terrace::dmdtest;
@@ -48,7 +51,7 @@ template <BodyKind K, PairPotential P>
 int checkPairsOnTheLevel(const dmd::Engine<K, P>& e, const System<K, P>& sys, double level,
                          double within) {
     int count = 0;
-    const dmd::TerraceLevels& levels = e.levels();
+    const dmd::TerraceLevels& levels = Probe::levels(e);
     for (int i = 0; i < sys.size(); ++i)
         for (int j = i + 1; j < sys.size(); ++j) {
             const auto &bi = sys.bodies[i], &bj = sys.bodies[j];
@@ -59,8 +62,9 @@ int checkPairsOnTheLevel(const dmd::Engine<K, P>& e, const System<K, P>& sys, do
             const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys.body),
                                      K::angularVelocity(bj, sys.body));
             const int expected = levels.terraceOf(level, rate);
-            EXPECT_EQ(e.terrace(i, j), expected) << "bodies " << i << ", " << j << ": U − level "
-                                                 << f.U - level << ", dU/dt " << rate;
+            EXPECT_EQ(Probe::terrace(e, i, j), expected)
+                << "bodies " << i << ", " << j << ": U − level " << f.U - level << ", dU/dt "
+                << rate;
         }
     return count;
 }
@@ -85,16 +89,16 @@ TEST(LatticeOnLevels, ReportedSceneRunsInEverySeed) {
         const double within = 1e-12;
         EXPECT_EQ(checkPairsOnTheLevel(e, sys, s.dmd["levels"][0].get<double>(), within), 1479)
             << seed;
-        e.setStallLimit(10000);
+        Probe::setStallLimit(e, 10000);
         runConserving(e, 1000.0);
-        EXPECT_GT(e.counts().down, 1000u) << seed;
+        EXPECT_GT(Probe::counts(e).down, 1000u) << seed;
     }
     for (const char* queue : {"heap", "bpq"}) {
         Scene s = ljOnLevels(500, 5);
         s.dmd["queue"] = queue;
         s.dmd["invalidation"] = "eager";
         LJEngine e(buildInitialState<Sphere, LJPotential>(s, ljPotential(s)), s);
-        e.setStallLimit(10000);
+        Probe::setStallLimit(e, 10000);
         runConserving(e, 300.0);
     }
 }
@@ -115,7 +119,7 @@ TEST(LatticeOnLevels, LennardJonesLatticeAtEachLevelsRadius) {
             EXPECT_EQ(checkPairsOnTheLevel(e, sys, s.dmd["levels"][level].get<double>(), 1e-12),
                       3 * 512)
                 << spacing;
-            e.setStallLimit(10000);
+            Probe::setStallLimit(e, 10000);
             runConserving(e, 200.0);
         }
 }
@@ -137,7 +141,7 @@ TEST(LatticeOnLevels, AlignedRodLatticeOnALevel) {
             s.dmd["levels"].push_back(level + 2.1 * k);
         RodEngine e(sys, s);
         EXPECT_EQ(checkPairsOnTheLevel(e, sys, level, 1e-12), 3 * 512);
-        e.setStallLimit(10000);
+        Probe::setStallLimit(e, 10000);
         runConserving(e, 200.0);
     }
 }

@@ -12,6 +12,7 @@
 //    do for the paper's rods, which run through the same checks as the reference.
 #include "core/initial_state.hpp"
 #include "dmd/engine.hpp"
+#include "dmd/testing.hpp"
 #include "smd/engine.hpp"
 #include <algorithm>
 #include <cmath>
@@ -19,6 +20,8 @@
 #include <gtest/gtest.h>
 #include <string>
 #include <vector>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 
@@ -102,15 +105,17 @@ TYPED_TEST(Models, DmdKeepsEnergyAndMomentaAndMissesNoEvent) {
     // Every 2 fs for 0.2 ps: the engine's terraced energy is the one recomputed from U.
     for (int k = 1; k <= 100; ++k) {
         e.advanceTo(units::fromFs(2.0 * k));
-        ASSERT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6 * e.levels().step())
+        ASSERT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e),
+                    1e-6 * Probe::levels(e).step())
             << k * 2 << " fs";
     }
-    e.runEvents(1000000);
-    EXPECT_GT(e.counts().up + e.counts().down + e.counts().reflect, 10000u);
+    Probe::runEvents(e, 1000000);
+    EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down + Probe::counts(e).reflect, 10000u);
     e.advanceTo(e.time() + units::fromFs(0.1)); // off the last event's level
     EXPECT_NEAR(totalEnergy(e), e0, 1e-10 * std::abs(e0));
     EXPECT_LT(e.totalMomentum().norm(), 1e-10);
-    EXPECT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6 * e.levels().step());
+    EXPECT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e),
+                1e-6 * Probe::levels(e).step());
 }
 
 // The hold screen (the rods' bands; the site models' own energy ranges; none for Gay–Berne) only
@@ -120,18 +125,19 @@ TYPED_TEST(Models, HoldScreenChangesNoCollision) {
     const Scene s = modelScene(M::scene);
     const Bodies<M> start = meltedStart<M>(s);
     Dmd<M> screened(start, s), searched(start, s);
-    searched.setHoldScreen(false);
+    Probe::setHoldScreen(searched, false);
     for (int k = 1; k <= 100; ++k) {
         screened.advanceTo(units::fromFs(2.0 * k));
         searched.advanceTo(units::fromFs(2.0 * k));
-        ASSERT_EQ(screened.counts().up, searched.counts().up) << k * 2 << " fs";
-        ASSERT_EQ(screened.counts().down, searched.counts().down) << k * 2 << " fs";
-        ASSERT_EQ(screened.counts().reflect, searched.counts().reflect) << k * 2 << " fs";
+        ASSERT_EQ(Probe::counts(screened).up, Probe::counts(searched).up) << k * 2 << " fs";
+        ASSERT_EQ(Probe::counts(screened).down, Probe::counts(searched).down) << k * 2 << " fs";
+        ASSERT_EQ(Probe::counts(screened).reflect, Probe::counts(searched).reflect)
+            << k * 2 << " fs";
     }
     if constexpr (RangeBounded<Model<M>>) {
         // It spares virtual events: here 45–80 % of all events (fewer for the hot, just melted
         // three-site molecules than for the others).
-        EXPECT_LT(screened.counts().total(), 3 * searched.counts().total() / 4)
+        EXPECT_LT(Probe::counts(screened).total(), 3 * Probe::counts(searched).total() / 4)
             << "the screen should spare virtual events";
     }
 }

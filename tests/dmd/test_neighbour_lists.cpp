@@ -3,6 +3,7 @@
 // since their lists were built. A pair missing there would have its events silently skipped.
 // And their storage against a plain model: lists in records and spills, and the terraces beside
 // the partners, kept through rebuilds.
+#include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <algorithm>
 #include <gtest/gtest.h>
@@ -11,19 +12,21 @@
 #include <utility>
 #include <vector>
 
+using terrace::dmd::testing::Probe;
+
 using namespace terrace;
 using namespace terrace::dmdtest;
 
 namespace {
 
 bool listed(const RodEngine& e, int i, int j) {
-    const auto p = e.listedPartners(i); // in the scene's numbering, as system()'s
+    const auto p = Probe::listedPartners(e, i); // in the scene's numbering, as system()'s
     return std::find(p.begin(), p.end(), j) != p.end();
 }
 
 void expectEveryClosePairListed(const RodEngine& e) {
     const RodSystem s = e.system();
-    const double rm = e.interactionRange();
+    const double rm = Probe::interactionRange(e);
     int close = 0;
     for (int i = 0; i < s.size(); ++i)
         for (int j = 0; j < s.size(); ++j) {
@@ -42,13 +45,13 @@ TEST(NeighbourLists, EveryPairInsideRangeIsListedAsBodiesMove) {
     // 216 rods at the paper's dense state: 3 cells per side, so the lists come from the cells.
     const Scene s = rodScene(216, 0.5, 1.4, 0.5);
     RodEngine e(rodSystem(s), s);
-    ASSERT_GE(e.cellsPerSide(), 3);
+    ASSERT_GE(Probe::cellsPerSide(e), 3);
     expectEveryClosePairListed(e);
     for (int k = 0; k < 20; ++k) {
-        e.runEvents(5000);
+        Probe::runEvents(e, 5000);
         expectEveryClosePairListed(e);
     }
-    EXPECT_GT(e.counts().relist, 216u); // the lists were rebuilt along the way
+    EXPECT_GT(Probe::counts(e).relist, 216u); // the lists were rebuilt along the way
 }
 
 // The rebuild distance against the worst case of lists rebuilt one body at a time, on a line:

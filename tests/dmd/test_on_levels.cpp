@@ -5,9 +5,12 @@
 #include "core/lj_potential.hpp"
 #include "core/sphere.hpp"
 #include "dmd/engine.hpp"
+#include "dmd/testing.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 using namespace terrace::dmd;
@@ -83,13 +86,14 @@ TEST(OnLevels, APairAtRestOnALevelTakesTheTerraceAboveAndStays) {
             for (int k = 0; k < std::abs(ulps); ++k)
                 level = std::nextafter(level, ulps > 0 ? 1.0 : -1.0);
             LJEngine e(sys, sceneWithLowestLevel(level));
-            const int above = e.levels().terraceOf(level, 0.0);
-            EXPECT_EQ(e.terrace(0, 1), above) << ulps;
+            const int above = Probe::levels(e).terraceOf(level, 0.0);
+            EXPECT_EQ(Probe::terrace(e, 0, 1), above) << ulps;
             const double e0 = totalEnergy(e);
             e.advanceTo(units::fromFs(200.0));
             EXPECT_EQ(e.time(), units::fromFs(200.0));
-            EXPECT_EQ(e.counts().up + e.counts().down + e.counts().reflect, 0u) << ulps;
-            EXPECT_EQ(e.terrace(0, 1), above);
+            EXPECT_EQ(Probe::counts(e).up + Probe::counts(e).down + Probe::counts(e).reflect, 0u)
+                << ulps;
+            EXPECT_EQ(Probe::terrace(e, 0, 1), above);
             EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
         }
 }
@@ -111,21 +115,21 @@ TEST(OnLevels, ABoundPairSlidingAlongItsLevelIsReflectedNotStuck) {
             for (int k = 0; k < std::abs(ulps); ++k)
                 level = std::nextafter(level, ulps > 0 ? 1.0 : -1.0);
             LJEngine e(sys, sceneWithLowestLevel(level));
-            const int well = e.levels().lowestTerrace();
+            const int well = Probe::levels(e).lowestTerrace();
             // A zero rate heads upwards by the rule: put the pair in the well by hand (on the
             // level either terrace describes it), as a neighbour's impulse can leave it.
             if (inwards == 0.0) {
-                e.overrideTerrace(0, 1, well);
-                e.setHoldScreen(true); // predicts every pair afresh
+                Probe::overrideTerrace(e, 0, 1, well);
+                Probe::setHoldScreen(e, true); // predicts every pair afresh
             }
-            ASSERT_EQ(e.terrace(0, 1), well) << inwards << " " << ulps;
+            ASSERT_EQ(Probe::terrace(e, 0, 1), well) << inwards << " " << ulps;
             const double e0 = totalEnergy(e);
-            e.setStallLimit(1000);
+            Probe::setStallLimit(e, 1000);
             e.advanceTo(units::fromFs(20.0));
             EXPECT_EQ(e.time(), units::fromFs(20.0));
-            EXPECT_GT(e.counts().reflect, 0u);
-            EXPECT_EQ(e.counts().up, 0u); // a grazing pair cannot climb
-            EXPECT_EQ(e.terrace(0, 1), well);
+            EXPECT_GT(Probe::counts(e).reflect, 0u);
+            EXPECT_EQ(Probe::counts(e).up, 0u); // a grazing pair cannot climb
+            EXPECT_EQ(Probe::terrace(e, 0, 1), well);
             const auto now = e.system();
             EXPECT_LE(startU(now), level + 1e-9);
             EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
@@ -157,10 +161,11 @@ TEST(OnLevels, APairPassingTangentToALevelGoesOn) {
             s.dmd["levels"][p.level] = level;
             LJEngine e(sys, s);
             const double e0 = totalEnergy(e);
-            e.setStallLimit(1000);
+            Probe::setStallLimit(e, 1000);
             e.advanceTo(units::fromFs(600.0)); // closest approach at 100 p.x0 fs
             EXPECT_EQ(e.time(), units::fromFs(600.0));
-            EXPECT_EQ(e.potentialEnergy(), e.terracedEnergyFromScratch()) << p.b << " " << ulps;
+            EXPECT_EQ(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e))
+                << p.b << " " << ulps;
             EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
         }
 }

@@ -3,10 +3,13 @@
 #include "core/lj_potential.hpp"
 #include "core/sphere.hpp"
 #include "dmd/engine.hpp"
+#include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 using terrace::dmdtest::innerRoot;
@@ -47,7 +50,7 @@ TEST(Pressure, ReflectionAddsTheHandComputedImpulseVirial) {
     auto e = headOn(3.0, u, {30.0, 60.0});
     EXPECT_EQ(e.virial(), 0.0);
     e.advanceTo(10.0);
-    ASSERT_EQ(e.counts().reflect, 1u);
+    ASSERT_EQ(Probe::counts(e).reflect, 1u);
     const double d = innerRoot(30.0, 3.0, 3.035);
     EXPECT_NEAR(e.virial(), d * 2.0 * m * u, virialTol * d * m * u);
 }
@@ -66,9 +69,9 @@ TEST(Pressure, TransmissionsAddTheHandComputedImpulseVirial) {
     ASSERT_LT(dE, 0.0);
     const double d = outerRoot(L0, 3.0, 3.035);
     e.advanceTo(0.99 * (6.0 - 0.5 * d) / u); // just before the pair reaches d
-    ASSERT_EQ(e.counts().down, 0u);
+    ASSERT_EQ(Probe::counts(e).down, 0u);
     e.advanceTo(1.01 * (6.0 - 0.5 * d) / u);
-    ASSERT_EQ(e.counts().down, 1u);
+    ASSERT_EQ(Probe::counts(e).down, 1u);
     const double w = 2.0 * u, w1 = std::sqrt(w * w - 2.0 * dE / mu);
     EXPECT_NEAR(e.virial(), -d * mu * (w1 - w), virialTol * d * mu * w);
 }

@@ -8,8 +8,11 @@
 #include "core/lj_potential.hpp"
 #include "core/smoothed_potential.hpp"
 #include "core/sphere.hpp"
+#include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <gtest/gtest.h>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 using namespace terrace::dmdtest;
@@ -41,12 +44,12 @@ TEST(SmoothedModel, SameEventsAsTheBarePotentialWhileTheSwitchLiesBeyondRm) {
     const Scene s = rodScene(256, 0.5, 1.4, 0.5);
     ModelEngine smoothed(buildInitialState<LinearRotor>(s, modelOf(s)), s);
     RodEngine bare(rodSystem(s), s);
-    ASSERT_LT(smoothed.interactionRange(), s.potential.r_l * s.potential.sigma);
-    EXPECT_EQ(smoothed.interactionRange(), bare.interactionRange());
+    ASSERT_LT(Probe::interactionRange(smoothed), s.potential.r_l * s.potential.sigma);
+    EXPECT_EQ(Probe::interactionRange(smoothed), Probe::interactionRange(bare));
     smoothed.advanceTo(units::fromPs(0.5));
     bare.advanceTo(units::fromPs(0.5));
-    EXPECT_EQ(smoothed.counts().total(), bare.counts().total());
-    EXPECT_EQ(smoothed.counts().up, bare.counts().up);
+    EXPECT_EQ(Probe::counts(smoothed).total(), Probe::counts(bare).total());
+    EXPECT_EQ(Probe::counts(smoothed).up, Probe::counts(bare).up);
     EXPECT_EQ(smoothed.statistics()["search_evaluations"], bare.statistics()["search_evaluations"]);
     const auto a = smoothed.system();
     const auto b = bare.system();
@@ -60,16 +63,17 @@ TEST(SmoothedModel, LevelsInTheSwitchKeepEnergyMomentaAndMissNoEvent) {
     const Scene s = switchScene(256, 1.3, 1.8);
     ModelEngine e(buildInitialState<LinearRotor>(s, modelOf(s)), s);
     const double rl = s.potential.r_l * s.potential.sigma;
-    ASSERT_GT(e.interactionRange(), rl); // levels lie in the switch
-    ASSERT_LT(e.interactionRange(),
+    ASSERT_GT(Probe::interactionRange(e), rl); // levels lie in the switch
+    ASSERT_LT(Probe::interactionRange(e),
               rodPotential(s).reachDistance(-0.5 * s.dmd["dV"].get<double>() * s.kT()));
     const double e0 = totalEnergy(e);
     for (int k = 1; k <= 500; ++k) { // 1 ps, some 2·10⁴ transmissions
         e.advanceTo(units::fromFs(2.0 * k));
-        ASSERT_NEAR(e.potentialEnergy(), e.terracedEnergyFromScratch(), 1e-6 * e.levels().step())
+        ASSERT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e),
+                    1e-6 * Probe::levels(e).step())
             << 2 * k << " fs";
     }
-    EXPECT_GT(e.counts().up + e.counts().down, 10000u);
+    EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down, 10000u);
     EXPECT_NEAR(totalEnergy(e), e0, 1e-10 * std::abs(e0));
     EXPECT_LT(e.totalMomentum().norm(), 1e-10);
 }
@@ -80,11 +84,11 @@ TEST(SmoothedModel, HoldScreenWithTheCeilingChangesNoCollision) {
     const Scene s = switchScene(512, 1.3, 1.8);
     ModelEngine screened(buildInitialState<LinearRotor>(s, modelOf(s)), s),
         searched(buildInitialState<LinearRotor>(s, modelOf(s)), s);
-    screened.setHoldScreen(true);
-    searched.setHoldScreen(false);
+    Probe::setHoldScreen(screened, true);
+    Probe::setHoldScreen(searched, false);
     expectSameCollisions(screened, searched, 50);
     if (HasFatalFailure()) return;
-    EXPECT_GT(screened.counts().up + screened.counts().down, 1000u);
+    EXPECT_GT(Probe::counts(screened).up + Probe::counts(screened).down, 1000u);
     const auto evaluations = [](const ModelEngine& e) {
         return e.statistics()["search_evaluations"].get<double>();
     };
@@ -114,10 +118,10 @@ dmd::Engine<Sphere, Smoothed<LJPotential>> grazingPass(double b, double L0) {
 
 template <class E> bool runToNextCollision(E& engine, int maxEvents) {
     const auto collisions = [](const dmd::EventCounts& c) { return c.up + c.down + c.reflect; };
-    const auto before = collisions(engine.counts());
+    const auto before = collisions(Probe::counts(engine));
     for (int k = 0; k < maxEvents; ++k) {
-        engine.runEvents(1);
-        if (collisions(engine.counts()) > before) return true;
+        Probe::runEvents(engine, 1);
+        if (collisions(Probe::counts(engine)) > before) return true;
     }
     return false;
 }
@@ -134,7 +138,7 @@ TEST(SmoothedModel, GrazingDipBelowALevelInTheSwitchIsCaughtAndOneAboveIsNot) {
     {
         auto engine = grazingPass(b, Ub * (1.0 - dip)); // level just above the minimum
         ASSERT_TRUE(runToNextCollision(engine, 100000));
-        EXPECT_EQ(engine.counts().down, 1u);
+        EXPECT_EQ(Probe::counts(engine).down, 1u);
         EXPECT_NEAR(engine.time(), 8.0 / 0.3, 0.05); // near closest approach
     }
     {

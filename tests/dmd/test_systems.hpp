@@ -5,9 +5,12 @@
 #include "core/linear_rotor.hpp"
 #include "core/rod_potential.hpp"
 #include "dmd/engine.hpp"
+#include "dmd/testing.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <random>
+
+using terrace::dmd::testing::Probe;
 
 namespace terrace::dmdtest {
 
@@ -73,9 +76,9 @@ template <class E> void expectSameCollisions(E& a, E& b, int samples) {
     for (int k = 1; k <= samples; ++k) {
         a.advanceTo(units::fromFs(2.0 * k));
         b.advanceTo(units::fromFs(2.0 * k));
-        ASSERT_EQ(a.counts().up, b.counts().up) << k * 2 << " fs";
-        ASSERT_EQ(a.counts().down, b.counts().down) << k * 2 << " fs";
-        ASSERT_EQ(a.counts().reflect, b.counts().reflect) << k * 2 << " fs";
+        ASSERT_EQ(Probe::counts(a).up, Probe::counts(b).up) << k * 2 << " fs";
+        ASSERT_EQ(Probe::counts(a).down, Probe::counts(b).down) << k * 2 << " fs";
+        ASSERT_EQ(Probe::counts(a).reflect, Probe::counts(b).reflect) << k * 2 << " fs";
     }
 }
 

@@ -11,10 +11,13 @@
 #include "dmd/engine.hpp"
 #include "dmd/settings.hpp"
 #include "dmd/terrace_design.hpp"
+#include "dmd/testing.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <numbers>
 #include <vector>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 using namespace terrace::dmd;
@@ -216,7 +219,7 @@ TEST(TerraceDesignEngine, UnequalStepsConserveEnergyAndMomentumToRoundOff) {
         using Model = Smoothed<LJPotential>;
         const Model model{ljPotential(s), sceneCutoff(s)};
         dmd::Engine<Sphere, Model> e(buildInitialState<Sphere, Model>(s, model), s);
-        ASSERT_FALSE(e.levels().isUniform());
+        ASSERT_FALSE(Probe::levels(e).isUniform());
         const double e0 = e.kineticEnergy() + e.potentialEnergy();
         const Vec3 p0 = e.totalMomentum();
         double scale = 0.0;             // the size of the energies that cancel
@@ -228,7 +231,8 @@ TEST(TerraceDesignEngine, UnequalStepsConserveEnergyAndMomentumToRoundOff) {
             EXPECT_LT((e.totalMomentum() - p0).norm(), kMomentumRoundoff * std::sqrt(scale))
                 << spec;
         }
-        EXPECT_GT(e.counts().up + e.counts().down, 2000u) << spec; // thousands of crossings
+        EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down, 2000u)
+            << spec; // thousands of crossings
     }
 }
 

@@ -5,10 +5,13 @@
 #include "core/rod_potential.hpp"
 #include "core/sphere.hpp"
 #include "dmd/engine.hpp"
+#include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
+
+using terrace::dmd::testing::Probe;
 
 using namespace terrace;
 using namespace terrace::dmd;
@@ -36,11 +39,11 @@ Scene sceneWithDV(double dVInKT) {
 
 /// Runs single events until the next collision (up, down or reflection); false if none comes.
 template <class E> bool runToNextCollision(E& engine, int maxEvents = 100000) {
-    const auto before = engine.counts();
+    const auto before = Probe::counts(engine);
     const auto collisions = [](const EventCounts& c) { return c.up + c.down + c.reflect; };
     for (int k = 0; k < maxEvents; ++k) {
-        engine.runEvents(1);
-        if (collisions(engine.counts()) > collisions(before)) return true;
+        Probe::runEvents(engine, 1);
+        if (collisions(Probe::counts(engine)) > collisions(before)) return true;
     }
     return false;
 }
@@ -90,11 +93,11 @@ TEST(TwoBody, ParallelRodsHeadOnFollowTheSteppedPotential) {
     double t = 0.0, r = r0, rdot = -2.0 * u;
     for (std::size_t k = 0; k < steps.size(); ++k) {
         SCOPED_TRACE("collision " + std::to_string(k));
-        const EventCounts before = engine.counts();
+        const EventCounts before = Probe::counts(engine);
         ASSERT_TRUE(runToNextCollision(engine));
         t += (steps[k].r - r) / rdot;
         r = steps[k].r;
-        const EventCounts& after = engine.counts();
+        const EventCounts& after = Probe::counts(engine);
         EXPECT_EQ(after.up - before.up, steps[k].outcome == Outcome::Up ? 1u : 0u);
         EXPECT_EQ(after.down - before.down, steps[k].outcome == Outcome::Down ? 1u : 0u);
         EXPECT_EQ(after.reflect - before.reflect, steps[k].outcome == Outcome::Reflect ? 1u : 0u);
@@ -111,9 +114,9 @@ TEST(TwoBody, ParallelRodsHeadOnFollowTheSteppedPotential) {
     }
     EXPECT_EQ(engine.potentialEnergy(), 0.0); // back on terrace 0, flying apart
     // Free flight until the periodic images could meet: no event but virtual and cell ones.
-    const EventCounts before = engine.counts();
-    engine.advanceTo(t + 0.9 * (sys.box.length - 2.0 * engine.interactionRange()) / rdot);
-    EXPECT_EQ(engine.counts().up + engine.counts().down + engine.counts().reflect,
+    const EventCounts before = Probe::counts(engine);
+    engine.advanceTo(t + 0.9 * (sys.box.length - 2.0 * Probe::interactionRange(engine)) / rdot);
+    EXPECT_EQ(Probe::counts(engine).up + Probe::counts(engine).down + Probe::counts(engine).reflect,
               before.up + before.down + before.reflect);
 }
 
@@ -148,7 +151,7 @@ TEST(TwoBody, GrazingDipBelowALevelIsCaughtAndOneAboveIsNot) {
     {
         auto engine = grazingPass(b, Ub * (1.0 - dip)); // level just above the minimum
         ASSERT_TRUE(runToNextCollision(engine));
-        EXPECT_EQ(engine.counts().down, 1u);
+        EXPECT_EQ(Probe::counts(engine).down, 1u);
         EXPECT_NEAR(engine.time(), 8.0 / 0.3, closestApproachTol);
     }
     {
