@@ -33,20 +33,30 @@
 // relative to t_j: x shifts by the constant δ = r(t_{j+1}) − r(t_j) over block j + 1's W
 // samples, which adds δ·U to its transform, U that of W ones (exact but for round-off).
 //
+// Two real series that add to the same sum with the same weight travel as one complex series
+// z = a + ib in one complex transform (v_x + i v_y, s_x + i s_y, Q00 + i Q11, Q01 + i Q02,
+// x_x + i x_y): Re Σ conj(z(t0)) z(t0 + k) = Σ a(t0) a(t0 + k) + b(t0) b(t0 + k), the cross terms
+// being imaginary, and the real part of an inverse is the inverse of the spectrum's Hermitian
+// part. The five left (v_z, s_z, Q22, Q12, x_z) go alone, with W + 1 of their bins kept. Ten
+// complex transforms of 2W points cost less than fifteen real ones: FFTW's complex codelets are
+// vectorised, its real ones not.
+//
 // Origins are split where a block straddles the boundary of a fine block of origins (the raw
 // material of the error bars, curves.hpp), each part transformed on its own against the shared
 // window, so the sums per fine block are those of the direct sums. The MSD's blocks are groups of
 // bodies.
 //
-// Memory: 2W samples × 9 doubles and one block's transforms (15 × (W + 1) complex) per followed
-// body, and the sums' spectra; independent of the run's length. Work per block and body: 15 real
-// FFTs of 2W points and 15 products of W + 1 bins, against 3 + 3 + 1 + 3 products per lag and
-// sample for the direct sums over the same lags (reference/direct_correlations.hpp);
-// bench/bench_analysis.cpp measures the product's cost per sample.
+// Memory: 2W samples × 9 doubles and one block's transforms (5 × 2W + 5 × (W + 1) complex) per
+// followed body, and the sums' spectra; independent of the run's length. Work per block and
+// body: ten complex FFTs of 2W points and the products over their bins, against 3 + 3 + 1 + 3
+// products per lag and sample for the direct sums over the same lags
+// (reference/direct_correlations.hpp); bench/bench_analysis.cpp measures the product's cost
+// per sample.
 #include "core/snapshot.hpp"
 #include <complex>
 #include <cstddef>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace terrace::analysis {
@@ -87,23 +97,35 @@ private:
     void completeBlock(long j);
     /// Transforms, for bodies first … first + count − 1, samples [from, to) of the block that
     /// starts at `begin` (at points from − begin …, zeros elsewhere), positions relative to
-    /// sample `ref`.
-    void transform(int first, int count, long begin, long from, long to, long ref) const;
+    /// sample `ref`. With previous ≥ 0, adds the MSD's squares of the block relative to ref and
+    /// to previous (the block's first sample and the block's before).
+    void transform(int first, int count, long begin, long from, long to, long ref,
+                   long previous = -1) const;
+    /// Copies the transforms of `count` bodies from FFTW's layout into the kept one.
+    void keep(const std::complex<double>* full, int count, std::complex<double>* kept) const;
     /// Adds the cross-spectra of a block's origins (spectra a, whole block) against its window's
     /// spectra y, for bodies first … first + count − 1.
     void addOrigins(int first, int count, const std::vector<Part>& parts, long ref,
                     const std::complex<double>* a, const std::complex<double>* y,
                     Spectra& to) const;
-    /// Adds the MSD's squares and the origin counts of origins [begin, end) whose window runs
-    /// from sample ref to windowEnd (positions relative to sample ref).
+    /// The MSD's squares of the window from sample ref to windowEnd, relative to sample ref.
+    void ringSquares(long ref, long windowEnd) const;
+    /// Adds the MSD's squares (of the window from sample ref to windowEnd, made by transform or
+    /// ringSquares) and the origin counts of a block's origins.
     void addSquares(const std::vector<Part>& parts, long ref, long windowEnd, Spectra& to) const;
     LagSums invert(const Spectra& s) const;
+    /// Index in ring_ of sample t's row 0 for body k (rows every `chunk` doubles).
+    std::size_t at(long t, int k) const;
+    /// The two sums of products (addProduct) that a channel adds to.
+    std::pair<double*, double*> sumsOf(Spectra& to, int channel, int fine, int group) const;
 
     int m_, w_, lags_, fine_, groups_;
     long planned_, seen_ = 0;
-    std::vector<double> ring_;                   // 2W slots × 9 rows (v, s, r) × M bodies
+    // Per chunk of bodies transformed together: 2W slots × 9 rows (v, s, r) × the chunk's
+    // bodies, so that a chunk's window lies in one stretch of memory.
+    std::vector<double> ring_;
     std::vector<int> group_, groupBegin_;        // the MSD's group of each body; group starts
-    std::vector<std::complex<double>> spectrum_; // M × 15 × (W + 1): the last complete block's
+    std::vector<std::complex<double>> spectrum_; // M × kept: the last complete block's
     std::unique_ptr<Spectra> sums_;              // of the blocks whose windows are complete
     std::unique_ptr<Fft> fft_;
 };
