@@ -201,7 +201,7 @@ WindowedCorrelation::WindowedCorrelation(int followed, int window, int lags, lon
         groups > followed || plannedSamples < 1)
         throw std::invalid_argument("windowed correlation: need bodies, 1 ≤ lags ≤ W, fine "
                                     "blocks and 1 ≤ groups ≤ bodies");
-    ring_.assign(std::size_t((m_ + chunk - 1) / chunk) * chunk * 2 * w_ * rows, 0.0);
+    ring_.assign(std::size_t(2 * w_) * rows * m_, 0.0);
     for (int k = 0; k < m_; ++k) // group b holds bodies ⌊bM/G⌋ … ⌊(b+1)M/G⌋ − 1
         group_.push_back(static_cast<int>((long(k) * groups_ + groups_ - 1) / m_));
     groupBegin_.assign(groups_ + 1, m_);
@@ -222,22 +222,19 @@ WindowedCorrelation::WindowedCorrelation(int followed, int window, int lags, lon
 WindowedCorrelation::~WindowedCorrelation() = default;
 
 std::size_t WindowedCorrelation::at(long t, int k) const {
-    return (std::size_t(k / chunk) * 2 * w_ + std::size_t(t % (2 * w_))) * rows * chunk + k % chunk;
+    return std::size_t(t % (2 * w_)) * rows * m_ + k;
 }
 
 void WindowedCorrelation::add(const Snapshot& frame, const int* index) {
-    const std::size_t step = std::size_t(2 * w_) * rows * chunk; // from one chunk to the next
-    double* slot = ring_.data() + at(seen_, 0);
-    for (int first = 0; first < m_; first += chunk, slot += step)
-        for (int c = 0; c < chunk && first + c < m_; ++c) {
-            const int i = index ? index[first + c] : first + c;
-            const Vec3 &v = frame.velocity[i], &s = frame.axis[i], &r = frame.position[i];
-            for (int a = 0; a < 3; ++a) {
-                slot[(0 + a) * chunk + c] = v[a];
-                slot[(3 + a) * chunk + c] = s[a];
-                slot[(6 + a) * chunk + c] = r[a];
-            }
+    double* row = ring_.data() + at(seen_, 0);
+    for (int k = 0; k < m_; ++k) {
+        const int i = index ? index[k] : k;
+        for (int a = 0; a < 3; ++a) {
+            row[(0 + a) * m_ + k] = frame.velocity[i][a];
+            row[(3 + a) * m_ + k] = frame.axis[i][a];
+            row[(6 + a) * m_ + k] = frame.position[i][a];
         }
+    }
     ++seen_;
     if (seen_ % w_ == 0) completeBlock(seen_ / w_ - 1);
 }
@@ -267,8 +264,8 @@ void WindowedCorrelation::transform(int first, int count, long begin, long from,
         double* __restrict later = f.squares[group_[k]].data() + w_;
         const double* origin = ring_.data() + at(ref, k);
         const double* before = ring_.data() + at(std::max(previous, 0L), k);
-        const double r0[3] = {origin[6 * chunk], origin[7 * chunk], origin[8 * chunk]};
-        const double p0[3] = {before[6 * chunk], before[7 * chunk], before[8 * chunk]};
+        const double r0[3] = {origin[6 * m_], origin[7 * m_], origin[8 * m_]};
+        const double p0[3] = {before[6 * m_], before[7 * m_], before[8 * m_]};
         for (int t = 0; t < w_; ++t) {
             double* __restrict out = in + 2 * t;
             if (t < inFrom || t >= inTo) {
@@ -281,9 +278,9 @@ void WindowedCorrelation::transform(int first, int count, long begin, long from,
             const double* row = ring_.data() + at(begin + t, k);
             double v[3], s[3], x[3], r[3];
             for (int a = 0; a < 3; ++a) {
-                v[a] = row[a * chunk];
-                s[a] = row[(3 + a) * chunk];
-                r[a] = row[(6 + a) * chunk];
+                v[a] = row[a * m_];
+                s[a] = row[(3 + a) * m_];
+                r[a] = row[(6 + a) * m_];
                 x[a] = r[a] - r0[a];
             }
             out[0] = v[0], out[1] = v[1], out[5 * z] = v[2];
@@ -367,8 +364,7 @@ void WindowedCorrelation::ringSquares(long ref, long windowEnd) const {
             double x2 = 0.0;
             for (int k = groupBegin_[g]; k < groupBegin_[g + 1]; ++k)
                 for (int a = 6; a < 9; ++a) {
-                    const double x =
-                        ring_[at(ref + t, k) + a * chunk] - ring_[at(ref, k) + a * chunk];
+                    const double x = ring_[at(ref + t, k) + a * m_] - ring_[at(ref, k) + a * m_];
                     x2 += x * x;
                 }
             f.squares[g][t] = x2;
@@ -407,7 +403,7 @@ void WindowedCorrelation::completeBlock(long j) {
     const std::vector<Part> cut = j >= 1 ? parts(previous, begin) : std::vector<Part>{};
     Spectra& to = *sums_;
     const auto shift = [&](int k, int a) { // r_a(t_j) − r_a(t_{j−1})
-        return ring_[at(begin, k) + (6 + a) * chunk] - ring_[at(previous, k) + (6 + a) * chunk];
+        return ring_[at(begin, k) + (6 + a) * m_] - ring_[at(previous, k) + (6 + a) * m_];
     };
     // The MSD's squares over block j − 1's window relative to its first sample: block j − 1's
     // own, kept from its transform, then block j's, made with its transform.
