@@ -26,7 +26,8 @@
 // Large systems: the time correlations follow at most `followBodies` bodies, evenly spread over
 // the index range (all when N is no larger), so that their memory stays fixed as N grows. The
 // curves are then averages over those bodies, and their block errors say what that leaves.
-// Memory: (levels − 1) × p × 9 doubles per followed body, and 2p × 9 for the FFT windows.
+// Memory: (levels − 1) × p × 9 doubles per followed body, and for the FFT windows 2p × 9 and
+// one block's transforms (windowed_correlation.hpp).
 #include "analysis/curves.hpp"
 #include "analysis/windowed_correlation.hpp"
 #include "core/snapshot.hpp"

@@ -10,65 +10,186 @@ namespace {
 
 using Complex = std::complex<double>;
 
-constexpr int rows = 9;    // v, s, r: three components each, per sample and body
-constexpr int series = 15; // v_a, s_a, Q_ab (six), x_a
-constexpr int chunk = 4;    // bodies transformed together: the scratch stays near L1
-constexpr int firstQ = 6, firstX = 12;
-/// Weight of Q_ab in Σ_ab Q_ab(0) Q_ab(t), in the order Q00 Q01 Q02 Q11 Q12 Q22.
-constexpr double qWeight[6] = {1.0, 2.0, 2.0, 1.0, 2.0, 1.0};
+constexpr int rows = 9;      // v, s, r: three components each, per sample and body
+constexpr int channels = 10; // complex series per body: five pairs, then five real ones
+constexpr int pairs = 5;
+constexpr int chunk = 4; // bodies transformed together: the scratch stays near L1
+/// The channels' sums: vv, ss, s2 (per fine block), msd (per group), and their weights. Pairs:
+/// v_x + i v_y, s_x + i s_y, Q00 + i Q11, Q01 + i Q02, x_x + i x_y; then v_z, s_z, Q22, Q12, x_z
+/// (Q_ab = s_a s_b; Σ_ab Q_ab(0) Q_ab(t) counts the off-diagonal pairs twice).
+constexpr int quantityOf[channels] = {0, 1, 2, 2, 3, 0, 1, 2, 2, 3};
+constexpr double weightOf[channels] = {1.0, 1.0, 1.0, 2.0, 1.0, 1.0, 1.0, 1.0, 2.0, 1.0};
+constexpr int msdPair = 4, msdSingle = 9;
+
+/// Two doubles, one complex number (re, im): SSE2 on x86-64, NEON on AArch64.
+typedef double Pair __attribute__((vector_size(16)));
+
+Pair load(const double* p) {
+    Pair v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+}
+void store(double* p, Pair v) {
+    __builtin_memcpy(p, &v, sizeof v);
+}
+Pair swapped(Pair v) {
+    return Pair{v[1], v[0]};
+}
+
+/// conj(a)·y summed into (re·re, im·im) and (re·im, im·re) products per bin, so that the sums
+/// run on whole vectors: Re = s1[0] + s1[1], Im = s2[0] − s2[1] (Spectra::complexAt).
+void addProduct(const Complex* a, const Complex* y, int bins, double weight, double* s1,
+                double* s2) {
+    const double* as = reinterpret_cast<const double*>(a);
+    const double* ys = reinterpret_cast<const double*>(y);
+    for (int b = 0; b < 2 * bins; b += 2) {
+        const Pair p = load(as + b), v = load(ys + b);
+        store(s1 + b, load(s1 + b) + weight * (p * v));
+        store(s2 + b, load(s2 + b) + weight * (p * swapped(v)));
+    }
+}
+
+/// Block j's window, its cross-spectrum and the next kept transform in one pass over a channel:
+/// y = A_j + (−1)^f (A_{j+1} + δ·U), sums += weight · conj(A_j)·y, A_j ← A_{j+1}. δ = dr + i di,
+/// U and i·U interleaved (re, im) per bin.
+template <bool shifted>
+void addWindow(double* kept, const double* next, int bins, double weight, const double* sign,
+               double dr, double di, const double* u, const double* iu, double* s1, double* s2) {
+    for (int b = 0; b < 2 * bins; b += 2) {
+        const Pair p = load(kept + b), q = load(next + b);
+        Pair z = q;
+        if constexpr (shifted) z = z + dr * load(u + b) + di * load(iu + b);
+        const Pair v = p + sign[b / 2] * z;
+        store(s1 + b, load(s1 + b) + weight * (p * v));
+        store(s2 + b, load(s2 + b) + weight * (p * swapped(v)));
+        store(kept + b, q);
+    }
+}
+
+/// addWindow<false> for the `count` bodies of a chunk that add to the same sums: their products
+/// summed first (kept and next: one body's channel every `stride` doubles). Two bins at a time,
+/// (−1)^f = +1 and −1.
+template <int count>
+void addWindows(double* kept, std::size_t keptStride, const double* next, std::size_t nextStride,
+                int bins, double weight, double* s1, double* s2) {
+    int b = 0;
+    for (; b + 4 <= 2 * bins; b += 4) {
+        Pair e1 = {0.0, 0.0}, e2 = e1, o1 = e1, o2 = e1;
+#pragma GCC unroll 4
+        for (int c = 0; c < count; ++c) {
+            double* k = kept + c * keptStride + b;
+            const double* q = next + c * nextStride + b;
+            const Pair pe = load(k), qe = load(q), po = load(k + 2), qo = load(q + 2);
+            const Pair ve = pe + qe, vo = po - qo;
+            e1 += pe * ve, e2 += pe * swapped(ve), o1 += po * vo, o2 += po * swapped(vo);
+            store(k, qe), store(k + 2, qo);
+        }
+        store(s1 + b, load(s1 + b) + weight * e1), store(s2 + b, load(s2 + b) + weight * e2);
+        store(s1 + b + 2, load(s1 + b + 2) + weight * o1);
+        store(s2 + b + 2, load(s2 + b + 2) + weight * o2);
+    }
+    if (b < 2 * bins) { // an odd number of bins: the last one even
+        Pair e1 = {0.0, 0.0}, e2 = e1;
+        for (int c = 0; c < count; ++c) {
+            double* k = kept + c * keptStride + b;
+            const Pair p = load(k), q = load(next + c * nextStride + b), v = p + q;
+            e1 += p * v, e2 += p * swapped(v);
+            store(k, q);
+        }
+        store(s1 + b, load(s1 + b) + weight * e1), store(s2 + b, load(s2 + b) + weight * e2);
+    }
+}
 
 } // namespace
 
+struct WindowedCorrelation::Spectra {
+    // [fine block or group]: the pairs' spectra over n bins, then the real series' over W + 1
+    // bins (their spectra are Hermitian); each bin as two sums of products (addProduct), all
+    // bins' first sums, then all bins' second.
+    std::vector<std::vector<double>> vv, ss, s2, msd;
+    static Complex complexAt(const std::vector<double>& sums, int bin) {
+        const std::size_t second = sums.size() / 2;
+        return {sums[2 * bin] + sums[2 * bin + 1],
+                sums[second + 2 * bin] - sums[second + 2 * bin + 1]};
+    }
+    std::vector<std::vector<double>> squares; // [group][lag]: |x(t0 + k)|² + |x(t0)|²
+    std::vector<std::vector<double>> origins; // [fine block][lag]
+    std::vector<double> msdOrigins;           // [lag]
+};
+
 struct WindowedCorrelation::Fft {
-    int n, bins;
-    double* window;    // chunk × series × n: the window's samples, zero beyond its end
-    double* origins;   // the same, zero outside the origins of one part of the block
-    fftw_complex* x;   // transforms of window
-    fftw_complex* a;   // transforms of origins
+    int n, bins, kept; // kept: complex numbers kept per body, n per pair and W + 1 per real series
+    fftw_complex* in;  // chunk × channels × n: samples at 0 … W − 1, zeros beyond
+    fftw_complex* out; // their transforms
+    fftw_complex* y;   // chunk × kept: a window's transforms
+    fftw_complex* a;   // chunk × kept: a block's transforms, kept while parts use out
     fftw_complex* sum; // one accumulated spectrum, to invert
     double* lagSums;   // its inverse
-    fftw_plan forwardWindow, forwardOrigins, backward;
+    fftw_plan forward, backward;
+    std::vector<double> sign; // (−1)^f per bin: the shift by W of the window's second block
+    std::vector<Complex> ones, iOnes; // U: the transform of W ones at 0 … W − 1; and i·U
     std::vector<std::vector<double>> squares; // [group][t]: Σ over the group's bodies of |x|²
-    std::vector<std::vector<Complex>> msd;    // [group][bin]: Σ conj(A)·X of the x_a
+    std::vector<std::vector<double>> own;     // [group][t]: the same over the last block alone
     Fft(int w, int groups)
-        : n(2 * w), bins(w + 1), window(fftw_alloc_real(std::size_t(chunk) * series * n)),
-          origins(fftw_alloc_real(std::size_t(chunk) * series * n)),
-          x(fftw_alloc_complex(std::size_t(chunk) * series * bins)),
-          a(fftw_alloc_complex(std::size_t(chunk) * series * bins)), sum(fftw_alloc_complex(bins)),
-          lagSums(fftw_alloc_real(n)), squares(groups, std::vector<double>(n, 0.0)),
-          msd(groups, std::vector<Complex>(bins, 0.0)) {
-        std::fill(window, window + std::size_t(chunk) * series * n, 0.0);
-        std::fill(origins, origins + std::size_t(chunk) * series * n, 0.0);
+        : n(2 * w), bins(w + 1), kept(pairs * n + (channels - pairs) * bins),
+          in(fftw_alloc_complex(std::size_t(chunk) * channels * n)),
+          out(fftw_alloc_complex(std::size_t(chunk) * channels * n)),
+          y(fftw_alloc_complex(std::size_t(chunk) * kept)),
+          a(fftw_alloc_complex(std::size_t(chunk) * kept)), sum(fftw_alloc_complex(bins)),
+          lagSums(fftw_alloc_real(n)), sign(n), ones(n), iOnes(n),
+          squares(groups, std::vector<double>(n, 0.0)), own(groups, std::vector<double>(w, 0.0)) {
+        Complex* z = reinterpret_cast<Complex*>(in);
+        std::fill(z, z + std::size_t(chunk) * channels * n, Complex(0.0));
         // FFTW_ESTIMATE plans in microseconds without touching the buffers; at these small
-        // lengths FFTW runs one hard-coded codelet either way.
+        // lengths FFTW runs one hard-coded codelet either way. Complex transforms, two real
+        // series each: FFTW's complex codelets are vectorised, its real ones not, and at 2W = 32
+        // one complex transform cost less than one real one here (about 70 against 110 ns).
         const int length[1] = {n};
-        forwardWindow = fftw_plan_many_dft_r2c(1, length, chunk * series, window, nullptr, 1, n, x,
-                                               nullptr, 1, bins, FFTW_ESTIMATE);
-        forwardOrigins = fftw_plan_many_dft_r2c(1, length, chunk * series, origins, nullptr, 1, n,
-                                                a, nullptr, 1, bins, FFTW_ESTIMATE);
+        forward = fftw_plan_many_dft(1, length, chunk * channels, in, nullptr, 1, n, out, nullptr,
+                                     1, n, FFTW_FORWARD, FFTW_ESTIMATE);
         backward = fftw_plan_dft_c2r_1d(n, sum, lagSums, FFTW_ESTIMATE);
+        for (int f = 0; f < n; ++f)
+            sign[f] = f % 2 == 0 ? 1.0 : -1.0;
+        // U by the same transform as the samples', so that δ·U rounds as their shift would.
+        std::fill(z, z + w, Complex(1.0));
+        fftw_execute(forward);
+        std::copy(reinterpret_cast<const Complex*>(out), reinterpret_cast<const Complex*>(out) + n,
+                  ones.begin());
+        for (int f = 0; f < n; ++f)
+            iOnes[f] = Complex(-ones[f].imag(), ones[f].real());
+        std::fill(z, z + w, Complex(0.0));
     }
     ~Fft() {
-        fftw_destroy_plan(forwardWindow);
-        fftw_destroy_plan(forwardOrigins);
+        fftw_destroy_plan(forward);
         fftw_destroy_plan(backward);
-        fftw_free(window), fftw_free(origins), fftw_free(x), fftw_free(a), fftw_free(sum);
+        fftw_free(in), fftw_free(out), fftw_free(y), fftw_free(a), fftw_free(sum);
         fftw_free(lagSums);
     }
     Fft(const Fft&) = delete;
     Fft& operator=(const Fft&) = delete;
 
-    /// IFFT of an accumulated spectrum, divided by n: the lag sums (unnormalised c2r).
-    const double* invert(const std::vector<Complex>& spectrum) {
-        std::copy(spectrum.begin(), spectrum.end(), reinterpret_cast<Complex*>(sum));
+    /// The offset of a channel among a body's kept transforms, and how many bins it keeps.
+    int offset(int channel) const {
+        return channel < pairs ? channel * n : pairs * n + (channel - pairs) * bins;
+    }
+    int length(int channel) const { return channel < pairs ? n : bins; }
+    /// The lag sums (unnormalised c2r, divided by n) of an accumulated spectrum: Re IFFT of the
+    /// pairs' part, whose Hermitian part (P[f] + conj P[−f])/2 it is, plus the real series'.
+    const double* invert(const std::vector<double>& spectrum) {
+        Complex* h = reinterpret_cast<Complex*>(sum);
+        for (int f = 0; f < bins; ++f)
+            h[f] = 0.5 * (Spectra::complexAt(spectrum, f) +
+                          std::conj(Spectra::complexAt(spectrum, (n - f) % n))) +
+                   Spectra::complexAt(spectrum, n + f);
         fftw_execute(backward);
         for (int k = 0; k < n; ++k)
             lagSums[k] /= n;
         return lagSums;
     }
     std::size_t bytes() const {
-        return std::size_t(chunk) * series * (2 * n * sizeof(double) + 2 * bins * sizeof(Complex)) +
-               squares.size() * n * sizeof(double) + msd.size() * bins * sizeof(Complex);
+        return std::size_t(chunk) * (2 * channels * n + 2 * kept) * sizeof(Complex) +
+               (bins + 2 * n) * sizeof(Complex) + squares.size() * (n + n / 2) * sizeof(double) +
+               n * sizeof(double);
     }
 };
 
@@ -83,17 +204,29 @@ WindowedCorrelation::WindowedCorrelation(int followed, int window, int lags, lon
     ring_.assign(std::size_t(2 * w_) * rows * m_, 0.0);
     for (int k = 0; k < m_; ++k) // group b holds bodies ⌊bM/G⌋ … ⌊(b+1)M/G⌋ − 1
         group_.push_back(static_cast<int>((long(k) * groups_ + groups_ - 1) / m_));
-    sums_.vv.assign(fine_, std::vector<double>(lags_, 0.0));
-    sums_.ss = sums_.s2 = sums_.origins = sums_.vv;
-    sums_.msd.assign(groups_, std::vector<double>(lags_, 0.0));
-    sums_.msdOrigins.assign(lags_, 0.0);
+    groupBegin_.assign(groups_ + 1, m_);
+    for (int k = m_ - 1; k >= 0; --k)
+        groupBegin_[group_[k]] = k;
     fft_ = std::make_unique<Fft>(w_, groups_);
+    spectrum_.assign(std::size_t(m_) * fft_->kept, Complex(0.0));
+    sums_ = std::make_unique<Spectra>();
+    Spectra& s = *sums_;
+    s.vv.assign(fine_, std::vector<double>(4 * std::size_t(fft_->n + fft_->bins), 0.0));
+    s.ss = s.s2 = s.vv;
+    s.msd.assign(groups_, std::vector<double>(4 * std::size_t(fft_->n + fft_->bins), 0.0));
+    s.squares.assign(groups_, std::vector<double>(lags_, 0.0));
+    s.origins.assign(fine_, std::vector<double>(lags_, 0.0));
+    s.msdOrigins.assign(lags_, 0.0);
 }
 
 WindowedCorrelation::~WindowedCorrelation() = default;
 
+std::size_t WindowedCorrelation::at(long t, int k) const {
+    return std::size_t(t % (2 * w_)) * rows * m_ + k;
+}
+
 void WindowedCorrelation::add(const Snapshot& frame, const int* index) {
-    double* row = ring_.data() + std::size_t(seen_ % (2 * w_)) * rows * m_;
+    double* row = ring_.data() + at(seen_, 0);
     for (int k = 0; k < m_; ++k) {
         const int i = index ? index[k] : k;
         for (int a = 0; a < 3; ++a) {
@@ -103,147 +236,324 @@ void WindowedCorrelation::add(const Snapshot& frame, const int* index) {
         }
     }
     ++seen_;
-    // Block j + 1 complete: the origins of block j meet their whole window.
-    if (seen_ % w_ == 0 && seen_ >= 2 * w_) correlate(seen_ - 2 * w_, seen_ - w_, seen_, sums_);
+    if (seen_ % w_ == 0) completeBlock(seen_ / w_ - 1);
 }
 
-LagSums WindowedCorrelation::sums() const {
-    LagSums out = sums_;
-    const long complete = seen_ / w_, rest = seen_ % w_;
-    // The last complete block's window stops at the last sample, as does the partial block's.
-    if (complete >= 1) correlate((complete - 1) * w_, complete * w_, seen_, out);
-    if (rest > 0) correlate(complete * w_, seen_, seen_, out);
+std::vector<WindowedCorrelation::Part> WindowedCorrelation::parts(long begin, long end) const {
+    std::vector<Part> out;
+    for (long t = begin; t < end; ++t) {
+        const int fine = fineBlockOfSample(t, planned_, fine_);
+        if (out.empty() || out.back().fine != fine) out.push_back({t, t, fine});
+        out.back().end = t + 1;
+    }
     return out;
 }
 
-void WindowedCorrelation::fillWindow(int first, int count, long begin, long windowEnd) const {
+void WindowedCorrelation::transform(int first, int count, long begin, long from, long to, long ref,
+                                    long previous) const {
     Fft& f = *fft_;
-    const int n = f.n, span = static_cast<int>(windowEnd - begin);
-    const double* start = ring_.data() + std::size_t(begin % n) * rows * m_ + first;
-    // Sample by sample, so that each row of the ring is read along consecutive bodies.
-    for (int t = 0; t < span; ++t) {
-        const double* row = ring_.data() + std::size_t((begin + t) % n) * rows * m_ + first;
-        for (int c = 0; c < count; ++c) {
-            double* out = f.window + std::size_t(c) * series * n + t;
-            double s[3], x2 = 0.0;
-            for (int a = 0; a < 3; ++a) {
-                out[a * n] = row[a * m_ + c];
-                s[a] = out[(3 + a) * n] = row[(3 + a) * m_ + c];
-                const double x = row[(6 + a) * m_ + c] - start[(6 + a) * m_ + c];
-                out[(firstX + a) * n] = x;
-                x2 += x * x;
+    const int n = f.n, z = 2 * n; // z: doubles from one channel to the next
+    const int inFrom = static_cast<int>(std::clamp(from - begin, 0L, long(w_))),
+              inTo = static_cast<int>(std::clamp(to - begin, long(inFrom), long(w_)));
+    const bool squares = previous >= 0;
+    // The real series' imaginary parts and the points W … n − 1 stay zero.
+    for (int c = 0; c < count; ++c) {
+        const int k = first + c;
+        double* __restrict in = reinterpret_cast<double*>(f.in + std::size_t(c) * channels * n);
+        double* __restrict own = f.own[group_[k]].data();
+        double* __restrict later = f.squares[group_[k]].data() + w_;
+        const double* origin = ring_.data() + at(ref, k);
+        const double* before = ring_.data() + at(std::max(previous, 0L), k);
+        const double r0[3] = {origin[6 * m_], origin[7 * m_], origin[8 * m_]};
+        const double p0[3] = {before[6 * m_], before[7 * m_], before[8 * m_]};
+        for (int t = 0; t < w_; ++t) {
+            double* __restrict out = in + 2 * t;
+            if (t < inFrom || t >= inTo) {
+                for (int ch = 0; ch < channels; ++ch)
+                    out[ch * z] = 0.0;
+                for (int ch = 0; ch < pairs; ++ch)
+                    out[ch * z + 1] = 0.0;
+                continue;
             }
-            int q = firstQ;
-            for (int a = 0; a < 3; ++a)
-                for (int b = a; b < 3; ++b)
-                    out[q++ * n] = s[a] * s[b];
-            f.squares[group_[first + c]][t] += x2;
+            const double* row = ring_.data() + at(begin + t, k);
+            double v[3], s[3], x[3], r[3];
+            for (int a = 0; a < 3; ++a) {
+                v[a] = row[a * m_];
+                s[a] = row[(3 + a) * m_];
+                r[a] = row[(6 + a) * m_];
+                x[a] = r[a] - r0[a];
+            }
+            out[0] = v[0], out[1] = v[1], out[5 * z] = v[2];
+            out[z] = s[0], out[z + 1] = s[1], out[6 * z] = s[2];
+            out[2 * z] = s[0] * s[0], out[2 * z + 1] = s[1] * s[1], out[7 * z] = s[2] * s[2];
+            out[3 * z] = s[0] * s[1], out[3 * z + 1] = s[0] * s[2], out[8 * z] = s[1] * s[2];
+            out[4 * z] = x[0], out[4 * z + 1] = x[1], out[9 * z] = x[2];
+            if (squares) { // |x|² here, and relative to the previous block's first sample
+                const double d[3] = {r[0] - p0[0], r[1] - p0[1], r[2] - p0[2]};
+                own[t] += x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+                later[t] += d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            }
         }
     }
+    fftw_execute(f.forward);
+}
+
+void WindowedCorrelation::keep(const Complex* full, int count, Complex* kept) const {
+    const Fft& f = *fft_;
     for (int c = 0; c < count; ++c)
-        for (int s = 0; s < series; ++s) {
-            double* out = f.window + (std::size_t(c) * series + s) * n;
-            std::fill(out + span, out + n, 0.0);
+        for (int ch = 0; ch < channels; ++ch) {
+            const Complex* from = full + (std::size_t(c) * channels + ch) * f.n;
+            std::copy(from, from + f.length(ch), kept + std::size_t(c) * f.kept + f.offset(ch));
         }
 }
 
-void WindowedCorrelation::correlate(long begin, long end, long windowEnd, LagSums& sums) const {
-    Fft& f = *fft_;
-    const int n = f.n, bins = f.bins;
-    // The block's origins in parts of one fine block each (usually one part).
-    struct Part {
-        long begin, end;
-        int fine;
-        std::vector<Complex> vv, ss, s2;
-    };
-    std::vector<Part> parts;
-    for (long t = begin; t < end; ++t) {
-        const int fine = fineBlockOfSample(t, planned_, fine_);
-        if (parts.empty() || parts.back().fine != fine)
-            parts.push_back({t, t, fine, std::vector<Complex>(bins, 0.0),
-                             std::vector<Complex>(bins, 0.0), std::vector<Complex>(bins, 0.0)});
-        parts.back().end = t + 1;
-    }
-    for (auto& s : f.squares)
-        std::fill(s.begin(), s.end(), 0.0);
-    for (auto& s : f.msd)
-        std::fill(s.begin(), s.end(), Complex(0.0));
+std::pair<double*, double*> WindowedCorrelation::sumsOf(Spectra& to, int channel, int fine,
+                                                        int group) const {
+    const int q = quantityOf[channel];
+    std::vector<double>& sums = q == 0   ? to.vv[fine]
+                                : q == 1 ? to.ss[fine]
+                                : q == 2 ? to.s2[fine]
+                                         : to.msd[group];
+    double* s1 = sums.data() + (channel < pairs ? 0 : 2 * fft_->n);
+    return {s1, s1 + sums.size() / 2};
+}
 
-    for (int first = 0; first < m_; first += chunk) {
-        const int count = std::min(chunk, m_ - first);
-        fillWindow(first, count, begin, windowEnd);
-        fftw_execute(f.forwardWindow);
-        const auto* x = reinterpret_cast<const Complex*>(f.x);
-        const auto* a = reinterpret_cast<const Complex*>(f.a);
-        for (auto& part : parts) {
-            const int from = static_cast<int>(part.begin - begin),
-                      to = static_cast<int>(part.end - begin);
-            for (int row = 0; row < count * series; ++row) {
-                const double* in = f.window + std::size_t(row) * n;
-                double* out = f.origins + std::size_t(row) * n;
-                std::fill(out, out + n, 0.0);
-                std::copy(in + from, in + to, out + from);
+void WindowedCorrelation::addOrigins(int first, int count, const std::vector<Part>& parts, long ref,
+                                     const Complex* a, const Complex* y, Spectra& to) const {
+    Fft& f = *fft_;
+    const auto target = [&](int ch, int fine, int c) {
+        return sumsOf(to, ch, fine, group_[first + c]);
+    };
+    // The MSD's sums are per group of bodies, not per fine block: the whole block's origins.
+    for (int c = 0; c < count; ++c)
+        for (const int ch : {msdPair, msdSingle}) {
+            const std::size_t at = std::size_t(c) * f.kept + f.offset(ch);
+            const auto [s1, s2] = target(ch, 0, c);
+            addProduct(a + at, y + at, f.length(ch), weightOf[ch], s1, s2);
+        }
+    // origins: kept layout (f.kept per body) or FFTW's (channels × n per body).
+    const auto correlations = [&](const Complex* origins, bool full, int fine) {
+        for (int c = 0; c < count; ++c)
+            for (int ch = 0; ch < channels; ++ch) {
+                if (ch == msdPair || ch == msdSingle) continue;
+                const std::size_t at = std::size_t(c) * f.kept + f.offset(ch);
+                const Complex* o =
+                    full ? origins + (std::size_t(c) * channels + ch) * f.n : origins + at;
+                const auto [s1, s2] = target(ch, fine, c);
+                addProduct(o, y + at, f.length(ch), weightOf[ch], s1, s2);
             }
-            fftw_execute(f.forwardOrigins);
-            for (int c = 0; c < count; ++c) {
-                const Complex* ac = a + std::size_t(c) * series * bins;
-                const Complex* xc = x + std::size_t(c) * series * bins;
-                // conj(A)·X written out: std::complex's product checks for infinities and NaNs
-                // (C99 Annex G) at every bin, which costs more than the product itself.
-                auto add = [&](std::vector<Complex>& to, int s, double weight) {
-                    const double* as = reinterpret_cast<const double*>(ac + s * bins);
-                    const double* xs = reinterpret_cast<const double*>(xc + s * bins);
-                    double* sum = reinterpret_cast<double*>(to.data());
-                    for (int k = 0; k < 2 * bins; k += 2) {
-                        sum[k] += weight * (as[k] * xs[k] + as[k + 1] * xs[k + 1]);
-                        sum[k + 1] += weight * (as[k] * xs[k + 1] - as[k + 1] * xs[k]);
-                    }
-                };
-                for (int s = 0; s < 3; ++s)
-                    add(part.vv, s, 1.0), add(part.ss, 3 + s, 1.0);
-                for (int q = 0; q < 6; ++q)
-                    add(part.s2, firstQ + q, qWeight[q]);
-                const int g = group_[first + c];
-                for (int s = 0; s < 3; ++s)
-                    add(f.msd[g], firstX + s, 1.0);
-            }
+    };
+    if (parts.size() == 1) {
+        correlations(a, false, parts.front().fine);
+        return;
+    }
+    // A block that straddles fine blocks: each part's origins transformed alone, against the
+    // whole window.
+    const long begin = parts.front().begin;
+    for (const Part& part : parts) {
+        transform(first, count, begin, part.begin, part.end, ref);
+        correlations(reinterpret_cast<const Complex*>(f.out), true, part.fine);
+    }
+}
+
+void WindowedCorrelation::ringSquares(long ref, long windowEnd) const {
+    Fft& f = *fft_;
+    const int span = static_cast<int>(windowEnd - ref);
+    for (int t = 0; t < span; ++t) {
+        for (int g = 0; g < groups_; ++g) {
+            double x2 = 0.0;
+            for (int k = groupBegin_[g]; k < groupBegin_[g + 1]; ++k)
+                for (int a = 6; a < 9; ++a) {
+                    const double x = ring_[at(ref + t, k) + a * m_] - ring_[at(ref, k) + a * m_];
+                    x2 += x * x;
+                }
+            f.squares[g][t] = x2;
         }
     }
+}
 
+void WindowedCorrelation::addSquares(const std::vector<Part>& parts, long ref, long windowEnd,
+                                     Spectra& to) const {
+    Fft& f = *fft_;
     const auto partners = [windowEnd](long from, long to, int k) { // origins with t0 + k in reach
         return double(std::max(0L, std::min(to, windowEnd - k) - from));
     };
-    for (const auto& part : parts) {
-        const double* vv = f.invert(part.vv);
-        for (int k = 0; k < lags_; ++k)
-            sums.vv[part.fine][k] += vv[k];
-        const double* ss = f.invert(part.ss);
-        for (int k = 0; k < lags_; ++k)
-            sums.ss[part.fine][k] += ss[k];
-        const double* s2 = f.invert(part.s2);
-        for (int k = 0; k < lags_; ++k)
-            sums.s2[part.fine][k] += s2[k];
-        for (int k = 0; k < lags_; ++k)
-            sums.origins[part.fine][k] += partners(part.begin, part.end, k);
-    }
+    for (const Part& part : parts)
+        for (int k = 0; k < lags_; ++k) {
+            to.origins[part.fine][k] += partners(part.begin, part.end, k);
+            to.msdOrigins[k] += partners(part.begin, part.end, k);
+        }
+    const long begin = parts.front().begin, end = parts.back().end;
     for (int g = 0; g < groups_; ++g) {
-        const double* cross = f.invert(f.msd[g]);
         const std::vector<double>& q = f.squares[g];
         // Lag 0 adds nothing: every displacement is exactly zero there.
         for (int k = 1; k < lags_; ++k) {
             double squares = 0.0;
             for (long t0 = begin; t0 < end && t0 + k < windowEnd; ++t0)
-                squares += q[t0 - begin + k] + q[t0 - begin];
-            sums.msd[g][k] += squares - 2.0 * cross[k];
+                squares += q[t0 - ref + k] + q[t0 - ref];
+            to.squares[g][k] += squares;
         }
     }
-    for (int k = 0; k < lags_; ++k)
-        sums.msdOrigins[k] += partners(begin, end, k);
+}
+
+void WindowedCorrelation::completeBlock(long j) {
+    Fft& f = *fft_;
+    const int n = f.n;
+    const long begin = j * w_, previous = begin - w_;
+    const std::vector<Part> cut = j >= 1 ? parts(previous, begin) : std::vector<Part>{};
+    Spectra& to = *sums_;
+    const auto shift = [&](int k, int a) { // r_a(t_j) − r_a(t_{j−1})
+        return ring_[at(begin, k) + (6 + a) * m_] - ring_[at(previous, k) + (6 + a) * m_];
+    };
+    // The MSD's squares over block j − 1's window relative to its first sample: block j − 1's
+    // own, kept from its transform, then block j's, made with its transform.
+    for (int g = 0; g < groups_; ++g) {
+        std::copy(f.own[g].begin(), f.own[g].end(), f.squares[g].begin());
+        std::fill(f.own[g].begin(), f.own[g].end(), 0.0);
+        std::fill(f.squares[g].begin() + w_, f.squares[g].end(), 0.0);
+    }
+    for (int first = 0; first < m_; first += chunk) {
+        const int count = std::min(chunk, m_ - first);
+        transform(first, count, begin, begin, begin + w_, begin, j >= 1 ? previous : begin);
+        const Complex* out = reinterpret_cast<const Complex*>(f.out);
+        Complex* kept = spectrum_.data() + std::size_t(first) * f.kept;
+        if (j == 0) {
+            keep(out, count, kept);
+            continue;
+        }
+        // Block j − 1's window: A_{j−1} + (−1)^f (A_j + δ·U for the x_a), then A_j is kept.
+        const double* u = reinterpret_cast<const double*>(f.ones.data());
+        const double* iu = reinterpret_cast<const double*>(f.iOnes.data());
+        if (cut.size() == 1) { // one pass: window, cross-spectrum, kept transform
+            const int fine = cut.front().fine;
+            for (int ch = 0; ch < channels; ++ch) {
+                double* p = reinterpret_cast<double*>(kept + f.offset(ch));
+                const double* q = reinterpret_cast<const double*>(out + std::size_t(ch) * n);
+                const std::size_t keptStride = 2 * std::size_t(f.kept),
+                                  nextStride = 2 * std::size_t(channels) * n;
+                if (ch != msdPair && ch != msdSingle) {
+                    const auto [s1, s2] = sumsOf(to, ch, fine, 0);
+                    if (count == chunk)
+                        addWindows<chunk>(p, keptStride, q, nextStride, f.length(ch), weightOf[ch],
+                                          s1, s2);
+                    else
+                        for (int c = 0; c < count; ++c)
+                            addWindows<1>(p + c * keptStride, 0, q + c * nextStride, 0,
+                                          f.length(ch), weightOf[ch], s1, s2);
+                    continue;
+                }
+                // The MSD's sums are per group, and x_a shifts by δ between blocks.
+                for (int c = 0; c < count; ++c) {
+                    double delta[3];
+                    for (int d = 0; d < 3; ++d)
+                        delta[d] = shift(first + c, d);
+                    const auto [s1, s2] = sumsOf(to, ch, fine, group_[first + c]);
+                    const bool pair = ch == msdPair;
+                    addWindow<true>(p + c * keptStride, q + c * nextStride, f.length(ch),
+                                    weightOf[ch], f.sign.data(), pair ? delta[0] : delta[2],
+                                    pair ? delta[1] : 0.0, u, iu, s1, s2);
+                }
+            }
+            continue;
+        }
+        Complex* a = reinterpret_cast<Complex*>(f.a);
+        Complex* y = reinterpret_cast<Complex*>(f.y);
+        for (int c = 0; c < count; ++c) {
+            double delta[3];
+            for (int d = 0; d < 3; ++d)
+                delta[d] = shift(first + c, d);
+            for (int ch = 0; ch < channels; ++ch) {
+                // δ for x_x + i x_y, and for x_z.
+                const double dr = ch == msdPair     ? delta[0]
+                                  : ch == msdSingle ? delta[2]
+                                                    : 0.0,
+                             di = ch == msdPair ? delta[1] : 0.0;
+                const std::size_t at = std::size_t(c) * f.kept + f.offset(ch);
+                const double* p = reinterpret_cast<const double*>(kept + at);
+                const double* q =
+                    reinterpret_cast<const double*>(out + (std::size_t(c) * channels + ch) * n);
+                double* ys = reinterpret_cast<double*>(y + at);
+                for (int b = 0; b < f.length(ch); ++b) {
+                    const double qr = q[2 * b] + (dr * u[2 * b] - di * u[2 * b + 1]),
+                                 qi = q[2 * b + 1] + (dr * u[2 * b + 1] + di * u[2 * b]);
+                    ys[2 * b] = p[2 * b] + f.sign[b] * qr;
+                    ys[2 * b + 1] = p[2 * b + 1] + f.sign[b] * qi;
+                }
+            }
+        }
+        std::copy(kept, kept + std::size_t(count) * f.kept, a);
+        keep(out, count, kept);
+        addOrigins(first, count, cut, previous, a, y, to);
+    }
+    if (j >= 1) addSquares(cut, previous, begin + w_, to);
+}
+
+LagSums WindowedCorrelation::sums() const {
+    Spectra total = *sums_;
+    Fft& f = *fft_;
+    const long complete = seen_ / w_, tail = complete * w_;
+    // The last complete block's window stops at the last sample, as does the partial block's;
+    // both relative to the first sample of the earlier.
+    const long ref = complete >= 1 ? tail - w_ : 0;
+    const std::vector<Part> last = complete >= 1 ? parts(ref, tail) : std::vector<Part>{},
+                            partial = parts(tail, seen_);
+    if (last.empty() && partial.empty()) return invert(total);
+    for (int first = 0; first < m_; first += chunk) {
+        const int count = std::min(chunk, m_ - first);
+        const std::size_t size = std::size_t(count) * f.kept;
+        Complex* a = reinterpret_cast<Complex*>(f.a);
+        Complex* y = reinterpret_cast<Complex*>(f.y);
+        // The partial block (zeros when there is none) relative to ref.
+        transform(first, count, tail, tail, seen_, ref);
+        keep(reinterpret_cast<const Complex*>(f.out), count, a);
+        if (!last.empty()) {
+            const Complex* kept = spectrum_.data() + std::size_t(first) * f.kept;
+            for (std::size_t r = 0; r < size; ++r) {
+                const int bin = static_cast<int>(r % f.kept),
+                          channel = bin < pairs * f.n ? bin / f.n : pairs;
+                const int b = channel < pairs ? bin % f.n : (bin - pairs * f.n) % f.bins;
+                y[r] = kept[r] + f.sign[b] * a[r];
+            }
+            addOrigins(first, count, last, ref, kept, y, total);
+        }
+        if (!partial.empty()) addOrigins(first, count, partial, ref, a, a, total);
+    }
+    ringSquares(ref, seen_);
+    if (!last.empty()) addSquares(last, ref, seen_, total);
+    if (!partial.empty()) addSquares(partial, ref, seen_, total);
+    return invert(total);
+}
+
+LagSums WindowedCorrelation::invert(const Spectra& s) const {
+    Fft& f = *fft_;
+    LagSums out;
+    out.origins = s.origins;
+    out.msdOrigins = s.msdOrigins;
+    const auto lagsOf = [&](const std::vector<double>& spectrum) {
+        const double* sums = f.invert(spectrum);
+        return std::vector<double>(sums, sums + lags_);
+    };
+    for (int b = 0; b < fine_; ++b) {
+        out.vv.push_back(lagsOf(s.vv[b]));
+        out.ss.push_back(lagsOf(s.ss[b]));
+        out.s2.push_back(lagsOf(s.s2[b]));
+    }
+    for (int g = 0; g < groups_; ++g) {
+        const double* cross = f.invert(s.msd[g]);
+        std::vector<double> msd(lags_, 0.0); // lag 0: every displacement is exactly zero
+        for (int k = 1; k < lags_; ++k)
+            msd[k] = s.squares[g][k] - 2.0 * cross[k];
+        out.msd.push_back(std::move(msd));
+    }
+    return out;
 }
 
 std::size_t WindowedCorrelation::bytes() const {
-    const std::size_t table = (4 * std::size_t(fine_) + groups_ + 1) * lags_ * sizeof(double);
-    return ring_.size() * sizeof(double) + group_.size() * sizeof(int) + table + fft_->bytes();
+    const std::size_t spectra = (3 * std::size_t(fine_) + groups_) * 2 * (fft_->n + fft_->bins) *
+                                sizeof(Complex),
+                      table = (std::size_t(fine_) + groups_ + 1) * lags_ * sizeof(double);
+    return ring_.size() * sizeof(double) + (group_.size() + groupBegin_.size()) * sizeof(int) +
+           spectrum_.size() * sizeof(Complex) + spectra + table + fft_->bytes();
 }
 
 } // namespace terrace::analysis
