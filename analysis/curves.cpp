@@ -102,6 +102,32 @@ int lagFor(double requestPs, double dtPs, long samples, int blocks) {
     return static_cast<int>(std::clamp<long>(wanted, 0, largestLag(samples, blocks)));
 }
 
+namespace {
+
+/// Each coarse block's curve over lags lo … hi (zero below lo) and its weight summed over them:
+/// coarse blocks grouped by the fine blocks' origins at lag hi, fixed over the whole window.
+struct BlockCurves {
+    std::vector<std::vector<double>> curve;
+    std::vector<double> weight;
+};
+BlockCurves blockCurves(const SampledCurve& c, int lo, int hi) {
+    std::vector<double> lastWeights;
+    for (const auto& w : c.fineWeight)
+        lastWeights.push_back(w[hi]);
+    const std::vector<int> group = coarseBlocks(lastWeights, c.blocks);
+    BlockCurves out{std::vector<std::vector<double>>(c.blocks, std::vector<double>(hi + 1, 0.0)),
+                    std::vector<double>(c.blocks, 0.0)};
+    std::vector<double> v, w;
+    for (int k = lo; k <= hi; ++k) {
+        coarseValues(c, k, group, v, w);
+        for (int b = 0; b < c.blocks; ++b)
+            out.curve[b][k] = v[b], out.weight[b] += w[b];
+    }
+    return out;
+}
+
+} // namespace
+
 Diffusion diffusionFromMsd(const SampledCurve& msd) {
     // The window [t_max/4, 3 t_max/4] by time, so that uniform and multiple-tau grids fit the same
     // span (on a uniform grid, lags ⌊K/4⌋ … ⌊3K/4⌋).
@@ -116,18 +142,7 @@ Diffusion diffusionFromMsd(const SampledCurve& msd) {
     d.fromPs = msd.tPs[lo];
     d.toPs = msd.tPs[hi];
     d.coefficient = slope(msd.tPs, msd.value, lo, hi) / 6.0;
-    // Coarse blocks by the fine blocks' origins at the window's last lag, fixed over the window.
-    std::vector<double> lastWeights;
-    for (const auto& w : msd.fineWeight)
-        lastWeights.push_back(w[hi]);
-    const std::vector<int> group = coarseBlocks(lastWeights, msd.blocks);
-    std::vector<std::vector<double>> curve(msd.blocks, std::vector<double>(hi + 1, 0.0));
-    std::vector<double> weight(msd.blocks, 0.0), v, w;
-    for (int k = lo; k <= hi; ++k) {
-        coarseValues(msd, k, group, v, w);
-        for (int b = 0; b < msd.blocks; ++b)
-            curve[b][k] = v[b], weight[b] += w[b];
-    }
+    const auto [curve, weight] = blockCurves(msd, lo, hi);
     std::vector<double> blockD(msd.blocks, 0.0);
     for (int b = 0; b < msd.blocks; ++b)
         if (weight[b] > 0.0) blockD[b] = slope(msd.tPs, curve[b], lo, hi) / 6.0;
@@ -151,20 +166,9 @@ Diffusion greenKuboDiffusion(const SampledCurve& vacf, double meanSquareVelocity
         d.err = std::numeric_limits<double>::quiet_NaN();
         return d;
     }
-    // Blocks as for the MSD fit: coarse blocks fixed by the fine blocks' origins at the last lag,
-    // each block's curve integrated whole; the spread of the block integrals is the error.
-    const int last = static_cast<int>(vacf.tPs.size()) - 1;
-    std::vector<double> lastWeights;
-    for (const auto& w : vacf.fineWeight)
-        lastWeights.push_back(w[last]);
-    const std::vector<int> group = coarseBlocks(lastWeights, vacf.blocks);
-    std::vector<std::vector<double>> curve(vacf.blocks, std::vector<double>(last + 1, 0.0));
-    std::vector<double> weight(vacf.blocks, 0.0), v, w;
-    for (int k = 0; k <= last; ++k) {
-        coarseValues(vacf, k, group, v, w);
-        for (int b = 0; b < vacf.blocks; ++b)
-            curve[b][k] = v[b], weight[b] += w[b];
-    }
+    // Blocks as for the MSD fit, each block's curve integrated whole; the spread of the block
+    // integrals is the error.
+    const auto [curve, weight] = blockCurves(vacf, 0, static_cast<int>(vacf.tPs.size()) - 1);
     std::vector<double> blockD(vacf.blocks, 0.0);
     for (int b = 0; b < vacf.blocks; ++b)
         if (weight[b] > 0.0) blockD[b] = v2 * integral(curve[b]) / 3.0;
