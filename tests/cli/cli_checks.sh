@@ -159,7 +159,7 @@ interrupt)
         --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=900 \
         --set output.trajectory_every_fs=9 >/dev/null 2>&1 &
     pid=$!
-    wait_frames "$work/int/trajectory.xyz" 216 3 # production has written a few frames
+    wait_frames "$work/int/trajectory.xyz" 216 4 # production has written the 4 frames analyse needs
     kill -INT $pid
     wait $pid
     status=$?
