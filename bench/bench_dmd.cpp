@@ -6,7 +6,7 @@
 // default clock).
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include <benchmark/benchmark.h>
 #include <cmath>
@@ -18,7 +18,7 @@ using terrace::dmd::testing::Probe;
 namespace {
 
 using namespace terrace;
-using RodEngine = dmd::Engine<LinearRotor, RodPotential>;
+using RodEngine = dmd::SceneEngine<LinearRotor, RodPotential>;
 
 Scene denseRods(int n, double dV, const char* queue = "bpq", const char* invalidation = "lazy") {
     Scene s = defaultScene();

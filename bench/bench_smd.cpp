@@ -14,7 +14,7 @@
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/sphere.hpp"
-#include "smd/engine.hpp"
+#include "smd/scene_engine.hpp"
 #include <benchmark/benchmark.h>
 #include <string>
 
@@ -43,7 +43,7 @@ Scene ljScene(int n, double density, double temperature, double rl, double ru) {
 template <BodyKind K, PairPotential P>
 void runSteps(benchmark::State& state, const Scene& sc, const P& bare, int warmup) {
     const Smoothed<P> model{bare, sceneCutoff(sc)};
-    smd::Engine<K, Smoothed<P>> engine(buildInitialState<K, Smoothed<P>>(sc, model), sc);
+    smd::SceneEngine<K, Smoothed<P>> engine(buildInitialState<K, Smoothed<P>>(sc, model), sc);
     for (int k = 0; k < warmup; ++k)
         engine.step();
     const long steps0 = engine.steps(), pairs0 = engine.pairEvaluations();
@@ -89,7 +89,7 @@ struct ListedLiquid {
 ListedLiquid listedLiquid(int n, int warmup) {
     const Scene sc = ljScene(n, 0.8, 0.9, 2.5, 3.0);
     const Smoothed<LJPotential> model{ljPotential(sc), sceneCutoff(sc)};
-    smd::Engine<Sphere, Smoothed<LJPotential>> engine(
+    smd::SceneEngine<Sphere, Smoothed<LJPotential>> engine(
         buildInitialState<Sphere, Smoothed<LJPotential>>(sc, model), sc);
     for (int k = 0; k < warmup; ++k)
         engine.step();

@@ -39,7 +39,6 @@
 #include "core/engine.hpp"
 #include "core/free_orbit.hpp"
 #include "core/gather_in_place.hpp"
-#include "core/scene.hpp"
 #include "core/snapshot.hpp"
 #include "core/system.hpp"
 #include "dmd/body_clocks.hpp"
@@ -90,32 +89,23 @@ public:
     /// horizon stream.
     Engine(System<K, P> initial, DmdSettings settings, std::uint64_t seed)
         : Engine(initial, std::move(settings), seed, nullptr, nullptr) {}
-    /// The settings read from the scene's dmd section (readDmdSettings), and its seed.
-    Engine(System<K, P> initial, const Scene& scene) : Engine(std::move(initial), scene, nullptr) {}
-
     /// Resumes from a checkpoint() taken with every clock at one time (right after advanceTo):
     /// `initial` holds the bodies at that time. The pairs keep the terraces they had (never
     /// re-derived from U, which may sit exactly on a level) and the horizon stream goes on where
     /// it stood; calendars, lists and cells are built afresh, as at the start. A run that is
     /// continued from a restart file and one that rebuilds its engine the same way at the same
     /// instant then undergo the same events.
-    Engine(System<K, P> initial, const Scene& scene, const nlohmann::json& checkpoint)
-        : Engine(std::move(initial), scene, &checkpoint) {}
+    Engine(System<K, P> initial, DmdSettings settings, std::uint64_t seed,
+           const nlohmann::json& checkpoint)
+        : Engine(initial, std::move(settings), seed, &checkpoint, nullptr) {}
     /// The same, and the checkpoint's pair terraces are freed as soon as they are read, before
     /// the pairs are predicted: kept, they would sit beside the new engine at its largest (the
     /// peak of a run's rebuilds; ~100 B a body for LJ spheres). `checkpoint` is then spent.
-    Engine(System<K, P> initial, const Scene& scene, nlohmann::json&& checkpoint)
-        : Engine(std::move(initial), scene, &checkpoint, &checkpoint) {}
     Engine(System<K, P> initial, DmdSettings settings, std::uint64_t seed,
            nlohmann::json&& checkpoint)
         : Engine(initial, std::move(settings), seed, &checkpoint, &checkpoint) {}
 
 private:
-    Engine(System<K, P> initial, const Scene& scene, const nlohmann::json* resume,
-           nlohmann::json* spent = nullptr)
-        : Engine(initial,
-                 readDmdSettings(scene.dmd, initial.potential, initial.kT, initial.box.length),
-                 scene.seed, resume, spent) {}
     Engine(System<K, P>& initial, DmdSettings settings, std::uint64_t seed,
            const nlohmann::json* resume, nlohmann::json* spent)
         : s_(std::move(initial), std::move(settings)),

@@ -53,14 +53,8 @@ template <BodyKind K, PairPotential P> class Engine {
 public:
     Engine(System<K, P> initial, SmdSettings settings)
         : Engine(initial, std::move(settings), true) {}
-    /// The settings read from the scene (smdSettings).
-    Engine(System<K, P> initial, const Scene& scene)
-        : Engine(initial, settingsOf(scene, initial), true) {}
 
 private:
-    static SmdSettings settingsOf(const Scene& scene, const System<K, P>& s) {
-        return smdSettings(scene, s.box.length, s.potential.range());
-    }
     void resumeSteps(const nlohmann::json& checkpoint) {
         steps_ = checkpoint.at("steps").get<long>();
         if (steps_ < 0) throw SceneError("restart: a negative SMD step count");
@@ -101,10 +95,6 @@ public:
     /// run may hold pairs far up the wall that no start would be allowed).
     Engine(System<K, P> initial, SmdSettings settings, const nlohmann::json& checkpoint)
         : Engine(initial, std::move(settings), false) {
-        resumeSteps(checkpoint);
-    }
-    Engine(System<K, P> initial, const Scene& scene, const nlohmann::json& checkpoint)
-        : Engine(initial, settingsOf(scene, initial), false) {
         resumeSteps(checkpoint);
     }
 

@@ -5,8 +5,8 @@
 #include "core/scene.hpp"
 #include "core/system.hpp"
 #include "core/units.hpp"
-#include "dmd/engine.hpp"
 #include "dmd/root_search.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/settings.hpp"
 #include <fstream>
 #include <nlohmann/json.hpp>

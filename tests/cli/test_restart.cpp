@@ -10,9 +10,9 @@
 #include "core/smoothed_potential.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
-#include "smd/engine.hpp"
+#include "smd/scene_engine.hpp"
 #include <array>
 #include <filesystem>
 #include <gtest/gtest.h>
@@ -155,7 +155,7 @@ void rebuiltEnginesAgree(const Scene& scene, const P& potential, double t1, doub
 TEST(Restart, RebuiltDmdEnginesAgreeBitForBit) {
     Scene scene = smallScene("linear");
     scene.state.n = 216;
-    rebuiltEnginesAgree<dmd::Engine, LinearRotor>(
+    rebuiltEnginesAgree<dmd::SceneEngine, LinearRotor>(
         scene, Smoothed<RodPotential>{rodPotential(scene), sceneCutoff(scene)}, 0.5, 2.0);
 }
 
@@ -163,13 +163,13 @@ TEST(Restart, RebuiltSmdEnginesAgreeBitForBit) {
     Scene scene = smallScene("linear");
     scene.state.n = 216;
     scene.engine = "smd";
-    rebuiltEnginesAgree<smd::Engine, LinearRotor>(
+    rebuiltEnginesAgree<smd::SceneEngine, LinearRotor>(
         scene, Smoothed<RodPotential>{rodPotential(scene), sceneCutoff(scene)}, 0.09, 0.9);
 }
 
 namespace {
 
-using RodDmd = dmd::Engine<LinearRotor, RodPotential>;
+using RodDmd = dmd::SceneEngine<LinearRotor, RodPotential>;
 
 /// 216 rods run by DMD to time t: the scene, the bodies there, the engine's checkpoint and r_m.
 struct DmdPoint {

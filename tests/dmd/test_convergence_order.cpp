@@ -10,21 +10,21 @@
 // r_m, and the well's bottom (U_min = −3 kJ/mol) is rounded to a multiple of ΔV. Neither is in
 // an asymptotic regime over 2 … ⅛ kT: the experiment's gaps are 9.21, 0.44, 2.89, 1.34, 0.93
 // kJ/mol (the kT one is small by a cancellation of the overbound well, −3 → −4.2, against the
-// lost tail), so no single order describes them (χ²/ν = 170; results/convergence/README.md). From kT/2 to
-// kT/4 the gap is large against its noise and halves cleanly (the well's rounding −3 → −2.1 →
-// −3.15 and the tail together); from kT/4 to kT/8 it falls by 1.44 ± 0.10, as the lost tail
-// ∝ r_m⁻³ predicts (1.39), too little to tell from 1 in a test of this length. The continuous U
-// on DMD's configurations (the structure alone) changes sign between 2 kT, kT and kT/2 and lies
-// within its noise from kT/4 down: no factor to test there.
+// lost tail), so no single order describes them (χ²/ν = 170; results/convergence/README.md). From
+// kT/2 to kT/4 the gap is large against its noise and halves cleanly (the well's rounding −3 → −2.1
+// → −3.15 and the tail together); from kT/4 to kT/8 it falls by 1.44 ± 0.10, as the lost tail ∝
+// r_m⁻³ predicts (1.39), too little to tell from 1 in a test of this length. The continuous U on
+// DMD's configurations (the structure alone) changes sign between 2 kT, kT and kT/2 and lies within
+// its noise from kT/4 down: no factor to test there.
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/pressure.hpp"
 #include "core/rod_potential.hpp"
 #include "core/smoothed_potential.hpp"
 #include "core/units.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/settings.hpp"
-#include "smd/engine.hpp"
+#include "smd/scene_engine.hpp"
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -110,8 +110,8 @@ template <class Engine> double meanPressure(Engine& e, const Scene& s, double vo
 /// A start: the lattice melted by SMD at meltDtFs with rescaling.
 Rods meltedStart(std::uint64_t seed, double rl = 2.5, double ru = 3.0) {
     const Scene melt = rodScene(seed, coarseDV, meltDtFs, rl, ru);
-    smd::Engine<LinearRotor, Model> melting(buildInitialState<LinearRotor>(melt, model(melt)),
-                                            melt);
+    smd::SceneEngine<LinearRotor, Model> melting(buildInitialState<LinearRotor>(melt, model(melt)),
+                                                 melt);
     rescaleFor(melting, meltPs, melt.kT());
     return melting.system();
 }
@@ -125,11 +125,11 @@ Gaps replicaGaps(std::uint64_t seed) {
     const Rods start = meltedStart(seed);
 
     const Scene ref = rodScene(seed, coarseDV, referenceDtFs);
-    smd::Engine<LinearRotor, Model> reference(start, ref);
+    smd::SceneEngine<LinearRotor, Model> reference(start, ref);
     const double u = meanEnergyPerBody(reference);
     auto dmdEnergy = [&](double dV) {
         const Scene s = rodScene(seed, dV, referenceDtFs);
-        dmd::Engine<LinearRotor, Model> e(start, s);
+        dmd::SceneEngine<LinearRotor, Model> e(start, s);
         rescaleFor(e, dmdEquilibratePs, s.kT());
         return meanEnergyPerBody(e);
     };
@@ -211,11 +211,11 @@ PressureGaps replicaPressureGaps(std::uint64_t seed) {
     const double volume = start.box.volume();
 
     const Scene ref = rodScene(seed, farDV, referenceDtFs, shortRl, shortRu);
-    smd::Engine<LinearRotor, Model> reference(start, ref);
+    smd::SceneEngine<LinearRotor, Model> reference(start, ref);
     const double p = meanPressure(reference, ref, volume);
     auto dmdPressure = [&](double dV) {
         const Scene s = rodScene(seed, dV, referenceDtFs, shortRl, shortRu);
-        dmd::Engine<LinearRotor, Model> e(start, s);
+        dmd::SceneEngine<LinearRotor, Model> e(start, s);
         rescaleFor(e, dmdEquilibratePs, s.kT());
         return meanPressure(e, s, volume);
     };

@@ -538,7 +538,7 @@ static_assert(terrace::Engine<RodEngine>, "the DMD engine fulfils the engines' c
 
 namespace {
 template <class K, class P> void expectConservation(const Scene& s, const P& potential) {
-    dmd::Engine<K, P> e(buildInitialState<K, P>(s, potential), s);
+    dmd::SceneEngine<K, P> e(buildInitialState<K, P>(s, potential), s);
     const double e0 = e.kineticEnergy() + e.potentialEnergy();
     for (int k = 1; k <= 20; ++k) {
         e.advanceTo(units::fromFs(10.0 * k));
@@ -576,8 +576,8 @@ TEST(Engine, HotLennardJonesGasWithoutAnAttractiveTerraceAdvances) {
     s.seed = 1;
     s.body.kind = "sphere";
     s.potential.kind = "lj";
-    dmd::Engine<Sphere, LJPotential> e(buildInitialState<Sphere, LJPotential>(s, ljPotential(s)),
-                                       s);
+    dmd::SceneEngine<Sphere, LJPotential> e(
+        buildInitialState<Sphere, LJPotential>(s, ljPotential(s)), s);
     const double e0 = e.kineticEnergy() + e.potentialEnergy();
     e.advanceTo(units::fromFs(2000.0));
     EXPECT_EQ(e.time(), units::fromFs(2000.0));

@@ -9,7 +9,7 @@
 #include "core/initial_state.hpp"
 #include "core/lj_potential.hpp"
 #include "core/sphere.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <cmath>
@@ -24,7 +24,7 @@ using terrace::dmdtest::innerRoot;
 
 namespace {
 
-using SphereEngine = dmd::Engine<Sphere, LJPotential>;
+using SphereEngine = dmd::SceneEngine<Sphere, LJPotential>;
 
 /// Z = PV/(NkT) of hard spheres of diameter d at packing fraction η, from DMD on LJ spheres whose
 /// only reachable level is a step of 40 kT on the wall; mean and block error over `blocks`.

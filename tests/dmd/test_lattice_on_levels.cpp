@@ -20,7 +20,7 @@ using namespace terrace::dmdtest;
 
 namespace {
 
-using LJEngine = dmd::Engine<Sphere, LJPotential>;
+using LJEngine = dmd::SceneEngine<Sphere, LJPotential>;
 
 // Each collision conserves energy to a few ulps; 10^5 events random-walk to well below this.
 constexpr double energyTolerance = 1e-12;
@@ -48,7 +48,7 @@ Scene ljOnLevels(int n, std::uint64_t seed) {
 /// Every pair of the start within `within` of `level` (kJ/mol) is on the terrace it heads into
 /// (below the level when U falls, above it otherwise); returns how many such pairs there are.
 template <BodyKind K, PairPotential P>
-int checkPairsOnTheLevel(const dmd::Engine<K, P>& e, const System<K, P>& sys, double level,
+int checkPairsOnTheLevel(const dmd::SceneEngine<K, P>& e, const System<K, P>& sys, double level,
                          double within) {
     int count = 0;
     const dmd::TerraceLevels& levels = Probe::levels(e);

@@ -11,9 +11,9 @@
 //    positions after 9 fs of DMD approach those of SMD at 0.2 fs as ΔV shrinks, as fast as they
 //    do for the paper's rods, which run through the same checks as the reference.
 #include "core/initial_state.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
-#include "smd/engine.hpp"
+#include "smd/scene_engine.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -63,8 +63,8 @@ struct Triatomic {
 template <class M> using Bare = decltype(M::bare(std::declval<const Scene&>()));
 template <class M> using Model = Smoothed<Bare<M>>;
 template <class M> using Bodies = System<typename M::Kind, Model<M>>;
-template <class M> using Dmd = dmd::Engine<typename M::Kind, Model<M>>;
-template <class M> using Smd = smd::Engine<typename M::Kind, Model<M>>;
+template <class M> using Dmd = dmd::SceneEngine<typename M::Kind, Model<M>>;
+template <class M> using Smd = smd::SceneEngine<typename M::Kind, Model<M>>;
 
 template <class M> Model<M> model(const Scene& s) {
     return {M::bare(s), sceneCutoff(s)};

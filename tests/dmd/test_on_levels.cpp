@@ -4,7 +4,7 @@
 // round radii (U at 1.25, 1.45, 1.75 and 2.30 σ), where a lattice start meets them.
 #include "core/lj_potential.hpp"
 #include "core/sphere.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@ using namespace terrace::dmd;
 
 namespace {
 
-using LJEngine = dmd::Engine<Sphere, LJPotential>;
+using LJEngine = dmd::SceneEngine<Sphere, LJPotential>;
 
 // Each collision conserves energy to a few ulps of the pair's energies.
 constexpr double energyTolerance = 1e-12;

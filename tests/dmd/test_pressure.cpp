@@ -2,7 +2,7 @@
 // reflection and transmission of two spheres (the hard-sphere limit is in test_hard_spheres.cpp).
 #include "core/lj_potential.hpp"
 #include "core/sphere.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <cmath>
@@ -21,7 +21,7 @@ namespace {
 // the analytic root of the level, so they agree to the root's refinement (relative).
 constexpr double virialTol = 1e-9;
 
-using SphereEngine = dmd::Engine<Sphere, LJPotential>;
+using SphereEngine = dmd::SceneEngine<Sphere, LJPotential>;
 
 /// Two spheres of mass m on the x axis, i at +x0 moving with −u, j at −x0 moving with +u, on the
 /// explicit levels {L0, L1} (kJ/mol): ε 3 kJ/mol, σ 3.035 Å.

@@ -20,7 +20,7 @@ using namespace terrace::dmdtest;
 namespace {
 
 using Model = Smoothed<RodPotential>;
-using ModelEngine = dmd::Engine<LinearRotor, Model>;
+using ModelEngine = dmd::SceneEngine<LinearRotor, Model>;
 
 Model modelOf(const Scene& s) {
     return {rodPotential(s), sceneCutoff(s)};
@@ -100,7 +100,7 @@ namespace {
 /// Two LJ spheres passing at impact parameter b inside the switch (r_l = 1.2σ, r_u = 1.8σ), on
 /// explicit levels {L0, +1}: U_s = g(r)·U(r) rises with r there, so its minimum along the pass
 /// is U_s(b), at closest approach.
-dmd::Engine<Sphere, Smoothed<LJPotential>> grazingPass(double b, double L0) {
+dmd::SceneEngine<Sphere, Smoothed<LJPotential>> grazingPass(double b, double L0) {
     System<Sphere, Smoothed<LJPotential>> sys;
     sys.box.length = 40.0;
     sys.body.mass = 18.0;

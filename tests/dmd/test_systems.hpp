@@ -4,7 +4,7 @@
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/rod_potential.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@ using terrace::dmd::testing::Probe;
 namespace terrace::dmdtest {
 
 using RodSystem = System<LinearRotor, RodPotential>;
-using RodEngine = dmd::Engine<LinearRotor, RodPotential>;
+using RodEngine = dmd::SceneEngine<LinearRotor, RodPotential>;
 
 /// The paper's rods (ε 3, σ 3.035, ζ 1, m 18, I 1.154) at N, ρ*, T* from a lattice.
 inline Scene rodScene(int n, double density, double temperature, double dVInKT) {

@@ -8,7 +8,7 @@
 #include "core/scene.hpp"
 #include "core/smoothed_potential.hpp"
 #include "core/sphere.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/settings.hpp"
 #include "dmd/terrace_design.hpp"
 #include "dmd/testing.hpp"
@@ -218,7 +218,7 @@ TEST(TerraceDesignEngine, UnequalStepsConserveEnergyAndMomentumToRoundOff) {
             "<LJ liquid>", {std::string("dmd.terraces=") + spec});
         using Model = Smoothed<LJPotential>;
         const Model model{ljPotential(s), sceneCutoff(s)};
-        dmd::Engine<Sphere, Model> e(buildInitialState<Sphere, Model>(s, model), s);
+        dmd::SceneEngine<Sphere, Model> e(buildInitialState<Sphere, Model>(s, model), s);
         ASSERT_FALSE(Probe::levels(e).isUniform());
         const double e0 = e.kineticEnergy() + e.potentialEnergy();
         const Vec3 p0 = e.totalMomentum();

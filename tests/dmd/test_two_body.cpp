@@ -4,7 +4,7 @@
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
 #include "core/sphere.hpp"
-#include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include "test_systems.hpp"
 #include <cmath>
@@ -29,7 +29,7 @@ constexpr double separationTol = 1e-9; // Å
 // A grazing event comes near closest approach: loose, the test asks that it is caught, not when.
 constexpr double closestApproachTol = 0.05; // time units
 
-using RodEngine = dmd::Engine<LinearRotor, RodPotential>;
+using RodEngine = dmd::SceneEngine<LinearRotor, RodPotential>;
 
 Scene sceneWithDV(double dVInKT) {
     Scene s;
@@ -124,7 +124,7 @@ namespace {
 
 /// Two LJ spheres passing each other at impact parameter b, on explicit levels {L0, +1}: U has
 /// its minimum U(b) at closest approach, the only place the lower level can be reached.
-dmd::Engine<Sphere, LJPotential> grazingPass(double b, double L0) {
+dmd::SceneEngine<Sphere, LJPotential> grazingPass(double b, double L0) {
     System<Sphere, LJPotential> sys;
     sys.box.length = 40.0;
     sys.body.mass = 18.0;
@@ -137,7 +137,7 @@ dmd::Engine<Sphere, LJPotential> grazingPass(double b, double L0) {
     sys.bodies[1].r = Vec3(20.0, 20.0, 20.0);
     Scene scene;
     scene.dmd["levels"] = {L0, 1.0};
-    return dmd::Engine<Sphere, LJPotential>(sys, scene);
+    return dmd::SceneEngine<Sphere, LJPotential>(sys, scene);
 }
 
 } // namespace

@@ -1,13 +1,13 @@
 // Energy conservation of the splitting on the paper's rods at ρ* = 0.5, T* = 1.4: the total-energy
 // error scales as dt² (second-order integrator), there is no secular drift over 100 ps at the
 // paper's 1.8 fs, and std(E)/std(U) at 1.8 fs is of the paper's size (about 1 %).
-#include "smd/engine.hpp"
+#include "smd/scene_engine.hpp"
 #include "systems.hpp"
 #include <gtest/gtest.h>
 #include <numeric>
 
 using namespace terrace;
-using RodEngine = smd::Engine<LinearRotor, smd::fixtures::RodModel>;
+using RodEngine = smd::SceneEngine<LinearRotor, smd::fixtures::RodModel>;
 
 namespace {
 

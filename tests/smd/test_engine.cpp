@@ -5,7 +5,7 @@
 #include "core/engine.hpp"
 #include "core/initial_state.hpp"
 #include "core/symmetric_top.hpp"
-#include "smd/engine.hpp"
+#include "smd/scene_engine.hpp"
 #include "systems.hpp"
 #include "tests/measure_guard.hpp"
 #include "tests/sample_parts.hpp"
@@ -15,8 +15,8 @@
 #include <vector>
 
 using namespace terrace;
-using RodEngine = smd::Engine<LinearRotor, smd::fixtures::RodModel>;
-using LJEngine = smd::Engine<Sphere, smd::fixtures::LJModel>;
+using RodEngine = smd::SceneEngine<LinearRotor, smd::fixtures::RodModel>;
+using LJEngine = smd::SceneEngine<Sphere, smd::fixtures::LJModel>;
 
 static_assert(terrace::Engine<RodEngine>);
 static_assert(terrace::Engine<LJEngine>);
@@ -177,8 +177,8 @@ namespace {
 
 template <BodyKind Top> void checkTops(const Vec3& inertia) {
     const auto rods = smd::fixtures::rods(6, 0.5, 1.4, 22);
-    smd::Engine<Top, smd::fixtures::RodModel> e(smd::fixtures::topsFromRods<Top>(rods, inertia),
-                                                smd::fixtures::smdScene(sigmaRod, 1.0));
+    smd::SceneEngine<Top, smd::fixtures::RodModel> e(
+        smd::fixtures::topsFromRods<Top>(rods, inertia), smd::fixtures::smdScene(sigmaRod, 1.0));
     const Vec3 p0 = e.totalMomentum();
     const double e0 = e.kineticEnergy() + e.potentialEnergy();
     e.advanceTo(units::fromFs(200.0));

@@ -3,7 +3,7 @@
 // error (slope of log max|E(t) − E(0)| over 0.5 ps against log dt, with the fit's standard error)
 // on the paper's rods and on asymmetric tops, and no drift over 100 ps at 1.8 fs.
 #include "core/asymmetric_top.hpp"
-#include "smd/engine.hpp"
+#include "smd/scene_engine.hpp"
 #include "systems.hpp"
 #include <gtest/gtest.h>
 #include <numeric>
@@ -28,7 +28,7 @@ Scene sceneFor(const std::string& scheme, double dtFs) {
 /// Rods melted from the lattice at ρ* = 0.5, T* = 1.4 (2 ps, rescaled every 10 fs).
 System<LinearRotor, smd::fixtures::RodModel> meltedRods(std::uint64_t seed) {
     const auto start = smd::fixtures::rods(6, 0.5, 1.4, seed);
-    smd::Engine<LinearRotor, smd::fixtures::RodModel> e(start, sceneFor("verlet", 1.0));
+    smd::SceneEngine<LinearRotor, smd::fixtures::RodModel> e(start, sceneFor("verlet", 1.0));
     for (int k = 1; k <= 200; ++k) {
         e.advanceTo(units::fromFs(10.0 * k));
         e.rescaleTemperature(start.kT);
@@ -40,7 +40,7 @@ System<LinearRotor, smd::fixtures::RodModel> meltedRods(std::uint64_t seed) {
 template <BodyKind K>
 double maxEnergyError(const System<K, smd::fixtures::RodModel>& start, const std::string& scheme,
                       double dtFs, double durationFs, double sampleFs) {
-    smd::Engine<K, smd::fixtures::RodModel> e(start, sceneFor(scheme, dtFs));
+    smd::SceneEngine<K, smd::fixtures::RodModel> e(start, sceneFor(scheme, dtFs));
     const double e0 = e.kineticEnergy() + e.potentialEnergy();
     double worst = 0.0;
     for (long k = 1; k <= std::lround(durationFs / sampleFs); ++k) {
@@ -118,10 +118,11 @@ TEST(Splitting, CoefficientsAreConsistentAndSymmetric) {
 
 TEST(Splitting, EverySchemeIsTimeReversible) {
     const auto start = smd::fixtures::rods(6, 0.5, 1.4, 9);
-    smd::Engine<LinearRotor, smd::fixtures::RodModel> warm(start, sceneFor("verlet", 1.8));
+    smd::SceneEngine<LinearRotor, smd::fixtures::RodModel> warm(start, sceneFor("verlet", 1.8));
     warm.advanceTo(units::fromFs(200 * 1.8));
     for (const auto& scheme : schemes) {
-        smd::Engine<LinearRotor, smd::fixtures::RodModel> e(warm.system(), sceneFor(scheme, 1.0));
+        smd::SceneEngine<LinearRotor, smd::fixtures::RodModel> e(warm.system(),
+                                                                 sceneFor(scheme, 1.0));
         const auto before = e.system().bodies;
         e.advanceTo(200 * e.parameters().dt);
         e.reverseMotion();
@@ -149,7 +150,7 @@ TEST(Splitting, EnergyErrorHasEachSchemesOrderForAsymmetricTops) {
 TEST(Splitting, NoDriftOver100psAtThePapersStep) {
     const auto start = meltedRods(33);
     for (const auto& scheme : {std::string("omelyan"), std::string("yoshida4")}) {
-        smd::Engine<LinearRotor, smd::fixtures::RodModel> e(start, sceneFor(scheme, 1.8));
+        smd::SceneEngine<LinearRotor, smd::fixtures::RodModel> e(start, sceneFor(scheme, 1.8));
         std::vector<double> t, energy;
         for (long k = 0; k <= 9260; ++k) { // 100.008 ps in samples of 6 steps
             e.advanceTo(units::fromFs(10.8 * k));
