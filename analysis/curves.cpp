@@ -76,6 +76,14 @@ std::vector<int> coarseBlocks(const std::vector<double>& fineWeights, int blocks
     return group;
 }
 
+void finishOrientational(OrientationalCorrelation& c) {
+    for (auto& block : c.c2.fineValue)
+        for (double& v : block)
+            v = 1.5 * v - 0.5;
+    poolFineBlocks(c.c1);
+    poolFineBlocks(c.c2);
+}
+
 void poolFineBlocks(SampledCurve& c) {
     std::vector<double> v, w, lagWeights(c.fineWeight.size());
     c.value.assign(c.tPs.size(), 0.0);

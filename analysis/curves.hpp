@@ -59,6 +59,9 @@ std::vector<int> coarseBlocks(const std::vector<double>& fineWeights, int blocks
 /// Pools a curve's fine values into value (all origins) and err (its B coarse blocks, regrouped
 /// lag by lag from the fine blocks' weights at that lag).
 void poolFineBlocks(SampledCurve& c);
+/// The OACF from its fine sums of s(0)·s(t) (c1) and (s(0)·s(t))² (c2): c2 turned into
+/// ⟨P₂(s(0)·s(t))⟩, linear in each block's mean, then both pooled.
+void finishOrientational(OrientationalCorrelation& c);
 
 /// Largest lag (in samples) allowed for T samples and B blocks (at least two blocks of origins
 /// reach it), and the lag for a request in ps (requestPs ≤ 0: half the sampled span), clipped

@@ -234,11 +234,7 @@ OrientationalCorrelation StreamingCorrelations::orientation() const {
     OrientationalCorrelation out{emptyCurve(sums), emptyCurve(sums)};
     setFine(out.c1, sums.ss, sums.origins, followed());
     setFine(out.c2, sums.s2, sums.origins, followed());
-    for (auto& block : out.c2.fineValue)
-        for (double& v : block)
-            v = 1.5 * v - 0.5; // P₂ of ⟨(s(0)·s(t))²⟩, linear per block
-    poolFineBlocks(out.c1);
-    poolFineBlocks(out.c2);
+    finishOrientational(out);
     return out;
 }
 

@@ -135,11 +135,7 @@ OrientationalCorrelation orientationalAutocorrelation(const std::vector<Snapshot
         const double c = a.axis[i].dot(b.axis[i]);
         return c * c;
     });
-    for (auto& block : out.c2.fineValue)
-        for (double& v : block)
-            v = 1.5 * v - 0.5; // P₂ of ⟨(s(0)·s(t))²⟩, linear per block
-    poolFineBlocks(out.c1);
-    poolFineBlocks(out.c2);
+    finishOrientational(out);
     return out;
 }
 
