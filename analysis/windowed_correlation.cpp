@@ -548,6 +548,11 @@ LagSums WindowedCorrelation::invert(const Spectra& s) const {
     return out;
 }
 
+std::size_t WindowedCorrelation::bytesPerBody(int window) {
+    const std::size_t n = 2 * std::size_t(window), bins = std::size_t(window) + 1;
+    return n * rows * sizeof(double) + (pairs * n + (channels - pairs) * bins) * sizeof(Complex);
+}
+
 std::size_t WindowedCorrelation::bytes() const {
     const std::size_t spectra = (3 * std::size_t(fine_) + groups_) * 2 * (fft_->n + fft_->bins) *
                                 sizeof(Complex),

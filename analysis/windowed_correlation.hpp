@@ -86,6 +86,9 @@ public:
     /// The sums over every origin of the samples added so far (the last blocks included).
     LagSums sums() const;
     std::size_t bytes() const;
+    /// What each followed body holds for a window of W samples: its 2W samples in the ring and
+    /// its last block's kept transforms (bytes; the memory check before a run).
+    static std::size_t bytesPerBody(int window);
 
 private:
     struct Fft;     // FFTW plans and aligned scratch

@@ -86,26 +86,26 @@ public:
     /// The run has ended: production's statistics include the last stretch, and this is where
     /// the engine ended (the last restart point's end when no engine is left).
     const EngineEnd& end(const E* engine) {
-        if (engine) last_ = endOf(*engine);
-        if (at_.inProduction)
-            accumulateStatistics(run_.production, stretchStart_, last_.statistics);
+        if (engine) closeStretch(*engine); // else the last restart point closed it
         return last_;
     }
 
 private:
-    EngineEnd endOf(const E& e) {
+    /// The engine's end recorded and its stretch of production added up; the next stretch
+    /// starts here.
+    void closeStretch(const E& e) {
         // The engine's arrays are all there now: what of the process lies in huge pages.
         run_.hugePageBytes = std::max(run_.hugePageBytes, processHugePageBytes());
-        return EngineEnd{e.statistics(), e.time(), e.totalMomentum()};
+        last_ = EngineEnd{e.statistics(), e.time(), e.totalMomentum()};
+        if (at_.inProduction)
+            accumulateStatistics(run_.production, stretchStart_, last_.statistics);
+        stretchStart_ = last_.statistics;
     }
 
     /// The engine's end is recorded and its stretch closed; then its bodies and checkpoint are
     /// moved out and it is dropped.
     Released<System> release(std::unique_ptr<E>& engine) {
-        last_ = endOf(*engine);
-        if (at_.inProduction)
-            accumulateStatistics(run_.production, stretchStart_, last_.statistics);
-        stretchStart_ = last_.statistics; // the stretch so far is in run_.production
+        closeStretch(*engine);
         try {
             Released<System> r = std::move(*engine).release();
             engine.reset();

@@ -2,6 +2,7 @@
 #include "analysis/block_average.hpp"
 #include "analysis/cancellation.hpp"
 #include "analysis/conservation.hpp"
+#include "analysis/windowed_correlation.hpp"
 #include "cli/thermo.hpp"
 #include "smd/parameters.hpp"
 #include <algorithm>
@@ -71,13 +72,15 @@ double analysisBytes(const Scene& scene) {
     const auto& a = scene.analysis;
     const double followed = a.follow_bodies > 0 ? std::min(n, double(a.follow_bodies)) : n;
     // Multiple-tau levels up to the longest lag (at most half the run): 9 doubles per followed
-    // body per slot, p slots per level beyond the first, 2p for the FFT windows of the first;
-    // g(r): three coordinates and a cell index per body.
+    // body per slot, p slots per level beyond the first; the first's FFT windows and kept
+    // transforms (WindowedCorrelation); g(r): three coordinates and a cell index per body.
     const double p = a.lags_per_level;
     const double lag =
         a.max_lag_ps > 0.0 ? units::fromPs(a.max_lag_ps) / plan.sampleInterval : 0.5 * samples;
     const double levels = 1.0 + std::max(0.0, std::ceil(std::log2(std::max(1.0, lag / (p - 1)))));
-    return samples * sizeof(SampleRecord) + followed * (levels + 1.0) * p * 9.0 * sizeof(double) +
+    const double perFollowed = (levels - 1.0) * p * 9.0 * sizeof(double) +
+                               double(analysis::WindowedCorrelation::bytesPerBody(int(p)));
+    return samples * sizeof(SampleRecord) + followed * perFollowed +
            n * (3.0 * sizeof(double) + 2.0 * sizeof(int));
 }
 
