@@ -37,12 +37,22 @@ nlohmann::json rdfSummary(const RadialDistribution& rdf, double from) {
 /// Writes rdf.csv, vacf.csv, msd.csv and, for rotating bodies, oacf.csv (else removes a stale
 /// one) into dir, created if needed.
 void writeCurveFiles(const std::filesystem::path& dir, const RadialDistribution& rdf,
-                     const SampledCurve& vacf, const OrientationalCorrelation* oacf,
-                     const SampledCurve& msd) {
+                     const TerracingProfile& terracing, const SampledCurve& vacf,
+                     const OrientationalCorrelation* oacf, const SampledCurve& msd) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throwIoError("create the directory", dir, ec.value());
-    writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+    if (terracing.empty()) {
+        writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+    } else {
+        std::vector<double> gc(rdf.g.size()), errc(rdf.g.size());
+        for (std::size_t k = 0; k < rdf.g.size(); ++k) {
+            const double w = terracing.meanWeight(k);
+            gc[k] = rdf.g[k] * w, errc[k] = rdf.err[k] * w;
+        }
+        writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err", "g_continuous", "err_continuous"},
+                                   {rdf.r, rdf.g, rdf.err, gc, errc}});
+    }
     writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
     if (oacf)
         writeCsv(dir / "oacf.csv",
@@ -81,6 +91,10 @@ RunAnalysis::RunAnalysis(int bodies, double boxLength, double sampleIntervalPs, 
     const long frames = (plannedSamples + options.rdfEvery - 1) / options.rdfEvery;
     rdf_ = std::make_unique<RdfAccumulator>(bodies, boxLength, options.rdfBinAngstrom, rMax, frames,
                                             static_cast<int>(std::min<long>(blocks_, frames)));
+    if (options.beta > 0.0)
+        terracing_ =
+            TerracingProfile(static_cast<int>(std::lround(rdf_->rMax() / options.rdfBinAngstrom)),
+                             options.rdfBinAngstrom, options.beta);
 }
 
 RunAnalysis::~RunAnalysis() = default;
@@ -119,7 +133,7 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir) const {
     const Diffusion d = diffusionFromMsd(msd);
     const Diffusion gk = greenKuboDiffusion(vacf, v2);
 
-    writeCurveFiles(dir, rdf, vacf, rotating ? &oacf : nullptr, msd);
+    writeCurveFiles(dir, rdf, terracing_, vacf, rotating ? &oacf : nullptr, msd);
 
     const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
     nlohmann::json rdfEntry = rdfSummary(rdf, largeRFraction * rdf_->rMax());
@@ -159,7 +173,8 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir) const {
 }
 
 std::size_t RunAnalysis::bytes() const {
-    return rdf_->bytes() + correlations_->bytes();
+    return rdf_->bytes() + correlations_->bytes() +
+           2 * sizeof(double) * static_cast<std::size_t>(terracing_.bins());
 }
 
 } // namespace terrace::analysis

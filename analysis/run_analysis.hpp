@@ -11,6 +11,9 @@
 // It writes, into the run's directory:
 //
 //   rdf.csv   r_angstrom,g,err                 centre-of-mass g(r), bins up to r_max (rdf.hpp)
+//             [,g_continuous,err_continuous]   a terraced run's g back-converted to the continuous
+//                                              model, g·⟨e^{−β(U−V)}⟩ (core/continuous_sums.hpp),
+//                                              when the engine filled terracing()
 //   vacf.csv  t_ps,c,err                       ⟨v(0)·v(t)⟩/⟨v²⟩ (curves.hpp)
 //   oacf.csv  t_ps,c1,c1_err,c2,c2_err         ⟨s(0)·s(t)⟩ and ⟨P₂(s(0)·s(t))⟩
 //   msd.csv   t_ps,msd_angstrom2,err           ⟨|r(t) − r(0)|²⟩
@@ -24,6 +27,7 @@
 // it is given: a run that reaches its planned length gets the same blocks. A run stopped early is
 // analysed over the samples it has, its last blocks short or empty.
 #include "analysis/rdf_accumulator.hpp" // and PositionOf
+#include "core/continuous_sums.hpp"
 #include "core/snapshot.hpp"
 #include <cstddef>
 #include <filesystem>
@@ -43,6 +47,7 @@ struct StreamingOptions {
     int rdfEvery = 1;             // samples between g(r) frames
     int followBodies = 4096;      // bodies the time correlations follow; 0: all
     int lagsPerLevel = 16;        // p of the multiple-tau grid
+    double beta = 0.0;            // 1/kT, mol/kJ, for the back-conversion of g(r); 0: none
 };
 
 class RunAnalysis {
@@ -66,6 +71,10 @@ public:
     /// Whether the next sample is a g(r) frame, which needs every body's position.
     bool wantsPositions() const { return samples_ % options_.rdfEvery == 0; }
     long samples() const { return samples_; }
+    /// Where an engine puts its pairs' e^{−β(U−V)} on g(r) frames (g_continuous in rdf.csv); the
+    /// bins of g(r). Null without a beta.
+    TerracingProfile* terracing() { return terracing_.bins() > 0 ? &terracing_ : nullptr; }
+    const TerracingProfile& terracingProfile() const { return terracing_; }
     /// Writes the CSVs into dir (created if needed) and returns the summary entries; needs at
     /// least 4 samples (std::invalid_argument). Everything is computed before anything is written.
     nlohmann::json write(const std::filesystem::path& dir) const;
@@ -79,6 +88,7 @@ private:
     double dtPs_, boxLength_;
     std::unique_ptr<RdfAccumulator> rdf_;
     std::unique_ptr<StreamingCorrelations> correlations_;
+    TerracingProfile terracing_;
 };
 
 } // namespace terrace::analysis

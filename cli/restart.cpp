@@ -20,14 +20,14 @@ void put(std::string& out, const Vec3& v) {
 }
 
 std::size_t recordDoubles(int bodies, bool withOrientation) {
-    return 8 + std::size_t(bodies) * (withOrientation ? 16 : 12);
+    return 10 + std::size_t(bodies) * (withOrientation ? 16 : 12);
 }
 
 std::string sampleHead(double time, const SampleRecord& e) {
     std::string out;
     put(out, time), put(out, e.tPs), put(out, e.total), put(out, e.potential);
     put(out, e.kinetic), put(out, e.kineticTranslational), put(out, e.virial);
-    put(out, e.collisions);
+    put(out, e.collisions), put(out, e.continuousPotential), put(out, e.continuousVirial);
     return out;
 }
 
@@ -88,6 +88,7 @@ void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, d
         e.time = s.time;
         e.tPs = get(), e.total = get(), e.potential = get(), e.kinetic = get();
         e.kineticTranslational = get(), e.virial = get(), e.collisions = get();
+        e.continuousPotential = get(), e.continuousVirial = get();
         for (int i = 0; i < bodies; ++i) {
             s.position.push_back(vec());
             s.velocity.push_back(vec());

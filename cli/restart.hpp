@@ -9,12 +9,13 @@
 //                       states as raw bytes: exact, and compact), the engine's checkpoint (DMD:
 //                       clock, pair terraces as raw bytes, horizon stream; SMD: step count), the
 //                       run's accumulators (production start, initial momentum, production
-//                       statistics, CPU seconds) and the lengths of trajectory.xyz, thermo.csv and
-//                       samples.bin at that point;
+//                       statistics, CPU seconds, the terracing profile of g_c(r)) and the lengths
+//                       of trajectory.xyz, thermo.csv and samples.bin at that point;
 //   DIR/samples.bin   the production samples, one fixed-size record per sample, appended as they
 //                     are taken (kept only while restarts are on; removed when the run completes):
 //                       time, t_ps, E, U, K, K_trans, W (SMD: the virial at the sample; DMD:
-//                       the running impulse virial), the collisions since production began, then
+//                       the running impulse virial), the collisions since production began, the
+//                       continuous U and W on g(r) frames (NaN between them), then
 //                       per body r, v, axis, ω (and a top's quaternion).
 //
 // A continued run cuts trajectory.xyz, thermo.csv and samples.bin back to their lengths in the
@@ -29,6 +30,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -38,7 +40,7 @@ namespace terrace::cli {
 /// Version 2: samples.bin records carry K_trans, W and the collision count, and restart.bin the
 /// length of thermo.csv. Version 3: the DMD checkpoint's pair terraces are raw bytes
 /// (dmd/engine_start.hpp). Files of another version are refused, naming both versions.
-inline constexpr const char* restartFormat = "terrace restart 3";
+inline constexpr const char* restartFormat = "terrace restart 4";
 
 /// One production sample and its energies (kJ/mol), as the run loop keeps them.
 struct SampleRecord {
@@ -47,6 +49,10 @@ struct SampleRecord {
     double virial = 0.0;     // SMD: Σ r_ij·F_ij at the sample; DMD: the running Σ r_ij·Δp_i
     double collisions = 0.0; // DMD: collisions since production began (exact below 2⁵³); SMD: 0
     double time = 0.0;       // engine time units (the snapshot's time)
+    // The continuous model's U and W on the sample's configuration (core/continuous_sums.hpp),
+    // kJ/mol, taken on g(r) frames; NaN on the other samples.
+    double continuousPotential = std::numeric_limits<double>::quiet_NaN();
+    double continuousVirial = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The bytes of one samples.bin record.

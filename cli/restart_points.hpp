@@ -120,6 +120,10 @@ private:
     nlohmann::json restartFile(const std::string& reason, const Released<System>& r,
                                double phaseCpu) const {
         const bool production = at_.inProduction;
+        nlohmann::json terracing; // the g_c(r) sums so far: the samples cannot give them back
+        if (run_.analysis && run_.analysis->terracing())
+            terracing = {{"weight", run_.analysis->terracingProfile().weights()},
+                         {"count", run_.analysis->terracingProfile().counts()}};
         return {{"format", restartFormat},
                 {"reason", reason},
                 {"scene", scene_},
@@ -137,7 +141,8 @@ private:
                 {"cpu_seconds_equilibration", at_.cpuEquilibration + (production ? 0.0 : phaseCpu)},
                 {"restarts_written", run_.restartsWritten + 1},
                 {"continuations", run_.continuations},
-                {"files", files_.sizes()}};
+                {"files", files_.sizes()},
+                {"terracing", terracing}};
     }
 
     const RunPlan& plan_;

@@ -61,6 +61,7 @@ analysis::StreamingOptions streamingOptions(const Scene& scene) {
     o.rdfEvery = a.rdf_every;
     o.followBodies = a.follow_bodies;
     o.lagsPerLevel = a.lags_per_level;
+    o.beta = scene.kT() > 0.0 ? 1.0 / scene.kT() : 0.0;
     return o;
 }
 
@@ -254,6 +255,36 @@ void addEnergy(nlohmann::json& summary, const RunRecord& run) {
     }
 }
 
+/// The configurational estimators (core/continuous_sums.hpp): the continuous model's ⟨U⟩ and its
+/// virial pressure P = (2 K_trans + W)/(3V) on the g(r) frames' configurations, each with a block
+/// error. For SMD they are its own U and P on fewer samples; for DMD they remove the terracing of
+/// the observable, leaving that of the distribution.
+nlohmann::json configurationalSummary(const RunRecord& run, double sigma, double epsilon) {
+    std::vector<double> u, p;
+    for (const auto& r : run.records)
+        if (std::isfinite(r.continuousPotential)) {
+            u.push_back(r.continuousPotential);
+            p.push_back(virialPressure(r.kineticTranslational, r.continuousVirial, run.volume));
+        }
+    nlohmann::json j{{"frames", u.size()}};
+    if (u.size() < 2) return j;
+    const auto orNull = [](double x) {
+        return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
+    };
+    const int blocks = std::min<int>(pressureBlocks, int(u.size()));
+    const analysis::Estimate um = analysis::blockMean(u, blocks);
+    const analysis::Estimate pm = analysis::blockMean(p, blocks);
+    j["blocks"] = blocks;
+    j["potential_energy_mean"] = um.mean;
+    j["potential_energy_err"] = orNull(um.err);
+    j["pressure_bar"] = units::bar(pm.mean);
+    j["pressure_err_bar"] = orNull(units::bar(pm.err));
+    j["pressure_reduced"] = reducedPressure(pm.mean, sigma, epsilon);
+    j["pressure_err_reduced"] = orNull(reducedPressure(pm.err, sigma, epsilon));
+    j["method"] = "continuous U and W = sum r_ij.F_ij on the configurations of the g(r) frames";
+    return j;
+}
+
 nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     nlohmann::json summary;
     summary["engine"] = scene.engine;
@@ -284,6 +315,8 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
         summary["pressure"] =
             pressureSummary(pressureSeries(run.records, run.virialKind, run.volume), run.virialKind,
                             scene.potential.sigma, scene.potential.epsilon);
+    summary["configurational"] =
+        configurationalSummary(run, scene.potential.sigma, scene.potential.epsilon);
     summary["momentum"] = {{"initial", vec3Json(run.momentumInitial / units::psPerTimeUnit)},
                            {"final", vec3Json(run.momentumFinal / units::psPerTimeUnit)},
                            {"units", "g/mol A/ps"}};
@@ -406,6 +439,16 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
     if (read != at.sample + 1)
         throw IoError((dir / "samples.bin").string() + " holds " + std::to_string(read) +
                       " samples, its restart point " + std::to_string(at.sample + 1));
+    if (run.analysis && run.analysis->terracing()) try {
+            const auto& t = r.at("terracing");
+            if (!t.is_null())
+                run.analysis->terracing()->restore(t.at("weight").get<std::vector<double>>(),
+                                                   t.at("count").get<std::vector<double>>());
+        } catch (const nlohmann::json::exception& e) {
+            throw damagedRestart(dir, e);
+        } catch (const std::invalid_argument& e) {
+            throw IoError((dir / "restart.bin").string() + ": " + e.what());
+        }
     return at;
 }
 

@@ -65,11 +65,21 @@ public:
         e.collisions = collisions;
         e.time = engine.time();
         const int n = run_.bodies;
-        if (plan_.thermoEvery > 0 && sample % plan_.thermoEvery == 0) {
+        // The configurational estimators on g(r) frames, where the analysis reads every body
+        // anyway (an O(N) pass: every sample would cost DMD a force evaluation per sample).
+        const bool frame = run_.analysis && run_.analysis->wantsPositions();
+        const bool rowDue = plan_.thermoEvery > 0 && sample % plan_.thermoEvery == 0;
+        double continuousU = e.potential;
+        if (frame || rowDue) {
+            const ContinuousSums c =
+                engine.continuousSums(frame ? run_.analysis->terracing() : nullptr);
+            if (frame) e.continuousPotential = c.potential, e.continuousVirial = c.virial;
+            continuousU = c.potential;
+        }
+        if (rowDue) {
             const SampleRecord* before =
                 sample > 0 ? &run_.records[sample - plan_.thermoEvery] : nullptr;
-            files_.thermo.append(
-                thermoRow(e, before, engine.continuousPotentialEnergy(), thermoLayout_));
+            files_.thermo.append(thermoRow(e, before, continuousU, thermoLayout_));
         }
         if (files_.samples.isOpen()) // what a continued run reads back
             files_.samples.appendPieces(

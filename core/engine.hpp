@@ -5,6 +5,7 @@
 // engine (STYLE.md item 9); where an engine keeps its bodies in an order of its own (for memory
 // locality), it renumbers them inside advanceTo and answers every question in the scene's
 // numbering.
+#include "core/continuous_sums.hpp"
 #include "core/pressure.hpp"
 #include "core/snapshot.hpp"
 #include "core/vec.hpp"
@@ -24,7 +25,8 @@ template <class System> struct Released {
 };
 
 template <class E>
-concept Engine = requires(E e, const E ce, double t, std::span<const int> bodies) {
+concept Engine = requires(E e, const E ce, double t, std::span<const int> bodies,
+                          TerracingProfile* profile) {
     e.advanceTo(t);                                        // t in time units, t ≥ time()
     { ce.time() } -> std::convertible_to<double>;          // current (synchronised) time
     { ce.snapshot() } -> std::same_as<Snapshot>;           // all bodies at time()
@@ -35,12 +37,14 @@ concept Engine = requires(E e, const E ce, double t, std::span<const int> bodies
     { ce.translationalKineticEnergy() } -> std::convertible_to<double>; // ½ m Σ v², kJ/mol
     {
         ce.potentialEnergy()
-        } -> std::convertible_to<double>;                              // kJ/mol: the one integrated
-                                                                       // (terraced for DMD)
-    { ce.continuousPotentialEnergy() } -> std::convertible_to<double>; // the model's U, kJ/mol
-    { E::virialKind } -> std::convertible_to<VirialKind>;              // what virial() holds
-    { ce.virial() } -> std::convertible_to<double>;                    // core/pressure.hpp
-    { ce.totalMomentum() } -> std::convertible_to<Vec3>;               // g/mol Å per time unit
+        } -> std::convertible_to<double>; // kJ/mol: the one integrated
+                                          // (terraced for DMD)
+    // the continuous model's U and W on the engine's configuration (core/continuous_sums.hpp);
+    // each interacting pair's e^{−β(U−V)} into *profile when not null (nothing for SMD: V = U)
+    { ce.continuousSums(profile) } -> std::same_as<ContinuousSums>;
+    { E::virialKind } -> std::convertible_to<VirialKind>; // what virial() holds
+    { ce.virial() } -> std::convertible_to<double>;       // core/pressure.hpp
+    { ce.totalMomentum() } -> std::convertible_to<Vec3>;  // g/mol Å per time unit
     e.rescaleTemperature(t); // scale v and ω so that the kinetic temperature is kT = t
     { ce.statistics() } -> std::convertible_to<nlohmann::json>; // engine-specific summary keys
     { ce.checkpoint() } -> std::convertible_to<nlohmann::json>; // beyond the bodies, at time()

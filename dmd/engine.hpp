@@ -203,10 +203,12 @@ public:
     /// J. Chem. Phys. 33, 1439 (1960); Allen & Tildesley, 2nd ed., sec. 3.7).
     static constexpr VirialKind virialKind = VirialKind::Impulse;
     double virial() const { return s_.impulseVirial; }
-    /// The continuous U of the model at time() (kJ/mol), un-terraced: the smoothed potential over
-    /// every pair within its range, or for a bare one (no cutoff) within r_m, the range terraced.
-    /// O(N) by a cell list of its own; for output, not for the dynamics.
-    double continuousPotentialEnergy() const {
+    /// The continuous model's U and W = Σ r_ij·F_ij at time() (kJ/mol) on the engine's
+    /// configuration, un-terraced: the smoothed potential over every pair within its range, or
+    /// for a bare one (no cutoff) within r_m, the range terraced. Each pair's e^{−β(U−V)}, V its
+    /// terraced energy, goes into *profile when given (core/continuous_sums.hpp). O(N) by a cell
+    /// list of its own; for the configurational estimators, not for the dynamics.
+    ContinuousSums continuousSums(TerracingProfile* profile = nullptr) const {
         const System<K, P> s = system();
         double range = s_.settings.rm;
         if constexpr (requires { s_.sys.potential.range(); })
@@ -214,16 +216,22 @@ public:
         CellList cells(s.box.length, range, s.size());
         for (int i = 0; i < s.size(); ++i)
             cells.insert(i, s.bodies[i].r);
-        double u = 0.0;
+        const TerraceLevels& levels = s_.settings.levels;
+        ContinuousSums sums;
         for (int i = 0; i < s.size(); ++i)
             cells.forEachNeighbour(i, [&](int j) {
                 if (j <= i) return;
                 const Vec3 rij = s.box.minimumImage(s.bodies[i].r - s.bodies[j].r);
-                if (rij.squaredNorm() < range * range)
-                    u += s.potential.energy(rij, orientationOf<P, K>(s.bodies[i]),
-                                            orientationOf<P, K>(s.bodies[j]));
+                const double r2 = rij.squaredNorm();
+                if (r2 >= range * range) return;
+                const PairForce f = s.potential.evaluate(rij, orientationOf<P, K>(s.bodies[i]),
+                                                         orientationOf<P, K>(s.bodies[j]));
+                sums.potential += f.U;
+                sums.virial += rij.dot(f.F);
+                if (profile)
+                    profile->add(std::sqrt(r2), f.U - levels.energy(levels.terraceOf(f.U)));
             });
-        return u;
+        return sums;
     }
     void rescaleTemperature(double kT) {
         requireEvents();

@@ -178,7 +178,11 @@ public:
     }
     /// The smoothed continuous potential energy at time(): the model's U, which SMD integrates.
     double potentialEnergy() const { return forces_.potential; }
-    double continuousPotentialEnergy() const { return forces_.potential; }
+    /// The model's U and W at time(): SMD moves on the continuous model, so these are its own
+    /// (no terracing: nothing for a profile).
+    ContinuousSums continuousSums(TerracingProfile* = nullptr) const {
+        return {forces_.potential, forces_.virial};
+    }
     /// The molecular virial W = Σ_pairs r_ij·F_ij at time() (kJ/mol): P = (2 K_trans + W)/(3V).
     static constexpr VirialKind virialKind = VirialKind::Instantaneous;
     double virial() const { return forces_.virial; }

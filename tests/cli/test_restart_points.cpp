@@ -54,7 +54,7 @@ public:
     double kineticEnergy() const { return 0.0; }
     double translationalKineticEnergy() const { return 0.0; }
     double potentialEnergy() const { return 0.0; }
-    double continuousPotentialEnergy() const { return 0.0; }
+    ContinuousSums continuousSums(TerracingProfile*) const { return {}; }
     double virial() const { return 0.0; }
     Vec3 totalMomentum() const { return Vec3(time_, 0.0, 0.0); }
     void rescaleTemperature(double) {}
