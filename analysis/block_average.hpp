@@ -20,6 +20,11 @@ namespace terrace::analysis {
 struct Estimate {
     double mean = 0.0;
     double err = 0.0; // one standard error
+    // Degrees of freedom of err: B' − 1 for B' blocks or replicas. With a handful of replicas the
+    // error is itself a rough estimate, and a deviation in units of it follows Student's t, not a
+    // normal law (tradeoff_stats.hpp). Infinity: err is known exactly.
+    double dof = std::numeric_limits<double>::infinity();
+    int samples = 0; // blocks or replicas behind the estimate
 };
 
 /// The weighted error above around the given pooled value; NaN when fewer than two blocks count.
@@ -46,14 +51,17 @@ inline Estimate blockRatio(std::span<const double> sums, std::span<const double>
     if (sums.size() != weights.size())
         throw std::invalid_argument("blockRatio: one weight per block sum");
     double s = 0.0, w = 0.0;
-    for (std::size_t b = 0; b < sums.size(); ++b)
+    int counted = 0;
+    for (std::size_t b = 0; b < sums.size(); ++b) {
         s += sums[b], w += weights[b];
+        if (weights[b] > 0.0) ++counted;
+    }
     if (w <= 0.0) throw std::invalid_argument("blockRatio: no block has any weight");
     const double pooled = s / w;
     std::vector<double> values(sums.size(), 0.0);
     for (std::size_t b = 0; b < sums.size(); ++b)
         if (weights[b] > 0.0) values[b] = sums[b] / weights[b];
-    return {pooled, blockError(values, weights, pooled)};
+    return {pooled, blockError(values, weights, pooled), double(counted - 1), counted};
 }
 
 /// Mean of a time series with its error from `blocks` contiguous blocks of about equal numbers of
