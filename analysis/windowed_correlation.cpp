@@ -49,40 +49,37 @@ void addProduct(const Complex* a, const Complex* y, int bins, double weight, dou
     }
 }
 
-/// Block j's window, its cross-spectrum and the next kept transform in one pass over a channel:
-/// y = A_j + (−1)^f (A_{j+1} + δ·U), sums += weight · conj(A_j)·y, A_j ← A_{j+1}. δ = dr + i di,
-/// U and i·U interleaved (re, im) per bin.
-template <bool shifted>
-void addWindow(double* kept, const double* next, int bins, double weight, const double* sign,
-               double dr, double di, const double* u, const double* iu, double* s1, double* s2) {
-    for (int b = 0; b < 2 * bins; b += 2) {
-        const Pair p = load(kept + b), q = load(next + b);
-        Pair z = q;
-        if constexpr (shifted) z = z + dr * load(u + b) + di * load(iu + b);
-        const Pair v = p + sign[b / 2] * z;
-        store(s1 + b, load(s1 + b) + weight * (p * v));
-        store(s2 + b, load(s2 + b) + weight * (p * swapped(v)));
-        store(kept + b, q);
-    }
-}
+/// The MSD's next kept transform is made relative to the window's first sample t_j and kept
+/// relative to its own, t_{j+1}: A ← A − δ·U, δ = r(t_{j+1}) − r(t_j) = dr + i di per body, U
+/// and i·U interleaved (re, im) per bin.
+struct Shift {
+    const double *dr, *di, *u, *iu;
+};
 
-/// addWindow<false> for the `count` bodies of a chunk that add to the same sums: their products
-/// summed first (kept and next: one body's channel every `stride` doubles). Two bins at a time,
-/// (−1)^f = +1 and −1.
-template <int count>
+/// Block j's window, its cross-spectrum and the next kept transform in one pass over a channel,
+/// for the `count` bodies of a chunk that add to the same sums (kept and next: one body's channel
+/// every `stride` doubles): y = A_j + (−1)^f A_{j+1}, sums += weight · Σ_bodies conj(A_j)·y,
+/// A_j ← A_{j+1} (less δ·U when shifted). The bodies' products are summed first; two bins at a
+/// time, (−1)^f = +1 and −1.
+template <int count, bool shifted>
 void addWindows(double* kept, std::size_t keptStride, const double* next, std::size_t nextStride,
-                int bins, double weight, double* s1, double* s2) {
+                int bins, double weight, double* s1, double* s2, const Shift& shift) {
+    const auto keep = [&](double* k, Pair q, int c, int b) {
+        if constexpr (shifted)
+            q = q - (shift.dr[c] * load(shift.u + b) + shift.di[c] * load(shift.iu + b));
+        store(k, q);
+    };
     int b = 0;
     for (; b + 4 <= 2 * bins; b += 4) {
         Pair e1 = {0.0, 0.0}, e2 = e1, o1 = e1, o2 = e1;
-#pragma GCC unroll 4
+#pragma GCC unroll 8
         for (int c = 0; c < count; ++c) {
             double* k = kept + c * keptStride + b;
             const double* q = next + c * nextStride + b;
             const Pair pe = load(k), qe = load(q), po = load(k + 2), qo = load(q + 2);
             const Pair ve = pe + qe, vo = po - qo;
             e1 += pe * ve, e2 += pe * swapped(ve), o1 += po * vo, o2 += po * swapped(vo);
-            store(k, qe), store(k + 2, qo);
+            keep(k, qe, c, b), keep(k + 2, qo, c, b + 2);
         }
         store(s1 + b, load(s1 + b) + weight * e1), store(s2 + b, load(s2 + b) + weight * e2);
         store(s1 + b + 2, load(s1 + b + 2) + weight * o1);
@@ -94,7 +91,7 @@ void addWindows(double* kept, std::size_t keptStride, const double* next, std::s
             double* k = kept + c * keptStride + b;
             const Pair p = load(k), q = load(next + c * nextStride + b), v = p + q;
             e1 += p * v, e2 += p * swapped(v);
-            store(k, q);
+            keep(k, q, c, b);
         }
         store(s1 + b, load(s1 + b) + weight * e1), store(s2 + b, load(s2 + b) + weight * e2);
     }
@@ -130,6 +127,7 @@ struct WindowedCorrelation::Fft {
     std::vector<Complex> ones, iOnes; // U: the transform of W ones at 0 … W − 1; and i·U
     std::vector<std::vector<double>> squares; // [group][t]: Σ over the group's bodies of |x|²
     std::vector<std::vector<double>> own;     // [group][t]: the same over the last block alone
+    std::vector<std::size_t> slot;            // [t]: where a block's samples sit in the ring
     Fft(int w, int groups)
         : n(2 * w), bins(w + 1), kept(pairs * n + (channels - pairs) * bins),
           in(fftw_alloc_complex(std::size_t(chunk) * channels * n)),
@@ -137,7 +135,8 @@ struct WindowedCorrelation::Fft {
           y(fftw_alloc_complex(std::size_t(chunk) * kept)),
           a(fftw_alloc_complex(std::size_t(chunk) * kept)), sum(fftw_alloc_complex(bins)),
           lagSums(fftw_alloc_real(n)), sign(n), ones(n), iOnes(n),
-          squares(groups, std::vector<double>(n, 0.0)), own(groups, std::vector<double>(w, 0.0)) {
+          squares(groups, std::vector<double>(n, 0.0)), own(groups, std::vector<double>(w, 0.0)),
+          slot(w) {
         Complex* z = reinterpret_cast<Complex*>(in);
         std::fill(z, z + std::size_t(chunk) * channels * n, Complex(0.0));
         // FFTW_ESTIMATE plans in microseconds without touching the buffers; at these small
@@ -250,50 +249,58 @@ std::vector<WindowedCorrelation::Part> WindowedCorrelation::parts(long begin, lo
 }
 
 void WindowedCorrelation::transform(int first, int count, long begin, long from, long to, long ref,
-                                    long previous) const {
+                                    long own) const {
     Fft& f = *fft_;
     const int n = f.n, z = 2 * n; // z: doubles from one channel to the next
     const int inFrom = static_cast<int>(std::clamp(from - begin, 0L, long(w_))),
               inTo = static_cast<int>(std::clamp(to - begin, long(inFrom), long(w_)));
-    const bool squares = previous >= 0;
-    // The real series' imaginary parts and the points W … n − 1 stay zero.
-    for (int c = 0; c < count; ++c) {
-        const int k = first + c;
-        double* __restrict in = reinterpret_cast<double*>(f.in + std::size_t(c) * channels * n);
-        double* __restrict own = f.own[group_[k]].data();
+    // Rows of the block's samples, and of the references, found once for every body (at()
+    // divides).
+    std::size_t* slot = f.slot.data();
+    for (int t = inFrom; t < inTo; ++t)
+        slot[t] = at(begin + t, 0);
+    const std::size_t m = m_, origin = at(ref, 0), start = at(std::max(own, 0L), 0);
+    // The real series' imaginary parts and the points W … n − 1 stay zero. Every value is read
+    // into a scalar of its own, so that no store is read back through memory.
+    const auto body = [&]<bool squares>(int k, double* __restrict in) {
+        const double* ring = ring_.data() + k;
+        const double rx = ring[origin + 6 * m], ry = ring[origin + 7 * m],
+                     rz = ring[origin + 8 * m];
+        const double px = ring[start + 6 * m], py = ring[start + 7 * m], pz = ring[start + 8 * m];
+        double* __restrict mine = f.own[group_[k]].data();
         double* __restrict later = f.squares[group_[k]].data() + w_;
-        const double* origin = ring_.data() + at(ref, k);
-        const double* before = ring_.data() + at(std::max(previous, 0L), k);
-        const double r0[3] = {origin[6 * m_], origin[7 * m_], origin[8 * m_]};
-        const double p0[3] = {before[6 * m_], before[7 * m_], before[8 * m_]};
-        for (int t = 0; t < w_; ++t) {
+        for (int t = inFrom; t < inTo; ++t) {
+            const double* row = ring + slot[t];
+            const double vx = row[0], vy = row[m], vz = row[2 * m];
+            const double sx = row[3 * m], sy = row[4 * m], sz = row[5 * m];
+            const double qx = row[6 * m], qy = row[7 * m], qz = row[8 * m];
+            const double xx = qx - rx, xy = qy - ry, xz = qz - rz;
             double* __restrict out = in + 2 * t;
-            if (t < inFrom || t >= inTo) {
-                for (int ch = 0; ch < channels; ++ch)
-                    out[ch * z] = 0.0;
-                for (int ch = 0; ch < pairs; ++ch)
-                    out[ch * z + 1] = 0.0;
-                continue;
-            }
-            const double* row = ring_.data() + at(begin + t, k);
-            double v[3], s[3], x[3], r[3];
-            for (int a = 0; a < 3; ++a) {
-                v[a] = row[a * m_];
-                s[a] = row[(3 + a) * m_];
-                r[a] = row[(6 + a) * m_];
-                x[a] = r[a] - r0[a];
-            }
-            out[0] = v[0], out[1] = v[1], out[5 * z] = v[2];
-            out[z] = s[0], out[z + 1] = s[1], out[6 * z] = s[2];
-            out[2 * z] = s[0] * s[0], out[2 * z + 1] = s[1] * s[1], out[7 * z] = s[2] * s[2];
-            out[3 * z] = s[0] * s[1], out[3 * z + 1] = s[0] * s[2], out[8 * z] = s[1] * s[2];
-            out[4 * z] = x[0], out[4 * z + 1] = x[1], out[9 * z] = x[2];
-            if (squares) { // |x|² here, and relative to the previous block's first sample
-                const double d[3] = {r[0] - p0[0], r[1] - p0[1], r[2] - p0[2]};
-                own[t] += x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
-                later[t] += d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            out[0] = vx, out[1] = vy, out[5 * z] = vz;
+            out[z] = sx, out[z + 1] = sy, out[6 * z] = sz;
+            out[2 * z] = sx * sx, out[2 * z + 1] = sy * sy, out[7 * z] = sz * sz;
+            out[3 * z] = sx * sy, out[3 * z + 1] = sx * sz, out[8 * z] = sy * sz;
+            out[4 * z] = xx, out[4 * z + 1] = xy, out[9 * z] = xz;
+            if constexpr (squares) { // |r − r(own)|², and |x|² (relative to ref)
+                const double dx = qx - px, dy = qy - py, dz = qz - pz;
+                mine[t] += dx * dx + dy * dy + dz * dz;
+                later[t] += xx * xx + xy * xy + xz * xz;
             }
         }
+    };
+    for (int c = 0; c < count; ++c) {
+        double* __restrict in = reinterpret_cast<double*>(f.in + std::size_t(c) * channels * n);
+        for (int t = 0; t < w_; ++t)
+            if (t < inFrom || t >= inTo) {
+                for (int ch = 0; ch < channels; ++ch)
+                    in[2 * t + ch * z] = 0.0;
+                for (int ch = 0; ch < pairs; ++ch)
+                    in[2 * t + ch * z + 1] = 0.0;
+            }
+        if (own >= 0)
+            body.template operator()<true>(first + c, in);
+        else
+            body.template operator()<false>(first + c, in);
     }
     fftw_execute(f.forward);
 }
@@ -402,9 +409,7 @@ void WindowedCorrelation::completeBlock(long j) {
     const long begin = j * w_, previous = begin - w_;
     const std::vector<Part> cut = j >= 1 ? parts(previous, begin) : std::vector<Part>{};
     Spectra& to = *sums_;
-    const auto shift = [&](int k, int a) { // r_a(t_j) − r_a(t_{j−1})
-        return ring_[at(begin, k) + (6 + a) * m_] - ring_[at(previous, k) + (6 + a) * m_];
-    };
+    const std::size_t now = at(begin, 0), then = at(std::max(previous, 0L), 0);
     // The MSD's squares over block j − 1's window relative to its first sample: block j − 1's
     // own, kept from its transform, then block j's, made with its transform.
     for (int g = 0; g < groups_; ++g) {
@@ -412,77 +417,77 @@ void WindowedCorrelation::completeBlock(long j) {
         std::fill(f.own[g].begin(), f.own[g].end(), 0.0);
         std::fill(f.squares[g].begin() + w_, f.squares[g].end(), 0.0);
     }
+    const double* u = reinterpret_cast<const double*>(f.ones.data());
+    const double* iu = reinterpret_cast<const double*>(f.iOnes.data());
+    const std::size_t keptStride = 2 * std::size_t(f.kept),
+                      nextStride = 2 * std::size_t(channels) * n;
     for (int first = 0; first < m_; first += chunk) {
         const int count = std::min(chunk, m_ - first);
-        transform(first, count, begin, begin, begin + w_, begin, j >= 1 ? previous : begin);
+        // Block j's positions relative to block j − 1's first sample, that of the window they
+        // join; kept relative to their own (less δ·U).
+        transform(first, count, begin, begin, begin + w_, j >= 1 ? previous : begin, begin);
         const Complex* out = reinterpret_cast<const Complex*>(f.out);
         Complex* kept = spectrum_.data() + std::size_t(first) * f.kept;
         if (j == 0) {
             keep(out, count, kept);
             continue;
         }
-        // Block j − 1's window: A_{j−1} + (−1)^f (A_j + δ·U for the x_a), then A_j is kept.
-        const double* u = reinterpret_cast<const double*>(f.ones.data());
-        const double* iu = reinterpret_cast<const double*>(f.iOnes.data());
+        double dr[chunk], di[chunk], dz[chunk], zero[chunk] = {}; // δ = r(t_j) − r(t_{j−1})
+        for (int c = 0; c < count; ++c) {
+            const std::size_t k = std::size_t(first + c);
+            dr[c] = ring_[now + k + 6 * m_] - ring_[then + k + 6 * m_];
+            di[c] = ring_[now + k + 7 * m_] - ring_[then + k + 7 * m_];
+            dz[c] = ring_[now + k + 8 * m_] - ring_[then + k + 8 * m_];
+        }
         if (cut.size() == 1) { // one pass: window, cross-spectrum, kept transform
             const int fine = cut.front().fine;
+            const bool oneGroup = group_[first] == group_[first + count - 1];
             for (int ch = 0; ch < channels; ++ch) {
                 double* p = reinterpret_cast<double*>(kept + f.offset(ch));
                 const double* q = reinterpret_cast<const double*>(out + std::size_t(ch) * n);
-                const std::size_t keptStride = 2 * std::size_t(f.kept),
-                                  nextStride = 2 * std::size_t(channels) * n;
-                if (ch != msdPair && ch != msdSingle) {
-                    const auto [s1, s2] = sumsOf(to, ch, fine, 0);
-                    if (count == chunk)
-                        addWindows<chunk>(p, keptStride, q, nextStride, f.length(ch), weightOf[ch],
-                                          s1, s2);
+                const bool msd = ch == msdPair || ch == msdSingle;
+                const Shift shift{ch == msdPair ? dr : dz, ch == msdPair ? di : zero, u, iu};
+                if (count == chunk && (!msd || oneGroup)) {
+                    const auto [s1, s2] = sumsOf(to, ch, fine, group_[first]);
+                    if (msd)
+                        addWindows<chunk, true>(p, keptStride, q, nextStride, f.length(ch),
+                                                weightOf[ch], s1, s2, shift);
                     else
-                        for (int c = 0; c < count; ++c)
-                            addWindows<1>(p + c * keptStride, 0, q + c * nextStride, 0,
-                                          f.length(ch), weightOf[ch], s1, s2);
+                        addWindows<chunk, false>(p, keptStride, q, nextStride, f.length(ch),
+                                                 weightOf[ch], s1, s2, shift);
                     continue;
                 }
-                // The MSD's sums are per group, and x_a shifts by δ between blocks.
                 for (int c = 0; c < count; ++c) {
-                    double delta[3];
-                    for (int d = 0; d < 3; ++d)
-                        delta[d] = shift(first + c, d);
                     const auto [s1, s2] = sumsOf(to, ch, fine, group_[first + c]);
-                    const bool pair = ch == msdPair;
-                    addWindow<true>(p + c * keptStride, q + c * nextStride, f.length(ch),
-                                    weightOf[ch], f.sign.data(), pair ? delta[0] : delta[2],
-                                    pair ? delta[1] : 0.0, u, iu, s1, s2);
+                    const Shift own{shift.dr + c, shift.di + c, u, iu};
+                    if (msd)
+                        addWindows<1, true>(p + c * keptStride, 0, q + c * nextStride, 0,
+                                            f.length(ch), weightOf[ch], s1, s2, own);
+                    else
+                        addWindows<1, false>(p + c * keptStride, 0, q + c * nextStride, 0,
+                                             f.length(ch), weightOf[ch], s1, s2, own);
                 }
             }
             continue;
         }
         Complex* a = reinterpret_cast<Complex*>(f.a);
         Complex* y = reinterpret_cast<Complex*>(f.y);
-        for (int c = 0; c < count; ++c) {
-            double delta[3];
-            for (int d = 0; d < 3; ++d)
-                delta[d] = shift(first + c, d);
+        for (int c = 0; c < count; ++c)
             for (int ch = 0; ch < channels; ++ch) {
-                // δ for x_x + i x_y, and for x_z.
-                const double dr = ch == msdPair     ? delta[0]
-                                  : ch == msdSingle ? delta[2]
-                                                    : 0.0,
-                             di = ch == msdPair ? delta[1] : 0.0;
                 const std::size_t at = std::size_t(c) * f.kept + f.offset(ch);
-                const double* p = reinterpret_cast<const double*>(kept + at);
-                const double* q =
-                    reinterpret_cast<const double*>(out + (std::size_t(c) * channels + ch) * n);
-                double* ys = reinterpret_cast<double*>(y + at);
-                for (int b = 0; b < f.length(ch); ++b) {
-                    const double qr = q[2 * b] + (dr * u[2 * b] - di * u[2 * b + 1]),
-                                 qi = q[2 * b + 1] + (dr * u[2 * b + 1] + di * u[2 * b]);
-                    ys[2 * b] = p[2 * b] + f.sign[b] * qr;
-                    ys[2 * b + 1] = p[2 * b + 1] + f.sign[b] * qi;
-                }
+                const Complex* q = out + (std::size_t(c) * channels + ch) * n;
+                for (int b = 0; b < f.length(ch); ++b)
+                    y[at + b] = kept[at + b] + f.sign[b] * q[b];
             }
-        }
         std::copy(kept, kept + std::size_t(count) * f.kept, a);
         keep(out, count, kept);
+        for (int c = 0; c < count; ++c) // the MSD's kept transforms relative to t_j
+            for (const int ch : {msdPair, msdSingle}) {
+                const double r = ch == msdPair ? dr[c] : dz[c], i = ch == msdPair ? di[c] : 0.0;
+                Complex* k = kept + std::size_t(c) * f.kept + f.offset(ch);
+                for (int b = 0; b < f.length(ch); ++b)
+                    k[b] -= r * f.ones[b] + i * f.iOnes[b];
+            }
         addOrigins(first, count, cut, previous, a, y, to);
     }
     if (j >= 1) addSquares(cut, previous, begin + w_, to);

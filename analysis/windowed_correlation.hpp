@@ -102,10 +102,10 @@ private:
     void completeBlock(long j);
     /// Transforms, for bodies first … first + count − 1, samples [from, to) of the block that
     /// starts at `begin` (at points from − begin …, zeros elsewhere), positions relative to
-    /// sample `ref`. With previous ≥ 0, adds the MSD's squares of the block relative to ref and
-    /// to previous (the block's first sample and the block's before).
+    /// sample `ref`. With own ≥ 0, adds the MSD's squares of the block relative to sample own
+    /// (the block's first, for its own window) and to ref (for the window before).
     void transform(int first, int count, long begin, long from, long to, long ref,
-                   long previous = -1) const;
+                   long own = -1) const;
     /// Copies the transforms of `count` bodies from FFTW's layout into the kept one.
     void keep(const std::complex<double>* full, int count, std::complex<double>* kept) const;
     /// Adds the cross-spectra of a block's origins (spectra a, whole block) against its window's
