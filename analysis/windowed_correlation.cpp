@@ -195,12 +195,12 @@ struct WindowedCorrelation::Fft {
 WindowedCorrelation::WindowedCorrelation(int followed, int window, int lags, long plannedSamples,
                                          int fineBlocks, int groups)
     : m_(followed), w_(window), lags_(lags), fine_(fineBlocks), groups_(groups),
-      planned_(plannedSamples) {
+      stride_((std::size_t(followed) + 7) / 8 * 8 + 8), planned_(plannedSamples) {
     if (followed < 1 || window < 1 || lags < 1 || lags > window || fineBlocks < 1 || groups < 1 ||
         groups > followed || plannedSamples < 1)
         throw std::invalid_argument("windowed correlation: need bodies, 1 ≤ lags ≤ W, fine "
                                     "blocks and 1 ≤ groups ≤ bodies");
-    ring_.assign(std::size_t(2 * w_) * rows * m_, 0.0);
+    ring_.assign(std::size_t(2 * w_) * rows * stride_, 0.0);
     for (int k = 0; k < m_; ++k) // group b holds bodies ⌊bM/G⌋ … ⌊(b+1)M/G⌋ − 1
         group_.push_back(static_cast<int>((long(k) * groups_ + groups_ - 1) / m_));
     groupBegin_.assign(groups_ + 1, m_);
@@ -221,7 +221,7 @@ WindowedCorrelation::WindowedCorrelation(int followed, int window, int lags, lon
 WindowedCorrelation::~WindowedCorrelation() = default;
 
 std::size_t WindowedCorrelation::at(long t, int k) const {
-    return std::size_t(t % (2 * w_)) * rows * m_ + k;
+    return std::size_t(t % (2 * w_)) * rows * stride_ + k;
 }
 
 void WindowedCorrelation::add(const Snapshot& frame, const int* index) {
@@ -229,9 +229,9 @@ void WindowedCorrelation::add(const Snapshot& frame, const int* index) {
     for (int k = 0; k < m_; ++k) {
         const int i = index ? index[k] : k;
         for (int a = 0; a < 3; ++a) {
-            row[(0 + a) * m_ + k] = frame.velocity[i][a];
-            row[(3 + a) * m_ + k] = frame.axis[i][a];
-            row[(6 + a) * m_ + k] = frame.position[i][a];
+            row[(0 + a) * stride_ + k] = frame.velocity[i][a];
+            row[(3 + a) * stride_ + k] = frame.axis[i][a];
+            row[(6 + a) * stride_ + k] = frame.position[i][a];
         }
     }
     ++seen_;
@@ -259,37 +259,10 @@ void WindowedCorrelation::transform(int first, int count, long begin, long from,
     std::size_t* slot = f.slot.data();
     for (int t = inFrom; t < inTo; ++t)
         slot[t] = at(begin + t, 0);
-    const std::size_t m = m_, origin = at(ref, 0), start = at(std::max(own, 0L), 0);
-    // The real series' imaginary parts and the points W … n − 1 stay zero. Every value is read
-    // into a scalar of its own, so that no store is read back through memory.
-    const auto body = [&]<bool squares>(int k, double* __restrict in) {
-        const double* ring = ring_.data() + k;
-        const double rx = ring[origin + 6 * m], ry = ring[origin + 7 * m],
-                     rz = ring[origin + 8 * m];
-        const double px = ring[start + 6 * m], py = ring[start + 7 * m], pz = ring[start + 8 * m];
-        double* __restrict mine = f.own[group_[k]].data();
-        double* __restrict later = f.squares[group_[k]].data() + w_;
-        for (int t = inFrom; t < inTo; ++t) {
-            const double* row = ring + slot[t];
-            const double vx = row[0], vy = row[m], vz = row[2 * m];
-            const double sx = row[3 * m], sy = row[4 * m], sz = row[5 * m];
-            const double qx = row[6 * m], qy = row[7 * m], qz = row[8 * m];
-            const double xx = qx - rx, xy = qy - ry, xz = qz - rz;
-            double* __restrict out = in + 2 * t;
-            out[0] = vx, out[1] = vy, out[5 * z] = vz;
-            out[z] = sx, out[z + 1] = sy, out[6 * z] = sz;
-            out[2 * z] = sx * sx, out[2 * z + 1] = sy * sy, out[7 * z] = sz * sz;
-            out[3 * z] = sx * sy, out[3 * z + 1] = sx * sz, out[8 * z] = sy * sz;
-            out[4 * z] = xx, out[4 * z + 1] = xy, out[9 * z] = xz;
-            if constexpr (squares) { // |r − r(own)|², and |x|² (relative to ref)
-                const double dx = qx - px, dy = qy - py, dz = qz - pz;
-                mine[t] += dx * dx + dy * dy + dz * dz;
-                later[t] += xx * xx + xy * xy + xz * xz;
-            }
-        }
-    };
+    const std::size_t m = stride_, origin = at(ref, 0), start = at(std::max(own, 0L), 0);
+    // The real series' imaginary parts and the points W … n − 1 stay zero.
     for (int c = 0; c < count; ++c) {
-        double* __restrict in = reinterpret_cast<double*>(f.in + std::size_t(c) * channels * n);
+        double* in = reinterpret_cast<double*>(f.in + std::size_t(c) * channels * n);
         for (int t = 0; t < w_; ++t)
             if (t < inFrom || t >= inTo) {
                 for (int ch = 0; ch < channels; ++ch)
@@ -297,11 +270,45 @@ void WindowedCorrelation::transform(int first, int count, long begin, long from,
                 for (int ch = 0; ch < pairs; ++ch)
                     in[2 * t + ch * z + 1] = 0.0;
             }
-        if (own >= 0)
-            body.template operator()<true>(first + c, in);
-        else
-            body.template operator()<false>(first + c, in);
     }
+    // Sample by sample, the chunk's bodies side by side: each line of the ring read once. Every
+    // value is read into a scalar of its own, so that no store is read back through memory.
+    const auto gather = [&]<bool squares>() {
+        double r0[3][chunk], p0[3][chunk];
+        double *mine[chunk], *later[chunk];
+        for (int c = 0; c < count; ++c) {
+            const double* ring = ring_.data() + first + c;
+            for (int a = 0; a < 3; ++a)
+                r0[a][c] = ring[origin + (6 + a) * m], p0[a][c] = ring[start + (6 + a) * m];
+            mine[c] = f.own[group_[first + c]].data();
+            later[c] = f.squares[group_[first + c]].data() + w_;
+        }
+        for (int t = inFrom; t < inTo; ++t) {
+            const double* row = ring_.data() + slot[t] + first;
+            for (int c = 0; c < count; ++c) {
+                const double vx = row[c], vy = row[c + m], vz = row[c + 2 * m];
+                const double sx = row[c + 3 * m], sy = row[c + 4 * m], sz = row[c + 5 * m];
+                const double qx = row[c + 6 * m], qy = row[c + 7 * m], qz = row[c + 8 * m];
+                const double xx = qx - r0[0][c], xy = qy - r0[1][c], xz = qz - r0[2][c];
+                double* __restrict out =
+                    reinterpret_cast<double*>(f.in + std::size_t(c) * channels * n) + 2 * t;
+                out[0] = vx, out[1] = vy, out[5 * z] = vz;
+                out[z] = sx, out[z + 1] = sy, out[6 * z] = sz;
+                out[2 * z] = sx * sx, out[2 * z + 1] = sy * sy, out[7 * z] = sz * sz;
+                out[3 * z] = sx * sy, out[3 * z + 1] = sx * sz, out[8 * z] = sy * sz;
+                out[4 * z] = xx, out[4 * z + 1] = xy, out[9 * z] = xz;
+                if constexpr (squares) { // |r − r(own)|², and |x|² (relative to ref)
+                    const double dx = qx - p0[0][c], dy = qy - p0[1][c], dz = qz - p0[2][c];
+                    mine[c][t] += dx * dx + dy * dy + dz * dz;
+                    later[c][t] += xx * xx + xy * xy + xz * xz;
+                }
+            }
+        }
+    };
+    if (own >= 0)
+        gather.template operator()<true>();
+    else
+        gather.template operator()<false>();
     fftw_execute(f.forward);
 }
 
@@ -371,7 +378,8 @@ void WindowedCorrelation::ringSquares(long ref, long windowEnd) const {
             double x2 = 0.0;
             for (int k = groupBegin_[g]; k < groupBegin_[g + 1]; ++k)
                 for (int a = 6; a < 9; ++a) {
-                    const double x = ring_[at(ref + t, k) + a * m_] - ring_[at(ref, k) + a * m_];
+                    const double x =
+                        ring_[at(ref + t, k) + a * stride_] - ring_[at(ref, k) + a * stride_];
                     x2 += x * x;
                 }
             f.squares[g][t] = x2;
@@ -435,9 +443,9 @@ void WindowedCorrelation::completeBlock(long j) {
         double dr[chunk], di[chunk], dz[chunk], zero[chunk] = {}; // δ = r(t_j) − r(t_{j−1})
         for (int c = 0; c < count; ++c) {
             const std::size_t k = std::size_t(first + c);
-            dr[c] = ring_[now + k + 6 * m_] - ring_[then + k + 6 * m_];
-            di[c] = ring_[now + k + 7 * m_] - ring_[then + k + 7 * m_];
-            dz[c] = ring_[now + k + 8 * m_] - ring_[then + k + 8 * m_];
+            dr[c] = ring_[now + k + 6 * stride_] - ring_[then + k + 6 * stride_];
+            di[c] = ring_[now + k + 7 * stride_] - ring_[then + k + 7 * stride_];
+            dz[c] = ring_[now + k + 8 * stride_] - ring_[then + k + 8 * stride_];
         }
         if (cut.size() == 1) { // one pass: window, cross-spectrum, kept transform
             const int fine = cut.front().fine;

@@ -119,14 +119,17 @@ private:
     /// ringSquares) and the origin counts of a block's origins.
     void addSquares(const std::vector<Part>& parts, long ref, long windowEnd, Spectra& to) const;
     LagSums invert(const Spectra& s) const;
-    /// Index in ring_ of sample t's row 0 for body k (rows every M doubles).
+    /// Index in ring_ of sample t's row 0 for body k (rows every stride_ doubles).
     std::size_t at(long t, int k) const;
     /// The two sums of products (addProduct) that a channel adds to.
     std::pair<double*, double*> sumsOf(Spectra& to, int channel, int fine, int group) const;
 
     int m_, w_, lags_, fine_, groups_;
+    /// Doubles from one row of the ring to the next: M and a cache line, so that the rows of a
+    /// block (M a power of two, their distance a multiple of 4 KiB) do not share L1's sets.
+    std::size_t stride_;
     long planned_, seen_ = 0;
-    std::vector<double> ring_; // 2W slots × 9 rows (v, s, r) × M: a sample in one stretch
+    std::vector<double> ring_; // 2W slots × 9 rows (v, s, r) × stride: a sample in one stretch
     std::vector<int> group_, groupBegin_;        // the MSD's group of each body; group starts
     std::vector<std::complex<double>> spectrum_; // M × kept: the last complete block's
     std::unique_ptr<Spectra> sums_;              // of the blocks whose windows are complete
