@@ -97,7 +97,7 @@ void addWindows(double* kept, std::size_t keptStride, const double* next, std::s
     }
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(TERRACE_NO_AVX2)
 /// Four doubles, two complex bins (an even one and the odd one after it): AVX, chosen at run
 /// time (addWindowsFast). AVX alone, not FMA: every lane rounds as addWindows' do, so the sums
 /// are the same to the last bit on any processor.
@@ -144,12 +144,126 @@ addWindowsAvx(double* kept, std::size_t keptStride, const double* next, std::siz
 }
 #endif
 
+/// A chunk's samples over a block, from the ring into the transforms' input, with the MSD's
+/// squares: positions relative to r0 (the window's first sample), squares relative to p0 (the
+/// block's own first sample, into `mine`) and to r0 (into `later`).
+struct Gather {
+    const double* ring;
+    const std::size_t* slot; // [t]: the chunk's first body's row 0 of the block's sample t
+    std::size_t m;           // doubles from one row to the next
+    double* in;              // [channel][point][body], complex
+    int z, from, to, count;  // z: doubles from one channel to the next
+    bool oneGroup;
+    double r0[3][chunk], p0[3][chunk];
+    double *mine[chunk], *later[chunk];
+};
+
+template <bool squares> void gather(const Gather& g) {
+    const std::size_t m = g.m;
+    const int z = g.z;
+    for (int t = g.from; t < g.to; ++t) {
+        const double* row = g.ring + g.slot[t];
+        double own[chunk], later[chunk];
+        for (int c = 0; c < g.count; ++c) {
+            const double vx = row[c], vy = row[c + m], vz = row[c + 2 * m];
+            const double sx = row[c + 3 * m], sy = row[c + 4 * m], sz = row[c + 5 * m];
+            const double qx = row[c + 6 * m], qy = row[c + 7 * m], qz = row[c + 8 * m];
+            const double xx = qx - g.r0[0][c], xy = qy - g.r0[1][c], xz = qz - g.r0[2][c];
+            double* __restrict out = g.in + 2 * (t * chunk + c);
+            out[0] = vx, out[1] = vy, out[5 * z] = vz;
+            out[z] = sx, out[z + 1] = sy, out[6 * z] = sz;
+            out[2 * z] = sx * sx, out[2 * z + 1] = sy * sy, out[7 * z] = sz * sz;
+            out[3 * z] = sx * sy, out[3 * z + 1] = sx * sz, out[8 * z] = sy * sz;
+            out[4 * z] = xx, out[4 * z + 1] = xy, out[9 * z] = xz;
+            if constexpr (squares) {
+                const double dx = qx - g.p0[0][c], dy = qy - g.p0[1][c], dz = qz - g.p0[2][c];
+                own[c] = dx * dx + dy * dy + dz * dz;
+                later[c] = xx * xx + xy * xy + xz * xz;
+            }
+        }
+        if constexpr (squares)
+            for (int c = 0; c < g.count; ++c) {
+                g.mine[c][t] += own[c];
+                g.later[c][t] += later[c];
+            }
+    }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(TERRACE_NO_AVX2)
+/// (re, im) of four bodies, in their order.
+__attribute__((target("avx"), always_inline)) inline void put(double* out, Quad re, Quad im) {
+    store4(out, __builtin_shuffle(re, im, QuadIndex{0, 4, 1, 5}));
+    store4(out + 4, __builtin_shuffle(re, im, QuadIndex{2, 6, 3, 7}));
+}
+
+/// Adds body c's square at sample t (lane c) into the sums of its group: in the bodies' order,
+/// as gather does, and as one running sum where they share a group.
+__attribute__((target("avx"), always_inline)) inline void sumSquares(double* const* sums, int t,
+                                                                     Quad square, bool oneGroup) {
+    if (oneGroup) {
+        sums[0][t] = sums[0][t] + square[0] + square[1] + square[2] + square[3];
+        return;
+    }
+    for (int c = 0; c < chunk; ++c)
+        sums[c][t] += square[c];
+}
+
+/// gather for a whole chunk, its four bodies in one vector: the same operations lane by lane.
+template <bool squares> __attribute__((target("avx"))) void gatherAvx(const Gather& g) {
+    static_assert(chunk == 4);
+    // Everything the loop reads besides the samples in locals: the stores into the input could
+    // alias g, which would be read again after each of them.
+    const double* const ring = g.ring;
+    const std::size_t* const slot = g.slot;
+    const std::size_t m = g.m;
+    double* const in = g.in;
+    const int z = g.z, from = g.from, to = g.to;
+    const bool oneGroup = g.oneGroup;
+    double* const mine[chunk] = {g.mine[0], g.mine[1], g.mine[2], g.mine[3]};
+    double* const later[chunk] = {g.later[0], g.later[1], g.later[2], g.later[3]};
+    const Quad zero = {0.0, 0.0, 0.0, 0.0};
+    const Quad r0x = load4(g.r0[0]), r0y = load4(g.r0[1]), r0z = load4(g.r0[2]);
+    const Quad p0x = load4(g.p0[0]), p0y = load4(g.p0[1]), p0z = load4(g.p0[2]);
+    for (int t = from; t < to; ++t) {
+        const double* row = ring + slot[t];
+        const Quad vx = load4(row), vy = load4(row + m), vz = load4(row + 2 * m);
+        const Quad sx = load4(row + 3 * m), sy = load4(row + 4 * m), sz = load4(row + 5 * m);
+        const Quad qx = load4(row + 6 * m), qy = load4(row + 7 * m), qz = load4(row + 8 * m);
+        // The lines of the chunk after next, asked for a chunk ahead: the prefetcher does not
+        // follow nine rows a slot apart.
+        for (int a = 0; a < rows; ++a)
+            __builtin_prefetch(row + a * m + 2 * chunk);
+        const Quad xx = qx - r0x, xy = qy - r0y, xz = qz - r0z;
+        double* out = in + 2 * t * chunk;
+        put(out, vx, vy), put(out + 5 * z, vz, zero);
+        put(out + z, sx, sy), put(out + 6 * z, sz, zero);
+        put(out + 2 * z, sx * sx, sy * sy), put(out + 7 * z, sz * sz, zero);
+        put(out + 3 * z, sx * sy, sx * sz), put(out + 8 * z, sy * sz, zero);
+        put(out + 4 * z, xx, xy), put(out + 9 * z, xz, zero);
+        if constexpr (squares) {
+            const Quad dx = qx - p0x, dy = qy - p0y, dz = qz - p0z;
+            const Quad d2 = dx * dx + dy * dy + dz * dz, x2 = xx * xx + xy * xy + xz * xz;
+            sumSquares(mine, t, d2, oneGroup), sumSquares(later, t, x2, oneGroup);
+        }
+    }
+}
+#endif
+
+/// gather, by AVX where the processor has it and the chunk is whole.
+template <bool squares> void gatherFast(const Gather& g) {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(TERRACE_NO_AVX2)
+    static const bool avx = __builtin_cpu_supports("avx");
+    if (avx && g.count == chunk) return gatherAvx<squares>(g);
+#endif
+    gather<squares>(g);
+}
+
 /// addWindows, by AVX where the processor has it.
 template <int count, bool shifted>
 void addWindowsFast(double* kept, std::size_t keptStride, const double* next,
                     std::size_t nextStride, int bins, double weight, double* s1, double* s2,
                     const Shift& shift) {
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(TERRACE_NO_AVX2)
     static const bool avx = __builtin_cpu_supports("avx");
     if (avx)
         return addWindowsAvx<count, shifted>(kept, keptStride, next, nextStride, bins, weight, s1,
@@ -177,7 +291,7 @@ struct WindowedCorrelation::Spectra {
 
 struct WindowedCorrelation::Fft {
     int n, bins, kept; // kept: complex numbers kept per body, n per pair and W + 1 per real series
-    fftw_complex* in;  // chunk × channels × n: samples at 0 … W − 1, zeros beyond
+    fftw_complex* in;  // channels × n × chunk: samples at 0 … W − 1, zeros beyond
     fftw_complex* out; // their transforms
     fftw_complex* y;   // chunk × kept: a window's transforms
     fftw_complex* a;   // chunk × kept: a block's transforms, kept while parts use out
@@ -204,20 +318,25 @@ struct WindowedCorrelation::Fft {
         // lengths FFTW runs one hard-coded codelet either way. Complex transforms, two real
         // series each: FFTW's complex codelets are vectorised, its real ones not, and at 2W = 32
         // one complex transform cost less than one real one here (about 70 against 110 ns).
-        const int length[1] = {n};
-        forward = fftw_plan_many_dft(1, length, chunk * channels, in, nullptr, 1, n, out, nullptr,
-                                     1, n, FFTW_FORWARD, FFTW_ESTIMATE);
+        // In: [channel][point][body], so that a chunk's bodies, side by side in the ring, are
+        // written side by side; out: [body][channel][bin], each body's channels read in turn.
+        // FFTW transposes on the way (its n2fv codelets, as fast as the contiguous n1fv).
+        fftw_iodim length{n, chunk, 1};
+        fftw_iodim many[2] = {{channels, n * chunk, n}, {chunk, 1, channels * n}};
+        forward = fftw_plan_guru_dft(1, &length, 2, many, in, out, FFTW_FORWARD, FFTW_ESTIMATE);
         backward = fftw_plan_dft_c2r_1d(n, sum, lagSums, FFTW_ESTIMATE);
         for (int f = 0; f < n; ++f)
             sign[f] = f % 2 == 0 ? 1.0 : -1.0;
         // U by the same transform as the samples', so that δ·U rounds as their shift would.
-        std::fill(z, z + w, Complex(1.0));
+        for (int t = 0; t < w; ++t)
+            z[t * chunk] = 1.0;
         fftw_execute(forward);
         std::copy(reinterpret_cast<const Complex*>(out), reinterpret_cast<const Complex*>(out) + n,
                   ones.begin());
         for (int f = 0; f < n; ++f)
             iOnes[f] = Complex(-ones[f].imag(), ones[f].real());
-        std::fill(z, z + w, Complex(0.0));
+        for (int t = 0; t < w; ++t)
+            z[t * chunk] = 0.0;
     }
     ~Fft() {
         fftw_destroy_plan(forward);
@@ -312,64 +431,35 @@ std::vector<WindowedCorrelation::Part> WindowedCorrelation::parts(long begin, lo
 void WindowedCorrelation::transform(int first, int count, long begin, long from, long to, long ref,
                                     long own) const {
     Fft& f = *fft_;
-    const int n = f.n, z = 2 * n; // z: doubles from one channel to the next
+    const int n = f.n, z = 2 * n * chunk; // z: doubles from one channel to the next
     const int inFrom = static_cast<int>(std::clamp(from - begin, 0L, long(w_))),
               inTo = static_cast<int>(std::clamp(to - begin, long(inFrom), long(w_)));
+    double* in = reinterpret_cast<double*>(f.in);
+    // The real series' imaginary parts and the points W … n − 1 stay zero.
+    for (int t = 0; t < w_; ++t)
+        if (t < inFrom || t >= inTo)
+            for (int ch = 0; ch < channels; ++ch)
+                std::fill(in + ch * z + 2 * t * chunk, in + ch * z + 2 * (t + 1) * chunk, 0.0);
     // Rows of the block's samples, and of the references, found once for every body (at()
     // divides).
-    std::size_t* slot = f.slot.data();
+    Gather g;
     for (int t = inFrom; t < inTo; ++t)
-        slot[t] = at(begin + t, 0);
-    const std::size_t m = stride_, origin = at(ref, 0), start = at(std::max(own, 0L), 0);
-    // The real series' imaginary parts and the points W … n − 1 stay zero.
-    for (int c = 0; c < count; ++c) {
-        double* in = reinterpret_cast<double*>(f.in + std::size_t(c) * channels * n);
-        for (int t = 0; t < w_; ++t)
-            if (t < inFrom || t >= inTo) {
-                for (int ch = 0; ch < channels; ++ch)
-                    in[2 * t + ch * z] = 0.0;
-                for (int ch = 0; ch < pairs; ++ch)
-                    in[2 * t + ch * z + 1] = 0.0;
-            }
+        f.slot[t] = at(begin + t, 0) + first;
+    g.ring = ring_.data(), g.slot = f.slot.data(), g.m = stride_, g.in = in, g.z = z;
+    g.from = inFrom, g.to = inTo;
+    const std::size_t origin = at(ref, first), start = at(std::max(own, 0L), first);
+    for (int c = 0; c < chunk; ++c) {
+        const int k = first + std::min(c, count - 1);
+        for (int a = 0; a < 3; ++a)
+            g.r0[a][c] = ring_[origin + c + (6 + a) * stride_],
+            g.p0[a][c] = ring_[start + c + (6 + a) * stride_];
+        g.mine[c] = f.own[group_[k]].data(), g.later[c] = f.squares[group_[k]].data() + w_;
     }
-    // Sample by sample, the chunk's bodies side by side: each line of the ring read once. Every
-    // value is read into a scalar of its own, so that no store is read back through memory.
-    const auto gather = [&]<bool squares>() {
-        double r0[3][chunk], p0[3][chunk];
-        double *mine[chunk], *later[chunk];
-        for (int c = 0; c < count; ++c) {
-            const double* ring = ring_.data() + first + c;
-            for (int a = 0; a < 3; ++a)
-                r0[a][c] = ring[origin + (6 + a) * m], p0[a][c] = ring[start + (6 + a) * m];
-            mine[c] = f.own[group_[first + c]].data();
-            later[c] = f.squares[group_[first + c]].data() + w_;
-        }
-        for (int t = inFrom; t < inTo; ++t) {
-            const double* row = ring_.data() + slot[t] + first;
-            for (int c = 0; c < count; ++c) {
-                const double vx = row[c], vy = row[c + m], vz = row[c + 2 * m];
-                const double sx = row[c + 3 * m], sy = row[c + 4 * m], sz = row[c + 5 * m];
-                const double qx = row[c + 6 * m], qy = row[c + 7 * m], qz = row[c + 8 * m];
-                const double xx = qx - r0[0][c], xy = qy - r0[1][c], xz = qz - r0[2][c];
-                double* __restrict out =
-                    reinterpret_cast<double*>(f.in + std::size_t(c) * channels * n) + 2 * t;
-                out[0] = vx, out[1] = vy, out[5 * z] = vz;
-                out[z] = sx, out[z + 1] = sy, out[6 * z] = sz;
-                out[2 * z] = sx * sx, out[2 * z + 1] = sy * sy, out[7 * z] = sz * sz;
-                out[3 * z] = sx * sy, out[3 * z + 1] = sx * sz, out[8 * z] = sy * sz;
-                out[4 * z] = xx, out[4 * z + 1] = xy, out[9 * z] = xz;
-                if constexpr (squares) { // |r − r(own)|², and |x|² (relative to ref)
-                    const double dx = qx - p0[0][c], dy = qy - p0[1][c], dz = qz - p0[2][c];
-                    mine[c][t] += dx * dx + dy * dy + dz * dz;
-                    later[c][t] += xx * xx + xy * xy + xz * xz;
-                }
-            }
-        }
-    };
+    g.count = count, g.oneGroup = group_[first] == group_[first + count - 1];
     if (own >= 0)
-        gather.template operator()<true>();
+        gatherFast<true>(g);
     else
-        gather.template operator()<false>();
+        gatherFast<false>(g);
     fftw_execute(f.forward);
 }
 
