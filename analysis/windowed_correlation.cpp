@@ -13,7 +13,7 @@ using Complex = std::complex<double>;
 constexpr int rows = 9;      // v, s, r: three components each, per sample and body
 constexpr int channels = 10; // complex series per body: five pairs, then five real ones
 constexpr int pairs = 5;
-constexpr int chunk = 4; // bodies transformed together: the scratch stays near L1
+constexpr int chunk = 4; // bodies transformed together: one AVX vector; the scratch stays in L1
 /// The channels' sums: vv, ss, s2 (per fine block), msd (per group), and their weights. Pairs:
 /// v_x + i v_y, s_x + i s_y, Q00 + i Q11, Q01 + i Q02, x_x + i x_y; then v_z, s_z, Q22, Q12, x_z
 /// (Q_ab = s_a s_b; Σ_ab Q_ab(0) Q_ab(t) counts the off-diagonal pairs twice).
@@ -161,6 +161,8 @@ struct Gather {
     double *mine[chunk], *later[chunk];
 };
 
+/// Sample by sample, the chunk's bodies side by side (each line of the ring read once), every
+/// value read into a scalar of its own, so that no store is read back through memory.
 template <bool squares> void gather(const Gather& g) {
     const std::size_t m = g.m;
     const int z = g.z;
