@@ -27,11 +27,12 @@
 // Σ_ab Q_ab(0) Q_ab(t), off-diagonal pairs counted twice), and x_a = r_a − r_a(t_j) for the MSD,
 // Δ²(t0, k) = |x(t0 + k)|² + |x(t0)|² − 2 x(t0)·x(t0 + k), the cross term by FFT, the squares
 // by direct sums over the window (G. R. Kneller et al., Comput. Phys. Commun. 91, 191 (1995)).
-// Positions are taken relative to each body's position at its block's first sample t_j, so the
-// squares stay of the size of a displacement over two blocks and their difference loses nothing
-// to cancellation. Block j + 1's transform, made relative to t_{j+1}, enters block j's window
-// relative to t_j: x shifts by the constant δ = r(t_{j+1}) − r(t_j) over block j + 1's W
-// samples, which adds δ·U to its transform, U that of W ones (exact but for round-off).
+// Positions are taken relative to each body's position at its window's first sample t_j, so
+// the squares stay of the size of a displacement over two blocks and their difference loses
+// nothing to cancellation. Block j + 1 is transformed relative to t_j, the window it closes, and
+// kept relative to t_{j+1} for the window it opens: x shifts by the constant
+// δ = r(t_{j+1}) − r(t_j) over its W samples, which takes δ·U from its transform, U that of W
+// ones (exact but for round-off).
 //
 // Two real series that add to the same sum with the same weight travel as one complex series
 // z = a + ib in one complex transform (v_x + i v_y, s_x + i s_y, Q00 + i Q11, Q01 + i Q02,
@@ -50,10 +51,14 @@
 // followed body, and the sums' spectra; independent of the run's length. Work per block and
 // body: ten complex FFTs of 2W points and the products over their bins, against 3 + 3 + 1 + 3
 // products per lag and sample for the direct sums over the same lags
-// (reference/direct_correlations.hpp). At W = 16 the two come out close, the direct sums still
-// the cheaper: bench/bench_analysis.cpp puts this path 5–20 % above them per sample at N 512
-// and 10–30 % above at 32 768 (4096 followed bodies), where the kept transforms, twice the size
-// of the samples they stand for, stream through memory at every block.
+// (reference/direct_correlations.hpp). At W = 16 the two come out close, and what decides is
+// the glue around the transforms: bodies are taken four at a time, their samples gathered and
+// their cross-spectra summed four doubles to a vector (AVX where the processor has it, chosen at
+// run time, the same sums to the last bit as the SSE2 loops), so that bench/bench_analysis.cpp
+// puts the time correlations' cost per sample 2–14 % below the direct sums' at N 512 and
+// 3–10 % below at 32 768 (4096 followed bodies). There the kept transforms, twice the size
+// of the samples they stand for, stream from L3 at every block (16 MB read and written per 16
+// samples) and the products wait on them: that, with FFTW's ten transforms, is the floor.
 #include "core/snapshot.hpp"
 #include <complex>
 #include <cstddef>
@@ -102,10 +107,10 @@ private:
     void completeBlock(long j);
     /// Transforms, for bodies first … first + count − 1, samples [from, to) of the block that
     /// starts at `begin` (at points from − begin …, zeros elsewhere), positions relative to
-    /// sample `ref`. With previous ≥ 0, adds the MSD's squares of the block relative to ref and
-    /// to previous (the block's first sample and the block's before).
+    /// sample `ref`. With own ≥ 0, adds the MSD's squares of the block relative to sample own
+    /// (the block's first, for its own window) and to ref (for the window before).
     void transform(int first, int count, long begin, long from, long to, long ref,
-                   long previous = -1) const;
+                   long own = -1) const;
     /// Copies the transforms of `count` bodies from FFTW's layout into the kept one.
     void keep(const std::complex<double>* full, int count, std::complex<double>* kept) const;
     /// Adds the cross-spectra of a block's origins (spectra a, whole block) against its window's
@@ -119,14 +124,17 @@ private:
     /// ringSquares) and the origin counts of a block's origins.
     void addSquares(const std::vector<Part>& parts, long ref, long windowEnd, Spectra& to) const;
     LagSums invert(const Spectra& s) const;
-    /// Index in ring_ of sample t's row 0 for body k (rows every M doubles).
+    /// Index in ring_ of sample t's row 0 for body k (rows every stride_ doubles).
     std::size_t at(long t, int k) const;
     /// The two sums of products (addProduct) that a channel adds to.
     std::pair<double*, double*> sumsOf(Spectra& to, int channel, int fine, int group) const;
 
     int m_, w_, lags_, fine_, groups_;
+    /// Doubles from one row of the ring to the next: M and a cache line, so that the rows of a
+    /// block (M a power of two, their distance a multiple of 4 KiB) do not share L1's sets.
+    std::size_t stride_;
     long planned_, seen_ = 0;
-    std::vector<double> ring_; // 2W slots × 9 rows (v, s, r) × M: a sample in one stretch
+    std::vector<double> ring_; // 2W slots × 9 rows (v, s, r) × stride: a sample in one stretch
     std::vector<int> group_, groupBegin_;        // the MSD's group of each body; group starts
     std::vector<std::complex<double>> spectrum_; // M × kept: the last complete block's
     std::unique_ptr<Spectra> sums_;              // of the blocks whose windows are complete
