@@ -63,4 +63,18 @@ int printDesign(const DesignRequest& request) {
     });
 }
 
+std::string dmdRefusal(const Scene& scene) {
+    try {
+        withBodyAndPotential(scene, [&]<BodyKind K, PairPotential P>(const P& bare) {
+            const auto model = sceneModel(scene, bare, true);
+            dmd::readDmdSettings(dmd::readDmdSection(scene.dmd), model, scene.kT(),
+                                 scene.boxLength());
+            return 0;
+        });
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "";
+}
+
 } // namespace terrace::cli

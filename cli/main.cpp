@@ -12,6 +12,7 @@
 #include "cli/run_command.hpp"
 #include "cli/run_driver.hpp"
 #include "cli/sweep_mpi.hpp"
+#include "cli/tradeoff_command.hpp"
 #include "core/huge_pages.hpp"
 #include "core/measure.hpp"
 #include "core/xyz.hpp"
@@ -78,6 +79,28 @@ Usage:
       ones (unless --retry-failed); a failed run is recorded and the sweep goes on. Exit
       status 0: all runs done; 1: some failed; 2: a bad sweep file; 3: the sweep itself
       failed (another sweep holds DIR, a table it cannot write); 128 + signal: stopped.
+  terrace tradeoff [SCENE.json] [--tolerance OBS=VALUE[%]]... [--set key.path=value]...
+                   [-j N] [--out DIR] [--bias-n N] [--max-replicas N] [--cost-pairs N]
+                   [--budget-cpu-hours H] [--dV LIST] [--designs uniform,optimal]
+                   [--schemes verlet,omelyan,yoshida4] [--observables LIST] [--quiet]
+      Does DMD pay for this scene at these tolerances? Measures each engine's systematic
+      error against the continuous model (reference: SMD yoshida4 at half smd.dt_fs) on
+      u = <U>/(N eps), p = P*, d = D, g = RMS of g(r), g_peak, tau_v and tau_o (the
+      VACF's and OACF's integrals), over a ladder of DMD dV (--dV 1,0.5,0.25,0.125 in kT;
+      uniform and optimal terraces) and SMD dt for verlet, omelyan and yoshida4 up to
+      the stability limit. Each bias is resolved within or outside its tolerance at 2
+      sigma (Bonferroni over the replica counts looked at), replicas added where it is
+      not, up to --max-replicas (32) or the budget (8 CPU h); the bias law (dt^2, dt^4,
+      dV^p) places a setting between the last within and the first outside, checked by
+      its own runs. Default tolerances: u 0.5%, p 2% (of max(|P|, rho* T*)), d 3%,
+      g 0.02, g_peak 1%, tau_v 3%, tau_o 3%. DMD's u, p, g and g_peak are estimated on
+      its terraced observables and by configurational estimators (continuous U, W and
+      g on its configurations); the smaller bias is used and named. Prints the verdict
+      (the cheaper engine's setting and the cost ratio with its interval, from
+      --cost-pairs alternated runs at the scene's N) and writes DIR/tradeoff.json,
+      tradeoff.csv, tradeoff.png and the runs in DIR/runs (default DIR: out/tradeoff-
+      <scene name>). Bias runs use --bias-n bodies (default: the scene's). Run again,
+      the same command continues where it stopped. Exit status 0: a verdict; 1: none.
   terrace --help
 
 SIGINT, SIGTERM and SIGHUP end a run at the next sample with its output written (exit
@@ -240,6 +263,103 @@ int sweepMain(const std::vector<std::string>& args) {
     }
 }
 
+int tradeoffMain(const std::vector<std::string>& args) {
+    po::options_description opts("tradeoff options");
+    opts.add_options()("out", po::value<std::string>(), "output directory")(
+        "jobs,j", po::value<int>()->default_value(1), "runs at once")(
+        "tolerance", po::value<std::vector<std::string>>()->composing(),
+        "OBS=VALUE[%]")("bias-n", po::value<int>()->default_value(0), "bodies of the bias runs")(
+        "max-replicas", po::value<int>()->default_value(32), "replicas per setting at most")(
+        "cost-pairs", po::value<int>()->default_value(5), "alternated cost runs per engine")(
+        "budget-cpu-hours", po::value<double>()->default_value(8.0), "CPU budget")(
+        "dV", po::value<std::string>()->default_value("1,0.5,0.25,0.125"), "DMD ladder, kT")(
+        "designs", po::value<std::string>()->default_value("uniform,optimal"), "DMD ladders")(
+        "schemes", po::value<std::string>()->default_value("verlet,omelyan,yoshida4"),
+        "SMD ladders")("observables", po::value<std::string>(), "u,p,d,g,g_peak,tau_v,tau_o")(
+        "quiet", "no progress output")("scene", po::value<std::string>(), "scene file")(
+        "set", po::value<std::vector<std::string>>()->composing(), "key.path=value")("help,h",
+                                                                                     "this help");
+    po::positional_options_description pos;
+    pos.add("scene", 1);
+    po::variables_map vm;
+    po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
+    po::notify(vm);
+    if (vm.count("help")) {
+        std::fputs(usage, stdout);
+        return 0;
+    }
+    cli::TradeoffOptions o;
+    if (vm.count("scene")) o.scenePath = vm["scene"].as<std::string>();
+    if (vm.count("set")) o.sets = vm["set"].as<std::vector<std::string>>();
+    o.jobs = vm["jobs"].as<int>();
+    o.biasN = vm["bias-n"].as<int>();
+    o.maxReplicas = vm["max-replicas"].as<int>();
+    o.costPairs = vm["cost-pairs"].as<int>();
+    o.budgetCpuHours = vm["budget-cpu-hours"].as<double>();
+    o.quiet = vm.count("quiet") > 0;
+    if (o.jobs < 1) throw po::error("-j must be at least 1");
+    if (o.biasN < 0 || o.biasN == 1) throw po::error("--bias-n must be 0 (the scene's) or >= 2");
+    if (o.maxReplicas < 2) throw po::error("--max-replicas must be at least 2");
+    if (o.costPairs < 1) throw po::error("--cost-pairs must be at least 1");
+    if (!(o.budgetCpuHours > 0.0)) throw po::error("--budget-cpu-hours must be > 0");
+    o.dVs.clear();
+    {
+        std::string list = vm["dV"].as<std::string>();
+        std::size_t at = 0;
+        while (at <= list.size()) {
+            const std::size_t comma = std::min(list.find(',', at), list.size());
+            const std::string item = list.substr(at, comma - at);
+            std::size_t used = 0;
+            double x = 0.0;
+            try {
+                x = std::stod(item, &used);
+            } catch (const std::exception&) {
+            }
+            if (used == 0 || used != item.size() || !(x > 0.0) || !std::isfinite(x))
+                throw po::error("--dV takes a comma-separated list of positive numbers (kT), "
+                                "got '" +
+                                item + "'");
+            o.dVs.push_back(x);
+            at = comma + 1;
+        }
+        if (o.dVs.size() < 2) throw po::error("--dV needs at least two values for a ladder");
+    }
+    const auto split = [](const std::string& list, const std::vector<std::string>& valid,
+                          const char* option) {
+        std::vector<std::string> out;
+        std::size_t at = 0;
+        while (at <= list.size()) {
+            const std::size_t comma = std::min(list.find(',', at), list.size());
+            const std::string item = list.substr(at, comma - at);
+            if (std::find(valid.begin(), valid.end(), item) == valid.end())
+                throw po::error(std::string(option) + ": '" + item + "' is none of the choices");
+            out.push_back(item);
+            at = comma + 1;
+        }
+        return out;
+    };
+    o.designs = split(vm["designs"].as<std::string>(), {"uniform", "optimal"}, "--designs");
+    o.schemes =
+        split(vm["schemes"].as<std::string>(), {"verlet", "omelyan", "yoshida4"}, "--schemes");
+    try {
+        if (vm.count("observables"))
+            o.observables = cli::parseObservables(vm["observables"].as<std::string>());
+        if (vm.count("tolerance"))
+            for (const auto& text : vm["tolerance"].as<std::vector<std::string>>())
+                o.tolerances.push_back(cli::parseTolerance(text));
+        const Scene scene = o.scenePath.empty()
+                                ? sceneFromJson(nlohmann::json::object(), "<built-in>", o.sets)
+                                : loadScene(o.scenePath.string(), o.sets);
+        o.out = vm.count("out")
+                    ? std::filesystem::path(vm["out"].as<std::string>())
+                    : std::filesystem::path("out") / cli::sanitisedName("tradeoff-" + scene.name);
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "terrace: %s\n", e.what());
+        return 2;
+    }
+    return cli::runTradeoff(o);
+}
+
 int compareMain(const std::vector<std::string>& args) {
     po::options_description opts("compare options");
     opts.add_options()("tol-sigma", po::value<double>()->default_value(3.0), "tolerance in sigma")(
@@ -295,6 +415,7 @@ int main(int argc, char** argv) {
         if (command == "compare") return checkedStdout(compareMain(args));
         if (command == "design") return checkedStdout(designMain(args));
         if (command == "sweep") return checkedStdout(sweepMain(args));
+        if (command == "tradeoff") return checkedStdout(tradeoffMain(args));
         std::fprintf(stderr, "terrace: unknown command '%s' (try terrace --help)\n",
                      command.c_str());
         return 2;

@@ -614,6 +614,27 @@ sweep_mpi)
         fail "sweep.csv differs under mpirun: $(diff "$work/serial/sweep.csv" "$work/mpi/sweep.csv")"
     [ "$(grep -c ',failed,' "$work/mpi/sweep.csv")" -eq 2 ] || fail "the failures got lost under mpirun"
     ;;
+tradeoff)
+    # terrace tradeoff end to end on a small LJ gas with loose tolerances: a verdict with an
+    # interval and its files; then the chosen settings' biases re-measured by independent runs
+    # (other seeds, twice as long), each found within its tolerance (not outside it at 2 sigma).
+    tiny=(--set state.n=108 --set state.density=0.3 --set state.temperature=2
+          --set run.equilibrate_ps=0.45 --set run.time_ps=1.8 --set smd.dt_fs=0.5)
+    "$terrace" tradeoff "$src/experiments/scenes/lj-liquid.json" "${tiny[@]}" --observables u,p \
+        --tolerance u=5% --tolerance p=15% --dV 0.5,0.25,0.125 --designs uniform --schemes verlet \
+        --max-replicas 16 --cost-pairs 3 -j 2 --out "$work/t" --quiet >"$work/verdict" 2>"$work/err" ||
+        fail "tradeoff: exit status $?: $(cat "$work/verdict" "$work/err")"
+    grep -Eq 'is [0-9.]+x \([0-9.]+-[0-9.]+, 75 %\) cheaper than' "$work/verdict" ||
+        fail "no verdict with an interval: $(cat "$work/verdict")"
+    for f in tradeoff.json tradeoff.csv; do [ -s "$work/t/$f" ] || fail "no $f"; done
+    if command -v gnuplot >/dev/null; then [ -s "$work/t/tradeoff.png" ] || fail "no tradeoff.png"; fi
+    python3 "$src/tests/cli/tradeoff_recheck.py" plan "$work/t/tradeoff.json" \
+        "$src/experiments/scenes/lj-liquid.json" >"$work/recheck.json" || fail "cannot read the choice"
+    "$terrace" sweep "$work/recheck.json" "${tiny[@]}" --set run.time_ps=3.6 --out "$work/re" -j 2 \
+        --quiet || fail "the re-measuring runs failed"
+    python3 "$src/tests/cli/tradeoff_recheck.py" check "$work/t/tradeoff.json" "$work/re" ||
+        fail "a chosen setting's bias is outside its tolerance in independent runs"
+    ;;
 *)
     fail "unknown check"
     ;;

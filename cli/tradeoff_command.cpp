@@ -1,0 +1,676 @@
+#include "cli/tradeoff_command.hpp"
+#include "analysis/csv.hpp"
+#include "cli/design_command.hpp"
+#include "cli/sweep_runner.hpp"
+#include "cli/tradeoff_measure.hpp"
+#include "core/output_file.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+
+namespace terrace::cli {
+
+namespace {
+
+using analysis::Decision;
+
+const char* decisionName(Decision d) {
+    return d == Decision::Within ? "within" : d == Decision::Outside ? "outside" : "unresolved";
+}
+
+/// A setting with its replicas and what they say.
+struct Rung {
+    Setting setting;
+    int target = 0; // replicas asked for
+    std::vector<ReplicaResult> replicas;
+    std::vector<ObservableBias> biases;
+    Decision decision = Decision::Unresolved;
+    std::string failure; // the stability limit, or why a rung cannot be judged
+
+    int ok() const {
+        return int(std::count_if(replicas.begin(), replicas.end(),
+                                 [](const ReplicaResult& r) { return r.ok; }));
+    }
+    double cost() const { // mean production CPU s per ps of the ok replicas
+        double sum = 0.0;
+        int n = 0;
+        for (const auto& r : replicas)
+            if (r.ok && std::isfinite(r.cpuPerPs)) sum += r.cpuPerPs, ++n;
+        return n ? sum / n : std::numeric_limits<double>::quiet_NaN();
+    }
+};
+
+std::string replicaName(const Setting& s, int k) {
+    return s.label() + "_r" + std::to_string(k);
+}
+
+struct Tradeoff {
+    TradeoffOptions options;
+    Scene scene;        // the user's, at its N: the cost runs
+    int biasBodies = 0; // bodies of the bias runs
+    std::vector<Observable> observables;
+    std::map<Observable, analysis::Tolerance> tolerance;
+    Rung reference;
+    std::vector<std::vector<Rung>> ladders;
+    std::map<Observable, Estimator> dmdEstimator;
+    std::vector<int> schedule;
+    double z = 2.0;
+    double cpuSpent = 0.0;
+    std::vector<std::string> notes;
+    std::set<std::string> interpolatedLadders;
+
+    std::filesystem::path runs() const { return options.out / "runs"; }
+
+    /// The scale a relative tolerance of o is a fraction of: the reference's magnitude; for P the
+    /// larger of |P| and the ideal-gas term ρ*T*.
+    double scale(Observable o, double referenceValue) const {
+        if (o == Observable::P)
+            return std::max(std::abs(referenceValue),
+                            scene.state.density * scene.state.temperature);
+        return std::abs(referenceValue);
+    }
+};
+
+/// Runs every replica asked for and not yet on disk; returns the sweep's status.
+int runPending(Tradeoff& t, const std::vector<const Rung*>& rungs, const std::string& extraSet,
+               bool oneAtATime) {
+    nlohmann::json cases = nlohmann::json::array(), labels = nlohmann::json::array();
+    for (const Rung* r : rungs)
+        for (int k = 1; k <= r->target; ++k) {
+            nlohmann::json c = nlohmann::json::object();
+            for (const auto& [key, value] : r->setting.overrides)
+                c[key] = value;
+            c["seed"] = k;
+            cases.push_back(c);
+            labels.push_back(replicaName(r->setting, k));
+        }
+    if (cases.empty()) return 0;
+    nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}}};
+    if (!t.options.scenePath.empty())
+        sweep["scene"] = std::filesystem::absolute(t.options.scenePath).string();
+    std::vector<std::string> sets = t.options.sets;
+    if (!extraSet.empty()) sets.push_back(extraSet);
+    const SweepPlan plan = sweepFromJson(sweep.dump(), "tradeoff", ".", sets);
+    SweepOptions so;
+    so.out = t.runs();
+    so.jobs = oneAtATime ? 1 : t.options.jobs;
+    so.quiet = t.options.quiet;
+    return runSweep(plan, so);
+}
+
+void readRung(Tradeoff& t, Rung& r, int bodies) {
+    r.replicas.clear();
+    for (int k = 1; k <= r.target; ++k)
+        r.replicas.push_back(
+            readReplica(t.runs() / replicaName(r.setting, k), bodies, t.scene.potential.epsilon));
+}
+
+std::optional<ObservableBias> biasOf(const Tradeoff& t, const Rung& r, Observable o, Estimator e) {
+    if (o == Observable::G)
+        return curveBias(e, r.replicas, t.reference.replicas, t.tolerance.at(o).value, t.z);
+    std::optional<ObservableBias> b;
+    // The scale comes from the reference's own mean.
+    std::vector<double> ref;
+    for (const auto& x : t.reference.replicas)
+        if (x.ok && x.value.count(valueKey(o, Estimator::Own)))
+            ref.push_back(x.value.at(valueKey(o, Estimator::Own)));
+    const double scale = ref.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                     : t.scale(o, analysis::replicaMean(ref).mean);
+    return scalarBias(o, e, r.replicas, t.reference.replicas, t.tolerance.at(o), scale, t.z);
+}
+
+bool hasConfigurational(Observable o) {
+    return o == Observable::U || o == Observable::P || o == Observable::G || o == Observable::GPeak;
+}
+
+/// For DMD, per observable, the estimator whose biases over the DMD rungs are the smaller
+/// (Σ |bias|/tol over the rungs where both are measured).
+void chooseEstimators(Tradeoff& t) {
+    for (const Observable o : t.observables) {
+        if (!hasConfigurational(o)) {
+            t.dmdEstimator[o] = Estimator::Own;
+            continue;
+        }
+        double own = 0.0, conf = 0.0;
+        for (const auto& ladder : t.ladders)
+            for (const Rung& r : ladder) {
+                if (r.setting.engine != "dmd") continue;
+                const auto a = biasOf(t, r, o, Estimator::Own);
+                const auto b = biasOf(t, r, o, Estimator::Configurational);
+                if (!a || !b) continue;
+                own += std::abs(a->bias.mean) / a->tolerance;
+                conf += std::abs(b->bias.mean) / b->tolerance;
+            }
+        t.dmdEstimator[o] = conf < own ? Estimator::Configurational : Estimator::Own;
+    }
+}
+
+void judge(Tradeoff& t, Rung& r) {
+    r.biases.clear();
+    r.failure.clear();
+    for (const auto& x : r.replicas)
+        if (!x.ok && !x.failure.empty()) r.failure = x.failure;
+    if (!r.failure.empty()) {
+        r.decision = Decision::Outside;
+        return;
+    }
+    bool any = false, outside = false, all = true;
+    for (const Observable o : t.observables) {
+        const Estimator e = r.setting.engine == "dmd" ? t.dmdEstimator[o] : Estimator::Own;
+        const auto b = biasOf(t, r, o, e);
+        if (!b) {
+            all = false;
+            continue;
+        }
+        r.biases.push_back(*b);
+        any = true;
+        outside = outside || b->decision == Decision::Outside;
+        all = all && b->decision == Decision::Within;
+    }
+    r.decision =
+        outside ? Decision::Outside : (any && all ? Decision::Within : Decision::Unresolved);
+}
+
+/// Replicas that would resolve rung r's open observables (the next count of the schedule).
+int nextTarget(const Tradeoff& t, const Rung& r) {
+    int projected = r.target;
+    for (const auto& b : r.biases) {
+        if (b.decision != Decision::Unresolved) continue;
+        if (b.observable == Observable::G) {
+            // Decided on the square: project with the square against tol².
+            analysis::Estimate square = b.bias;
+            square.mean = std::copysign(b.bias.mean * b.bias.mean, b.bias.mean);
+            square.err = 2.0 * std::abs(b.bias.mean) * b.bias.err;
+            projected = std::max(projected,
+                                 analysis::replicasToResolve(square, analysis::Estimate{0.0, 0.0},
+                                                             b.tolerance * b.tolerance, t.z,
+                                                             t.options.maxReplicas));
+        } else {
+            projected = std::max(projected,
+                                 analysis::replicasToResolve(b.candidate, b.reference, b.tolerance,
+                                                             t.z, t.options.maxReplicas));
+        }
+    }
+    return analysis::nextLook(t.schedule, r.target, projected);
+}
+
+/// The index of a ladder's cheapest Within rung (-1: none).
+int cheapestWithin(const std::vector<Rung>& ladder) {
+    int c = -1;
+    for (int i = 0; i < int(ladder.size()); ++i)
+        if (ladder[i].decision == Decision::Within) c = i;
+    return c;
+}
+
+/// Raises the targets of the rungs that could still be their ladder's cheapest Within: the
+/// unresolved ones beyond the cheapest Within, before the first Outside beyond it.
+bool raiseTargets(Tradeoff& t) {
+    bool raised = false;
+    for (auto& ladder : t.ladders) {
+        const int c = cheapestWithin(ladder);
+        for (int i = c + 1; i < int(ladder.size()); ++i) {
+            Rung& r = ladder[i];
+            if (r.decision == Decision::Outside) break;
+            if (r.target == 0) { // a rung not run yet (an interpolated one)
+                r.target = t.schedule.front();
+                raised = true;
+                break;
+            }
+            const int next = nextTarget(t, r);
+            if (next > r.target) r.target = next, raised = true;
+        }
+    }
+    return raised;
+}
+
+/// The reference's replicas double until its standard error is below a third of every
+/// tolerance (so that it adds little to a candidate's), or the replica budget is reached.
+bool raiseReference(Tradeoff& t) {
+    if (t.reference.target >= t.options.maxReplicas) return false;
+    bool short_ = false;
+    for (const Observable o : t.observables) {
+        if (o == Observable::G) continue; // its noise is taken out of the estimate
+        std::vector<double> x;
+        for (const auto& r : t.reference.replicas)
+            if (r.ok && r.value.count(valueKey(o, Estimator::Own)))
+                x.push_back(r.value.at(valueKey(o, Estimator::Own)));
+        if (x.size() < 2) continue;
+        const analysis::Estimate m = analysis::replicaMean(x);
+        const double tol = analysis::absoluteTolerance(t.tolerance.at(o), t.scale(o, m.mean));
+        short_ = short_ || !(m.err <= tol / 3.0);
+    }
+    if (!short_) return false;
+    t.reference.target = std::min(2 * t.reference.target, t.options.maxReplicas);
+    return true;
+}
+
+/// Places a setting by the bias laws between a ladder's cheapest Within rung and the Outside
+/// rung after it; false when there is nothing to place.
+bool interpolate(Tradeoff& t, std::vector<Rung>& ladder) {
+    if (ladder.empty() || t.interpolatedLadders.count(ladder.front().setting.ladder)) return false;
+    const int c = cheapestWithin(ladder);
+    if (c < 0 || c + 1 >= int(ladder.size()) || ladder[c + 1].decision != Decision::Outside ||
+        !ladder[c + 1].failure.empty())
+        return false;
+    t.interpolatedLadders.insert(ladder.front().setting.ladder);
+    double xStar = std::numeric_limits<double>::infinity();
+    for (const Observable o : t.observables) {
+        std::vector<double> x;
+        std::vector<analysis::Estimate> bias;
+        double tol = 0.0;
+        for (const Rung& r : ladder)
+            for (const auto& b : r.biases)
+                if (b.observable == o && r.failure.empty())
+                    x.push_back(r.setting.x), bias.push_back(b.bias), tol = b.tolerance;
+        const auto law = analysis::fitPowerLaw(x, bias, knownOrder(ladder.front().setting));
+        if (!law.ok) continue;
+        const double at = analysis::settingAtTolerance(law, tol).value;
+        if (std::isfinite(at)) xStar = std::min(xStar, at);
+    }
+    const double lo = ladder[c].setting.x, hi = ladder[c + 1].setting.x;
+    if (!(xStar > lo && xStar < hi)) return false;
+    Setting s = ladder[c].setting;
+    if (s.engine == "dmd") {
+        const double x = std::floor(xStar * 1000.0) / 1000.0; // 3 decimals of kT, rounded safe
+        if (!(x > lo)) return false;
+        s = dmdSetting(s.ladder, x);
+    } else {
+        const double sample = t.scene.run.sample_fs, thermostat = t.scene.run.thermostat_fs;
+        int k = static_cast<int>(std::ceil(sample / xStar - 1e-9));
+        const auto fits = [&](int kk) {
+            const double steps = thermostat * kk / sample;
+            return std::abs(steps - std::round(steps)) < 1e-9 * steps;
+        };
+        while (!fits(k))
+            ++k;
+        const double dt = sample / k;
+        if (!(dt > lo * (1 + 1e-9))) return false;
+        s = smdSetting(s.ladder.substr(4), dt);
+    }
+    s.interpolated = true;
+    Rung r;
+    r.setting = s;
+    ladder.insert(ladder.begin() + c + 1, r);
+    t.notes.push_back(s.label() + " placed by the bias law between " + ladder[c].setting.label() +
+                      " and " + ladder[c + 2].setting.label());
+    return true;
+}
+
+nlohmann::json biasJson(const ObservableBias& b, const std::string& engine) {
+    const auto num = [](double x) {
+        return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
+    };
+    return {{"observable", observableName(b.observable)},
+            {"estimator", estimatorName(b.estimator, engine)},
+            {"candidate", num(b.candidate.mean)},
+            {"candidate_err", num(b.candidate.err)},
+            {"reference", num(b.reference.mean)},
+            {"reference_err", num(b.reference.err)},
+            {"bias", num(b.bias.mean)},
+            {"bias_err", num(b.bias.err)},
+            {"tolerance", num(b.tolerance)},
+            {"decision", decisionName(b.decision)}};
+}
+
+nlohmann::json rungJson(const Rung& r) {
+    nlohmann::json j{
+        {"setting", r.setting.label()},
+        {"engine", r.setting.engine},
+        {"ladder", r.setting.ladder},
+        {r.setting.engine == "dmd" ? "dV_kT" : "dt_fs", r.setting.x},
+        {"interpolated", r.setting.interpolated},
+        {"replicas", r.target},
+        {"replicas_ok", r.ok()},
+        {"cpu_s_per_ps", std::isfinite(r.cost()) ? nlohmann::json(r.cost()) : nlohmann::json()},
+        {"decision", decisionName(r.decision)}};
+    if (!r.failure.empty()) j["failure"] = r.failure;
+    j["biases"] = nlohmann::json::array();
+    for (const auto& b : r.biases)
+        j["biases"].push_back(biasJson(b, r.setting.engine));
+    return j;
+}
+
+std::string describe(const Setting& s, const Tradeoff& t) {
+    char b[160];
+    if (s.engine == "dmd") {
+        std::string est;
+        for (const Observable o : t.observables)
+            if (hasConfigurational(o))
+                est += std::string(est.empty() ? "" : ", ") + observableName(o) + " " +
+                       estimatorName(t.dmdEstimator.at(o), "dmd");
+        std::snprintf(b, sizeof b, "DMD dV = %.4g kT (%s terraces; %s)", s.x,
+                      s.ladder == "dmd-optimal" ? "optimal" : "uniform", est.c_str());
+    } else {
+        const std::string scheme = s.ladder == "reference" ? "yoshida4" : s.ladder.substr(4);
+        std::snprintf(b, sizeof b, "SMD %s dt = %.4g fs", scheme.c_str(), s.x);
+    }
+    return b;
+}
+
+std::string toleranceText(const Tradeoff& t) {
+    std::string text;
+    for (const Observable o : t.observables) {
+        const auto tol = t.tolerance.at(o);
+        char b[64];
+        if (tol.relative)
+            std::snprintf(b, sizeof b, "%s +-%.3g %%", observableName(o), 100.0 * tol.value);
+        else
+            std::snprintf(b, sizeof b, "%s +-%.3g", observableName(o), tol.value);
+        text += (text.empty() ? "" : ", ") + std::string(b);
+    }
+    return text;
+}
+
+void writeTable(const Tradeoff& t) {
+    std::string csv = "setting,engine,ladder,x,interpolated,replicas,cpu_s_per_ps,observable,"
+                      "estimator,bias,bias_err,tolerance,decision,rung_decision\n";
+    const auto rows = [&](const Rung& r) {
+        for (const auto& b : r.biases) {
+            char line[512];
+            std::snprintf(line, sizeof line,
+                          "%s,%s,%s,%.6g,%d,%d,%.6g,%s,%s,%.6g,%.6g,%.6g,%s,%s\n",
+                          r.setting.label().c_str(), r.setting.engine.c_str(),
+                          r.setting.ladder.c_str(), r.setting.x, int(r.setting.interpolated),
+                          r.target, r.cost(), observableName(b.observable),
+                          estimatorName(b.estimator, r.setting.engine), b.bias.mean, b.bias.err,
+                          b.tolerance, decisionName(b.decision), decisionName(r.decision));
+            csv += line;
+        }
+        if (r.biases.empty()) {
+            char line[512];
+            std::snprintf(line, sizeof line, "%s,%s,%s,%.6g,%d,%d,%.6g,,,,,,,%s\n",
+                          r.setting.label().c_str(), r.setting.engine.c_str(),
+                          r.setting.ladder.c_str(), r.setting.x, int(r.setting.interpolated),
+                          r.target, r.cost(), decisionName(r.decision));
+            csv += line;
+        }
+    };
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder)
+            rows(r);
+    writeFileAtomically(t.options.out / "tradeoff.csv", csv);
+}
+
+/// bias/tolerance against cost, one panel per observable, the band |bias| ≤ tolerance shaded.
+void writePlot(const Tradeoff& t) {
+    std::string data = "# engine cost bias_over_tol err_over_tol observable\n";
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder)
+            for (const auto& b : r.biases)
+                data += r.setting.engine + " " + std::to_string(r.cost()) + " " +
+                        std::to_string(b.bias.mean / b.tolerance) + " " +
+                        std::to_string(b.bias.err / b.tolerance) + " " +
+                        observableName(b.observable) + "\n";
+    writeFileAtomically(t.options.out / "tradeoff.dat", data);
+    std::FILE* gp = popen("gnuplot 2>/dev/null", "w");
+    if (!gp) return;
+    const int panels = int(t.observables.size());
+    std::string script = "set terminal pngcairo size " + std::to_string(360 * std::min(panels, 4)) +
+                         "," + std::to_string(320 * ((panels + 3) / 4)) + "\nset output '" +
+                         (t.options.out / "tradeoff.png").string() + "'\n";
+    script += "set multiplot layout " + std::to_string((panels + 3) / 4) + "," +
+              std::to_string(std::min(panels, 4)) + " title 'bias / tolerance against cost'\n";
+    script += "set logscale x\nset xlabel 'CPU s per ps'\nset yrange [-3:3]\nset grid\n"
+              "set key top left font ',8'\n";
+    for (const Observable o : t.observables) {
+        const std::string name = observableName(o);
+        script += "set title '" + name + "'\n";
+        script += "plot [*:*] 1 with filledcurves y1=-1 fc rgb '#dddddd' notitle, '" +
+                  (t.options.out / "tradeoff.dat").string() +
+                  "' using 2:(strcol(1) eq 'dmd' && strcol(5) eq '" + name +
+                  "' ? $3 : NaN):4 with yerrorbars pt 7 lc rgb '#d62728' title 'DMD', '' using "
+                  "2:(strcol(1) eq 'smd' && strcol(5) eq '" +
+                  name + "' ? $3 : NaN):4 with yerrorbars pt 5 lc rgb '#1f77b4' title 'SMD'\n";
+    }
+    script += "unset multiplot\n";
+    std::fputs(script.c_str(), gp);
+    pclose(gp);
+}
+
+const Rung* cheapestOf(const Tradeoff& t, const std::string& engine) {
+    const Rung* best = nullptr;
+    for (const auto& ladder : t.ladders) {
+        const int c = cheapestWithin(ladder);
+        if (c < 0 || ladder[c].setting.engine != engine) continue;
+        if (!best || ladder[c].cost() < best->cost()) best = &ladder[c];
+    }
+    return best;
+}
+
+} // namespace
+
+int runTradeoff(const TradeoffOptions& options) {
+    Tradeoff t;
+    t.options = options;
+    t.scene = options.scenePath.empty() ? sceneFromJson(nlohmann::json::object(),
+                                                        "<built-in default scene>", options.sets)
+                                        : loadScene(options.scenePath.string(), options.sets);
+    t.biasBodies = options.biasN > 0 ? options.biasN : t.scene.state.n;
+    const std::string biasSet =
+        options.biasN > 0 ? "state.n=" + std::to_string(options.biasN) : std::string();
+    const bool rotating = t.scene.body.kind != "sphere";
+    for (const Observable o : allObservables)
+        if (o != Observable::TauO || rotating) t.observables.push_back(o);
+    if (!options.observables.empty()) t.observables = options.observables;
+    for (const Observable o : t.observables)
+        if (o == Observable::TauO && !rotating)
+            throw SceneError("--observables: tau_o needs bodies that rotate, and " +
+                             t.scene.body.kind + "s do not");
+    for (const Observable o : t.observables)
+        t.tolerance[o] = defaultTolerance(o);
+    for (const auto& [o, tol] : options.tolerances)
+        t.tolerance[o] = tol;
+    t.schedule = analysis::lookSchedule(2, options.maxReplicas);
+    t.z = analysis::sequentialZ(options.alpha, int(t.schedule.size()));
+    const TradeoffLadders plan = tradeoffLadders(t.scene, options);
+    t.reference.setting = plan.reference;
+    t.reference.target = std::min(8, options.maxReplicas); // its dof bounds every decision's
+    for (const auto& ladder : plan.ladders) {
+        std::vector<Rung> rungs;
+        for (const auto& s : ladder) {
+            if (s.engine == "dmd") { // a terracing the engine would refuse is no candidate
+                std::vector<std::string> sets = options.sets;
+                if (!biasSet.empty()) sets.push_back(biasSet);
+                for (const auto& o : s.overrides)
+                    sets.push_back(overrideArgument(o));
+                const Scene rungScene =
+                    options.scenePath.empty()
+                        ? sceneFromJson(nlohmann::json::object(), "<built-in>", sets)
+                        : loadScene(options.scenePath.string(), sets);
+                const std::string why = dmdRefusal(rungScene);
+                if (!why.empty()) {
+                    t.notes.push_back(s.label() + " left out: " + why);
+                    continue;
+                }
+            }
+            Rung r;
+            r.setting = s;
+            r.target = t.schedule.front();
+            rungs.push_back(r);
+        }
+        t.ladders.push_back(std::move(rungs));
+    }
+    std::filesystem::create_directories(t.runs());
+    int settingCount = 0;
+    for (const auto& ladder : t.ladders)
+        settingCount += int(ladder.size());
+    if (!options.quiet)
+        std::fprintf(stderr,
+                     "tradeoff: %s, bias at N = %d, %d settings on %zu ladders, reference %s; "
+                     "z = %.3g over %zu looks of at most %d replicas\n",
+                     t.scene.name.c_str(), t.biasBodies, settingCount, t.ladders.size(),
+                     describe(plan.reference, t).c_str(), t.z, t.schedule.size(),
+                     options.maxReplicas);
+
+    bool budgetSpent = false;
+    for (int round = 1;; ++round) {
+        std::vector<const Rung*> all{&t.reference};
+        for (const auto& ladder : t.ladders)
+            for (const Rung& r : ladder)
+                if (r.target > 0) all.push_back(&r);
+        const int status = runPending(t, all, biasSet, false);
+        if (status >= 128) return status;
+        t.cpuSpent = 0.0;
+        readRung(t, t.reference, t.biasBodies);
+        for (const auto& r : t.reference.replicas)
+            if (std::isfinite(r.cpuSeconds)) t.cpuSpent += r.cpuSeconds;
+        for (auto& ladder : t.ladders)
+            for (Rung& r : ladder) {
+                readRung(t, r, t.biasBodies);
+                for (const auto& x : r.replicas)
+                    if (std::isfinite(x.cpuSeconds)) t.cpuSpent += x.cpuSeconds;
+            }
+        if (t.reference.ok() < 2) {
+            std::fprintf(stderr, "tradeoff: the reference (%s) has fewer than two good runs: %s\n",
+                         describe(t.reference.setting, t).c_str(),
+                         t.reference.replicas.empty()
+                             ? "none ran"
+                             : t.reference.replicas.front().failure.c_str());
+            return 1;
+        }
+        chooseEstimators(t);
+        for (auto& ladder : t.ladders)
+            for (Rung& r : ladder)
+                judge(t, r);
+        writeTable(t);
+        if (t.cpuSpent > options.budgetCpuHours * 3600.0) {
+            budgetSpent = true;
+            break;
+        }
+        bool more = raiseReference(t);
+        more = raiseTargets(t) || more;
+        if (!more) { // every ladder decided as far as it can be: place settings by the laws
+            bool placed = false;
+            for (auto& ladder : t.ladders)
+                placed = interpolate(t, ladder) || placed;
+            more = placed && raiseTargets(t);
+        }
+        if (!more) break;
+        if (!options.quiet)
+            std::fprintf(stderr,
+                         "tradeoff: round %d done, %.0f CPU s spent; more replicas for "
+                         "the unresolved settings\n",
+                         round, t.cpuSpent);
+    }
+    if (budgetSpent)
+        t.notes.push_back("the CPU budget (" + std::to_string(options.budgetCpuHours) +
+                          " h) was spent before every decision was resolved");
+
+    nlohmann::json out{{"scene", t.scene.name},           {"bias_bodies", t.biasBodies},
+                       {"bodies", t.scene.state.n},       {"z", t.z},
+                       {"alpha", options.alpha},          {"looks", t.schedule},
+                       {"cpu_seconds_spent", t.cpuSpent}, {"reference", rungJson(t.reference)}};
+    out["tolerances"] = nlohmann::json::object();
+    for (const Observable o : t.observables)
+        out["tolerances"][observableName(o)] = {{"value", t.tolerance[o].value},
+                                                {"relative", t.tolerance[o].relative}};
+    out["dmd_estimators"] = nlohmann::json::object();
+    for (const auto& [o, e] : t.dmdEstimator)
+        out["dmd_estimators"][observableName(o)] = estimatorName(e, "dmd");
+    out["settings"] = nlohmann::json::array();
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder)
+            out["settings"].push_back(rungJson(r));
+
+    // The reference's own dt error: yoshida4 at twice its step is a rung; by the dt⁴ law the
+    // reference's bias is 1/16 of that rung's.
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder)
+            if (r.setting.ladder == "smd-yoshida4" &&
+                std::abs(r.setting.x - 2.0 * t.reference.setting.x) < 1e-9 * r.setting.x) {
+                nlohmann::json check = nlohmann::json::object();
+                bool within = !r.biases.empty();
+                for (const auto& b : r.biases) {
+                    check[observableName(b.observable)] = {
+                        {"bias_at_twice_dt", b.bias.mean},
+                        {"err", b.bias.err},
+                        {"reference_bias_bound", (std::abs(b.bias.mean) + 2.0 * b.bias.err) / 15.0},
+                        {"tolerance", b.tolerance}};
+                    within = within &&
+                             (std::abs(b.bias.mean) + 2.0 * b.bias.err) / 15.0 < 0.25 * b.tolerance;
+                }
+                out["reference_check"] = check;
+                t.notes.push_back(
+                    within ? "reference converged in dt: yoshida4 at twice its step bounds its "
+                             "own bias (dt^4) below a quarter of every tolerance"
+                           : "reference NOT shown converged in dt: yoshida4 at twice its step "
+                             "leaves a bound on its own bias above a quarter of a tolerance");
+            }
+
+    const Rung* dmd = cheapestOf(t, "dmd");
+    const Rung* smd = cheapestOf(t, "smd");
+    std::string verdict;
+    int status = 0;
+    if (!dmd || !smd) {
+        verdict = std::string("no verdict: ") + (!dmd ? "no DMD setting" : "no SMD setting") +
+                  " was resolved within tolerance at " + toleranceText(t);
+        status = 1;
+    } else {
+        // The cost window: both chosen settings at the scene's N, alternated, one at a time.
+        std::vector<double> costA, costB;
+        for (int p = 1; p <= options.costPairs; ++p) {
+            // Each pair a sweep of its own, DMD then SMD, so that the order is A B A B.
+            nlohmann::json cases = nlohmann::json::array(), labels = nlohmann::json::array();
+            for (const Setting* s : {&dmd->setting, &smd->setting}) {
+                nlohmann::json c = nlohmann::json::object();
+                for (const auto& [key, value] : s->overrides)
+                    c[key] = value;
+                c["seed"] = 1000 + p;
+                cases.push_back(c);
+                labels.push_back("cost-" + s->label() + "_p" + std::to_string(p));
+            }
+            nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}}};
+            if (!options.scenePath.empty())
+                sweep["scene"] = std::filesystem::absolute(options.scenePath).string();
+            const SweepPlan costPlan =
+                sweepFromJson(sweep.dump(), "tradeoff cost", ".", options.sets);
+            SweepOptions so;
+            so.out = t.runs();
+            so.jobs = 1;
+            so.quiet = options.quiet;
+            const int s = runSweep(costPlan, so);
+            if (s >= 128) return s;
+            const ReplicaResult ra = readReplica(t.runs() / labels[0].get<std::string>(),
+                                                 t.scene.state.n, t.scene.potential.epsilon);
+            const ReplicaResult rb = readReplica(t.runs() / labels[1].get<std::string>(),
+                                                 t.scene.state.n, t.scene.potential.epsilon);
+            if (std::isfinite(ra.cpuPerPs) && std::isfinite(rb.cpuPerPs) && ra.cpuPerPs > 0 &&
+                rb.cpuPerPs > 0)
+                costA.push_back(ra.cpuPerPs), costB.push_back(rb.cpuPerPs);
+        }
+        const analysis::RatioInterval ratio = analysis::pairedRatio(costA, costB);
+        out["cost"] = {{"dmd", dmd->setting.label()},
+                       {"smd", smd->setting.label()},
+                       {"dmd_cpu_s_per_ps", costA},
+                       {"smd_cpu_s_per_ps", costB},
+                       {"ratio_dmd_over_smd", ratio.median},
+                       {"ratio_lo", ratio.lo},
+                       {"ratio_hi", ratio.hi},
+                       {"ratio_level", ratio.level},
+                       {"pairs", ratio.pairs}};
+        char b2[512];
+        if (ratio.median >= 1.0)
+            std::snprintf(b2, sizeof b2, "%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s",
+                          describe(smd->setting, t).c_str(), ratio.median, ratio.lo, ratio.hi,
+                          100.0 * ratio.level, describe(dmd->setting, t).c_str());
+        else
+            std::snprintf(b2, sizeof b2, "%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s",
+                          describe(dmd->setting, t).c_str(), 1.0 / ratio.median, 1.0 / ratio.hi,
+                          1.0 / ratio.lo, 100.0 * ratio.level, describe(smd->setting, t).c_str());
+        verdict = std::string(b2) + " at " + toleranceText(t) + " (N " +
+                  std::to_string(t.scene.state.n) + ")";
+    }
+    out["verdict"] = verdict;
+    out["notes"] = t.notes;
+    writeFileAtomically(options.out / "tradeoff.json", out.dump(2) + "\n");
+    writeTable(t);
+    writePlot(t);
+    std::printf("%s\n", verdict.c_str());
+    for (const auto& n : t.notes)
+        std::printf("note: %s\n", n.c_str());
+    return status;
+}
+
+} // namespace terrace::cli

@@ -1,0 +1,202 @@
+#include "cli/tradeoff_measure.hpp"
+#include "analysis/csv.hpp"
+#include "cli/sweep_table.hpp"
+#include "core/output_file.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace terrace::cli {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+double numberAt(const nlohmann::json& j, std::initializer_list<const char*> path) {
+    const nlohmann::json* at = &j;
+    for (const char* key : path) {
+        if (!at->is_object() || !at->contains(key)) return nan;
+        at = &(*at)[key];
+    }
+    return at->is_number() ? at->get<double>() : nan;
+}
+
+std::vector<double> column(const analysis::CsvTable& t, const std::string& name) {
+    const int c = t.find(name);
+    return c < 0 ? std::vector<double>() : t.columns[std::size_t(c)];
+}
+
+} // namespace
+
+const char* estimatorName(Estimator e, const std::string& engine) {
+    if (e == Estimator::Configurational) return "configurational";
+    return engine == "dmd" ? "terraced" : "own";
+}
+
+std::string valueKey(Observable o, Estimator e) {
+    const std::string base = observableName(o);
+    return e == Estimator::Configurational ? base + "_conf" : base;
+}
+
+double peakHeight(const std::vector<double>& g) {
+    if (g.size() < 3) return nan;
+    const auto top = std::max_element(g.begin() + 1, g.end() - 1) - g.begin();
+    const double a = g[std::size_t(top) - 1], b = g[std::size_t(top)], c = g[std::size_t(top) + 1];
+    const double curvature = a - 2.0 * b + c;
+    if (!(curvature < 0.0)) return b;
+    const double shift = 0.5 * (a - c) / curvature; // vertex offset in bins, |shift| ≤ ½
+    return b - 0.25 * (a - c) * shift;
+}
+
+double integral(const std::vector<double>& t, const std::vector<double>& c) {
+    double sum = 0.0;
+    for (std::size_t k = 1; k < std::min(t.size(), c.size()); ++k)
+        sum += 0.5 * (c[k] + c[k - 1]) * (t[k] - t[k - 1]);
+    return t.size() >= 2 ? sum : nan;
+}
+
+ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double epsilon) {
+    ReplicaResult r;
+    nlohmann::json s;
+    try {
+        s = nlohmann::json::parse(readWholeFile(dir / "summary.json"));
+    } catch (const std::exception& e) {
+        r.failure = std::string("no summary: ") + e.what();
+        return r;
+    }
+    r.cpuPerPs = numberAt(s, {"cpu_seconds_per_ps"});
+    r.cpuSeconds = numberAt(s, {"cpu_seconds"}) + numberAt(s, {"cpu_seconds_equilibration"});
+    if (s.contains("error")) {
+        r.failure = s["error"].is_string() ? s["error"].get<std::string>() : "failed";
+        return r;
+    }
+    for (const auto& w : s.value("warnings", nlohmann::json::array()))
+        if (w.is_string() && w.get<std::string>().find("conserve energy") != std::string::npos) {
+            r.failure = w.get<std::string>(); // beyond the stability limit
+            return r;
+        }
+    if (!completeSummary(s)) {
+        r.failure = "the run did not finish";
+        return r;
+    }
+    const double perBody = 1.0 / (double(bodies) * epsilon);
+    r.value["u"] = numberAt(s, {"potential_energy_mean"}) * perBody;
+    r.value["u_conf"] = numberAt(s, {"configurational", "potential_energy_mean"}) * perBody;
+    r.value["p"] = numberAt(s, {"pressure", "mean_reduced"});
+    r.value["p_conf"] = numberAt(s, {"configurational", "pressure_reduced"});
+    r.value["d"] = numberAt(s, {"analysis", "diffusion", "einstein_angstrom2_per_ps"});
+    try {
+        const analysis::CsvTable rdf = analysis::readCsv(dir / "rdf.csv");
+        r.g = column(rdf, "g");
+        r.gConf = column(rdf, "g_continuous");
+        r.value["g_peak"] = peakHeight(r.g);
+        if (!r.gConf.empty()) r.value["g_peak_conf"] = peakHeight(r.gConf);
+        const analysis::CsvTable vacf = analysis::readCsv(dir / "vacf.csv");
+        r.value["tau_v"] = integral(column(vacf, "t_ps"), column(vacf, "c"));
+        if (std::filesystem::exists(dir / "oacf.csv")) {
+            const analysis::CsvTable oacf = analysis::readCsv(dir / "oacf.csv");
+            r.value["tau_o"] = integral(column(oacf, "t_ps"), column(oacf, "c1"));
+        }
+    } catch (const std::exception& e) {
+        r.failure = e.what();
+        return r;
+    }
+    r.ok = true;
+    return r;
+}
+
+analysis::Estimate squaredCurveDeviation(const std::vector<std::vector<double>>& a,
+                                         const std::vector<std::vector<double>>& b) {
+    analysis::Estimate out{nan, nan};
+    if (a.size() < 2 || b.size() < 2) return out;
+    std::size_t bins = a.front().size();
+    for (const auto* set : {&a, &b})
+        for (const auto& curve : *set)
+            bins = std::min(bins, curve.size());
+    if (bins == 0) return out;
+    const auto meanAndSe2 = [](const std::vector<std::vector<double>>& set, std::size_t k) {
+        double m = 0.0, v = 0.0;
+        for (const auto& c : set)
+            m += c[k];
+        m /= double(set.size());
+        for (const auto& c : set)
+            v += (c[k] - m) * (c[k] - m);
+        const double n = double(set.size());
+        return std::pair{m, v / (n - 1.0) / n};
+    };
+    double sum = 0.0, var = 0.0;
+    for (std::size_t k = 0; k < bins; ++k) {
+        const auto [ma, sa] = meanAndSe2(a, k);
+        const auto [mb, sb] = meanAndSe2(b, k);
+        const double d = ma - mb, s2 = sa + sb;
+        sum += d * d - s2;
+        // Δ² in the variance by its unbiased estimate d² − σ² (d² itself overstates it by σ²),
+        // left unclipped so that the sum over bins stays unbiased; the variance of the
+        // subtracted se² estimates is about what the plug-in σ⁴ overstates.
+        var += 4.0 * (d * d - s2) * s2 + 2.0 * s2 * s2;
+    }
+    const double m = double(bins);
+    out.mean = sum / m;
+    out.err = std::sqrt(std::max(var, 0.0)) / m;
+    out.dof = double(std::min(a.size(), b.size()) - 1);
+    out.samples = int(a.size());
+    return out;
+}
+
+std::optional<ObservableBias> scalarBias(Observable o, Estimator e,
+                                         const std::vector<ReplicaResult>& candidate,
+                                         const std::vector<ReplicaResult>& reference,
+                                         analysis::Tolerance tolerance, double scale, double z) {
+    const auto values = [](const std::vector<ReplicaResult>& set, const std::string& key) {
+        std::vector<double> x;
+        for (const auto& r : set) {
+            if (!r.ok) continue;
+            const auto it = r.value.find(key);
+            if (it != r.value.end() && std::isfinite(it->second)) x.push_back(it->second);
+        }
+        return x;
+    };
+    const std::vector<double> c = values(candidate, valueKey(o, e));
+    // The reference is SMD: its own estimator is the continuous model's.
+    const std::vector<double> ref = values(reference, valueKey(o, Estimator::Own));
+    if (c.size() < 2 || ref.size() < 2) return std::nullopt;
+    ObservableBias b;
+    b.observable = o;
+    b.estimator = e;
+    b.candidate = analysis::replicaMean(c);
+    b.reference = analysis::replicaMean(ref);
+    b.bias = analysis::difference(b.candidate, b.reference);
+    b.tolerance =
+        analysis::absoluteTolerance(tolerance, std::isfinite(scale) ? scale : b.reference.mean);
+    b.decision = analysis::decideBias(b.bias, b.tolerance, z).decision;
+    return b;
+}
+
+std::optional<ObservableBias> curveBias(Estimator e, const std::vector<ReplicaResult>& candidate,
+                                        const std::vector<ReplicaResult>& reference,
+                                        double tolerance, double z) {
+    std::vector<std::vector<double>> c, ref;
+    for (const auto& r : candidate)
+        if (r.ok) {
+            const auto& curve = e == Estimator::Configurational ? r.gConf : r.g;
+            if (!curve.empty()) c.push_back(curve);
+        }
+    for (const auto& r : reference)
+        if (r.ok && !r.g.empty()) ref.push_back(r.g);
+    if (c.size() < 2 || ref.size() < 2) return std::nullopt;
+    ObservableBias b;
+    b.observable = Observable::G;
+    b.estimator = e;
+    const analysis::Estimate square = squaredCurveDeviation(c, ref);
+    // Decided on the square against tol²; reported as an RMS with the error carried through.
+    const analysis::BiasDecision d = analysis::decideBias(square, tolerance * tolerance, z);
+    b.decision = d.decision;
+    const double rms = std::sqrt(std::abs(square.mean));
+    b.bias = square;
+    b.bias.mean = std::copysign(rms, square.mean);
+    b.bias.err = rms > 0.0 ? square.err / (2.0 * rms) : std::sqrt(square.err);
+    b.tolerance = tolerance;
+    return b;
+}
+
+} // namespace terrace::cli

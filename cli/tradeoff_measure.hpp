@@ -1,0 +1,73 @@
+#pragma once
+// The numbers `terrace tradeoff` takes from each finished run, and a setting's bias on each
+// observable from its replicas against the reference's (cli/tradeoff_plan.hpp for the
+// observables). Pure functions of what the runs left on disk.
+#include "analysis/tradeoff_stats.hpp"
+#include "cli/tradeoff_plan.hpp"
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace terrace::cli {
+
+/// How an observable was estimated: on the engine's own dynamics variables (DMD: terraced V,
+/// impulse virial, g_d; SMD: the continuous ones, its own) or by the configurational estimators
+/// (continuous U, W and g_c on the same configurations).
+enum class Estimator { Own, Configurational };
+const char* estimatorName(Estimator e, const std::string& engine);
+
+/// One run's observables.
+struct ReplicaResult {
+    bool ok = false;
+    std::string failure;                 // why not ok: the run's error, or energy not conserved
+    double cpuPerPs = 0.0;               // production CPU s per simulated ps
+    double cpuSeconds = 0.0;             // production and equilibration
+    std::map<std::string, double> value; // "u", "u_conf", "p", "p_conf", "d", "g_peak", …
+    std::vector<double> g, gConf;        // g(r) on the run's bins (gConf empty for SMD)
+};
+
+/// Reads DIR's summary.json and CSVs; `bodies`, ε (kJ/mol) for u; `rotating` whether tau_o
+/// applies. A run that failed, or whose energy wandered (the SMD stability limit), is not ok.
+ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double epsilon);
+
+/// The height of g's highest peak: the parabola through its largest bin and the two beside it.
+double peakHeight(const std::vector<double>& g);
+/// ∫ c dt by the trapezoid rule over the samples (t in ps).
+double integral(const std::vector<double>& t, const std::vector<double>& c);
+
+/// A bias and what it was judged against: tolerance in the observable's units (for g: the RMS,
+/// its decision taken on the square, the noise of both curves taken out).
+struct ObservableBias {
+    Observable observable = Observable::U;
+    Estimator estimator = Estimator::Own;
+    analysis::Estimate candidate, reference, bias; // bias: for g the RMS (sign: of its square)
+    double tolerance = 0.0;
+    analysis::Decision decision = analysis::Decision::Unresolved;
+};
+
+/// Per observable: the candidate's replicas against the reference's, decided at z
+/// (analysis::decideBias). `scale` the value a relative tolerance is a fraction of (NaN: the
+/// reference's magnitude). Empty when either side lacks two ok replicas with the value.
+std::optional<ObservableBias> scalarBias(Observable o, Estimator e,
+                                         const std::vector<ReplicaResult>& candidate,
+                                         const std::vector<ReplicaResult>& reference,
+                                         analysis::Tolerance tolerance, double scale, double z);
+std::optional<ObservableBias> curveBias(Estimator e, const std::vector<ReplicaResult>& candidate,
+                                        const std::vector<ReplicaResult>& reference,
+                                        double tolerance, double z);
+
+/// The key of observable o under estimator e in ReplicaResult::value ("u", "u_conf", …).
+std::string valueKey(Observable o, Estimator e);
+
+/// The mean over bins of (ā − b̄)² − se²(ā) − se²(b̄) over the replicas' curves a and b (the
+/// expected square of the noise taken out, so that it estimates the squared RMS of the true
+/// difference), with its standard error from the same Gaussian bins treated as independent:
+/// Var = Σ (4Δ²σ² + 2σ⁴)/M², σ² = se²(ā) + se²(b̄), Δ² by its unbiased estimate d² − σ².
+/// Neighbouring bins of g(r) share frames, so the error is a guide rather than exact. dof: the
+/// fewer replicas − 1.
+analysis::Estimate squaredCurveDeviation(const std::vector<std::vector<double>>& a,
+                                         const std::vector<std::vector<double>>& b);
+
+} // namespace terrace::cli

@@ -1,0 +1,196 @@
+// `terrace tradeoff`'s parts that need no run (cli/tradeoff_plan.hpp, cli/tradeoff_measure.hpp):
+// tolerances as typed, the ladders on the sampling grid, the numbers read from a run directory,
+// and the bias of a curve with the noise of both sides taken out.
+#include "analysis/csv.hpp"
+#include "cli/tradeoff_measure.hpp"
+#include "cli/tradeoff_plan.hpp"
+#include "core/output_file.hpp"
+#include <cmath>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <random>
+#include <unistd.h>
+
+using namespace terrace;
+using namespace terrace::cli;
+
+namespace {
+
+std::string toleranceError(const std::string& text) {
+    try {
+        parseTolerance(text);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(Tradeoff, TolerancesAreRelativeWithAPercentSignElseAbsolute) {
+    const auto [u, tu] = parseTolerance("u=0.5%");
+    EXPECT_EQ(u, Observable::U);
+    EXPECT_TRUE(tu.relative);
+    EXPECT_DOUBLE_EQ(tu.value, 0.005);
+    const auto [g, tg] = parseTolerance("g=0.03");
+    EXPECT_EQ(g, Observable::G);
+    EXPECT_FALSE(tg.relative);
+    EXPECT_DOUBLE_EQ(tg.value, 0.03);
+    EXPECT_NE(toleranceError("x=1").find("unknown observable 'x'"), std::string::npos);
+    EXPECT_NE(toleranceError("u").find("OBS=VALUE"), std::string::npos);
+    EXPECT_NE(toleranceError("u=-1%").find("positive"), std::string::npos);
+    EXPECT_NE(toleranceError("u=1e").find("positive"), std::string::npos);
+    EXPECT_NE(toleranceError("g=2%").find("absolute"), std::string::npos);
+    EXPECT_EQ(parseObservables("u,g_peak,tau_o"),
+              (std::vector<Observable>{Observable::U, Observable::GPeak, Observable::TauO}));
+    EXPECT_THROW(parseObservables("u,,p"), SceneError);
+}
+
+TEST(Tradeoff, SmdLaddersStepOnTheSamplingGridFromTheScenesDt) {
+    Scene scene; // sample and thermostat 9 fs, smd.dt_fs 1.8 (the default)
+    TradeoffOptions options;
+    const TradeoffLadders l = tradeoffLadders(scene, options);
+    EXPECT_EQ(l.reference.engine, "smd");
+    EXPECT_DOUBLE_EQ(l.reference.x, 0.9); // half the scene's step
+    ASSERT_EQ(l.ladders.size(), 5u);      // three splittings, two terrace designs
+    for (const auto& ladder : l.ladders) {
+        ASSERT_GE(ladder.size(), 2u);
+        for (std::size_t i = 0; i < ladder.size(); ++i) {
+            const double x = ladder[i].x;
+            if (ladder[i].engine == "smd") {
+                const double steps = 9.0 / x;
+                EXPECT_NEAR(steps, std::round(steps), 1e-9) << ladder[i].label();
+                EXPECT_LE(x, 18.0 + 1e-9);
+                EXPECT_GE(x, 1.8 - 1e-9);
+            }
+            if (i > 0) EXPECT_GT(x, ladder[i - 1].x) << "most accurate first";
+        }
+    }
+    EXPECT_DOUBLE_EQ(l.ladders[0].front().x, 1.8);
+    EXPECT_EQ(l.ladders[0].front().label(), "smd-verlet-dt1.8");
+    EXPECT_EQ(l.ladders[3].front().label(), "dmd-uniform-dV0.125");
+    EXPECT_EQ(knownOrder(l.ladders[0].front()), 2.0);
+    EXPECT_EQ(knownOrder(l.ladders[2].front()), 4.0);
+    EXPECT_FALSE(knownOrder(l.ladders[3].front()));
+}
+
+TEST(Tradeoff, PeakOfAParabolaAndTheTrapezoidIntegral) {
+    // g = 3 − (k − 10.3)² sampled on whole k: the vertex 3 lies between bins.
+    std::vector<double> g;
+    for (int k = 0; k < 20; ++k)
+        g.push_back(3.0 - (k - 10.3) * (k - 10.3));
+    EXPECT_NEAR(peakHeight(g), 3.0, 1e-12);
+    const std::vector<double> t{0.0, 0.5, 1.0}, c{1.0, 0.5, 0.0};
+    EXPECT_DOUBLE_EQ(integral(t, c), 0.5);
+}
+
+TEST(Tradeoff, CurveDeviationTakesTheNoiseOfBothSidesOut) {
+    // Noise-free replicas: the mean square difference exactly, no error.
+    const std::vector<std::vector<double>> a{{1.0, 2.0, 3.0}, {1.0, 2.0, 3.0}};
+    const std::vector<std::vector<double>> b{{1.0, 2.5, 2.0}, {1.0, 2.5, 2.0}};
+    const analysis::Estimate exact = squaredCurveDeviation(a, b);
+    EXPECT_DOUBLE_EQ(exact.mean, (0.25 + 1.0) / 3.0);
+    EXPECT_DOUBLE_EQ(exact.err, 0.0);
+    // Noisy replicas of curves 0.05 apart everywhere: the estimate of 0.0025 is unbiased (the
+    // plain mean square would sit at 0.0025 + 2σ²/n = 0.0125) and its error is honest.
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> noise(0.0, 0.1);
+    const int bins = 200, trials = 400, n = 4;
+    double sum = 0.0, sumSq = 0.0, errSum = 0.0;
+    for (int trial = 0; trial < trials; ++trial) {
+        std::vector<std::vector<double>> x(n, std::vector<double>(bins)), y = x;
+        for (int r = 0; r < n; ++r)
+            for (int k = 0; k < bins; ++k)
+                x[r][k] = 1.05 + noise(rng), y[r][k] = 1.0 + noise(rng);
+        const analysis::Estimate e = squaredCurveDeviation(x, y);
+        sum += e.mean, sumSq += e.mean * e.mean, errSum += e.err;
+    }
+    const double mean = sum / trials, sd = std::sqrt(sumSq / trials - mean * mean);
+    EXPECT_NEAR(mean, 0.0025, 4.0 * sd / std::sqrt(double(trials)));
+    // The error from the Gaussian bins is within a fifth of the scatter it stands for (the bins'
+    // variances are themselves estimated from four replicas).
+    EXPECT_NEAR(errSum / trials / sd, 1.0, 0.2);
+}
+
+namespace {
+
+/// A run directory as `terrace run` leaves it, with the numbers given.
+std::filesystem::path fakeRun(const std::string& name, double u, double uConf, double p,
+                              const std::string& warning = "") {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("terrace-tradeoff-" + std::to_string(getpid())) / name;
+    std::filesystem::create_directories(dir);
+    nlohmann::json s{
+        {"engine", "dmd"},
+        {"interrupted", false},
+        {"cpu_seconds", 2.0},
+        {"cpu_seconds_equilibration", 1.0},
+        {"cpu_seconds_per_ps", 0.5},
+        {"potential_energy_mean", u},
+        {"warnings", nlohmann::json::array()},
+        {"pressure", {{"mean_reduced", p}}},
+        {"configurational", {{"potential_energy_mean", uConf}, {"pressure_reduced", p}}},
+        {"analysis", {{"samples", 10}, {"diffusion", {{"einstein_angstrom2_per_ps", 3.0}}}}}};
+    if (!warning.empty()) s["warnings"].push_back(warning);
+    writeFileAtomically(dir / "summary.json", s.dump());
+    analysis::writeCsv(dir / "rdf.csv",
+                       {{"r_angstrom", "g", "err", "g_continuous", "err_continuous"},
+                        {{0.5, 1.5, 2.5}, {0.0, 2.0, 1.0}, {0, 0, 0}, {0.0, 1.8, 1.0}, {0, 0, 0}}});
+    analysis::writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {{0.0, 0.1}, {1.0, 0.0}, {0, 0}}});
+    return dir;
+}
+
+} // namespace
+
+TEST(Tradeoff, ReplicaNumbersComeFromTheRunsFilesPerBodyInEpsilon) {
+    const ReplicaResult r = readReplica(fakeRun("ok", -200.0, -250.0, 0.4), 100, 2.0);
+    ASSERT_TRUE(r.ok) << r.failure;
+    EXPECT_DOUBLE_EQ(r.value.at("u"), -1.0);
+    EXPECT_DOUBLE_EQ(r.value.at("u_conf"), -1.25);
+    EXPECT_DOUBLE_EQ(r.value.at("p"), 0.4);
+    EXPECT_DOUBLE_EQ(r.value.at("d"), 3.0);
+    EXPECT_DOUBLE_EQ(r.value.at("tau_v"), 0.05);
+    EXPECT_DOUBLE_EQ(r.value.at("g_peak"), 2.0 + 1.0 / 24.0); // the parabola through 0, 2, 1
+    EXPECT_EQ(r.gConf.size(), 3u);
+    EXPECT_DOUBLE_EQ(r.cpuSeconds, 3.0);
+    // Energy not conserved: beyond the stability limit, not a sample of the model.
+    const ReplicaResult bad =
+        readReplica(fakeRun("wander", -1, -1, 0,
+                            "total energy wandered by 9 kJ/mol: the integration does "
+                            "not conserve energy at this time step"),
+                    100, 2.0);
+    EXPECT_FALSE(bad.ok);
+    EXPECT_NE(bad.failure.find("conserve energy"), std::string::npos);
+    std::filesystem::remove_all(std::filesystem::temp_directory_path() /
+                                ("terrace-tradeoff-" + std::to_string(getpid())));
+}
+
+TEST(Tradeoff, ScalarBiasAgainstTheReferenceIsDecidedAtItsTolerance) {
+    const auto replicas = [](std::vector<double> values, const std::string& key) {
+        std::vector<ReplicaResult> out;
+        for (const double v : values) {
+            ReplicaResult r;
+            r.ok = true;
+            r.value[key] = v;
+            out.push_back(r);
+        }
+        return out;
+    };
+    const auto ref = replicas({-2.0, -2.002, -1.998, -2.0}, "u");
+    // Configurational u 1 % off with tiny scatter: outside a 0.5 % tolerance.
+    const auto far = scalarBias(Observable::U, Estimator::Configurational,
+                                replicas({-1.98, -1.9801, -1.9799}, "u_conf"), ref, {0.005, true},
+                                std::nan(""), 2.0);
+    ASSERT_TRUE(far);
+    EXPECT_NEAR(far->bias.mean, 0.02, 1e-12);
+    EXPECT_DOUBLE_EQ(far->tolerance, 0.01);
+    EXPECT_EQ(far->decision, analysis::Decision::Outside);
+    const auto near =
+        scalarBias(Observable::U, Estimator::Own, replicas({-2.001, -1.999, -2.0}, "u"), ref,
+                   {0.005, true}, std::nan(""), 2.0);
+    ASSERT_TRUE(near);
+    EXPECT_EQ(near->decision, analysis::Decision::Within);
+    // One replica is no estimate.
+    EXPECT_FALSE(scalarBias(Observable::U, Estimator::Own, replicas({-2.0}, "u"), ref,
+                            {0.005, true}, std::nan(""), 2.0));
+}
