@@ -26,6 +26,7 @@ struct Rung {
     int target = 0; // replicas asked for
     std::vector<ReplicaResult> replicas;
     std::vector<ObservableBias> biases;
+    std::vector<ObservableBias> alternatives; // DMD: the estimator not chosen, for comparison
     Decision decision = Decision::Unresolved;
     std::string failure; // the stability limit, or why a rung cannot be judged
 
@@ -149,6 +150,7 @@ void chooseEstimators(Tradeoff& t) {
 
 void judge(Tradeoff& t, Rung& r) {
     r.biases.clear();
+    r.alternatives.clear();
     r.failure.clear();
     for (const auto& x : r.replicas)
         if (!x.ok && !x.failure.empty()) r.failure = x.failure;
@@ -165,6 +167,11 @@ void judge(Tradeoff& t, Rung& r) {
             continue;
         }
         r.biases.push_back(*b);
+        if (r.setting.engine == "dmd" && hasConfigurational(o)) {
+            const Estimator other =
+                e == Estimator::Own ? Estimator::Configurational : Estimator::Own;
+            if (const auto a = biasOf(t, r, o, other)) r.alternatives.push_back(*a);
+        }
         any = true;
         outside = outside || b->decision == Decision::Outside;
         all = all && b->decision == Decision::Within;
@@ -204,25 +211,82 @@ int cheapestWithin(const std::vector<Rung>& ladder) {
     return c;
 }
 
-/// Raises the targets of the rungs that could still be their ladder's cheapest Within: the
-/// unresolved ones beyond the cheapest Within, before the first Outside beyond it.
+/// Raises, per ladder, the target of one rung: walking from the cheap end past the rungs resolved
+/// Outside, the first unresolved one that more replicas could still resolve (one that reached the
+/// replica budget unresolved is passed over). A ladder whose cheapest Within rung has only
+/// Outside rungs beyond it is done.
 bool raiseTargets(Tradeoff& t) {
     bool raised = false;
     for (auto& ladder : t.ladders) {
         const int c = cheapestWithin(ladder);
-        for (int i = c + 1; i < int(ladder.size()); ++i) {
+        for (int i = int(ladder.size()) - 1; i > c; --i) {
             Rung& r = ladder[i];
-            if (r.decision == Decision::Outside) break;
+            if (r.decision == Decision::Outside) continue;
             if (r.target == 0) { // a rung not run yet (an interpolated one)
                 r.target = t.schedule.front();
                 raised = true;
                 break;
             }
             const int next = nextTarget(t, r);
-            if (next > r.target) r.target = next, raised = true;
+            if (next > r.target) {
+                r.target = next;
+                raised = true;
+                break;
+            }
         }
     }
     return raised;
+}
+
+/// CPU seconds per replica of a rung, from its own runs or, before it has any, the mean of its
+/// ladder's.
+double cpuPerReplica(const std::vector<Rung>& ladder, const Rung& r) {
+    const auto mean = [](const Rung& x) {
+        double sum = 0.0;
+        int n = 0;
+        for (const auto& y : x.replicas)
+            if (std::isfinite(y.cpuSeconds)) sum += y.cpuSeconds, ++n;
+        return n ? sum / n : std::numeric_limits<double>::quiet_NaN();
+    };
+    if (const double own = mean(r); std::isfinite(own)) return own;
+    double sum = 0.0;
+    int n = 0;
+    for (const Rung& x : ladder)
+        if (const double m = mean(x); std::isfinite(m)) sum += m, ++n;
+    return n ? sum / n : 0.0;
+}
+
+/// Takes back the raised targets whose runs would take the CPU spent past the budget, the
+/// costliest first; false when none is left to run.
+bool fitBudget(Tradeoff& t) {
+    struct Pending {
+        Rung* rung;
+        double cpu;
+    };
+    std::vector<Pending> pending;
+    double total = 0.0;
+    const auto add = [&](std::vector<Rung>& ladder, Rung& r) {
+        const int extra = r.target - int(r.replicas.size());
+        if (extra <= 0) return;
+        pending.push_back({&r, extra * cpuPerReplica(ladder, r)});
+        total += pending.back().cpu;
+    };
+    std::vector<Rung> alone;
+    add(alone, t.reference);
+    for (auto& ladder : t.ladders)
+        for (Rung& r : ladder)
+            add(ladder, r);
+    std::sort(pending.begin(), pending.end(),
+              [](const Pending& a, const Pending& b) { return a.cpu > b.cpu; });
+    const double budget = t.options.budgetCpuHours * 3600.0;
+    std::size_t kept = pending.size();
+    for (auto& p : pending) {
+        if (t.cpuSpent + total <= budget) break;
+        total -= p.cpu;
+        p.rung->target = int(p.rung->replicas.size());
+        --kept;
+    }
+    return kept > 0;
 }
 
 /// The reference's replicas double until its standard error is below a third of every
@@ -329,6 +393,11 @@ nlohmann::json rungJson(const Rung& r) {
     j["biases"] = nlohmann::json::array();
     for (const auto& b : r.biases)
         j["biases"].push_back(biasJson(b, r.setting.engine));
+    if (!r.alternatives.empty()) {
+        j["other_estimator"] = nlohmann::json::array();
+        for (const auto& b : r.alternatives)
+            j["other_estimator"].push_back(biasJson(b, r.setting.engine));
+    }
     return j;
 }
 
@@ -548,6 +617,10 @@ int runTradeoff(const TradeoffOptions& options) {
             more = placed && raiseTargets(t);
         }
         if (!more) break;
+        if (!fitBudget(t)) {
+            budgetSpent = true;
+            break;
+        }
         if (!options.quiet)
             std::fprintf(stderr,
                          "tradeoff: round %d done, %.0f CPU s spent; more replicas for "
