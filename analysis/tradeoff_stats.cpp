@@ -1,6 +1,7 @@
 #include "analysis/tradeoff_stats.hpp"
 #include <algorithm>
 #include <boost/math/distributions/binomial.hpp>
+#include <boost/math/distributions/fisher_f.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <boost/math/tools/minima.hpp>
@@ -60,6 +61,28 @@ Estimate combineReplicaEstimates(std::span<const Estimate> perReplica) {
         return {scatter.mean, propagated, dof, n};
     }
     return scatter;
+}
+
+Estimate pooledReplicaEstimate(std::span<const Estimate> perReplica, double level) {
+    const int n = static_cast<int>(perReplica.size());
+    std::vector<double> values;
+    double sumVar = 0.0, sumVarSquaredPerDof = 0.0;
+    for (const Estimate& r : perReplica) {
+        values.push_back(r.mean);
+        if (!(std::isfinite(r.err) && r.err > 0.0 && r.dof > 0.0)) return replicaMean(values);
+        const double var = r.err * r.err;
+        sumVar += var;
+        if (!std::isinf(r.dof)) sumVarSquaredPerDof += var * var / r.dof;
+    }
+    const Estimate scatter = replicaMean(values);
+    if (n == 0) return scatter;
+    const double propagated = std::sqrt(sumVar) / n;
+    const double dof = sumVarSquaredPerDof > 0.0 ? sumVar * sumVar / sumVarSquaredPerDof : inf;
+    const Estimate blocks{scatter.mean, propagated, dof, n};
+    if (n < 2) return blocks;
+    const double ratio = scatter.err * scatter.err / (propagated * propagated);
+    const boost::math::fisher_f_distribution<double> f(n - 1, std::min(dof, 1e6));
+    return ratio > boost::math::quantile(f, level) ? scatter : blocks;
 }
 
 Estimate difference(Estimate a, Estimate b) {

@@ -36,6 +36,15 @@ Estimate replicaMean(std::span<const double> values);
 /// are few replicas. The larger of two estimates is conservative, not unbiased.
 Estimate combineReplicaEstimates(std::span<const Estimate> perReplica);
 
+/// The mean of replicas that each carry a block error, with the error the blocks give
+/// (√(Σ err_i²)/n, Welch–Satterthwaite dof: about n(B − 1) for B blocks each) unless the replicas'
+/// scatter contradicts it: when scatter²/propagated² exceeds the `level` quantile of
+/// F(n − 1, dof) (the blocks miss a correlation longer than a block, or the runs differ more than
+/// their blocks say), the scatter's sd/√n with n − 1 dof. Few replicas then still decide what
+/// their blocks resolve (two runs of 8 blocks: ~14 dof instead of 1), and the blocks are trusted
+/// only as far as the replicas bear them out.
+Estimate pooledReplicaEstimate(std::span<const Estimate> perReplica, double level = 0.95);
+
 /// a − b with errors in quadrature. The degrees of freedom are the smaller of the two, the
 /// conservative answer to the Behrens–Fisher problem: the tail of (a − b)/err never exceeds that
 /// of Student's t with min(ν_a, ν_b) degrees of freedom (M. R. Mickey and M. B. Brown, Ann. Math.

@@ -288,6 +288,9 @@ int tradeoffMain(const std::vector<std::string>& args) {
         std::fputs(usage, stdout);
         return 0;
     }
+    if (cli::launchedByMpi())
+        throw po::error("tradeoff hands out its runs locally (-j N) and does not run under an MPI "
+                        "launcher: every rank would run the whole tradeoff");
     cli::TradeoffOptions o;
     if (vm.count("scene")) o.scenePath = vm["scene"].as<std::string>();
     if (vm.count("set")) o.sets = vm["set"].as<std::vector<std::string>>();

@@ -85,6 +85,21 @@ ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double e
     r.value["p"] = numberAt(s, {"pressure", "mean_reduced"});
     r.value["p_conf"] = numberAt(s, {"configurational", "pressure_reduced"});
     r.value["d"] = numberAt(s, {"analysis", "diffusion", "einstein_angstrom2_per_ps"});
+    // Block errors, with their blocks' degrees of freedom.
+    const double pressureDof = numberAt(s, {"pressure", "blocks"}) - 1.0;
+    const double configurationalDof = numberAt(s, {"configurational", "blocks"}) - 1.0;
+    const auto withError = [&](const std::string& key, double err, double dof, double scale) {
+        if (std::isfinite(r.value[key]) && std::isfinite(err) && err > 0.0 && dof > 0.0)
+            r.withError[key] = {r.value[key], err * scale, dof, 1};
+    };
+    withError("u", numberAt(s, {"potential_energy_err"}), pressureDof, perBody);
+    withError("u_conf", numberAt(s, {"configurational", "potential_energy_err"}),
+              configurationalDof, perBody);
+    withError("p", numberAt(s, {"pressure", "error_reduced"}), pressureDof, 1.0);
+    withError("p_conf", numberAt(s, {"configurational", "pressure_err_reduced"}),
+              configurationalDof, 1.0);
+    withError("d", numberAt(s, {"analysis", "diffusion", "einstein_err"}),
+              numberAt(s, {"analysis", "msd_blocks_of_bodies"}) - 1.0, 1.0);
     try {
         const analysis::CsvTable rdf = analysis::readCsv(dir / "rdf.csv");
         r.g = column(rdf, "g");
@@ -147,24 +162,32 @@ std::optional<ObservableBias> scalarBias(Observable o, Estimator e,
                                          const std::vector<ReplicaResult>& candidate,
                                          const std::vector<ReplicaResult>& reference,
                                          analysis::Tolerance tolerance, double scale, double z) {
-    const auto values = [](const std::vector<ReplicaResult>& set, const std::string& key) {
+    // Each side's mean: with the replicas' block errors where all have one, else their scatter.
+    const auto estimate = [](const std::vector<ReplicaResult>& set,
+                             const std::string& key) -> std::optional<analysis::Estimate> {
         std::vector<double> x;
+        std::vector<analysis::Estimate> withError;
         for (const auto& r : set) {
             if (!r.ok) continue;
             const auto it = r.value.find(key);
-            if (it != r.value.end() && std::isfinite(it->second)) x.push_back(it->second);
+            if (it == r.value.end() || !std::isfinite(it->second)) continue;
+            x.push_back(it->second);
+            if (const auto e = r.withError.find(key); e != r.withError.end())
+                withError.push_back(e->second);
         }
-        return x;
+        if (x.size() < 2) return std::nullopt;
+        return withError.size() == x.size() ? analysis::pooledReplicaEstimate(withError)
+                                            : analysis::replicaMean(x);
     };
-    const std::vector<double> c = values(candidate, valueKey(o, e));
+    const auto c = estimate(candidate, valueKey(o, e));
     // The reference is SMD: its own estimator is the continuous model's.
-    const std::vector<double> ref = values(reference, valueKey(o, Estimator::Own));
-    if (c.size() < 2 || ref.size() < 2) return std::nullopt;
+    const auto ref = estimate(reference, valueKey(o, Estimator::Own));
+    if (!c || !ref) return std::nullopt;
     ObservableBias b;
     b.observable = o;
     b.estimator = e;
-    b.candidate = analysis::replicaMean(c);
-    b.reference = analysis::replicaMean(ref);
+    b.candidate = *c;
+    b.reference = *ref;
     b.bias = analysis::difference(b.candidate, b.reference);
     b.tolerance =
         analysis::absoluteTolerance(tolerance, std::isfinite(scale) ? scale : b.reference.mean);

@@ -25,7 +25,8 @@ struct ReplicaResult {
     double cpuPerPs = 0.0;               // production CPU s per simulated ps
     double cpuSeconds = 0.0;             // production and equilibration
     std::map<std::string, double> value; // "u", "u_conf", "p", "p_conf", "d", "g_peak", …
-    std::vector<double> g, gConf;        // g(r) on the run's bins (gConf empty for SMD)
+    std::map<std::string, analysis::Estimate> withError; // those with the run's block error
+    std::vector<double> g, gConf; // g(r) on the run's bins (gConf empty for SMD)
 };
 
 /// Reads DIR's summary.json and CSVs; `bodies`, ε (kJ/mol) for u; `rotating` whether tau_o
@@ -48,8 +49,11 @@ struct ObservableBias {
 };
 
 /// Per observable: the candidate's replicas against the reference's, decided at z
-/// (analysis::decideBias). `scale` the value a relative tolerance is a fraction of (NaN: the
-/// reference's magnitude). Empty when either side lacks two ok replicas with the value.
+/// (analysis::decideBias). Where every replica carries its block error, each side's mean takes
+/// the error its blocks give unless the replicas' scatter contradicts it
+/// (analysis::pooledReplicaEstimate); otherwise the replica scatter alone. `scale` the value a
+/// relative tolerance is a fraction of (NaN: the reference's magnitude). Empty when either side
+/// lacks two ok replicas with the value.
 std::optional<ObservableBias> scalarBias(Observable o, Estimator e,
                                          const std::vector<ReplicaResult>& candidate,
                                          const std::vector<ReplicaResult>& reference,
