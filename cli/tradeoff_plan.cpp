@@ -144,7 +144,9 @@ Setting dmdSetting(const std::string& ladder, double x) {
     s.engine = "dmd";
     s.ladder = ladder;
     s.x = x;
-    s.overrides = {{"engine", "dmd"}, {"dmd.dV", x}};
+    // DMD terraces the model SMD integrates (the smoothed cutoff), whatever the scene's own
+    // dmd.model: a bare terracing would carry the cutoff's difference into every bias.
+    s.overrides = {{"engine", "dmd"}, {"dmd.model", "smoothed"}, {"dmd.dV", x}};
     if (ladder == "dmd-optimal")
         s.overrides.emplace_back(
             "dmd.terraces",

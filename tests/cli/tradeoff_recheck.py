@@ -20,7 +20,7 @@ def plan(tradeoff, scene):
     for name in (t["cost"]["dmd"], t["cost"]["smd"]):
         s = settings[name]
         if s["engine"] == "dmd":
-            c = {"engine": "dmd", "dmd.dV": s["dV_kT"]}
+            c = {"engine": "dmd", "dmd.model": "smoothed", "dmd.dV": s["dV_kT"]}
             if s["ladder"] == "dmd-optimal":
                 c["dmd.terraces"] = {"levels": "optimal", "values": "boltzmann", "n": 0}
         else:
