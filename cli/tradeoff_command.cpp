@@ -481,13 +481,14 @@ void writePlot(const Tradeoff& t) {
                          (t.options.out / "tradeoff.png").string() + "'\n";
     script += "set multiplot layout " + std::to_string((panels + 3) / 4) + "," +
               std::to_string(std::min(panels, 4)) + " title 'bias / tolerance against cost'\n";
-    script += "set logscale x\nset xlabel 'CPU s per ps'\nset yrange [-3:3]\nset grid\n"
-              "set key top left font ',8'\n";
+    script += "set logscale x\nset xlabel 'CPU s per ps'\nset ylabel 'bias / tolerance'\n"
+              "set yrange [*<-1.5:1.5<*]\nset grid\nset key top left font ',8'\n"
+              "set object 1 rectangle from graph 0, first -1 to graph 1, first 1 behind "
+              "fc rgb '#dddddd' fs solid noborder\n";
     for (const Observable o : t.observables) {
         const std::string name = observableName(o);
         script += "set title '" + name + "'\n";
-        script += "plot [*:*] 1 with filledcurves y1=-1 fc rgb '#dddddd' notitle, '" +
-                  (t.options.out / "tradeoff.dat").string() +
+        script += "plot '" + (t.options.out / "tradeoff.dat").string() +
                   "' using 2:(strcol(1) eq 'dmd' && strcol(5) eq '" + name +
                   "' ? $3 : NaN):4 with yerrorbars pt 7 lc rgb '#d62728' title 'DMD', '' using "
                   "2:(strcol(1) eq 'smd' && strcol(5) eq '" +
