@@ -104,13 +104,29 @@ ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double e
         const analysis::CsvTable rdf = analysis::readCsv(dir / "rdf.csv");
         r.g = column(rdf, "g");
         r.gConf = column(rdf, "g_continuous");
+        // The analysis' block errors: the peak's that of its bin; an integral's at most the
+        // integral of the errors (lags from one run are positively correlated, so summing the
+        // errors bounds the error of the sum).
+        const double analysisDof = numberAt(s, {"analysis", "blocks"}) - 1.0;
+        const auto peakError = [](const std::vector<double>& g, const std::vector<double>& err) {
+            if (g.size() < 3 || err.size() != g.size()) return nan;
+            return err[std::size_t(std::max_element(g.begin() + 1, g.end() - 1) - g.begin())];
+        };
         r.value["g_peak"] = peakHeight(r.g);
-        if (!r.gConf.empty()) r.value["g_peak_conf"] = peakHeight(r.gConf);
+        withError("g_peak", peakError(r.g, column(rdf, "err")), analysisDof, 1.0);
+        if (!r.gConf.empty()) {
+            r.value["g_peak_conf"] = peakHeight(r.gConf);
+            withError("g_peak_conf", peakError(r.gConf, column(rdf, "err_continuous")), analysisDof,
+                      1.0);
+        }
         const analysis::CsvTable vacf = analysis::readCsv(dir / "vacf.csv");
         r.value["tau_v"] = integral(column(vacf, "t_ps"), column(vacf, "c"));
+        withError("tau_v", integral(column(vacf, "t_ps"), column(vacf, "err")), analysisDof, 1.0);
         if (std::filesystem::exists(dir / "oacf.csv")) {
             const analysis::CsvTable oacf = analysis::readCsv(dir / "oacf.csv");
             r.value["tau_o"] = integral(column(oacf, "t_ps"), column(oacf, "c1"));
+            withError("tau_o", integral(column(oacf, "t_ps"), column(oacf, "c1_err")), analysisDof,
+                      1.0);
         }
     } catch (const std::exception& e) {
         r.failure = e.what();

@@ -130,13 +130,16 @@ std::filesystem::path fakeRun(const std::string& name, double u, double uConf, d
         {"warnings", nlohmann::json::array()},
         {"pressure", {{"mean_reduced", p}}},
         {"configurational", {{"potential_energy_mean", uConf}, {"pressure_reduced", p}}},
-        {"analysis", {{"samples", 10}, {"diffusion", {{"einstein_angstrom2_per_ps", 3.0}}}}}};
+        {"analysis",
+         {{"samples", 10}, {"blocks", 8}, {"diffusion", {{"einstein_angstrom2_per_ps", 3.0}}}}}};
     if (!warning.empty()) s["warnings"].push_back(warning);
     writeFileAtomically(dir / "summary.json", s.dump());
-    analysis::writeCsv(dir / "rdf.csv",
-                       {{"r_angstrom", "g", "err", "g_continuous", "err_continuous"},
-                        {{0.5, 1.5, 2.5}, {0.0, 2.0, 1.0}, {0, 0, 0}, {0.0, 1.8, 1.0}, {0, 0, 0}}});
-    analysis::writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {{0.0, 0.1}, {1.0, 0.0}, {0, 0}}});
+    analysis::writeCsv(
+        dir / "rdf.csv",
+        {{"r_angstrom", "g", "err", "g_continuous", "err_continuous"},
+         {{0.5, 1.5, 2.5}, {0.0, 2.0, 1.0}, {0, 0.1, 0.2}, {0.0, 1.8, 1.0}, {0, 0, 0}}});
+    analysis::writeCsv(dir / "vacf.csv",
+                       {{"t_ps", "c", "err"}, {{0.0, 0.1}, {1.0, 0.0}, {0, 0.02}}});
     return dir;
 }
 
@@ -152,6 +155,14 @@ TEST(Tradeoff, ReplicaNumbersComeFromTheRunsFilesPerBodyInEpsilon) {
     EXPECT_DOUBLE_EQ(r.value.at("tau_v"), 0.05);
     EXPECT_DOUBLE_EQ(r.value.at("g_peak"), 2.0 + 1.0 / 24.0); // the parabola through 0, 2, 1
     EXPECT_EQ(r.gConf.size(), 3u);
+    // The analysis' block errors go with them, 7 dof from 8 blocks: the peak bin's, and the
+    // integral of the VACF's errors.
+    ASSERT_TRUE(r.withError.count("g_peak"));
+    EXPECT_DOUBLE_EQ(r.withError.at("g_peak").err, 0.1);
+    EXPECT_DOUBLE_EQ(r.withError.at("g_peak").dof, 7.0);
+    ASSERT_TRUE(r.withError.count("tau_v"));
+    EXPECT_DOUBLE_EQ(r.withError.at("tau_v").err, 0.001);
+    EXPECT_FALSE(r.withError.count("u")); // the fake summary gives U no error
     EXPECT_DOUBLE_EQ(r.cpuSeconds, 3.0);
     // Energy not conserved: beyond the stability limit, not a sample of the model.
     const ReplicaResult bad =
