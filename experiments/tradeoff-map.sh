@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# Where DMD pays, resolved: `terrace tradeoff` at every state point of a density × temperature
+# grid, for one model family and one set of tolerances.
+#   tradeoff-map.sh rods|lj loose|strict "DENSITIES" "TEMPERATURES" [N] [extra tradeoff args...]
+# Tolerance sets: strict = tradeoff's defaults (u 0.5 %, p 2 %, d 3 %, g 0.02, g_peak 1 %,
+# tau 3 %); loose = u 2 %, p 5 %, d 10 %, g 0.05, g_peak 3 %, tau 10 %.
+# Each cell's tradeoff lands in OUT/tradeoff-map/<family>-<set>/rho<ρ*>-T<T*> (a killed map goes on
+# where it stopped: tradeoff reuses every finished run). Writes OUT/tradeoff-map/<family>-<set>.csv:
+#   rho,T,status,dmd,smd,ratio,lo,hi,level,why
+# status resolved (a verdict: ratio = DMD's cost over SMD's, with its interval) or the reason there
+# is none; and <family>-<set>.png, log10 of the ratio at each resolved cell (crosses: cells without a
+# verdict), the break-even contour drawn only through resolved cells.
+source "$(dirname "$0")/common.sh"
+family=$1 set=$2
+read -r -a densities <<<"$3"
+read -r -a temperatures <<<"$4"
+n=${5:-512}
+shift $(($# < 5 ? $# : 5))
+case $family in
+rods) scene=$SCENES/dense-rods.json ;;
+lj) scene=$SCENES/lj-liquid.json ;;
+*) echo "usage: tradeoff-map.sh rods|lj loose|strict DENSITIES TEMPERATURES [N]" >&2; exit 2 ;;
+esac
+case $set in
+strict) tolerances=() ;;
+loose) tolerances=(--tolerance u=2% --tolerance p=5% --tolerance d=10% --tolerance g=0.05
+                   --tolerance g_peak=3% --tolerance tau_v=10% --tolerance tau_o=10%) ;;
+*) echo "tradeoff-map.sh: the tolerance set is loose or strict" >&2; exit 2 ;;
+esac
+dir=$OUT/tradeoff-map
+name=$family-$set
+mkdir -p "$dir/$name"
+table=$dir/$name.csv
+echo "rho,T,status,dmd,smd,ratio,lo,hi,level,why" >"$table"
+for T in "${temperatures[@]}"; do
+    for rho in "${densities[@]}"; do
+        cell=$dir/$name/rho$rho-T$T
+        status=0
+        "$TERRACE" tradeoff "$scene" --set state.density="$rho" --set state.temperature="$T" \
+            --set state.n="$n" "${tolerances[@]}" --out "$cell" --quiet "$@" \
+            >"$cell.verdict" 2>"$cell.log" || status=$?
+        [ $status -lt 128 ] || exit $status # stopped by a signal: the same command goes on
+        python3 - "$cell/tradeoff.json" "$rho" "$T" "$status" >>"$table" <<'PY'
+import json, sys
+path, rho, T, status = sys.argv[1:]
+try:
+    t = json.load(open(path))
+except OSError:
+    print(f"{rho},{T},failed,,,nan,nan,nan,nan,no tradeoff.json")
+    sys.exit(0)
+c = t.get("cost")
+why = "; ".join(t.get("notes", [])).replace(",", ";")
+if status == "0" and c:
+    print(f"{rho},{T},resolved,{c['dmd']},{c['smd']},{c['ratio_dmd_over_smd']},"
+          f"{c['ratio_lo']},{c['ratio_hi']},{c['ratio_level']},{why}")
+else:
+    print(f"{rho},{T},unresolved,,,nan,nan,nan,nan,{t.get('verdict', '').replace(',', ';')} {why}")
+PY
+        log "tradeoff-map $name: rho $rho T $T: $(head -c 200 "$cell.verdict")"
+    done
+done
+
+# Break-even between grid neighbours that both have a verdict and lie on either side of 1, placed
+# by linear interpolation of log10(ratio) in log ρ* (or log T*): no line crosses a cell without one.
+python3 - "$table" >"$dir/$name-breakeven.dat" <<'PY'
+import csv, math, sys
+cells = {}
+for r in csv.DictReader(open(sys.argv[1])):
+    if r["status"] == "resolved" and float(r["ratio"]) > 0:
+        cells[(float(r["rho"]), float(r["T"]))] = math.log10(float(r["ratio"]))
+rhos = sorted({k[0] for k in cells}); temps = sorted({k[1] for k in cells})
+def cross(a, b, fa, fb):
+    f = fa / (fa - fb)
+    return 10 ** (math.log10(a) + f * (math.log10(b) - math.log10(a)))
+for T in temps:
+    for a, b in zip(rhos, rhos[1:]):
+        if (a, T) in cells and (b, T) in cells and cells[(a, T)] * cells[(b, T)] < 0:
+            print(f"{cross(a, b, cells[(a, T)], cells[(b, T)])},{T}")
+for rho in rhos:
+    for a, b in zip(temps, temps[1:]):
+        if (rho, a) in cells and (rho, b) in cells and cells[(rho, a)] * cells[(rho, b)] < 0:
+            print(f"{rho},{cross(a, b, cells[(rho, a)], cells[(rho, b)])}")
+PY
+
+title="$family, $set tolerances: DMD cost / SMD cost at equal accuracy (resolved cells)"
+gnuplot <<GP
+set terminal $(png_terminal)
+set output '$dir/$name.png'
+set datafile separator ','
+set datafile missing 'nan'
+set title '$title'
+set logscale x
+set xlabel '{/Symbol r}*'
+set ylabel 'T*'
+set logscale y
+set offsets graph 0.08, graph 0.08, graph 0.08, graph 0.08
+set cblabel 'log_{10}(DMD cost / SMD cost)'
+set palette defined (-1 '#1f77b4', 0 '#ffffff', 1 '#d62728')
+set cbrange [-1:1]
+set grid
+plot '$table' skip 1 using 1:(strcol(3) eq "resolved" ? \$2 : NaN):(log10(\$6)) with points pt 7 ps 3 palette title 'resolved', \
+     '' skip 1 using 1:(strcol(3) eq "resolved" ? \$2 : NaN):(sprintf("%.2g", \$6)) with labels offset 0,1.5 notitle, \
+     '' skip 1 using 1:(strcol(3) ne "resolved" ? \$2 : NaN) with points pt 2 ps 2 lc rgb '#888888' title 'no verdict', \
+     '$dir/$name-breakeven.dat' using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'black' title 'break-even (between resolved cells)'
+GP
+log "tradeoff-map $name done"
