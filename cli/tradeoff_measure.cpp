@@ -49,9 +49,16 @@ double peakHeight(const std::vector<double>& g) {
 }
 
 double integral(const std::vector<double>& t, const std::vector<double>& c) {
+    // Up to the first zero of c (linearly interpolated), where the tail that only adds noise
+    // begins: the running integral's plateau.
     double sum = 0.0;
-    for (std::size_t k = 1; k < std::min(t.size(), c.size()); ++k)
+    for (std::size_t k = 1; k < std::min(t.size(), c.size()); ++k) {
+        if (c[k] <= 0.0 && c[k - 1] > 0.0) {
+            const double zero = t[k - 1] + (t[k] - t[k - 1]) * c[k - 1] / (c[k - 1] - c[k]);
+            return sum + 0.5 * c[k - 1] * (zero - t[k - 1]);
+        }
         sum += 0.5 * (c[k] + c[k - 1]) * (t[k] - t[k - 1]);
+    }
     return t.size() >= 2 ? sum : nan;
 }
 
@@ -104,29 +111,16 @@ ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double e
         const analysis::CsvTable rdf = analysis::readCsv(dir / "rdf.csv");
         r.g = column(rdf, "g");
         r.gConf = column(rdf, "g_continuous");
-        // The analysis' block errors: the peak's that of its bin; an integral's at most the
-        // integral of the errors (lags from one run are positively correlated, so summing the
-        // errors bounds the error of the sum).
-        const double analysisDof = numberAt(s, {"analysis", "blocks"}) - 1.0;
-        const auto peakError = [](const std::vector<double>& g, const std::vector<double>& err) {
-            if (g.size() < 3 || err.size() != g.size()) return nan;
-            return err[std::size_t(std::max_element(g.begin() + 1, g.end() - 1) - g.begin())];
-        };
+        // No block error for these: the peak bin's error overstates the error of a parabola over
+        // three bins, and an integral's would need the covariance of the lags; their replicas'
+        // scatter is the honest error.
         r.value["g_peak"] = peakHeight(r.g);
-        withError("g_peak", peakError(r.g, column(rdf, "err")), analysisDof, 1.0);
-        if (!r.gConf.empty()) {
-            r.value["g_peak_conf"] = peakHeight(r.gConf);
-            withError("g_peak_conf", peakError(r.gConf, column(rdf, "err_continuous")), analysisDof,
-                      1.0);
-        }
+        if (!r.gConf.empty()) r.value["g_peak_conf"] = peakHeight(r.gConf);
         const analysis::CsvTable vacf = analysis::readCsv(dir / "vacf.csv");
         r.value["tau_v"] = integral(column(vacf, "t_ps"), column(vacf, "c"));
-        withError("tau_v", integral(column(vacf, "t_ps"), column(vacf, "err")), analysisDof, 1.0);
         if (std::filesystem::exists(dir / "oacf.csv")) {
             const analysis::CsvTable oacf = analysis::readCsv(dir / "oacf.csv");
             r.value["tau_o"] = integral(column(oacf, "t_ps"), column(oacf, "c1"));
-            withError("tau_o", integral(column(oacf, "t_ps"), column(oacf, "c1_err")), analysisDof,
-                      1.0);
         }
     } catch (const std::exception& e) {
         r.failure = e.what();

@@ -35,7 +35,7 @@ ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double e
 
 /// The height of g's highest peak: the parabola through its largest bin and the two beside it.
 double peakHeight(const std::vector<double>& g);
-/// ∫ c dt by the trapezoid rule over the samples (t in ps).
+/// ∫ c dt by the trapezoid rule over the samples (t in ps), up to c's first zero.
 double integral(const std::vector<double>& t, const std::vector<double>& c);
 
 /// A bias and what it was judged against: tolerance in the observable's units (for g: the RMS,

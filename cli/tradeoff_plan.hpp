@@ -10,8 +10,8 @@
 //   g       the RMS over r ≤ rdf_max of g(r) against the reference's (a curve: estimated from
 //           the replicas' mean curves, the noise of both taken out; cli/tradeoff_measure.hpp)
 //   g_peak  the height of g(r)'s highest peak
-//   tau_v   ∫ VACF dt over the lags measured, ps (the velocity relaxation time)
-//   tau_o   ∫ ⟨s(0)·s(t)⟩ dt over the lags measured, ps (bodies that rotate only)
+//   tau_v   ∫ VACF dt up to its first zero, ps (the velocity relaxation time)
+//   tau_o   ∫ ⟨s(0)·s(t)⟩ dt up to its first zero, ps (bodies that rotate only)
 // DMD gives u, p and g two ways: on its terraced observables (V, the impulse virial, g_d) and by
 // the configurational estimators on the same configurations (core/continuous_sums.hpp); the
 // tradeoff uses, for each, the one with the smaller measured bias and says which.
