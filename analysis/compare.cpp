@@ -120,7 +120,8 @@ double effectivePoints(const std::vector<double>& z) {
 
 Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::path& b,
                       double tolSigma, const std::string& column) {
-    if (!(tolSigma > 0.0)) throw std::invalid_argument("compare: --tol-sigma must be > 0");
+    if (!(std::isfinite(tolSigma) && tolSigma > 0.0))
+        throw std::invalid_argument("compare: --tol-sigma must be a finite number > 0");
     const CsvTable ta = readCsv(a), tb = readCsv(b);
     if (ta.header.empty() || tb.header.empty() || ta.header[0] != tb.header[0])
         throw CsvError("compare: x columns differ: '" + ta.header.at(0) + "' in " + a.string() +
@@ -134,6 +135,21 @@ Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::pat
         if (!(cb.x[k] > cb.x[k - 1])) throw CsvError(b.string() + ": x must increase");
 
     const double slack = gridTolerance * std::max(1.0, std::abs(cb.x.back() - cb.x.front()));
+    // The curves must cover the same range (to one step of the coarser grid): points of one that
+    // lie beyond the other are not compared, and a curve cut short (a run stopped early, half a
+    // file) would otherwise pass on the part it still has.
+    auto step = [](const std::vector<double>& x) {
+        return x.size() > 1 ? (x.back() - x.front()) / static_cast<double>(x.size() - 1) : 0.0;
+    };
+    const double reach = std::max(step(ca.x), step(cb.x)) + slack;
+    if (std::abs(ca.x.front() - cb.x.front()) > reach ||
+        std::abs(ca.x.back() - cb.x.back()) > reach)
+        throw CsvError("compare: the curves cover different ranges: " + a.string() + " has " +
+                       std::to_string(ca.x.size()) + " points over " + ta.header[0] + " " +
+                       format("%.6g", ca.x.front()) + " to " + format("%.6g", ca.x.back()) + ", " +
+                       b.string() + " " + std::to_string(cb.x.size()) + " points over " +
+                       format("%.6g", cb.x.front()) + " to " + format("%.6g", cb.x.back()) +
+                       ": compare curves of runs of the same length and analysis settings");
     Comparison r{true, 0.0, 0.0, std::numeric_limits<double>::quiet_NaN(), 0, ""};
     double chi2 = 0.0;
     int dof = 0;

@@ -9,8 +9,10 @@
 //
 // Grids: B is interpolated onto A's points inside B's x range, values by a four-point cubic
 // (linear interpolation of a curve bent on the scale of the grid adds a bias of several error
-// bars at short times), error bars linearly; on a common grid B's values are used as they are. A's
-// points outside it are left out. Points where a value or an error is NaN are left out.
+// bars at short times), error bars linearly; on a common grid B's values are used as they are. The
+// two must cover the same x range to within one step of the coarser grid, or compareCsv throws
+// naming both files' point counts and ranges (a curve cut short would pass on its remaining part).
+// Points where a value or an error is NaN are left out.
 //
 // Per point: z_i = (a_i − b_i)/σ_i with σ_i² = σ_a,i² + σ_b,i². The error bars are themselves
 // estimates from B = 8 blocks (analysis::Options), so z_i follows Student's t, not a normal law:

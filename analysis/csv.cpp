@@ -75,7 +75,10 @@ CsvTable readCsv(const std::filesystem::path& path) {
     int lineNumber = 0;
     while (std::getline(in, line)) {
         ++lineNumber;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos) continue;
+        // Comment lines (thermo.csv's units and notes under its header) carry no data.
+        if (line[first] == '#') continue;
         const auto fields = splitFields(line);
         if (table.header.empty()) {
             table.header = fields;

@@ -45,11 +45,20 @@ int printDesign(const DesignRequest& request) {
             printProfile(L, model, settings.rm, scene.kT());
             return 0;
         }
-        std::printf("# %s: levels %s, values %s, n %d, dV %g kT, model %s; kT = %.6g kJ/mol, "
-                    "r_m = %.6g A\n",
-                    scene.name.c_str(), section.terraces.levels.c_str(),
-                    section.terraces.values.c_str(), section.terraces.n, section.dV,
-                    section.model.c_str(), scene.kT(), settings.rm);
+        // Explicit dmd.levels override dV and the design: the header names them, not the
+        // uniform defaults they replace.
+        if (!section.levels.empty())
+            std::printf("# %s: levels explicit (%zu in dmd.levels), values %s, model %s; kT = "
+                        "%.6g kJ/mol, r_m = %.6g A\n",
+                        scene.name.c_str(), section.levels.size(),
+                        section.values.empty() ? "midpoint" : "explicit (dmd.values)",
+                        section.model.c_str(), scene.kT(), settings.rm);
+        else
+            std::printf("# %s: levels %s, values %s, n %d, dV %g kT, model %s; kT = %.6g kJ/mol, "
+                        "r_m = %.6g A\n",
+                        scene.name.c_str(), section.terraces.levels.c_str(),
+                        section.terraces.values.c_str(), section.terraces.n, section.dV,
+                        section.model.c_str(), scene.kT(), settings.rm);
         std::printf("terrace,lower_kJ_per_mol,upper_kJ_per_mol,value_kJ_per_mol\n");
         // Uniform levels are unbounded: print the well and the wall up to 50 kT.
         const int lo = L.isUniform()

@@ -15,6 +15,7 @@
 #include "cli/tradeoff_command.hpp"
 #include "core/huge_pages.hpp"
 #include "core/measure.hpp"
+#include "core/scene_json.hpp"
 #include "core/xyz.hpp"
 #include <algorithm>
 #include <boost/program_options.hpp>
@@ -148,10 +149,22 @@ po::variables_map parseSceneCommand(const std::vector<std::string>& args,
                                     po::options_description& opts) {
     opts.add_options()("set", po::value<std::vector<std::string>>()->composing(), "key.path=value")(
         "help,h", "this help")("scene", po::value<std::string>(), "scene file");
+    // Boost would take the next option as --set's value and then count the words after it as
+    // extra scene files: name the --set that lacks its value instead.
+    for (std::size_t i = 0; i < args.size(); ++i)
+        if (args[i] == "--set" && (i + 1 == args.size() || args[i + 1].starts_with("-")))
+            throw po::error("--set needs a key.path=value after it, got " +
+                            (i + 1 == args.size() ? std::string("nothing")
+                                                  : "the option '" + args[i + 1] + "'"));
     po::positional_options_description pos;
     pos.add("scene", 1);
     po::variables_map vm;
-    po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
+    try {
+        po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
+    } catch (const po::too_many_positional_options_error&) {
+        throw po::error("takes one scene file; the words after the first one that are not options "
+                        "or their values are more files");
+    }
     po::notify(vm);
     return vm;
 }
@@ -376,8 +389,13 @@ int compareMain(const std::vector<std::string>& args) {
     if (!vm.count("files") || vm["files"].as<std::vector<std::string>>().size() != 2)
         throw po::error("compare takes two CSV files");
     const auto files = vm["files"].as<std::vector<std::string>>();
-    const auto c = analysis::compareCsv(files[0], files[1], vm["tol-sigma"].as<double>(),
-                                        vm["column"].as<std::string>());
+    const double tolSigma = vm["tol-sigma"].as<double>();
+    if (!(std::isfinite(tolSigma) && tolSigma > 0.0))
+        throw po::error("--tol-sigma must be a finite number > 0 (a tolerance in standard "
+                        "deviations, e.g. 3), got " +
+                        showNumber(tolSigma));
+    const auto c =
+        analysis::compareCsv(files[0], files[1], tolSigma, vm["column"].as<std::string>());
     std::printf("%s\n", c.verdict.c_str());
     return c.agree ? 0 : 1;
 }

@@ -40,12 +40,22 @@ void readBody(const JsonSection& body, Scene& s) {
 void checkInertia(const JsonSection& body, const Scene& s) {
     const Vec3& I = s.body.inertia;
     const std::string& kind = s.body.kind;
+    // With sites the moments are theirs (readSites), and body.inertia may not be in the scene:
+    // blame the sites' geometry.
+    const bool fromSites = !s.body.sites.empty();
+    const std::string key = fromSites ? "sites" : "inertia";
+    const std::string given =
+        fromSites ? "; the sites give principal moments (" + showNumber(I[0]) + ", " +
+                        showNumber(I[1]) + ", " + showNumber(I[2]) +
+                        ") g/mol Å²: place them off a single point (a linear molecule: two "
+                        "or more sites apart on z)"
+                  : "";
     if (kind == "linear" && !(I[0] > 0.0 && I[0] == I[1]))
-        body.fail("inertia", "a linear rotor needs I1 = I2 > 0 (I3 is ignored)");
+        body.fail(key, "a linear rotor needs I1 = I2 > 0 (I3 is ignored)" + given);
     if (kind == "symmetric" && !(I.minCoeff() > 0.0 && I[0] == I[1]))
-        body.fail("inertia", "a symmetric top needs I1 = I2 > 0 and I3 > 0");
+        body.fail(key, "a symmetric top needs I1 = I2 > 0 and I3 > 0" + given);
     if (kind == "asymmetric" && !(I.minCoeff() > 0.0))
-        body.fail("inertia", "an asymmetric top needs three positive moments");
+        body.fail(key, "an asymmetric top needs three positive moments" + given);
 }
 
 void readPotential(const JsonSection& pot, Scene& s) {

@@ -63,6 +63,10 @@ long long JsonSection::integer(const std::string& key, long long def, long long 
     if (!has(key)) return def;
     const json& v = at(key);
     if (!v.is_number_integer()) fail(key, "must be an integer, got " + v.dump());
+    // A value beyond 2^63 parses as unsigned: shown as given, never wrapped to a negative one.
+    if (v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi))
+        fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                      std::to_string(v.get<unsigned long long>()));
     const long long x = v.get<long long>();
     if (x < lo || x > hi)
         fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +

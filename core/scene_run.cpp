@@ -75,6 +75,15 @@ void readAnalysis(const JsonSection& an, Scene& s) {
     // g(r) reaches L/2 at most: beyond, a pair's nearest image is no longer the only one.
     const double halfBox = 0.5 * s.boxLength(), halfBoxSigma = halfBox / s.potential.sigma;
     a.blocks = static_cast<int>(an.integer("blocks", a.blocks, 2, 10000));
+    // A block needs two samples (analysis/run_analysis.cpp): more blocks than that are cut to
+    // what the run's samples allow. Said when asked for explicitly; the default is cut quietly.
+    const long samples = std::lround(s.run.time_ps * 1000.0 / s.run.sample_fs);
+    if (an.has("blocks") && a.blocks > samples / 2)
+        s.warnings.push_back(
+            "analysis.blocks: " + std::to_string(a.blocks) + " asked for, but " +
+            std::to_string(samples) + " samples (run.time_ps / run.sample_fs) make at most " +
+            std::to_string(samples / 2) + " blocks of two samples: " + std::to_string(samples / 2) +
+            " are used");
     a.max_lag_ps = an.number("max_lag_ps", a.max_lag_ps, 0, 1e9);
     a.rdf_max = an.number("rdf_max", std::min(a.rdf_max, halfBoxSigma), 0, 1e6);
     if (a.rdf_max > halfBoxSigma)

@@ -2,6 +2,7 @@
 // temperature; and what a run can represent of it (kT, thermal motion, explicit values).
 #include "core/scene_sections.hpp"
 #include "core/units.hpp"
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -123,7 +124,20 @@ void checkRepresentable(const JsonSection& top, const Scene& s) {
     auto crossing = [&](double m, double e) {
         return units::toFs(s.potential.sigma * std::sqrt(m / e));
     };
-    requireResolvedMotion(top, "body.mass", "cross σ", s.body.mass, crossing(s.body.mass, kT),
+    // A σ far below the default's makes the crossing short at any mass: blame it, not the mass.
+    const Scene defaults;
+    const double crossingTime = crossing(s.body.mass, kT);
+    const bool narrow = crossingTime < limits::minThermalTimeFs &&
+                        crossing(s.body.mass, kTDefault) < limits::minThermalTimeFs &&
+                        units::toFs(defaults.potential.sigma *
+                                    std::sqrt(s.body.mass / kTDefault)) >= limits::minThermalTimeFs;
+    if (narrow)
+        top.refuse("potential.sigma",
+                   showNumber(s.potential.sigma) + " Å with body.mass " + showNumber(s.body.mass) +
+                       " makes a thermal body cross σ in " + showNumber(crossingTime) +
+                       " fs, faster than the " + showNumber(limits::minThermalTimeFs) +
+                       " fs the time grid resolves");
+    requireResolvedMotion(top, "body.mass", "cross σ", s.body.mass, crossingTime,
                           crossing(s.body.mass, kTDefault), s.state.temperature);
     const Vec3& I = s.body.inertia;
     auto turning = [](double i, double e) { return units::toFs(std::sqrt(i / e)); };
@@ -134,6 +148,19 @@ void checkRepresentable(const JsonSection& top, const Scene& s) {
             requireResolvedMotion(top, "body.inertia", "turn one radian", I[a], turning(I[a], kT),
                                   turning(I[a], kTDefault), s.state.temperature);
     }
+    // A body longer than half the box meets its own images: the nearest-image convention, on
+    // which every pair sum and neighbour list rests, no longer picks one image per pair.
+    double span = 0.0;
+    for (const auto& a : s.body.sites)
+        for (const auto& b : s.body.sites)
+            span = std::max(span, (a.r - b.r).norm());
+    const double edge = s.boxLength();
+    if (span > 0.5 * edge)
+        top.refuse("body.sites",
+                   "span " + showNumber(span) + " Å, more than half the box edge " +
+                       showNumber(edge) +
+                       " Å (set by state.n and state.density): a body may reach at most "
+                       "L/2; use more bodies, a lower density or a smaller molecule");
     // Explicit bodies: positions that survive the wrap into the box, energies that are finite.
     const double reach = limits::maxPositionInBoxLengths * s.boxLength();
     for (std::size_t i = 0; i < s.state.particles.size(); ++i) {

@@ -18,6 +18,8 @@
 #include "core/pair_potential.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -89,9 +91,24 @@ public:
     double lowestEnergy() const { return energy_.empty() ? 0.0 : energy_.front(); }
 
     /// Sums over U in [lo, hi) (infinite bounds allowed).
-    Sums over(double lo, double hi) const {
-        const auto a = std::lower_bound(energy_.begin(), energy_.end(), lo) - energy_.begin();
-        const auto b = std::lower_bound(energy_.begin(), energy_.end(), hi) - energy_.begin();
+    Sums over(double lo, double hi) const { return between(indexOf(lo), indexOf(hi)); }
+
+    /// Samples in all.
+    std::size_t size() const { return energy_.size(); }
+
+    /// The first sample with U >= u, searched in [from, to) only: the caller knows it lies there
+    /// (an iteration whose levels move within known bounds), which keeps the search short.
+    std::size_t indexOf(double u, std::size_t from = 0,
+                        std::size_t to = std::numeric_limits<std::size_t>::max()) const {
+        to = std::min(to, energy_.size());
+        return static_cast<std::size_t>(
+            std::lower_bound(energy_.begin() + static_cast<std::ptrdiff_t>(from),
+                             energy_.begin() + static_cast<std::ptrdiff_t>(to), u) -
+            energy_.begin());
+    }
+
+    /// Sums over samples a … b − 1 of the sorted list.
+    Sums between(std::size_t a, std::size_t b) const {
         const Sums &x = prefix_[b], &y = prefix_[a];
         return {x.volume - y.volume, x.boltzmann - y.boltzmann,
                 x.energyBoltzmann - y.energyBoltzmann, x.energyVolume - y.energyVolume,

@@ -15,6 +15,7 @@
 //                 prefetchFromBodies bodies on, 0 below)
 // Keys that only served to measure are refused with a pointer to TERRACE_MEASURE
 // (core/measure.hpp); docs/CHANGES.md lists them.
+#include "core/initial_state.hpp"
 #include "core/scene.hpp"
 #include "core/scene_json.hpp"
 #include <cmath>
@@ -31,6 +32,8 @@ inline constexpr double minHorizonFs = 0.1;
 /// Uniform terraces (dV·kT) in the well, |U_min| / (dV·kT): beyond this a pair's events would
 /// come at round-off spacing of U (terrace_levels' clearance is 1e-6 |U_min|).
 inline constexpr double maxTerracesInWell = 1e5;
+/// dmd.terraces.n for an optimal design: its levels in the well, of the 2500 it may have in all.
+inline constexpr int maxOptimalWellLevels = 300;
 
 struct DmdSection {
     double dV = 0.5;            // terrace height in units of kT
@@ -60,11 +63,25 @@ struct DmdSection {
 };
 
 /// "" when uniform levels dV·kT leave at most maxTerracesInWell terraces in a well of depth
-/// |uMin|, else "<key>: <why>", blaming state.temperature when even dV = 1 would be too fine.
-inline std::string terraceCountProblem(double uMin, double dV, double kT) {
+/// |uMin|, else "<key>: <why>", blaming state.temperature when even dV = 1 would be too fine, and
+/// `wellKey` (the potential's key that sets the depth) when the well is so deep against ε that
+/// even the default temperature (kTDefault) would be too cold for it.
+inline std::string terraceCountProblem(double uMin, double dV, double kT, double kTDefault = 0.0,
+                                       const std::string& wellKey = "") {
     const double count = std::abs(uMin) / (dV * kT);
     if (count <= maxTerracesInWell) return "";
     const bool cold = !(std::abs(uMin) / kT <= maxTerracesInWell);
+    const bool deep =
+        !wellKey.empty() && kTDefault > 0.0 && !(std::abs(uMin) / kTDefault <= maxTerracesInWell);
+    if (cold && deep) {
+        std::ostringstream o;
+        o << wellKey << ": gives a well U_min = " << uMin << " kJ/mol deep, "
+          << std::abs(uMin) / kTDefault << " kT even at the default temperature: more than the "
+          << maxTerracesInWell
+          << " terraces a run can represent would be needed (levels would crowd the minimum at "
+             "round-off); choose a shallower well";
+        return o.str();
+    }
     const char* blamed = cold ? "state.temperature" : "dmd.dV";
     std::ostringstream o;
     o << blamed << ": kT = " << kT << " kJ/mol with dmd.dV = " << dV << " makes " << count
@@ -118,7 +135,11 @@ inline void readTerraces(const JsonSection& d, DmdSection& s) {
     if (design.levels == "optimal" && design.values != "boltzmann")
         t.fail("values", "levels \"optimal\" set their own values (the Boltzmann mean of each "
                          "terrace): give \"boltzmann\" or leave it out");
-    design.n = static_cast<int>(t.integer("n", design.n, 0, 100000));
+    // An optimal design iterates over all its levels until they settle; beyond a few hundred
+    // in the well that takes longer than a run's start should (dmd/terrace_design.hpp,
+    // maxOptimalLevels, which also bounds the levels up the wall).
+    design.n = static_cast<int>(
+        t.integer("n", design.n, 0, design.levels == "optimal" ? maxOptimalWellLevels : 100000));
     if (!s.levels.empty() && !design.isDefault())
         d.fail("terraces", "and dmd.levels both set the levels: give one of them");
 }
@@ -172,9 +193,38 @@ inline DmdSection resolveDmdSection(Scene& scene, const std::string& origin = ""
     const DmdSection d = readDmdSection(scene.dmd, origin);
     const std::string prefix = origin.empty() ? "" : origin + ": ";
     if (scene.engine == "dmd" && d.levels.empty()) {
-        const std::string problem =
-            terraceCountProblem(sceneMinimumEnergy(scene), d.dV, scene.kT());
+        const double uMin = sceneMinimumEnergy(scene);
+        // The well's depth against ε is set by the anisotropy for Gay–Berne, by the sites'
+        // parameters for a site-site molecule, and is of order ε otherwise.
+        const std::string wellKey = scene.potential.kind == "gay-berne" ? "potential.kappa"
+                                    : scene.potential.kind == "sites"   ? "body.sites"
+                                                                        : "potential.epsilon";
+        const double kTDefault = Scene{}.state.temperature * scene.potential.epsilon;
+        const std::string problem = terraceCountProblem(uMin, d.dV, scene.kT(), kTDefault, wellKey);
         if (!problem.empty()) throw SceneError(prefix + problem);
+        // Uniform levels sit at (n − ½)·dV·kT. With the first one below 0 under U_min no pair is
+        // ever bound: the terraced potential is purely repulsive, a model the paper itself runs
+        // (the rods at ΔV = 2 kT), so that is said, not refused. With the first one above 0 also
+        // beyond every start's energy (maxStartEnergyInKT) no thermal pair ever meets a level:
+        // the bodies pass through each other with U = 0 throughout, which no study wants.
+        if (d.terraces.levels == "energy" && d.terraces.n == 0 && uMin < 0.0 &&
+            !(0.5 * d.dV * scene.kT() < -uMin)) {
+            std::ostringstream o;
+            o << "dmd.dV: " << d.dV << " kT puts the first level at " << -0.5 * d.dV * scene.kT()
+              << " kJ/mol, below the potential minimum U_min = " << uMin
+              << " kJ/mol: no terrace lies in the well";
+            if (0.5 * d.dV > terrace::detail::maxStartEnergyInKT) {
+                o << ", and the first above 0, " << 0.5 * d.dV << " kT, lies beyond every "
+                  << "start's energy (" << terrace::detail::maxStartEnergyInKT
+                  << " kT): the bodies would pass through each other with U = 0 throughout; "
+                     "give dmd.dV < "
+                  << 2.0 * -uMin / scene.kT() << " for a well";
+                throw SceneError(prefix + o.str());
+            }
+            o << ", so the terraced potential is purely repulsive (dmd.dV < "
+              << 2.0 * -uMin / scene.kT() << " gives it a well)";
+            scene.warnings.push_back(o.str());
+        }
     }
     if (!d.levels.empty()) {
         const double uMin = sceneMinimumEnergy(scene);

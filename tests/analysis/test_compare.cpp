@@ -5,7 +5,9 @@
 #include "analysis/reference/direct_correlations.hpp"
 #include "synthetic_samples.hpp"
 #include <cmath>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <limits>
 #include <random>
 #include <unistd.h>
 
@@ -98,7 +100,7 @@ TEST(CompareGrids, CurvedCurveOnAnotherGridAgreesWithItself) {
         a.columns[1].push_back(curve(k * 0.0108));
         a.columns[2].push_back(1e-4);
     }
-    for (int k = 0; k < 70; ++k) {
+    for (int k = 0; k < 65; ++k) { // to 640 fs: A's 637 fs lies within one step of its end
         b.columns[0].push_back(k * 0.01);
         b.columns[1].push_back(curve(k * 0.01));
     }
@@ -110,7 +112,7 @@ TEST(CompareGrids, CurvedCurveOnAnotherGridAgreesWithItself) {
                                     dir / ("terrace_grid_b_" + tag + ".csv"), tolSigma);
     EXPECT_TRUE(c.agree) << c.verdict;
     EXPECT_LT(c.maxDeviationSigma, 1.0);
-    EXPECT_EQ(c.points, 60); // 59 · 10.8 fs = 637 fs lies inside B's 690 fs
+    EXPECT_EQ(c.points, 60); // 59 · 10.8 fs = 637 fs lies inside B's 640 fs
     fs::remove(dir / ("terrace_grid_a_" + tag + ".csv"));
     fs::remove(dir / ("terrace_grid_b_" + tag + ".csv"));
 }
@@ -153,14 +155,21 @@ TEST_F(Runs, ShiftedCurveDisagrees) {
 }
 
 TEST_F(Runs, CurveShiftedInTimeDisagrees) {
-    // Two samples (20 fs) late: the steep start of e^{−γt} exposes it point by point.
+    // One sample (10 fs) late, within the ends' one-step tolerance: the steep start of e^{−γt}
+    // exposes it point by point.
     const auto late = modified("late.csv", [](CsvTable& t) {
         for (double& x : t.columns[0])
-            x += 0.02;
+            x += 0.01;
     });
     const Comparison c = compareCsv(root / "a" / "vacf.csv", late, tolSigma);
     EXPECT_FALSE(c.agree) << c.verdict;
     EXPECT_GT(c.maxDeviationSigma, pointLimitSigma(tolSigma, c.points));
+    // Two samples late, its ends no longer meet A's: refused as another range.
+    const auto later = modified("later.csv", [](CsvTable& t) {
+        for (double& x : t.columns[0])
+            x += 0.02;
+    });
+    EXPECT_THROW(compareCsv(root / "a" / "vacf.csv", later, tolSigma), CsvError);
 }
 
 TEST_F(Runs, OneOutlierDisagrees) {
@@ -198,4 +207,38 @@ TEST_F(Runs, NoErrorBarsOrNoCommonColumnIsAnError) {
                  CsvError);
     EXPECT_THROW(compareCsv(root / "a" / "vacf.csv", root / "b" / "vacf.csv", 0.0),
                  std::invalid_argument);
+    EXPECT_THROW(compareCsv(root / "a" / "vacf.csv", root / "b" / "vacf.csv",
+                            std::numeric_limits<double>::infinity()),
+                 std::invalid_argument);
+}
+
+TEST_F(Runs, CurvesOverDifferentRangesAreRefusedNamingTheirPoints) {
+    // B is A's first half: the common points agree, but half of A would go unchecked.
+    const auto half = modified("half.csv", [](CsvTable& t) {
+        for (auto& column : t.columns)
+            column.resize(column.size() / 2);
+    });
+    try {
+        (void)compareCsv(root / "a" / "vacf.csv", half, tolSigma);
+        FAIL() << "a curve cut to half its range was compared";
+    } catch (const CsvError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("cover different ranges"), std::string::npos) << what;
+        EXPECT_NE(what.find("has 1000 points"), std::string::npos) << what;
+        EXPECT_NE(what.find(" 500 points"), std::string::npos) << what;
+    }
+}
+
+TEST(Csv, CommentLinesAreSkipped) {
+    // thermo.csv carries its units and a note as '#' lines under the header.
+    const fs::path path =
+        fs::temp_directory_path() / ("terrace_comments_" + std::to_string(::getpid()) + ".csv");
+    {
+        std::ofstream out(path);
+        out << "time_ps,u\n# ps,kJ/mol\n# a note, with commas\n0,1\n0.5,2\n";
+    }
+    const CsvTable t = readCsv(path);
+    fs::remove(path);
+    ASSERT_EQ(t.rows(), 2);
+    EXPECT_EQ(t.columns[1][1], 2.0);
 }

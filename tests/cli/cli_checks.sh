@@ -89,6 +89,21 @@ bad_value)
     expect_error "$src/experiments/scenes/dense-rods.json" \
         "run.equilibrate_ps: must be a whole multiple of run.thermostat_fs = 9 fs, got 1 ps" \
         --set run.equilibrate_ps=1
+    # No level in the well and none a thermal pair meets: U = 0 throughout, refused.
+    expect_error "$src/experiments/scenes/dense-rods.json" \
+        "dmd.dV: 1e+06 kT puts the first level at -2.1e+06 kJ/mol" --set dmd.dV=1e6
+    expect_error "$src/experiments/scenes/dumbbell-liquid.json" \
+        "body.sites: span 100 Å, more than half the box edge 24.5167 Å" \
+        --set 'body.sites=[{"r":[0,0,50],"mass":14,"epsilon":0.31,"sigma":3.31},{"r":[0,0,-50],"mass":14,"epsilon":0.31,"sigma":3.31}]'
+    # A --set without its value: said so, in terrace's words (was boost's "too many positional
+    # options"), exit 2, nothing written.
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --set --out "$work/out" 2>&1 >/dev/null)
+    [ $? -eq 2 ] || fail "a --set without a value: exit status not 2"
+    [[ $err == "terrace run: --set needs a key.path=value after it, got the option '--out'"* ]] ||
+        fail "a --set without a value: $err"
+    [ ! -e "$work/out" ] || fail "output written for a bad command line"
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" extra.json 2>&1 >/dev/null)
+    [[ $err == "terrace run: takes one scene file;"* ]] || fail "two scene files: $err"
     ;;
 design)
     # The table of a design: a header, then one row a terrace, terrace 0 carrying exactly 0.
@@ -99,6 +114,10 @@ design)
         fail "design header: $(head -1 "$work/design.csv")"
     grep -q '^0,-[0-9.e-]*,[0-9.e-]*,0$' "$work/design.csv" || fail "terrace 0 does not carry 0"
     [ "$(grep -c '^-[0-9]*,' "$work/design.csv")" -eq 3 ] || fail "not 3 terraces in the well"
+    # Explicit levels: the header names them, not the uniform design they replace.
+    "$terrace" design "$src/experiments/scenes/dense-rods.json" --set 'dmd.levels=[1,2,3]' |
+        head -1 | grep -q "levels explicit (3 in dmd.levels), values midpoint, model bare" ||
+        fail "design header for explicit levels"
     "$terrace" design --profile --set dmd.dV=0.25 | head -1 | grep -q '^r_A,U_kJ_per_mol,V_kJ_per_mol$' ||
         fail "profile header"
     expect_error "$src/experiments/scenes/dense-rods.json" "dmd.terraces.levels" \
@@ -138,6 +157,16 @@ analyse_compare)
         >"$work/shifted.csv"
     "$terrace" compare "$work/vacf-run.csv" "$work/shifted.csv" >/dev/null &&
         fail "compare accepts a curve shifted by 0.5"
+    # B the first half of A: the common points agree, but half of A would go unchecked.
+    head -n $(($(wc -l <"$work/vacf-run.csv") / 2)) "$work/vacf-run.csv" >"$work/half.csv"
+    err=$("$terrace" compare "$work/vacf-run.csv" "$work/half.csv" 2>&1 >/dev/null) &&
+        fail "compare accepts a curve cut to half its range"
+    [[ $err == "terrace: compare: the curves cover different ranges: "*" has "*" points over "* ]] ||
+        fail "compare of a half curve: $err"
+    err=$("$terrace" compare "$work/vacf-run.csv" "$work/vacf-run.csv" --tol-sigma inf 2>&1)
+    [ $? -eq 2 ] || fail "--tol-sigma inf: exit status not 2"
+    [[ $err == "terrace compare: --tol-sigma must be a finite number > 0"* ]] ||
+        fail "--tol-sigma inf: $err"
     ;;
 determinism)
     # The same scene and seed give the same trajectory bit for bit (DESIGN.md "Interfaces").

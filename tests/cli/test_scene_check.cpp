@@ -174,6 +174,26 @@ TEST(SceneCheck, HorizonAndTerraceCountARunCanRepresent) {
               "test.json: dmd.dV: kT = 4.2 kJ/mol with dmd.dV = 1e-06 makes 714286 terraces of "
               "4.2e-06 kJ/mol in the well (U_min = -3 kJ/mol), more than the 100000 a run can "
               "represent (levels would crowd the minimum at round-off); raise dmd.dV");
+    // No level in the well and none a thermal pair meets above 0: U = 0 throughout, refused.
+    EXPECT_EQ(errorOf({{"dmd", {{"dV", 1e6}}}}),
+              "test.json: dmd.dV: 1e+06 kT puts the first level at -2.1e+06 kJ/mol, below the "
+              "potential minimum U_min = -3 kJ/mol: no terrace lies in the well, and the first "
+              "above 0, 500000 kT, lies beyond every start's energy (50 kT): the bodies would "
+              "pass through each other with U = 0 throughout; give dmd.dV < 1.42857 for a well");
+    EXPECT_EQ(errorOf({{"dmd", {{"dV", 1.4}}}}), "");
+    // A Gay–Berne well deepened by κ → 0 (U_min −10⁶ kJ/mol): κ's fault, not the temperature's.
+    EXPECT_EQ(
+        errorOf({{"body", {{"kind", "linear"}, {"mass", 40.0}, {"inertia", {180, 180, 0}}}},
+                 {"potential",
+                  {{"kind", "gay-berne"},
+                   {"epsilon", 2.0},
+                   {"sigma", 3.0},
+                   {"kappa", 1e-6},
+                   {"kappa_prime", 5.0},
+                   {"cutoff", {3.5, 4.0}}}},
+                 {"state", {{"density", 0.28}, {"temperature", 2.0}}}})
+            .rfind("test.json: potential.kappa: gives a well U_min = -1e+06 kJ/mol deep, ", 0),
+        0u);
     // SMD has no terraces: a cold SMD run is legal.
     EXPECT_EQ(errorOf({{"engine", "smd"}, {"state", {{"temperature", 1e-10}}}}), "");
 }
@@ -185,6 +205,14 @@ TEST(SceneCheck, WarningsForLegalButSurprisingValues) {
     EXPECT_EQ(w[0], "dmd.levels: no level lies between the potential minimum U_min = -3 kJ/mol "
                     "and 0, so the terraced potential has no attractive well");
     EXPECT_TRUE(sceneWarnings(ready({{"dmd", {{"levels", {-1.5, 1.0}}}}})).empty());
+    // The paper's ΔV = 2 kT on the rods: no level in the well, a purely repulsive model, run.
+    const auto repulsive = sceneWarnings(ready({{"dmd", {{"dV", 2.0}}}}));
+    ASSERT_EQ(repulsive.size(), 1u);
+    EXPECT_EQ(repulsive[0], "dmd.dV: 2 kT puts the first level at -4.2 kJ/mol, below the potential "
+                            "minimum U_min = -3 kJ/mol: no terrace lies in the well, so the "
+                            "terraced potential is purely repulsive (dmd.dV < 1.42857 gives it a "
+                            "well)");
+    EXPECT_TRUE(sceneWarnings(ready({{"engine", "smd"}, {"dmd", {{"dV", 2.0}}}})).empty());
 }
 
 // A restart file records the resolved scene: one that names the queue "auto" goes on, on the tree

@@ -425,6 +425,39 @@ TEST(Scene, TemperaturesAndMassesARunCanRepresent) {
     EXPECT_EQ(errorOf({{"state", {{"temperature", 1e308}}}}),
               "test.json: state.temperature: kT = T*·ε = inf kJ/mol is not a positive finite "
               "number");
+    // A σ far below any body's reach is σ's fault at any mass (was blamed on body.mass).
+    EXPECT_EQ(errorOf({{"potential", {{"sigma", 1e-300}}}}),
+              "test.json: potential.sigma: 1e-300 Å with body.mass 18 makes a thermal body cross σ "
+              "in 2.0702e-298 fs, faster than the 0.1 fs the time grid resolves");
+}
+
+TEST(Scene, SeedsBeyondTheRangeAreShownAsGiven) {
+    // 2^63 parses as an unsigned integer: shown as it was written, not wrapped to -2^63.
+    EXPECT_EQ(errorOf(json::parse(R"({"seed": 9223372036854775808})")),
+              "test.json: seed: must be in [0, 4611686018427387904], got 9223372036854775808");
+    EXPECT_EQ(errorOf(json::parse(R"({"seed": 18446744073709551615})")),
+              "test.json: seed: must be in [0, 4611686018427387904], got 18446744073709551615");
+}
+
+TEST(Scene, BodiesLargerThanHalfTheBoxAreRefused) {
+    // Sites ±50 Å apart in the 24.5 Å box of 256 dumbbells at ρ* 0.63: the body meets its own
+    // images.
+    const json dumbbell = {
+        {"body",
+         {{"kind", "linear"},
+          {"sites",
+           {{{"r", {0, 0, 50}}, {"mass", 14.0}, {"epsilon", 0.31}, {"sigma", 3.31}},
+            {{"r", {0, 0, -50}}, {"mass", 14.0}, {"epsilon", 0.31}, {"sigma", 3.31}}}}}},
+        {"potential", {{"kind", "sites"}, {"epsilon", 0.3101}, {"sigma", 3.31}}},
+        {"state", {{"n", 256}, {"density", 0.63}, {"temperature", 2.06}}}};
+    EXPECT_EQ(errorOf(dumbbell),
+              "test.json: body.sites: span 100 Å, more than half the box edge 24.5167 Å (set by "
+              "state.n and state.density): a body may reach at most L/2; use more bodies, a lower "
+              "density or a smaller molecule");
+    json small = dumbbell;
+    small["body"]["sites"][0]["r"] = {0, 0, 6};
+    small["body"]["sites"][1]["r"] = {0, 0, -6};
+    EXPECT_EQ(errorOf(small), "");
 }
 
 // A measurement switch lives in the environment, not in the scene: a misspelt one is an error.
@@ -521,6 +554,14 @@ TEST(Scene, SitesGiveMassAndInertiaAndMustBeInThePrincipalFrame) {
     j = dumbbell;
     j["body"]["kind"] = "symmetric";
     EXPECT_NE(errorOf(j).find("body.kind: sites need linear"), std::string::npos);
+    // Sites on one point have no moments: the sites are to blame, not body.inertia (not given).
+    j = dumbbell;
+    j["body"]["sites"][0]["r"] = {0, 0, 0};
+    j["body"]["sites"][1]["r"] = {0, 0, 0};
+    EXPECT_EQ(errorOf(j), "test.json: body.sites: a linear rotor needs I1 = I2 > 0 (I3 is "
+                          "ignored); the sites give principal moments (0, 0, 0) g/mol Å²: place "
+                          "them off a single point (a linear molecule: two or more sites apart "
+                          "on z)");
 }
 
 TEST(Scene, GayBerneKeysBelongToGayBerneOnLinearBodies) {
@@ -558,6 +599,13 @@ TEST(Scene, AnalysisKeysAreReadCheckedAndWrittenOut) {
               0u);
     EXPECT_EQ(errorOf({{"analysis", {{"blocks", 1}}}}),
               "test.json: analysis.blocks: must be in [2, 10000], got 1");
+    // More blocks than the samples allow are cut, and said so when they were asked for.
+    const Scene cut = sceneFromJson(
+        {{"analysis", {{"blocks", 10000}}}, {"run", {{"time_ps", 0.09}}}}, "test.json");
+    ASSERT_EQ(cut.warnings.size(), 1u);
+    EXPECT_EQ(cut.warnings[0], "analysis.blocks: 10000 asked for, but 10 samples (run.time_ps / "
+                               "run.sample_fs) make at most 5 blocks of two samples: 5 are used");
+    EXPECT_TRUE(sceneFromJson({{"run", {{"time_ps", 0.09}}}}, "test.json").warnings.empty());
     EXPECT_EQ(errorOf({{"analysis", {{"rdf_every", 0}}}}),
               "test.json: analysis.rdf_every: must be in [1, 1073741824], got 0");
     EXPECT_EQ(errorOf({{"analysis", {{"rdf_bin", 0.1}}}}),

@@ -197,6 +197,29 @@ TEST(TerraceDesign, OptimalDesignIsALloydMaxQuantiser) {
     }
 }
 
+TEST(TerraceDesign, OptimalDesignsOfEveryAllowedSizeConverge) {
+    // The largest n the scene admits on the smoothed rods (2401 levels with the wall's): the
+    // 10⁴ sweeps leave every level within 1e-4 kJ/mol (1e-2 of the 0.01 kJ/mol step) of
+    // stationary (the bare rods converge fully), and beyond the level cap the design is refused
+    // naming dmd.terraces.n (n = 100 000 ran for minutes before the cap).
+    const auto t =
+        design(designScene("optimal", "boltzmann", maxOptimalWellLevels, 0.5), rods, rodKT);
+    expectWellFormed(t, -3.0);
+    EXPECT_LE(static_cast<long>(t.levels.size()), maxOptimalLevels);
+    for (std::size_t k = 0; k + 1 < t.levels.size(); ++k)
+        EXPECT_NEAR(t.levels[k], 0.5 * (t.values[k] + t.values[k + 1]), 1e-4) << k;
+    try {
+        // Twice as hot: twice the levels up the 5 kT wall for the same step.
+        (void)designTerraces(designScene("optimal", "boltzmann", maxOptimalWellLevels, 0.5), rods,
+                             2.0 * rodKT);
+        FAIL() << "an optimal design beyond the level cap was made";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("dmd.terraces.n: 300 levels in the well make ", 0),
+                  0u)
+            << e.what();
+    }
+}
+
 TEST(TerraceDesign, DesignsArePureFunctions) {
     const auto d = designScene("optimal", "boltzmann", 0, 0.5);
     const auto a = design(d, rods, rodKT), b = design(d, rods, rodKT);
@@ -263,6 +286,10 @@ TEST(TerraceDesignScene, KeysReadAndRefused) {
     EXPECT_THROW(section({R"(dmd.terraces={"levels":"log"})"}), SceneError);
     EXPECT_THROW(section({R"(dmd.terraces={"levels":"optimal","values":"midpoint"})"}), SceneError);
     EXPECT_THROW(section({R"(dmd.terraces={"levels":"distance","m":3})"}), SceneError);
+    // An optimal design takes at most maxOptimalWellLevels in the well; the others 10⁵.
+    EXPECT_THROW(section({R"(dmd.terraces={"levels":"optimal","n":100000})"}), SceneError);
+    EXPECT_EQ(section({R"(dmd.terraces={"levels":"optimal","n":300})"}).terraces.n, 300);
+    EXPECT_EQ(section({R"(dmd.terraces={"levels":"distance","n":100000})"}).terraces.n, 100000);
     EXPECT_THROW(section({"dmd.levels=[-1,1]", "dmd.values=[0,0]"}), SceneError);
     EXPECT_THROW(section({"dmd.values=[0,0,1]"}), SceneError);
     const DmdSection v = section({"dmd.levels=[-1,1]", "dmd.values=[-1.5,0,2]"});
