@@ -269,17 +269,21 @@ void checkRunIdentity(const std::filesystem::path& dir, const nlohmann::json& re
         const std::uint64_t recorded = identity.at("scene_crc64").get<std::uint64_t>();
         const std::uint64_t actual = crc64(text);
         if (recorded == actual) return;
-        // Named by the first setting that differs, when both read as JSON.
+        // Named by the settings that differ (the first three), when both read as JSON.
         std::string what;
         const nlohmann::json here = nlohmann::json::parse(text, nullptr, false);
         if (!here.is_discarded()) {
-            const nlohmann::json patch = nlohmann::json::diff(here, scene);
-            if (!patch.empty()) {
-                std::string key = patch.front().value("path", "");
+            std::vector<std::string> keys;
+            for (const auto& op : nlohmann::json::diff(here, scene)) {
+                std::string key = op.value("path", "");
                 std::replace(key.begin(), key.end(), '/', '.');
                 if (!key.empty() && key.front() == '.') key.erase(0, 1);
-                if (!key.empty()) what = "; " + key + " differs";
+                if (!key.empty()) keys.push_back(key);
             }
+            for (std::size_t k = 0; k < std::min<std::size_t>(keys.size(), 3); ++k)
+                what += (k == 0 ? "; " : ", ") + keys[k];
+            if (keys.size() > 3) what += ", …";
+            if (!keys.empty()) what += keys.size() == 1 ? " differs" : " differ";
         }
         throw IoError(restartPath + ": from another run: the scene it was written for (CRC-64 " +
                       hex(recorded) + ") is not " + scenePath.string() + " (" + hex(actual) + what +
