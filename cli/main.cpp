@@ -11,6 +11,7 @@
 #include "cli/output_dir.hpp"
 #include "cli/run_command.hpp"
 #include "cli/run_driver.hpp"
+#include "cli/run_process.hpp"
 #include "cli/sweep_mpi.hpp"
 #include "cli/tradeoff_command.hpp"
 #include "core/huge_pages.hpp"
@@ -421,6 +422,7 @@ int main(int argc, char** argv) {
     // per body so, 1.003 with the threshold held (0.98 without restart points).
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
+    terrace::cli::stopWithSweep();
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
         std::fputs(usage, args.empty() ? stderr : stdout);

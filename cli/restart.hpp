@@ -2,13 +2,18 @@
 // Restart files: everything a run needs to go on from a point of its time grid as if it had never
 // stopped (DESIGN.md "Output a user can trust").
 //
-//   DIR/restart.bin   one CBOR document (RFC 8949; nlohmann::json::to_cbor), written atomically at
-//                     every output.restart_every_ps and when a signal stops the run:
-//                       format, scene (resolved), phase (equilibration | production), the number
-//                       of thermostat ticks or samples done, the bodies (every number of their
-//                       states as raw bytes: exact, and compact), the engine's checkpoint (DMD:
-//                       clock, pair terraces as raw bytes, horizon stream; SMD: step count), the
-//                       run's accumulators (production start, initial momentum, production
+//   DIR/restart.bin   one CBOR document (RFC 8949; nlohmann::json::to_cbor) and a 16-byte trailer
+//                     (the document's length, then the CRC-64/XZ of all bytes before it, both
+//                     64-bit little-endian), written atomically at every output.restart_every_ps
+//                     and when a signal stops the run. The trailer is checked before anything of
+//                     the file is read: any damage confined to 64 bits, and all but 2⁻⁶⁴ of the
+//                     rest, is refused. The document holds:
+//                       format, scene (resolved), the run's identity (the CRC-64 of DIR/scene.json
+//                       as the run wrote it, N, the engine), phase (equilibration | production),
+//                       the number of thermostat ticks or samples done, the bodies (every number of
+//                       their states as raw bytes: exact, and compact), the engine's checkpoint
+//                       (DMD: clock, pair terraces as raw bytes, horizon stream; SMD: step count),
+//                       the run's accumulators (production start, initial momentum, production
 //                       statistics, CPU seconds, the terracing profile of g_c(r)) and the lengths
 //                       of trajectory.xyz, thermo.csv and samples.bin at that point;
 //   DIR/samples.bin   the production samples, one fixed-size record per sample, appended as they
@@ -33,14 +38,26 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace terrace::cli {
 
 /// Version 2: samples.bin records carry K_trans, W and the collision count, and restart.bin the
 /// length of thermo.csv. Version 3: the DMD checkpoint's pair terraces are raw bytes
-/// (dmd/engine_start.hpp). Files of another version are refused, naming both versions.
-inline constexpr const char* restartFormat = "terrace restart 4";
+/// (dmd/engine_start.hpp). Version 5: the checksum trailer and the run's identity. Files of another
+/// version are refused, naming both versions.
+inline constexpr const char* restartFormat = "terrace restart 5";
+
+/// CRC-64/XZ (ECMA-182 polynomial, reflected, all ones in and out) of `bytes`, continuing from
+/// `crc` (the value returned for the bytes before them; 0 to start).
+std::uint64_t crc64(std::string_view bytes, std::uint64_t crc = 0);
+
+/// How much of each growing file's end before its restart point restart.bin checksums.
+inline constexpr std::int64_t tailBytes = 64 * 1024;
+/// CRC-64 of the last min(length, tailBytes) bytes before `length` in the file at `path`; throws
+/// IoError when the file cannot be read or is shorter than `length`.
+std::uint64_t tailChecksum(const std::filesystem::path& path, std::int64_t length);
 
 /// One production sample and its energies (kJ/mol), as the run loop keeps them.
 struct SampleRecord {
@@ -78,8 +95,17 @@ void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restar
 /// a restart file whose content does not read (a key missing, a value of the wrong type).
 IoError damagedRestart(const std::filesystem::path& dir, const nlohmann::json::exception& e);
 
-/// Reads DIR/restart.bin; IoError when absent or unreadable, naming what to do.
+/// Reads DIR/restart.bin; IoError when absent, unreadable or damaged (its checksum), naming what
+/// to do.
 nlohmann::json readRestart(const std::filesystem::path& dir);
+/// The restart document in the bytes of a restart file at `path` (named in the errors).
+nlohmann::json decodeRestart(const std::string& bytes, const std::filesystem::path& path);
+
+/// The identity a restart file records: the CRC-64 of DIR/scene.json's bytes, N, the engine.
+nlohmann::json runIdentity(std::uint64_t sceneChecksum, int bodies, const std::string& engine);
+/// Refuses a restart file that belongs to another run than the one in `dir`: its identity must
+/// name DIR/scene.json's checksum, and its N and engine those of its scene.
+void checkRunIdentity(const std::filesystem::path& dir, const nlohmann::json& restart);
 
 /// Calls f on every vector and matrix of a body's state (all kinds: r, v; s, w; A, L).
 template <class State, class F> void forEachField(State& b, F&& f) {

@@ -127,6 +127,8 @@ private:
         return {{"format", restartFormat},
                 {"reason", reason},
                 {"scene", scene_},
+                {"identity", runIdentity(run_.sceneChecksum, run_.bodies,
+                                         scene_.value("engine", std::string()))},
                 {"phase", production ? "production" : "equilibration"},
                 {"tick", at_.tick},
                 {"sample", at_.sample},

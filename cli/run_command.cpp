@@ -67,6 +67,7 @@ RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scen
     // The lock first: the restart file read is the one no other run can change meanwhile.
     const OutputDirectory output(dir, OutputMode::Continue);
     nlohmann::json restart = readRestart(dir);
+    checkRunIdentity(dir, restart); // before anything is cut back or run
     try {
         nlohmann::json recorded = restart.at("scene");
         // A restart file records the resolved scene; one that names the queue "auto" ran on the

@@ -102,9 +102,16 @@ void RunFiles::sync() {
 }
 
 nlohmann::json RunFiles::sizes() const {
-    return {{"trajectory_bytes", trajectory.isOpen() ? trajectory.size() : 0},
-            {"thermo_bytes", thermo.isOpen() ? thermo.size() : 0},
-            {"samples_bytes", samples.isOpen() ? samples.size() : 0}};
+    nlohmann::json out;
+    for (const auto& [name, f] :
+         {std::pair<std::string, const AppendFile*>{"trajectory", &trajectory},
+          {"thermo", &thermo},
+          {"samples", &samples}}) {
+        const std::int64_t size = f->isOpen() ? f->size() : 0;
+        out[name + "_bytes"] = size;
+        out[name + "_tail_crc64"] = size > 0 ? tailChecksum(f->path(), size) : std::uint64_t(0);
+    }
+    return out;
 }
 
 nlohmann::json vec3Json(const Vec3& v) {
@@ -396,6 +403,7 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
                       double boxLength, RunRecord& run, RunFiles& files) {
     RunPosition at;
     std::int64_t trajectoryBytes = 0, thermoBytes = 0, samplesBytes = 0;
+    std::uint64_t trajectoryTail = 0, thermoTail = 0, samplesTail = 0;
     try {
         at.inProduction = r.at("phase") == "production";
         at.tick = r.at("tick").get<long>();
@@ -412,22 +420,38 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
         trajectoryBytes = r.at("files").at("trajectory_bytes").get<std::int64_t>();
         thermoBytes = r.at("files").at("thermo_bytes").get<std::int64_t>();
         samplesBytes = r.at("files").at("samples_bytes").get<std::int64_t>();
+        trajectoryTail = r.at("files").at("trajectory_tail_crc64").get<std::uint64_t>();
+        thermoTail = r.at("files").at("thermo_tail_crc64").get<std::uint64_t>();
+        samplesTail = r.at("files").at("samples_tail_crc64").get<std::uint64_t>();
+        run.sceneChecksum = r.at("identity").at("scene_crc64").get<std::uint64_t>();
     } catch (const nlohmann::json::exception& e) {
         throw damagedRestart(dir, e);
     }
     if (!at.inProduction) return at;
     // Every growing file is checked before any is cut back to its restart point.
     const bool withTrajectory = plan.trajectoryEvery > 0, withThermo = plan.thermoEvery > 0;
-    for (const auto& [name, bytes] :
-         {std::pair<std::string, std::int64_t>{"samples.bin", samplesBytes},
-          {"trajectory.xyz", withTrajectory ? trajectoryBytes : 0},
-          {"thermo.csv", withThermo ? thermoBytes : 0}}) {
+    struct Grown {
+        std::string name;
+        std::int64_t bytes;
+        std::uint64_t tail;
+    };
+    for (const auto& [name, bytes, tail] :
+         {Grown{"samples.bin", samplesBytes, samplesTail},
+          Grown{"trajectory.xyz", withTrajectory ? trajectoryBytes : 0, trajectoryTail},
+          Grown{"thermo.csv", withThermo ? thermoBytes : 0, thermoTail}}) {
         const std::int64_t size = sizeOf(dir / name);
         if (bytes > 0 && size < bytes)
             throw IoError((dir / name).string() + " holds " +
                           std::to_string(std::max<std::int64_t>(size, 0)) +
                           " bytes, fewer than the " + std::to_string(bytes) +
                           " of its restart point: it was changed after restart.bin was written");
+        // The tail before the restart point is the one restart.bin saw: not another run's file,
+        // nor one changed since.
+        if (bytes > 0 && tailChecksum(dir / name, bytes) != tail)
+            throw IoError((dir / name).string() + ": its last " +
+                          std::to_string(std::min(bytes, tailBytes)) +
+                          " bytes before the restart point are not those restart.bin was written "
+                          "with (checksum): the file is another run's, or was changed since");
     }
     if (withTrajectory) files.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
     if (withThermo) files.thermo = AppendFile(dir / "thermo.csv", thermoBytes);

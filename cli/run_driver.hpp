@@ -56,10 +56,13 @@ RunOutcome finishRun(const Scene& scene, RunRecord& run, const RunPosition& at,
                      const InterruptGuard& interrupt, bool stopped, bool restarts);
 
 /// scene.json and initial.xyz of a fresh run.
+/// Its checksum becomes the run's identity in restart.bin (RunRecord::sceneChecksum).
 template <Engine E>
-void writeStart(const E& engine, const Scene& scene, const RunRecord& run,
+void writeStart(const E& engine, const Scene& scene, RunRecord& run,
                 const std::filesystem::path& dir, int rotationalDof) {
-    writeFileAtomically(dir / "scene.json", toJson(scene).dump(2) + "\n");
+    const std::string sceneText = toJson(scene).dump(2) + "\n";
+    run.sceneChecksum = crc64(sceneText);
+    writeFileAtomically(dir / "scene.json", sceneText);
     writeFileAtomically(dir / "initial.xyz", [&](const PieceSink& sink) {
         writeFrame(engine, run.bodies, layoutFor(rotationalDof), sink);
     });

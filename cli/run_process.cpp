@@ -2,11 +2,14 @@
 #include "core/output_file.hpp"
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
 #include <string>
+#include <sys/prctl.h>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 extern char** environ;
@@ -18,6 +21,15 @@ std::filesystem::path selfExecutable() {
     const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (ec) throwIoError("find this executable at", "/proc/self/exe", ec.value());
     return self;
+}
+
+void stopWithSweep() {
+    const char* value = std::getenv(sweepPidVariable);
+    if (value == nullptr) return;
+    const pid_t sweep = pid_t(std::strtol(value, nullptr, 10));
+    ::unsetenv(sweepPidVariable);
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != sweep) ::raise(SIGTERM); // the sweep ended before the line above
 }
 
 namespace {
@@ -71,6 +83,15 @@ RunProcess::RunProcess(const SweepPlan& plan, const SweepRun& run, const std::fi
     for (auto& a : args)
         argv.push_back(a.data());
     argv.push_back(nullptr);
+    std::vector<std::string> environment = {std::string(sweepPidVariable) + "=" +
+                                            std::to_string(::getpid())};
+    const std::string prefix = std::string(sweepPidVariable) + "=";
+    for (char** e = environ; *e != nullptr; ++e)
+        if (std::string_view(*e).rfind(prefix, 0) != 0) environment.emplace_back(*e);
+    std::vector<char*> envp;
+    for (auto& e : environment)
+        envp.push_back(e.data());
+    envp.push_back(nullptr);
 
     posix_spawn_file_actions_t files;
     posix_spawnattr_t attr;
@@ -92,7 +113,7 @@ RunProcess::RunProcess(const SweepPlan& plan, const SweepRun& run, const std::fi
     posix_spawnattr_setpgroup(&attr, 0);
     posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF |
                                         POSIX_SPAWN_SETSIGMASK);
-    const int err = posix_spawn(&pid_, argv[0], &files, &attr, argv.data(), environ);
+    const int err = posix_spawn(&pid_, argv[0], &files, &attr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&files);
     posix_spawnattr_destroy(&attr);
     if (err != 0) {

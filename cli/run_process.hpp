@@ -67,4 +67,14 @@ private:
 /// The path of this executable (/proc/self/exe), which the children run.
 std::filesystem::path selfExecutable();
 
+/// The environment variable through which a sweep hands its children its process id.
+inline constexpr const char* sweepPidVariable = "TERRACE_SWEEP_PID";
+
+/// In a child of a sweep (sweepPidVariable set): the child is sent SIGTERM when its sweep ends,
+/// however it ends (kill -9 included), and stops as at a Ctrl-C, its restart file written; were
+/// it left running, it would hold its directory's lock against the next sweep. posix_spawn
+/// cannot ask for this (PR_SET_PDEATHSIG), so the child does, first thing in main(). A sweep
+/// that ended before then is no longer the parent: the child then ends at once.
+void stopWithSweep();
+
 } // namespace terrace::cli

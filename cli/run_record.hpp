@@ -57,7 +57,8 @@ struct RunFiles {
     AppendFile trajectory, thermo, samples;
     /// Each open file reaches the disk: before a restart file that counts their bytes.
     void sync();
-    /// Their lengths, as a restart file records them.
+    /// Their lengths and the checksums of their tails (tailChecksum), as a restart file records
+    /// them: called after sync().
     nlohmann::json sizes() const;
 };
 
@@ -96,6 +97,7 @@ struct RunRecord {
     long restartsWritten = 0;          // restart files written over the whole run
     std::size_t hugePageBytes = 0;     // most of the process seen in huge pages at an engine's end
     int continuations = 0;             // times the run was continued from a restart file
+    std::uint64_t sceneChecksum = 0;   // CRC-64 of DIR/scene.json as the run wrote it
     double restartEveryPs = 0.0;       // 0: no restart files
     std::vector<std::string> warnings; // from the scene (sceneWarnings)
 

@@ -2,6 +2,7 @@
 #include "cli/output_dir.hpp"
 #include "cli/scene_check.hpp"
 #include "core/output_file.hpp"
+#include "core/scene_json.hpp"
 #include <algorithm>
 #include <map>
 #include <set>
@@ -129,6 +130,9 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
                         const std::filesystem::path& baseDir,
                         const std::vector<std::string>& extraSets) {
     const SweepReader rd(origin);
+    // As in a scene: a repeated key would otherwise be silently last-wins.
+    const std::string duplicate = firstDuplicateKey(text);
+    if (!duplicate.empty()) rd.fail(duplicate, "duplicate key");
     const ordered file = ordered::parse(text, nullptr, false);
     if (file.is_discarded()) rd.fail("<top>", "not valid JSON");
     if (!file.is_object()) rd.fail("<top>", "a sweep must be a JSON object");

@@ -87,8 +87,13 @@ public:
         bool forwarded = false;
         while (true) {
             bool progressed = false;
+            if (!guard.requested()) progressed |= takeBackFreed();
             while (!guard.requested() && int(local_.size()) < options_.jobs && !queue_.empty()) {
                 const int i = next();
+                if (held(i)) { // checked here, not for remote workers: their children do
+                    wait(i);
+                    continue;
+                }
                 local_.push_back(
                     {RunProcess(plan_, plan_.runs[i], dir(i), actions_[i]), i, Clock::now()});
                 progressed = true;
@@ -128,7 +133,7 @@ public:
                     slot.process.signal(guard.signal());
                 forwarded = true;
             }
-            const bool handedOut = queue_.empty() || guard.requested();
+            const bool handedOut = (queue_.empty() && waiting_.empty()) || guard.requested();
             const bool workersDone = remote_ == nullptr || stoppedWorkers == remote_->count();
             if (handedOut && local_.empty() && workersDone) break;
             // Remote reports have no signal to wake on: look for them every 10 ms.
@@ -150,6 +155,49 @@ private:
         const int i = queue_.front();
         queue_.pop_front();
         return i;
+    }
+
+    /// Whether another process holds run i's directory lock (cli/output_dir.hpp): a run of an
+    /// earlier sweep still ending. Started now, the run would fail on the lock, and be recorded
+    /// failed ever after.
+    bool held(int i) const {
+        const fs::path lock = dir(i) / ".terrace.lock";
+        const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) return false;
+        const bool busy = ::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+        ::close(fd); // releases the lock, if taken
+        return busy;
+    }
+
+    void wait(int i) {
+        waiting_.push_back(i);
+        if (!options_.quiet)
+            std::fprintf(stderr,
+                         "sweep: %s: another terrace run holds its directory's lock; waiting for "
+                         "it to end\n",
+                         plan_.runs[i].name.c_str());
+    }
+
+    /// The waiting runs whose directories are free again, taken for what they left (finished,
+    /// continuable or to run afresh) and queued first, or counted done.
+    bool takeBackFreed() {
+        bool any = false;
+        for (auto it = waiting_.begin(); it != waiting_.end();) {
+            const int i = *it;
+            if (held(i)) {
+                ++it;
+                continue;
+            }
+            it = waiting_.erase(it);
+            any = true;
+            actions_[i] = resumeAction(dir(i), plan_.runs[i], options_.retryFailed, entries_[i]);
+            if (actions_[i] == RunAction::Skip)
+                ++reused_;
+            else
+                queue_.push_front(i);
+        }
+        if (any) writeTable();
+        return any;
     }
 
     void finish(int i, const ChildExit& exit, double wall, Clock::time_point start) {
@@ -208,6 +256,7 @@ private:
     std::vector<SweepEntry> entries_;
     std::vector<RunAction> actions_;
     std::deque<int> queue_;
+    std::vector<int> waiting_; // runs whose directory another process holds
     std::vector<Slot> local_;
     int reused_ = 0, finished_ = 0, failed_ = 0, remoteBusy_ = 0;
     double runWall_ = 0.0;

@@ -622,6 +622,50 @@ END
     [ "$(grep -c ',ok,' "$work/out/sweep.csv")" -eq 3 ] || fail "not all done: $(cat "$work/out/sweep.csv")"
     grep -q '"continued": 1' "$work/out/seed-1/summary.json" || fail "seed-1 not continued"
     ;;
+sweep_kill)
+    # kill -9 of a sweep: its runs end with it (the kernel sends each SIGTERM at the sweep's death:
+    # it stops as at a Ctrl-C, its restart file written) rather than running on as orphans that
+    # hold their directories' locks. A run directory another process holds is waited for, not
+    # recorded failed; the same command then finishes the sweep.
+    cat >"$work/s.json" <<END
+{"scene": "$src/experiments/scenes/dense-rods.json",
+ "set": {"state.n": 216, "engine": "smd", "smd.dt_fs": 0.5, "run.equilibrate_ps": 0.09,
+         "run.time_ps": 4.5, "output.restart_every_ps": 0.9},
+ "seeds": [1, 2]}
+END
+    "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err" &
+    pid=$!
+    for _ in $(seq 1 3000); do
+        [ -e "$work/out/seed-1/restart.bin" ] && [ -e "$work/out/seed-2/restart.bin" ] && break
+        sleep 0.01
+    done
+    pgrep -f -- "--out $work/out/seed-" >/dev/null || fail "no run of the sweep to outlive it"
+    kill -9 $pid
+    wait $pid 2>/dev/null
+    for _ in $(seq 1 100); do
+        pgrep -f -- "--out $work/out/seed-" >/dev/null || break
+        sleep 0.01
+    done
+    left=$(pgrep -f -- "--out $work/out/seed-")
+    [ -z "$left" ] || fail "runs outlived their sweep by a second: $left"
+    for s in 1 2; do
+        grep -q '"interrupted_by": "SIGTERM"' "$work/out/seed-$s/summary.json" ||
+            fail "seed-$s did not stop on its sweep's death"
+    done
+    # seed-1's directory held by another process: the sweep waits for it, then continues it.
+    flock "$work/out/seed-1/.terrace.lock" sleep 1.5 &
+    holder=$!
+    sleep 0.2
+    "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err" ||
+        fail "the sweep after the kill: $(cat "$work/err")"
+    wait $holder
+    grep -q 'seed-1: another terrace run holds its directory.s lock; waiting' "$work/err" ||
+        fail "no word of waiting: $(cat "$work/err")"
+    [ "$(grep -c ',ok,' "$work/out/sweep.csv")" -eq 2 ] || fail "not all done: $(cat "$work/out/sweep.csv")"
+    for s in 1 2; do
+        grep -q '"continued": 1' "$work/out/seed-$s/summary.json" || fail "seed-$s not continued"
+    done
+    ;;
 sweep_mpi)
     # The same sweep under mpirun (3 ranks, rank 0 only handing out, so that every run, the failed
     # ones too, runs on another rank) and with -j 1: the same run files, the same table but for

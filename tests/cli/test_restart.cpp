@@ -322,18 +322,24 @@ TEST(Restart, ADamagedRestartFileIsNamed) {
     const auto dir =
         std::filesystem::temp_directory_path() / ("terrace-damaged-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
-    nlohmann::json restart = {
-        {"phase", "production"},
-        {"tick", 0},
-        {"sample", 3},
-        {"t_start", 0.0},
-        {"cpu_seconds", 1.0},
-        {"cpu_seconds_equilibration", 0.0},
-        {"production_statistics", nlohmann::json::object()},
-        {"momentum_initial", {0.0, 0.0, 0.0}},
-        {"restarts_written", 1},
-        {"continuations", 0},
-        {"files", {{"trajectory_bytes", 0}, {"thermo_bytes", 0}, {"samples_bytes", 100}}}};
+    nlohmann::json restart = {{"phase", "production"},
+                              {"tick", 0},
+                              {"sample", 3},
+                              {"t_start", 0.0},
+                              {"cpu_seconds", 1.0},
+                              {"cpu_seconds_equilibration", 0.0},
+                              {"production_statistics", nlohmann::json::object()},
+                              {"momentum_initial", {0.0, 0.0, 0.0}},
+                              {"restarts_written", 1},
+                              {"continuations", 0},
+                              {"identity", cli::runIdentity(0, 8, "dmd")},
+                              {"files",
+                               {{"trajectory_bytes", 0},
+                                {"thermo_bytes", 0},
+                                {"samples_bytes", 100},
+                                {"trajectory_tail_crc64", 0},
+                                {"thermo_tail_crc64", 0},
+                                {"samples_tail_crc64", 0}}}};
     restart.erase("tick");
     cli::RunRecord run;
     cli::RunFiles files;
@@ -519,6 +525,130 @@ TEST(Restart, ARebuildThatFailsEndsTheRunWithItsFilesKept) {
         EXPECT_EQ(readWholeFile(failed / f), readWholeFile(whole / f)) << f;
     std::filesystem::remove_all(whole);
     std::filesystem::remove_all(failed);
+}
+
+// The checksum is CRC-64/XZ: its check value, and the same when computed in two parts.
+TEST(Restart, TheChecksumIsCrc64Xz) {
+    EXPECT_EQ(cli::crc64("123456789"), 0x995DC9BBDF1939FAull);
+    EXPECT_EQ(cli::crc64("6789", cli::crc64("12345")), cli::crc64("123456789"));
+    EXPECT_EQ(cli::crc64(""), 0u);
+}
+
+// Any one byte of a restart file changed is refused by readRestart before its content is used,
+// at every position of the file (the document and its trailer alike).
+TEST(Restart, EveryByteOfARestartFileChangedIsRefused) {
+    const Scene scene = watchedScene();
+    const auto dir = scratch("flipped");
+    WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 3; // stopped at the restart point of sample 6
+    EXPECT_THROW(runWatched(scene, dir), std::runtime_error);
+    WatchedDmd::failAt = 0;
+    const auto path = dir / "restart.bin";
+    const std::string good = readWholeFile(path);
+    ASSERT_EQ(cli::decodeRestart(good, path).at("sample"), 6);
+    std::string bytes = good;
+    std::size_t refused = 0;
+    for (std::size_t k = 0; k < bytes.size(); ++k) {
+        for (const unsigned char to :
+             {static_cast<unsigned char>(~bytes[k]), (unsigned char)0xff}) {
+            if (char(to) == good[k]) continue;
+            bytes[k] = char(to);
+            try {
+                cli::decodeRestart(bytes, path);
+                ADD_FAILURE() << "byte " << k << " set to " << int(to) << " was not noticed";
+            } catch (const IoError&) {
+                ++refused;
+            }
+            bytes[k] = good[k];
+        }
+    }
+    EXPECT_GE(refused, good.size());
+    // Through the file, as --continue reads it.
+    bytes[bytes.size() / 2] ^= 0x01;
+    writeFileAtomically(path, bytes);
+    try {
+        cli::readRestart(dir);
+        ADD_FAILURE() << "expected an IoError";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": damaged: its checksum", 0), 0u)
+            << e.what();
+    }
+    std::filesystem::remove_all(dir);
+}
+
+// A restart file of the format before the checksum (the CBOR document alone) is named as of
+// another version.
+TEST(Restart, ARestartFileWithoutItsTrailerIsOfAnotherVersion) {
+    const auto dir = scratch("unframed");
+    std::filesystem::create_directories(dir);
+    const auto cbor = nlohmann::json::to_cbor({{"format", "terrace restart 4"}, {"tick", 1}});
+    writeFileAtomically(dir / "restart.bin",
+                        std::string_view(reinterpret_cast<const char*>(cbor.data()), cbor.size()));
+    try {
+        cli::readRestart(dir);
+        ADD_FAILURE() << "expected an IoError";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  (dir / "restart.bin").string() +
+                      ": written by another version of terrace ('terrace restart 4'; this one "
+                      "reads '" +
+                      cli::restartFormat + "'): start the run again");
+    }
+    std::filesystem::remove_all(dir);
+}
+
+// A restart file from another run of the same N (another seed) is refused, naming what differs:
+// alone, by the scene it was written for; with that run's scene.json too, by samples.bin's tail.
+// The run's own file still continues.
+TEST(Restart, ARestartFileFromAnotherRunIsRefused) {
+    Scene scene = watchedScene(), other = watchedScene();
+    other.seed = 2;
+    const auto mine = scratch("mine"), theirs = scratch("theirs");
+    WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 3;
+    EXPECT_THROW(runWatched(scene, mine), std::runtime_error);
+    WatchedDmd::rebuilds = 0;
+    EXPECT_THROW(runWatched(other, theirs), std::runtime_error);
+    WatchedDmd::failAt = 0;
+    const std::string own = readWholeFile(mine / "restart.bin");
+    const std::string ownScene = readWholeFile(mine / "scene.json");
+    std::filesystem::copy_file(theirs / "restart.bin", mine / "restart.bin",
+                               std::filesystem::copy_options::overwrite_existing);
+    try {
+        cli::checkRunIdentity(mine, cli::readRestart(mine));
+        ADD_FAILURE() << "expected an IoError";
+    } catch (const IoError& e) {
+        const std::string text = e.what();
+        EXPECT_EQ(text.rfind((mine / "restart.bin").string() +
+                                 ": from another run: the scene it was written for (CRC-64 ",
+                             0),
+                  0u)
+            << text;
+        EXPECT_NE(text.find("; seed differs)"), std::string::npos) << text;
+    }
+    // Their scene.json as well: the scene agrees, samples.bin does not, and nothing is cut back.
+    std::filesystem::copy_file(theirs / "scene.json", mine / "scene.json",
+                               std::filesystem::copy_options::overwrite_existing);
+    nlohmann::json restart = cli::readRestart(mine);
+    EXPECT_NO_THROW(cli::checkRunIdentity(mine, restart));
+    const auto samplesBefore = std::filesystem::file_size(mine / "samples.bin");
+    try {
+        runWatched(other, mine, &restart);
+        ADD_FAILURE() << "expected an IoError";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  (mine / "samples.bin").string() + ": its last " +
+                      std::to_string(std::min<std::uintmax_t>(samplesBefore, cli::tailBytes)) +
+                      " bytes before the restart point are not those restart.bin was written "
+                      "with (checksum): the file is another run's, or was changed since");
+    }
+    EXPECT_EQ(std::filesystem::file_size(mine / "samples.bin"), samplesBefore);
+    // Its own restart file and scene: continued to the end.
+    writeFileAtomically(mine / "restart.bin", own);
+    writeFileAtomically(mine / "scene.json", ownScene);
+    restart = cli::readRestart(mine);
+    cli::checkRunIdentity(mine, restart);
+    EXPECT_NO_THROW(runWatched(scene, mine, &restart));
+    std::filesystem::remove_all(mine);
+    std::filesystem::remove_all(theirs);
 }
 
 // What a restart or re-sort point does to the physics: an engine rebuilt from its bodies and

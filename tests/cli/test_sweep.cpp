@@ -137,6 +137,20 @@ TEST(SweepPlan, BadSweepFilesFailInOneLineNamingTheProblem) {
     EXPECT_THROW(loadSweep("/nonexistent/sweep.json", {}), SceneError);
 }
 
+// A key repeated in a sweep file is refused, named by its path, as a scene's are: last-wins would
+// run another sweep than the one the file seems to ask for.
+TEST(SweepPlan, ARepeatedKeyIsRefusedNamingIt) {
+    EXPECT_EQ(sweepError(R"({"seeds": [1], "seeds": [2]})"), "s.json: seeds: duplicate key");
+    EXPECT_EQ(sweepError(R"({"set": {"run.time_ps": 1, "run.time_ps": 2}})"),
+              "s.json: set.run.time_ps: duplicate key");
+    EXPECT_EQ(sweepError(R"({"axes": [{"dmd.dV": [1], "dmd.dV": [2]}]})"),
+              "s.json: axes[0].dmd.dV: duplicate key");
+    EXPECT_EQ(sweepError(R"({"axes": [{"cases": [{"seed": 1, "seed": 2}]}]})"),
+              "s.json: axes[0].cases[0].seed: duplicate key");
+    // The same key in two objects is no repetition.
+    EXPECT_EQ(plan(R"({"axes": [{"cases": [{"seed": 1}, {"seed": 2}]}]})").runs.size(), 2u);
+}
+
 TEST(SweepTable, RowsInSweepOrderWithStatusNumbersAndQuotedCells) {
     const auto p = plan(R"({"axes": [{"dmd.terraces": [{"levels": "optimal", "n": 3}]},
                                      {"engine": ["dmd", "smd"]}]})");
