@@ -224,7 +224,14 @@ TEST(SceneCheck, ARestartFileNamingTheQueueAutoGoesOnWithTheTree) {
     std::filesystem::create_directories(dir);
     json scene = toJson(ready(json::object()));
     scene["dmd"]["queue"] = "auto";
-    cli::writeRestart(dir, {{"format", cli::restartFormat}, {"scene", scene}});
+    const std::string sceneText = scene.dump(2) + "\n"; // the run's own scene.json
+    writeFileAtomically(dir / "scene.json", sceneText);
+    const int n = scene["state"]["n"].get<int>();
+    cli::writeRestart(dir, {{"format", cli::restartFormat},
+                            {"scene", scene},
+                            {"n_bodies", n},
+                            {"identity", cli::runIdentity(cli::crc64(sceneText), n,
+                                                          scene["engine"].get<std::string>())}});
     Scene continued;
     try {
         cli::continueRun(dir, true, continued);
