@@ -3,7 +3,9 @@
 #   ./quickstart.sh run    install what is missing, build, run the built-in default scene with
 #                          both engines and print them side by side (experiments/versus.sh:
 #                          table in out/versus/versus.txt, figure out/versus/versus.png)
-#   ./quickstart.sh test   install what is missing, build, run the whole test suite
+#   ./quickstart.sh test   install what is missing, build, run the whole test suite, then the
+#                          sanitiser tier (fuzz/README.md): the unit tests under ASan and UBSan,
+#                          and each fuzzer for a while (TERRACE_FUZZ_SECONDS, default 30)
 # Arguments after `run` go to `terrace run` instead (e.g. ./quickstart.sh run --set engine=smd).
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -11,10 +13,12 @@ cd "$(dirname "$0")"
 # python3-ase: the test suite reads our trajectories with ASE (tests/cli/cli_checks.sh ase_read).
 # libopenmpi-dev, openmpi-bin: terrace sweep under mpirun (optional for a build of your own: without
 # them terrace builds and sweeps locally, and says so; the test suite runs a sweep under mpirun).
+# clang, libclang-rt-14-dev: the sanitiser tier's build, whose fuzzers need libFuzzer (clang's
+# runtime libraries, which clang only recommends).
 packages=(build-essential cmake pkg-config git libeigen3-dev libfftw3-dev
           libboost-program-options-dev libboost-math-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox python3-ase
-          libopenmpi-dev openmpi-bin)
+          libopenmpi-dev openmpi-bin clang libclang-rt-14-dev)
 
 install_missing() {
     local missing=()
@@ -64,6 +68,30 @@ build() {
     cmake --build build -j"$jobs"
 }
 
+# The sanitiser tier: one clang build in build-asan with AddressSanitizer and UBSan (undefined
+# behaviour fatal) and libFuzzer's coverage, no profile and no benchmarks. Its unit tests run
+# but for those labelled unsanitised (tests/cli/CMakeLists.txt says why each is); then each
+# fuzzer runs TERRACE_FUZZ_SECONDS from the committed corpus, its new inputs kept in
+# build-asan/fuzz-corpus and any finding in build-asan/fuzz-findings.
+sanitised() {
+    local jobs seconds="${TERRACE_FUZZ_SECONDS:-30}"
+    jobs=$(nproc)
+    CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DTERRACE_PROFILE= \
+        -DTERRACE_SANITIZE=ON -DTERRACE_FUZZ=ON -DTERRACE_BENCH=OFF \
+        -DCMAKE_CXX_FLAGS=-gline-tables-only >/dev/null
+    cmake --build build-asan -j"$jobs"
+    ctest --test-dir build-asan --output-on-failure -j"$jobs" -L unit -LE unsanitised
+    local target dirs
+    for target in scene sweep restart trajectory csv; do
+        mkdir -p "build-asan/fuzz-corpus/$target" "build-asan/fuzz-findings/$target"
+        dirs=("build-asan/fuzz-corpus/$target" "fuzz/corpus/$target")
+        [ ! -d "fuzz/regressions/$target" ] || dirs+=("fuzz/regressions/$target")
+        echo "quickstart: fuzzing $target for ${seconds} s" >&2
+        "build-asan/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+            -print_final_stats=1 -artifact_prefix="build-asan/fuzz-findings/$target/" "${dirs[@]}"
+    done
+}
+
 case "${1:-}" in
 run)
     shift
@@ -75,7 +103,8 @@ run)
 test)
     install_missing
     build
-    exec ctest --test-dir build --output-on-failure -j"$(nproc)"
+    ctest --test-dir build --output-on-failure -j"$(nproc)"
+    sanitised
     ;;
 *)
     echo "usage: ./quickstart.sh run [terrace run options] | ./quickstart.sh test" >&2

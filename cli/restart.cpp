@@ -158,7 +158,13 @@ nlohmann::json readRestart(const std::filesystem::path& dir) {
                        : "no terrace run was started in this directory"));
     }
     const std::string bytes = readWholeFile(path);
-    nlohmann::json j = nlohmann::json::from_cbor(bytes, true, false);
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::from_cbor(bytes, true, false);
+    } catch (const nlohmann::json::exception&) {
+        // Even without exceptions the parser throws on a size no container can take.
+        j = nlohmann::json(nlohmann::json::value_t::discarded);
+    }
     const auto format = j.is_object() && j.contains("format") && j["format"].is_string()
                             ? j["format"].get<std::string>()
                             : std::string();
