@@ -4,6 +4,9 @@
 #                          both engines and print them side by side (experiments/versus.sh:
 #                          table in out/versus/versus.txt, figure out/versus/versus.png)
 #   ./quickstart.sh test   install what is missing, build, run the whole test suite
+#   ./quickstart.sh sanitise  also install clang, then the sanitiser tier (fuzz/README.md): the
+#                          unit tests under ASan and UBSan, and each fuzzer for a while
+#                          (TERRACE_FUZZ_SECONDS, default 30); not yet part of `test`
 # Arguments after `run` go to `terrace run` instead (e.g. ./quickstart.sh run --set engine=smd).
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -15,6 +18,9 @@ packages=(build-essential cmake pkg-config git libeigen3-dev libfftw3-dev
           libboost-program-options-dev libboost-math-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox python3-ase
           libopenmpi-dev openmpi-bin)
+# clang, libclang-rt-14-dev: the sanitiser tier's build, whose fuzzers need libFuzzer (clang's
+# runtime libraries, which clang only recommends).
+sanitiser_packages=(clang libclang-rt-14-dev)
 
 install_missing() {
     local missing=()
@@ -64,6 +70,30 @@ build() {
     cmake --build build -j"$jobs"
 }
 
+# The sanitiser tier: one clang build in build-asan with AddressSanitizer and UBSan (undefined
+# behaviour fatal) and libFuzzer's coverage, no profile and no benchmarks. Its unit tests run
+# but for those labelled unsanitised (tests/cli/CMakeLists.txt says why each is); then each
+# fuzzer runs TERRACE_FUZZ_SECONDS from the committed corpus, its new inputs kept in
+# build-asan/fuzz-corpus and any finding in build-asan/fuzz-findings.
+sanitised() {
+    local jobs seconds="${TERRACE_FUZZ_SECONDS:-30}"
+    jobs=$(nproc)
+    CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DTERRACE_PROFILE= \
+        -DTERRACE_SANITIZE=ON -DTERRACE_FUZZ=ON -DTERRACE_BENCH=OFF \
+        -DCMAKE_CXX_FLAGS=-gline-tables-only >/dev/null
+    cmake --build build-asan -j"$jobs"
+    ctest --test-dir build-asan --output-on-failure -j"$jobs" -L unit -LE unsanitised
+    local target dirs
+    for target in scene sweep restart trajectory csv; do
+        mkdir -p "build-asan/fuzz-corpus/$target" "build-asan/fuzz-findings/$target"
+        dirs=("build-asan/fuzz-corpus/$target" "fuzz/corpus/$target")
+        [ ! -d "fuzz/regressions/$target" ] || dirs+=("fuzz/regressions/$target")
+        echo "quickstart: fuzzing $target for ${seconds} s" >&2
+        "build-asan/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+            -print_final_stats=1 -artifact_prefix="build-asan/fuzz-findings/$target/" "${dirs[@]}"
+    done
+}
+
 case "${1:-}" in
 run)
     shift
@@ -77,8 +107,13 @@ test)
     build
     exec ctest --test-dir build --output-on-failure -j"$(nproc)"
     ;;
+sanitise)
+    packages+=("${sanitiser_packages[@]}")
+    install_missing
+    sanitised
+    ;;
 *)
-    echo "usage: ./quickstart.sh run [terrace run options] | ./quickstart.sh test" >&2
+    echo "usage: ./quickstart.sh run [terrace run options] | ./quickstart.sh test | ./quickstart.sh sanitise" >&2
     exit 2
     ;;
 esac

@@ -104,6 +104,30 @@ void addWindows(double* kept, std::size_t keptStride, const double* next, std::s
 typedef double Quad __attribute__((vector_size(32)));
 typedef long long QuadIndex __attribute__((vector_size(32)));
 
+// Lane permutations: GCC's __builtin_shuffle takes the lanes as a vector, clang's
+// __builtin_shufflevector as constants (the sanitiser tier builds with clang); the same permute.
+__attribute__((target("avx"), always_inline)) inline Quad swapPairs(Quad v) {
+#ifdef __clang__
+    return __builtin_shufflevector(v, v, 1, 0, 3, 2);
+#else
+    return __builtin_shuffle(v, QuadIndex{1, 0, 3, 2});
+#endif
+}
+__attribute__((target("avx"), always_inline)) inline Quad interleaveLow(Quad a, Quad b) {
+#ifdef __clang__
+    return __builtin_shufflevector(a, b, 0, 4, 1, 5);
+#else
+    return __builtin_shuffle(a, b, QuadIndex{0, 4, 1, 5});
+#endif
+}
+__attribute__((target("avx"), always_inline)) inline Quad interleaveHigh(Quad a, Quad b) {
+#ifdef __clang__
+    return __builtin_shufflevector(a, b, 2, 6, 3, 7);
+#else
+    return __builtin_shuffle(a, b, QuadIndex{2, 6, 3, 7});
+#endif
+}
+
 __attribute__((target("avx"), always_inline)) inline Quad load4(const double* p) {
     Quad v;
     __builtin_memcpy(&v, p, sizeof v);
@@ -119,7 +143,6 @@ __attribute__((target("avx"))) void
 addWindowsAvx(double* kept, std::size_t keptStride, const double* next, std::size_t nextStride,
               int bins, double weight, double* s1, double* s2, const Shift& shift) {
     const Quad sign = {1.0, 1.0, -1.0, -1.0}; // (−1)^f: exact, p + (−q) rounds as p − q
-    const QuadIndex swap = {1, 0, 3, 2};
     int b = 0;
     for (; b + 4 <= 2 * bins; b += 4) {
         Quad e1 = {0.0, 0.0, 0.0, 0.0}, e2 = e1;
@@ -132,7 +155,7 @@ addWindowsAvx(double* kept, std::size_t keptStride, const double* next, std::siz
             const Quad p = load4(k);
             Quad q = load4(next + c * nextStride + b);
             const Quad v = p + sign * q;
-            e1 += p * v, e2 += p * __builtin_shuffle(v, swap);
+            e1 += p * v, e2 += p * swapPairs(v);
             if constexpr (shifted)
                 q = q - (shift.dr[c] * load4(shift.u + b) + shift.di[c] * load4(shift.iu + b));
             store4(k, q);
@@ -197,8 +220,8 @@ template <bool squares> void gather(const Gather& g) {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(TERRACE_NO_AVX2)
 /// (re, im) of four bodies, in their order.
 __attribute__((target("avx"), always_inline)) inline void put(double* out, Quad re, Quad im) {
-    store4(out, __builtin_shuffle(re, im, QuadIndex{0, 4, 1, 5}));
-    store4(out + 4, __builtin_shuffle(re, im, QuadIndex{2, 6, 3, 7}));
+    store4(out, interleaveLow(re, im));
+    store4(out + 4, interleaveHigh(re, im));
 }
 
 /// Adds body c's square at sample t (lane c) into the sums of its group: in the bodies' order,

@@ -216,9 +216,15 @@ nlohmann::json decodeRestart(const std::string& bytes, const std::filesystem::pa
                           ") is not the one it was written with (" + hex(stored) +
                           "): continue from a good copy, or start the run again");
     }
-    nlohmann::json j = nlohmann::json::from_cbor(
-        framed ? std::string_view(bytes).substr(0, size - trailerSize) : std::string_view(bytes),
-        true, false);
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::from_cbor(framed ? std::string_view(bytes).substr(0, size - trailerSize)
+                                             : std::string_view(bytes),
+                                      true, false);
+    } catch (const nlohmann::json::exception&) {
+        // Even without exceptions the parser throws on a size no container can take.
+        j = nlohmann::json(nlohmann::json::value_t::discarded);
+    }
     const auto format = j.is_object() && j.contains("format") && j["format"].is_string()
                             ? j["format"].get<std::string>()
                             : std::string();

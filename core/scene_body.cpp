@@ -69,7 +69,7 @@ void readPotential(const JsonSection& pot, Scene& s) {
     if (pot.has("cutoff")) {
         const auto& c = pot.at("cutoff");
         if (!c.is_array() || c.size() != 2 || !c[0].is_number() || !c[1].is_number())
-            pot.fail("cutoff", "must be [r_l, r_u], two numbers in σ, got " + c.dump());
+            pot.fail("cutoff", "must be [r_l, r_u], two numbers in σ, got " + showJson(c));
         p.r_l = c[0].get<double>();
         p.r_u = c[1].get<double>();
     }

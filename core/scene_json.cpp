@@ -13,6 +13,10 @@ std::string showNumber(double x) {
     return o.str();
 }
 
+std::string showJson(const json& v) {
+    return v.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
 JsonSection::JsonSection(const json& object, std::string path, std::string origin)
     : object_(&object), path_(std::move(path)), origin_(std::move(origin)) {}
 
@@ -48,7 +52,7 @@ double JsonSection::number(const std::string& key, double def, double lo, double
                            bool loOpen) const {
     if (!has(key)) return def;
     const json& v = at(key);
-    if (!v.is_number()) fail(key, "must be a number, got " + v.dump());
+    if (!v.is_number()) fail(key, "must be a number, got " + showJson(v));
     const double x = v.get<double>();
     if (!std::isfinite(x)) fail(key, "must be finite");
     if (loOpen ? !(x > lo) : !(x >= lo))
@@ -62,7 +66,7 @@ long long JsonSection::integer(const std::string& key, long long def, long long 
                                long long hi) const {
     if (!has(key)) return def;
     const json& v = at(key);
-    if (!v.is_number_integer()) fail(key, "must be an integer, got " + v.dump());
+    if (!v.is_number_integer()) fail(key, "must be an integer, got " + showJson(v));
     // A value beyond 2^63 parses as unsigned: shown as given, never wrapped to a negative one.
     if (v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi))
         fail(key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
@@ -78,7 +82,7 @@ std::string JsonSection::choice(const std::string& key, const std::string& def,
                                 std::initializer_list<const char*> allowed) const {
     if (!has(key)) return def;
     const json& v = at(key);
-    if (!v.is_string()) fail(key, "must be a string, got " + v.dump());
+    if (!v.is_string()) fail(key, "must be a string, got " + showJson(v));
     const auto s = v.get<std::string>();
     std::string list;
     for (const char* a : allowed) {
@@ -90,7 +94,7 @@ std::string JsonSection::choice(const std::string& key, const std::string& def,
 
 bool JsonSection::boolean(const std::string& key, bool def) const {
     if (!has(key)) return def;
-    if (!at(key).is_boolean()) fail(key, "must be true or false, got " + at(key).dump());
+    if (!at(key).is_boolean()) fail(key, "must be true or false, got " + showJson(at(key)));
     return at(key).get<bool>();
 }
 

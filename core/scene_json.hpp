@@ -17,6 +17,10 @@ namespace terrace {
 /// A double as a person reads it (six significant digits, "1e-06", "inf").
 std::string showNumber(double x);
 
+/// A JSON value as an error message quotes it. Bytes that are not UTF-8 (a --set value taken as a
+/// bare string, a string in a restart file's CBOR) show as U+FFFD: a plain dump() would throw.
+std::string showJson(const nlohmann::json& v);
+
 /// One JSON object of a scene and its dotted path ("" for the top level, "dmd.terraces", ...).
 class JsonSection {
 public:

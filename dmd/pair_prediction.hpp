@@ -364,7 +364,8 @@ public:
         // Far from round-off in U and in g(r), far below any terrace.
         const double margin = rangeMargin * s.terraceHeight();
         const double lower = levels.lower(n) + margin, upper = levels.upper(n) - margin;
-        const auto through = [&](double T) {
+        // ai and aj captured by name: clang before 16 cannot capture a structured binding.
+        const auto through = [&, &ai = ai, &aj = aj](double T) {
             const EnergyRange u = s.sys.potential.energyRange(
                 r0, orientationOf<P>(ai), orientationOf<P>(aj), speed * T, spinI * T, spinJ * T);
             return u.lo > lower && u.hi < upper;

@@ -1,0 +1,28 @@
+#pragma once
+// The readers of outside input, each as one entry taking the raw bytes a user could hand terrace:
+// the fuzzers (libFuzzer, fuzz/CMakeLists.txt) call them on generated inputs, and the regression
+// test (fuzz/test_regressions.cpp) on every file kept under fuzz/corpus and fuzz/regressions.
+// An entry returns normally when the input was read, or refused with the one-line error terrace
+// prints for it (SceneError, IoError, CsvError, ...). Anything else, an exception of another
+// type, a crash or a sanitizer report, is a finding.
+#include <string_view>
+
+namespace terrace::fuzz {
+
+/// A scene file as `terrace run SCENE --set ...` reads it: leading lines "--set key=value" are the
+/// command line's overrides, the rest is the scene's JSON.
+void sceneInput(std::string_view bytes);
+/// A sweep file, its leading "--set" lines as for sceneInput; relative scene paths resolve against
+/// experiments/sweeps, so that the committed sweeps' scenes are found.
+void sweepInput(std::string_view bytes);
+/// restart.bin as `terrace run --continue DIR` reads it: the CBOR document and the scene it
+/// records. An input whose first byte is 0xff is a samples.bin instead: its second byte sets the
+/// bodies (low three bits, plus one) and whether they carry an orientation (bit 3).
+void restartInput(std::string_view bytes);
+/// trajectory.xyz as `terrace analyse DIR` reads it (no scene.json beside it).
+void trajectoryInput(std::string_view bytes);
+/// Two CSV files as `terrace compare A B` reads them, separated by a line "%%" (without one, the
+/// file is compared with itself).
+void csvInput(std::string_view bytes);
+
+} // namespace terrace::fuzz
