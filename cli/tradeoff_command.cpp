@@ -499,6 +499,28 @@ void writePlot(const Tradeoff& t) {
     pclose(gp);
 }
 
+/// Everything measured so far: written after every round (with no verdict yet) and at the end.
+nlohmann::json report(const Tradeoff& t) {
+    nlohmann::json out{{"scene", t.scene.name},           {"bias_bodies", t.biasBodies},
+                       {"bodies", t.scene.state.n},       {"z", t.z},
+                       {"alpha", t.options.alpha},        {"looks", t.schedule},
+                       {"cpu_seconds_spent", t.cpuSpent}, {"reference", rungJson(t.reference)}};
+    out["tolerances"] = nlohmann::json::object();
+    for (const Observable o : t.observables)
+        out["tolerances"][observableName(o)] = {{"value", t.tolerance.at(o).value},
+                                                {"relative", t.tolerance.at(o).relative}};
+    out["dmd_estimators"] = nlohmann::json::object();
+    for (const auto& [o, e] : t.dmdEstimator)
+        out["dmd_estimators"][observableName(o)] = estimatorName(e, "dmd");
+    out["settings"] = nlohmann::json::array();
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder)
+            out["settings"].push_back(rungJson(r));
+
+    out["notes"] = t.notes;
+    return out;
+}
+
 const Rung* cheapestOf(const Tradeoff& t, const std::string& engine) {
     const Rung* best = nullptr;
     for (const auto& ladder : t.ladders) {
@@ -605,6 +627,9 @@ int runTradeoff(const TradeoffOptions& options) {
             for (Rung& r : ladder)
                 judge(t, r);
         writeTable(t);
+        nlohmann::json partial = report(t);
+        partial["verdict"] = "not reached yet: round " + std::to_string(round) + " done";
+        writeFileAtomically(options.out / "tradeoff.json", partial.dump(2) + "\n");
         if (t.cpuSpent > options.budgetCpuHours * 3600.0) {
             budgetSpent = true;
             break;
@@ -632,21 +657,7 @@ int runTradeoff(const TradeoffOptions& options) {
         t.notes.push_back("the CPU budget (" + std::to_string(options.budgetCpuHours) +
                           " h) was spent before every decision was resolved");
 
-    nlohmann::json out{{"scene", t.scene.name},           {"bias_bodies", t.biasBodies},
-                       {"bodies", t.scene.state.n},       {"z", t.z},
-                       {"alpha", options.alpha},          {"looks", t.schedule},
-                       {"cpu_seconds_spent", t.cpuSpent}, {"reference", rungJson(t.reference)}};
-    out["tolerances"] = nlohmann::json::object();
-    for (const Observable o : t.observables)
-        out["tolerances"][observableName(o)] = {{"value", t.tolerance[o].value},
-                                                {"relative", t.tolerance[o].relative}};
-    out["dmd_estimators"] = nlohmann::json::object();
-    for (const auto& [o, e] : t.dmdEstimator)
-        out["dmd_estimators"][observableName(o)] = estimatorName(e, "dmd");
-    out["settings"] = nlohmann::json::array();
-    for (const auto& ladder : t.ladders)
-        for (const Rung& r : ladder)
-            out["settings"].push_back(rungJson(r));
+    nlohmann::json out = report(t);
 
     // The reference's own dt error: yoshida4 at twice its step is a rung; by the dt⁴ law the
     // reference's bias is 1/16 of that rung's.
