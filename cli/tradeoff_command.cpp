@@ -290,7 +290,8 @@ bool fitBudget(Tradeoff& t) {
 }
 
 /// The reference's replicas double until its standard error is below a third of every
-/// tolerance (so that it adds little to a candidate's), or the replica budget is reached.
+/// tolerance (so that it adds little to a candidate's) and below the candidate's in every open
+/// decision, or the replica budget is reached.
 bool raiseReference(Tradeoff& t) {
     if (t.reference.target >= t.options.maxReplicas) return false;
     bool short_ = false;
@@ -305,6 +306,12 @@ bool raiseReference(Tradeoff& t) {
         const double tol = analysis::absoluteTolerance(t.tolerance.at(o), t.scale(o, m.mean));
         short_ = short_ || !(m.err <= tol / 3.0);
     }
+    // Where the reference is what keeps a decision open: its error the larger share of a bias's.
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder)
+            for (const auto& b : r.biases)
+                short_ = short_ ||
+                         (b.decision == Decision::Unresolved && b.reference.err > b.candidate.err);
     if (!short_) return false;
     t.reference.target = std::min(2 * t.reference.target, t.options.maxReplicas);
     return true;

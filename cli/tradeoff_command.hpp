@@ -5,7 +5,8 @@
 //
 //   reference   SMD yoshida4 at half the scene's dt, 8 replicas to begin with (the fewer degrees
 //               of freedom of the two sides set each decision's Student factor), doubled until
-//               its standard error is below a third of every tolerance
+//               its standard error is below a third of every tolerance and below the
+//               candidate's wherever a decision is open
 //   candidates  the ladders of cli/tradeoff_plan.hpp, two replicas each to begin with
 //   decisions   each rung's bias on each observable (cli/tradeoff_measure.hpp) is Within,
 //               Outside or Unresolved at z = sequentialZ(α, looks) (analysis/tradeoff_stats.hpp);
