@@ -698,6 +698,13 @@ int runTradeoff(const TradeoffOptions& options) {
     if (!dmd || !smd) {
         verdict = std::string("no verdict: ") + (!dmd ? "no DMD setting" : "no SMD setting") +
                   " was resolved within tolerance at " + toleranceText(t);
+        // What the other engine found is still an answer: the setting to use.
+        if (const Rung* found = dmd ? dmd : smd) {
+            char b[256];
+            std::snprintf(b, sizeof b, "; the cheapest within: %s, %.3g CPU s per ps at N %d",
+                          describe(found->setting, t).c_str(), found->cost(), t.biasBodies);
+            verdict += b;
+        }
         status = 1;
     } else {
         // The cost window: both chosen settings at the scene's N, alternated, one at a time.
