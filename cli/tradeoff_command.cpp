@@ -494,7 +494,7 @@ void writePlot(const Tradeoff& t) {
               "fc rgb '#dddddd' fs solid noborder\n";
     for (const Observable o : t.observables) {
         const std::string name = observableName(o);
-        script += "set title '" + name + "'\n";
+        script += "set title '" + name + "' noenhanced\n";
         script += "plot '" + (t.options.out / "tradeoff.dat").string() +
                   "' using 2:(strcol(1) eq 'dmd' && strcol(5) eq '" + name +
                   "' ? $3 : NaN):4 with yerrorbars pt 7 lc rgb '#d62728' title 'DMD', '' using "
