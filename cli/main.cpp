@@ -320,40 +320,26 @@ int tradeoffMain(const std::vector<std::string>& args) {
     if (o.costPairs < 1) throw po::error("--cost-pairs must be at least 1");
     if (!(o.budgetCpuHours > 0.0)) throw po::error("--budget-cpu-hours must be > 0");
     o.dVs.clear();
-    {
-        std::string list = vm["dV"].as<std::string>();
-        std::size_t at = 0;
-        while (at <= list.size()) {
-            const std::size_t comma = std::min(list.find(',', at), list.size());
-            const std::string item = list.substr(at, comma - at);
-            std::size_t used = 0;
-            double x = 0.0;
-            try {
-                x = std::stod(item, &used);
-            } catch (const std::exception&) {
-            }
-            if (used == 0 || used != item.size() || !(x > 0.0) || !std::isfinite(x))
-                throw po::error("--dV takes a comma-separated list of positive numbers (kT), "
-                                "got '" +
-                                item + "'");
-            o.dVs.push_back(x);
-            at = comma + 1;
+    for (const std::string& item : cli::commaList(vm["dV"].as<std::string>())) {
+        std::size_t used = 0;
+        double x = 0.0;
+        try {
+            x = std::stod(item, &used);
+        } catch (const std::exception&) {
         }
-        if (o.dVs.size() < 2) throw po::error("--dV needs at least two values for a ladder");
+        if (used == 0 || used != item.size() || !(x > 0.0) || !std::isfinite(x))
+            throw po::error("--dV takes a comma-separated list of positive numbers (kT), got '" +
+                            item + "'");
+        o.dVs.push_back(x);
     }
+    if (o.dVs.size() < 2) throw po::error("--dV needs at least two values for a ladder");
     const auto split = [](const std::string& list, const std::vector<std::string>& valid,
                           const char* option) {
-        std::vector<std::string> out;
-        std::size_t at = 0;
-        while (at <= list.size()) {
-            const std::size_t comma = std::min(list.find(',', at), list.size());
-            const std::string item = list.substr(at, comma - at);
+        const std::vector<std::string> items = cli::commaList(list);
+        for (const std::string& item : items)
             if (std::find(valid.begin(), valid.end(), item) == valid.end())
                 throw po::error(std::string(option) + ": '" + item + "' is none of the choices");
-            out.push_back(item);
-            at = comma + 1;
-        }
-        return out;
+        return items;
     };
     o.designs = split(vm["designs"].as<std::string>(), {"uniform", "optimal"}, "--designs");
     o.schemes =

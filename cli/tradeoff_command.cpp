@@ -64,41 +64,54 @@ struct Tradeoff {
 
     std::filesystem::path runs() const { return options.out / "runs"; }
 
-    /// The scale a relative tolerance of o is a fraction of: the reference's magnitude; for P the
-    /// larger of |P| and the ideal-gas term ρ*T*.
-    double scale(Observable o, double referenceValue) const {
-        if (o == Observable::P)
-            return std::max(std::abs(referenceValue),
-                            scene.state.density * scene.state.temperature);
-        return std::abs(referenceValue);
+    /// The least magnitude a relative tolerance of o is a fraction of (the reference's |mean|
+    /// above it): for P the ideal-gas term ρ*T*, since P of a liquid crosses zero.
+    double scaleFloor(Observable o) const {
+        return o == Observable::P ? scene.state.density * scene.state.temperature : 0.0;
     }
 };
 
-/// Runs every replica asked for and not yet on disk; returns the sweep's status.
-int runPending(Tradeoff& t, const std::vector<const Rung*>& rungs, const std::string& extraSet,
-               bool oneAtATime) {
+/// One run of a setting: its seed and its directory under OUT/runs.
+struct CaseRun {
+    const Setting* setting;
+    long seed;
+    std::string label;
+};
+
+/// The runs as one sweep (each not yet complete on disk is run), `jobs` at once, in order, with
+/// --set and `extraSet` for every run; returns the sweep's status.
+int runCases(const Tradeoff& t, const std::vector<CaseRun>& runs, const std::string& extraSet,
+             int jobs) {
     nlohmann::json cases = nlohmann::json::array(), labels = nlohmann::json::array();
-    for (const Rung* r : rungs)
-        for (int k = 1; k <= r->target; ++k) {
-            nlohmann::json c = nlohmann::json::object();
-            for (const auto& [key, value] : r->setting.overrides)
-                c[key] = value;
-            c["seed"] = k;
-            cases.push_back(c);
-            labels.push_back(replicaName(r->setting, k));
-        }
+    for (const CaseRun& r : runs) {
+        nlohmann::json c = nlohmann::json::object();
+        for (const auto& [key, value] : r.setting->overrides)
+            c[key] = value;
+        c["seed"] = r.seed;
+        cases.push_back(c);
+        labels.push_back(r.label);
+    }
     if (cases.empty()) return 0;
     nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}}};
     if (!t.options.scenePath.empty())
         sweep["scene"] = std::filesystem::absolute(t.options.scenePath).string();
     std::vector<std::string> sets = t.options.sets;
     if (!extraSet.empty()) sets.push_back(extraSet);
-    const SweepPlan plan = sweepFromJson(sweep.dump(), "tradeoff", ".", sets);
     SweepOptions so;
     so.out = t.runs();
-    so.jobs = oneAtATime ? 1 : t.options.jobs;
+    so.jobs = jobs;
     so.quiet = t.options.quiet;
-    return runSweep(plan, so);
+    return runSweep(sweepFromJson(sweep.dump(), "tradeoff", ".", sets), so);
+}
+
+/// Runs every replica asked for and not yet on disk; returns the sweep's status.
+int runPending(const Tradeoff& t, const std::vector<const Rung*>& rungs,
+               const std::string& extraSet) {
+    std::vector<CaseRun> runs;
+    for (const Rung* r : rungs)
+        for (int k = 1; k <= r->target; ++k)
+            runs.push_back({&r->setting, k, replicaName(r->setting, k)});
+    return runCases(t, runs, extraSet, t.options.jobs);
 }
 
 void readRung(Tradeoff& t, Rung& r, int bodies) {
@@ -111,15 +124,8 @@ void readRung(Tradeoff& t, Rung& r, int bodies) {
 std::optional<ObservableBias> biasOf(const Tradeoff& t, const Rung& r, Observable o, Estimator e) {
     if (o == Observable::G)
         return curveBias(e, r.replicas, t.reference.replicas, t.tolerance.at(o).value, t.z);
-    std::optional<ObservableBias> b;
-    // The scale comes from the reference's own mean.
-    std::vector<double> ref;
-    for (const auto& x : t.reference.replicas)
-        if (x.ok && x.value.count(valueKey(o, Estimator::Own)))
-            ref.push_back(x.value.at(valueKey(o, Estimator::Own)));
-    const double scale = ref.empty() ? std::numeric_limits<double>::quiet_NaN()
-                                     : t.scale(o, analysis::replicaMean(ref).mean);
-    return scalarBias(o, e, r.replicas, t.reference.replicas, t.tolerance.at(o), scale, t.z);
+    return scalarBias(o, e, r.replicas, t.reference.replicas, t.tolerance.at(o), t.scaleFloor(o),
+                      t.z);
 }
 
 bool hasConfigurational(Observable o) {
@@ -303,7 +309,8 @@ bool raiseReference(Tradeoff& t) {
                 x.push_back(r.value.at(valueKey(o, Estimator::Own)));
         if (x.size() < 2) continue;
         const analysis::Estimate m = analysis::replicaMean(x);
-        const double tol = analysis::absoluteTolerance(t.tolerance.at(o), t.scale(o, m.mean));
+        const double tol = analysis::absoluteTolerance(t.tolerance.at(o),
+                                                       std::max(std::abs(m.mean), t.scaleFloor(o)));
         short_ = short_ || !(m.err <= tol / 3.0);
     }
     // Where the reference is what keeps a decision open: its error the larger share of a bias's.
@@ -348,13 +355,9 @@ bool interpolate(Tradeoff& t, std::vector<Rung>& ladder) {
         if (!(x > lo)) return false;
         s = dmdSetting(s.ladder, x);
     } else {
-        const double sample = t.scene.run.sample_fs, thermostat = t.scene.run.thermostat_fs;
+        const double sample = t.scene.run.sample_fs;
         int k = static_cast<int>(std::ceil(sample / xStar - 1e-9));
-        const auto fits = [&](int kk) {
-            const double steps = thermostat * kk / sample;
-            return std::abs(steps - std::round(steps)) < 1e-9 * steps;
-        };
-        while (!fits(k))
+        while (!stepsFitGrid(t.scene, k))
             ++k;
         const double dt = sample / k;
         if (!(dt > lo * (1 + 1e-9))) return false;
@@ -609,7 +612,7 @@ int runTradeoff(const TradeoffOptions& options) {
         for (const auto& ladder : t.ladders)
             for (const Rung& r : ladder)
                 if (r.target > 0) all.push_back(&r);
-        const int status = runPending(t, all, biasSet, false);
+        const int status = runPending(t, all, biasSet);
         if (status >= 128) return status;
         t.cpuSpent = 0.0;
         readRung(t, t.reference, t.biasBodies);
@@ -710,31 +713,16 @@ int runTradeoff(const TradeoffOptions& options) {
         // The cost window: both chosen settings at the scene's N, alternated, one at a time.
         std::vector<double> costA, costB;
         for (int p = 1; p <= options.costPairs; ++p) {
-            // Each pair a sweep of its own, DMD then SMD, so that the order is A B A B.
-            nlohmann::json cases = nlohmann::json::array(), labels = nlohmann::json::array();
-            for (const Setting* s : {&dmd->setting, &smd->setting}) {
-                nlohmann::json c = nlohmann::json::object();
-                for (const auto& [key, value] : s->overrides)
-                    c[key] = value;
-                c["seed"] = 1000 + p;
-                cases.push_back(c);
-                labels.push_back("cost-" + s->label() + "_p" + std::to_string(p));
-            }
-            nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}}};
-            if (!options.scenePath.empty())
-                sweep["scene"] = std::filesystem::absolute(options.scenePath).string();
-            const SweepPlan costPlan =
-                sweepFromJson(sweep.dump(), "tradeoff cost", ".", options.sets);
-            SweepOptions so;
-            so.out = t.runs();
-            so.jobs = 1;
-            so.quiet = options.quiet;
-            const int s = runSweep(costPlan, so);
+            // Each pair a sweep of its own, DMD then SMD, one at a time: the order is A B A B.
+            std::vector<CaseRun> pair;
+            for (const Setting* s : {&dmd->setting, &smd->setting})
+                pair.push_back({s, 1000 + p, "cost-" + s->label() + "_p" + std::to_string(p)});
+            const int s = runCases(t, pair, "", 1);
             if (s >= 128) return s;
-            const ReplicaResult ra = readReplica(t.runs() / labels[0].get<std::string>(),
-                                                 t.scene.state.n, t.scene.potential.epsilon);
-            const ReplicaResult rb = readReplica(t.runs() / labels[1].get<std::string>(),
-                                                 t.scene.state.n, t.scene.potential.epsilon);
+            const ReplicaResult ra =
+                readReplica(t.runs() / pair[0].label, t.scene.state.n, t.scene.potential.epsilon);
+            const ReplicaResult rb =
+                readReplica(t.runs() / pair[1].label, t.scene.state.n, t.scene.potential.epsilon);
             if (std::isfinite(ra.cpuPerPs) && std::isfinite(rb.cpuPerPs) && ra.cpuPerPs > 0 &&
                 rb.cpuPerPs > 0)
                 costA.push_back(ra.cpuPerPs), costB.push_back(rb.cpuPerPs);

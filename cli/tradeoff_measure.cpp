@@ -171,7 +171,8 @@ analysis::Estimate squaredCurveDeviation(const std::vector<std::vector<double>>&
 std::optional<ObservableBias> scalarBias(Observable o, Estimator e,
                                          const std::vector<ReplicaResult>& candidate,
                                          const std::vector<ReplicaResult>& reference,
-                                         analysis::Tolerance tolerance, double scale, double z) {
+                                         analysis::Tolerance tolerance, double scaleFloor,
+                                         double z) {
     // Each side's mean: with the replicas' block errors where all have one, else their scatter.
     const auto estimate = [](const std::vector<ReplicaResult>& set,
                              const std::string& key) -> std::optional<analysis::Estimate> {
@@ -200,7 +201,7 @@ std::optional<ObservableBias> scalarBias(Observable o, Estimator e,
     b.reference = *ref;
     b.bias = analysis::difference(b.candidate, b.reference);
     b.tolerance =
-        analysis::absoluteTolerance(tolerance, std::isfinite(scale) ? scale : b.reference.mean);
+        analysis::absoluteTolerance(tolerance, std::max(std::abs(b.reference.mean), scaleFloor));
     b.decision = analysis::decideBias(b.bias, b.tolerance, z).decision;
     return b;
 }

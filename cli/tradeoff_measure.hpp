@@ -51,13 +51,14 @@ struct ObservableBias {
 /// Per observable: the candidate's replicas against the reference's, decided at z
 /// (analysis::decideBias). Where every replica carries its block error, each side's mean takes
 /// the error its blocks give unless the replicas' scatter contradicts it
-/// (analysis::pooledReplicaEstimate); otherwise the replica scatter alone. `scale` the value a
-/// relative tolerance is a fraction of (NaN: the reference's magnitude). Empty when either side
-/// lacks two ok replicas with the value.
+/// (analysis::pooledReplicaEstimate); otherwise the replica scatter alone. A relative tolerance
+/// is a fraction of max(|reference mean|, scaleFloor). Empty when either side lacks two ok
+/// replicas with the value.
 std::optional<ObservableBias> scalarBias(Observable o, Estimator e,
                                          const std::vector<ReplicaResult>& candidate,
                                          const std::vector<ReplicaResult>& reference,
-                                         analysis::Tolerance tolerance, double scale, double z);
+                                         analysis::Tolerance tolerance, double scaleFloor,
+                                         double z);
 std::optional<ObservableBias> curveBias(Estimator e, const std::vector<ReplicaResult>& candidate,
                                         const std::vector<ReplicaResult>& reference,
                                         double tolerance, double z);

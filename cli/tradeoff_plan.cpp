@@ -107,19 +107,31 @@ std::pair<Observable, analysis::Tolerance> parseTolerance(const std::string& tex
     return {*obs, t};
 }
 
-std::vector<Observable> parseObservables(const std::string& list) {
-    std::vector<Observable> out;
+std::vector<std::string> commaList(const std::string& list) {
+    std::vector<std::string> items;
     std::size_t at = 0;
     while (at <= list.size()) {
         const std::size_t comma = std::min(list.find(',', at), list.size());
-        const std::string name = list.substr(at, comma - at);
+        items.push_back(list.substr(at, comma - at));
+        at = comma + 1;
+    }
+    return items;
+}
+
+bool stepsFitGrid(const Scene& scene, int k) {
+    const double steps = scene.run.thermostat_fs * k / scene.run.sample_fs;
+    return k >= 1 && std::abs(steps - std::round(steps)) < 1e-9 * steps;
+}
+
+std::vector<Observable> parseObservables(const std::string& list) {
+    std::vector<Observable> out;
+    for (const std::string& name : commaList(list)) {
         bool known = false;
         for (const Observable o : allObservables)
             if (name == observableName(o)) out.push_back(o), known = true;
         if (!known)
             throw SceneError("--observables: unknown observable '" + name +
                              "' (one of u, p, d, g, g_peak, tau_v, tau_o)");
-        at = comma + 1;
     }
     return out;
 }
@@ -170,13 +182,9 @@ std::optional<double> knownOrder(const Setting& s) {
 
 TradeoffLadders tradeoffLadders(const Scene& scene, const TradeoffOptions& options) {
     TradeoffLadders out;
-    const double sampleFs = scene.run.sample_fs, thermostatFs = scene.run.thermostat_fs;
+    const double sampleFs = scene.run.sample_fs;
     const double dtScene = smd::readSmdSection(scene.smd).dt_fs;
-    // dt = sample_fs/k: every step count whole on the sampling and the thermostat grids.
-    const auto fits = [&](int k) {
-        const double steps = thermostatFs * k / sampleFs;
-        return std::abs(steps - std::round(steps)) < 1e-9 * steps;
-    };
+    const auto fits = [&](int k) { return stepsFitGrid(scene, k); };
     const int kScene = static_cast<int>(std::lround(sampleFs / dtScene));
     out.reference = smdSetting("yoshida4", sampleFs / (2 * kScene));
     out.reference.ladder = "reference";

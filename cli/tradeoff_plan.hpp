@@ -63,6 +63,13 @@ struct TradeoffOptions {
     bool quiet = false;
 };
 
+/// The items of a comma-separated option value ("a,b,c"; an empty item stays, to be refused).
+std::vector<std::string> commaList(const std::string& list);
+
+/// Whether dt = sample_fs/k puts a whole number of steps in the scene's sample and thermostat
+/// intervals (SMD moves in whole steps; terrace run refuses any other dt).
+bool stepsFitGrid(const Scene& scene, int k);
+
 /// "u,p,g" as observables; throws SceneError naming an unknown one.
 std::vector<Observable> parseObservables(const std::string& list);
 

@@ -63,7 +63,9 @@ TEST(Tradeoff, SmdLaddersStepOnTheSamplingGridFromTheScenesDt) {
                 EXPECT_LE(x, 18.0 + 1e-9);
                 EXPECT_GE(x, 1.8 - 1e-9);
             }
-            if (i > 0) EXPECT_GT(x, ladder[i - 1].x) << "most accurate first";
+            if (i > 0) {
+                EXPECT_GT(x, ladder[i - 1].x) << "most accurate first";
+            }
         }
     }
     EXPECT_DOUBLE_EQ(l.ladders[0].front().x, 1.8);
@@ -187,19 +189,19 @@ TEST(Tradeoff, ScalarBiasAgainstTheReferenceIsDecidedAtItsTolerance) {
     };
     const auto ref = replicas({-2.0, -2.002, -1.998, -2.0}, "u");
     // Configurational u 1 % off with tiny scatter: outside a 0.5 % tolerance.
-    const auto far = scalarBias(Observable::U, Estimator::Configurational,
-                                replicas({-1.98, -1.9801, -1.9799}, "u_conf"), ref, {0.005, true},
-                                std::nan(""), 2.0);
+    const auto far =
+        scalarBias(Observable::U, Estimator::Configurational,
+                   replicas({-1.98, -1.9801, -1.9799}, "u_conf"), ref, {0.005, true}, 0.0, 2.0);
     ASSERT_TRUE(far);
     EXPECT_NEAR(far->bias.mean, 0.02, 1e-12);
     EXPECT_DOUBLE_EQ(far->tolerance, 0.01);
     EXPECT_EQ(far->decision, analysis::Decision::Outside);
     const auto near =
         scalarBias(Observable::U, Estimator::Own, replicas({-2.001, -1.999, -2.0}, "u"), ref,
-                   {0.005, true}, std::nan(""), 2.0);
+                   {0.005, true}, 0.0, 2.0);
     ASSERT_TRUE(near);
     EXPECT_EQ(near->decision, analysis::Decision::Within);
     // One replica is no estimate.
     EXPECT_FALSE(scalarBias(Observable::U, Estimator::Own, replicas({-2.0}, "u"), ref,
-                            {0.005, true}, std::nan(""), 2.0));
+                            {0.005, true}, 0.0, 2.0));
 }

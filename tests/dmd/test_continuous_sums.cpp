@@ -13,20 +13,9 @@
 using namespace terrace;
 using namespace terrace::dmdtest;
 
-namespace {
-
-using Model = Smoothed<RodPotential>;
-using ModelEngine = dmd::SceneEngine<LinearRotor, Model>;
-
-Model modelOf(const Scene& s) {
-    return {rodPotential(s), sceneCutoff(s)};
-}
-
-} // namespace
-
 TEST(ContinuousSums, DmdConfigurationGivesTheReferenceUAndVirial) {
     const Scene s = rodScene(216, 0.5, 1.4, 0.5);
-    ModelEngine e(buildInitialState<LinearRotor>(s, modelOf(s)), s);
+    SmoothedRodEngine e(buildInitialState<LinearRotor>(s, smoothedRods(s)), s);
     e.advanceTo(units::fromPs(0.3)); // a liquid configuration, not the lattice
     const smd::Forces all = smd::allPairsForces(e.system());
     const ContinuousSums c = e.continuousSums();
@@ -47,7 +36,7 @@ TEST(ContinuousSums, BackConversionWeightsTendToOneAsTheTerracesShrink) {
     double previous = std::numeric_limits<double>::infinity();
     for (const double dVkT : {0.5, 0.125, 0.03125}) {
         const Scene s = rodScene(216, 0.5, 1.4, dVkT);
-        ModelEngine e(buildInitialState<LinearRotor>(s, modelOf(s)), s);
+        SmoothedRodEngine e(buildInitialState<LinearRotor>(s, smoothedRods(s)), s);
         e.advanceTo(units::fromPs(0.2));
         const double beta = 1.0 / s.kT();
         TerracingProfile profile(200, 0.05, beta);

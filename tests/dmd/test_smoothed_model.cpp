@@ -18,14 +18,6 @@ using namespace terrace;
 using namespace terrace::dmdtest;
 
 namespace {
-
-using Model = Smoothed<RodPotential>;
-using ModelEngine = dmd::SceneEngine<LinearRotor, Model>;
-
-Model modelOf(const Scene& s) {
-    return {rodPotential(s), sceneCutoff(s)};
-}
-
 /// Dense rods with the cutoff [r_l, r_u] (σ).
 Scene switchScene(int n, double rl, double ru) {
     Scene s = rodScene(n, 0.5, 1.4, 0.5);
@@ -34,7 +26,7 @@ Scene switchScene(int n, double rl, double ru) {
     return s;
 }
 
-double totalEnergy(const ModelEngine& e) {
+double totalEnergy(const SmoothedRodEngine& e) {
     return e.kineticEnergy() + e.potentialEnergy();
 }
 
@@ -42,7 +34,7 @@ double totalEnergy(const ModelEngine& e) {
 
 TEST(SmoothedModel, SameEventsAsTheBarePotentialWhileTheSwitchLiesBeyondRm) {
     const Scene s = rodScene(256, 0.5, 1.4, 0.5);
-    ModelEngine smoothed(buildInitialState<LinearRotor>(s, modelOf(s)), s);
+    SmoothedRodEngine smoothed(buildInitialState<LinearRotor>(s, smoothedRods(s)), s);
     RodEngine bare(rodSystem(s), s);
     ASSERT_LT(Probe::interactionRange(smoothed), s.potential.r_l * s.potential.sigma);
     EXPECT_EQ(Probe::interactionRange(smoothed), Probe::interactionRange(bare));
@@ -61,7 +53,7 @@ TEST(SmoothedModel, SameEventsAsTheBarePotentialWhileTheSwitchLiesBeyondRm) {
 
 TEST(SmoothedModel, LevelsInTheSwitchKeepEnergyMomentaAndMissNoEvent) {
     const Scene s = switchScene(256, 1.3, 1.8);
-    ModelEngine e(buildInitialState<LinearRotor>(s, modelOf(s)), s);
+    SmoothedRodEngine e(buildInitialState<LinearRotor>(s, smoothedRods(s)), s);
     const double rl = s.potential.r_l * s.potential.sigma;
     ASSERT_GT(Probe::interactionRange(e), rl); // levels lie in the switch
     ASSERT_LT(Probe::interactionRange(e),
@@ -82,14 +74,14 @@ TEST(SmoothedModel, LevelsInTheSwitchKeepEnergyMomentaAndMissNoEvent) {
 // its centre distance stays below r_l, and must then change no collision.
 TEST(SmoothedModel, HoldScreenWithTheCeilingChangesNoCollision) {
     const Scene s = switchScene(512, 1.3, 1.8);
-    ModelEngine screened(buildInitialState<LinearRotor>(s, modelOf(s)), s),
-        searched(buildInitialState<LinearRotor>(s, modelOf(s)), s);
+    SmoothedRodEngine screened(buildInitialState<LinearRotor>(s, smoothedRods(s)), s),
+        searched(buildInitialState<LinearRotor>(s, smoothedRods(s)), s);
     Probe::setHoldScreen(screened, true);
     Probe::setHoldScreen(searched, false);
     expectSameCollisions(screened, searched, 50);
     if (HasFatalFailure()) return;
     EXPECT_GT(Probe::counts(screened).up + Probe::counts(screened).down, 1000u);
-    const auto evaluations = [](const ModelEngine& e) {
+    const auto evaluations = [](const SmoothedRodEngine& e) {
         return e.statistics()["search_evaluations"].get<double>();
     };
     EXPECT_LT(evaluations(screened), 0.9 * evaluations(searched)); // the screen still works

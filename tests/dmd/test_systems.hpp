@@ -4,6 +4,7 @@
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/rod_potential.hpp"
+#include "core/smoothed_potential.hpp"
 #include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include <cmath>
@@ -16,6 +17,13 @@ namespace terrace::dmdtest {
 
 using RodSystem = System<LinearRotor, RodPotential>;
 using RodEngine = dmd::SceneEngine<LinearRotor, RodPotential>;
+// The rods on the model SMD integrates: U smoothed to zero over the scene's cutoff.
+using SmoothedRods = Smoothed<RodPotential>;
+using SmoothedRodEngine = dmd::SceneEngine<LinearRotor, SmoothedRods>;
+
+inline SmoothedRods smoothedRods(const Scene& s) {
+    return {rodPotential(s), sceneCutoff(s)};
+}
 
 /// The paper's rods (ε 3, σ 3.035, ζ 1, m 18, I 1.154) at N, ρ*, T* from a lattice.
 inline Scene rodScene(int n, double density, double temperature, double dVInKT) {
