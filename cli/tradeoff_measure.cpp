@@ -149,20 +149,23 @@ analysis::Estimate squaredCurveDeviation(const std::vector<std::vector<double>>&
         const double n = double(set.size());
         return std::pair{m, v / (n - 1.0) / n};
     };
-    double sum = 0.0, var = 0.0;
+    // Var(d² − σ²) = 4Δ²σ² + 2σ⁴ for a Gaussian d of mean Δ: the noise term is known, the signal
+    // term is estimated with Δ² by its unbiased estimate d² − σ² (d² itself overstates it by σ²).
+    double sum = 0.0, noiseVar = 0.0, signalVar = 0.0;
     for (std::size_t k = 0; k < bins; ++k) {
         const auto [ma, sa] = meanAndSe2(a, k);
         const auto [mb, sb] = meanAndSe2(b, k);
         const double d = ma - mb, s2 = sa + sb;
         sum += d * d - s2;
-        // Δ² in the variance by its unbiased estimate d² − σ² (d² itself overstates it by σ²),
-        // left unclipped so that the sum over bins stays unbiased; the variance of the
-        // subtracted se² estimates is about what the plug-in σ⁴ overstates.
-        var += 4.0 * (d * d - s2) * s2 + 2.0 * s2 * s2;
+        noiseVar += 2.0 * s2 * s2;
+        // Left unclipped bin by bin so that the sum over bins stays unbiased.
+        signalVar += 4.0 * (d * d - s2) * s2;
     }
     const double m = double(bins);
     out.mean = sum / m;
-    out.err = std::sqrt(std::max(var, 0.0)) / m;
+    // 4Δ²σ² cannot be negative, although its sum's estimate can be where the curves agree within
+    // their noise: then the noise alone is the error, never zero while there is noise.
+    out.err = std::sqrt(noiseVar + std::max(signalVar, 0.0)) / m;
     out.dof = double(std::min(a.size(), b.size()) - 1);
     out.samples = int(a.size());
     return out;

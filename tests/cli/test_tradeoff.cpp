@@ -117,6 +117,28 @@ TEST(Tradeoff, CurveDeviationTakesTheNoiseOfBothSidesOut) {
     EXPECT_NEAR(errSum / trials / sd, 1.0, 0.2);
 }
 
+TEST(Tradeoff, CurveDeviationOfAgreeingCurvesHasTheNoiseAsItsError) {
+    // Curves equal in expectation: the estimate scatters about 0 and its error is never zero
+    // (a clipped variance once gave 0 wherever the bins agreed better than their noise).
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> noise(0.0, 0.1);
+    const int bins = 50, trials = 400, n = 4;
+    double sum = 0.0, sumSq = 0.0, errSum = 0.0, smallestErr = 1.0;
+    for (int trial = 0; trial < trials; ++trial) {
+        std::vector<std::vector<double>> x(n, std::vector<double>(bins)), y = x;
+        for (int r = 0; r < n; ++r)
+            for (int k = 0; k < bins; ++k)
+                x[r][k] = 1.0 + noise(rng), y[r][k] = 1.0 + noise(rng);
+        const analysis::Estimate e = squaredCurveDeviation(x, y);
+        sum += e.mean, sumSq += e.mean * e.mean, errSum += e.err;
+        smallestErr = std::min(smallestErr, e.err);
+    }
+    const double mean = sum / trials, sd = std::sqrt(sumSq / trials - mean * mean);
+    EXPECT_NEAR(mean, 0.0, 4.0 * sd / std::sqrt(double(trials)));
+    EXPECT_GT(smallestErr, 0.25 * sd);
+    EXPECT_NEAR(errSum / trials / sd, 1.0, 0.25);
+}
+
 namespace {
 
 /// A run directory as `terrace run` leaves it, with the numbers given.
