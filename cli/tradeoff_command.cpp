@@ -4,6 +4,7 @@
 #include "cli/sweep_runner.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include "core/output_file.hpp"
+#include "core/scene_json.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -324,6 +325,36 @@ bool raiseReference(Tradeoff& t) {
     return true;
 }
 
+/// ΔV/kT (DMD) or dt in fs (SMD) at which the first of the ladder's fitted bias laws reaches its
+/// tolerance; +inf where no law is fitted or none reaches it.
+double lawSetting(const Tradeoff& t, const std::vector<Rung>& ladder) {
+    std::vector<double> x;
+    for (const Rung& r : ladder)
+        if (r.failure.empty()) x.push_back(r.setting.x);
+    std::vector<LadderBiases> observables;
+    for (const Observable o : t.observables) {
+        LadderBiases l;
+        for (const Rung& r : ladder)
+            for (const auto& b : r.biases)
+                if (b.observable == o && r.failure.empty())
+                    l.bias.push_back(b.bias), l.tolerance = b.tolerance;
+        // An observable missing on a rung (too few good replicas) is left out of the fits.
+        if (l.bias.size() == x.size()) observables.push_back(l);
+    }
+    return lawCrossing(x, observables, knownOrder(ladder.front().setting));
+}
+
+/// The setting of `like`'s ladder at x or just below it, as the engine can run it: ΔV to three
+/// decimals of kT, rounded down; dt = sample_fs/k with whole steps in the sampling grid.
+Setting settingAtOrBelow(const Tradeoff& t, const Setting& like, double x) {
+    if (like.engine == "dmd") return dmdSetting(like.ladder, std::floor(x * 1000.0) / 1000.0);
+    const double sample = t.scene.run.sample_fs;
+    int k = static_cast<int>(std::ceil(sample / x - 1e-9));
+    while (!stepsFitGrid(t.scene, k))
+        ++k;
+    return smdSetting(like.ladder.substr(4), sample / k);
+}
+
 /// Places a setting by the bias laws between a ladder's cheapest Within rung and the Outside
 /// rung after it; false when there is nothing to place.
 bool interpolate(Tradeoff& t, std::vector<Rung>& ladder) {
@@ -333,42 +364,50 @@ bool interpolate(Tradeoff& t, std::vector<Rung>& ladder) {
         !ladder[c + 1].failure.empty())
         return false;
     t.interpolatedLadders.insert(ladder.front().setting.ladder);
-    double xStar = std::numeric_limits<double>::infinity();
-    for (const Observable o : t.observables) {
-        std::vector<double> x;
-        std::vector<analysis::Estimate> bias;
-        double tol = 0.0;
-        for (const Rung& r : ladder)
-            for (const auto& b : r.biases)
-                if (b.observable == o && r.failure.empty())
-                    x.push_back(r.setting.x), bias.push_back(b.bias), tol = b.tolerance;
-        const auto law = analysis::fitPowerLaw(x, bias, knownOrder(ladder.front().setting));
-        if (!law.ok) continue;
-        const double at = analysis::settingAtTolerance(law, tol).value;
-        if (std::isfinite(at)) xStar = std::min(xStar, at);
-    }
+    const double xStar = lawSetting(t, ladder);
     const double lo = ladder[c].setting.x, hi = ladder[c + 1].setting.x;
     if (!(xStar > lo && xStar < hi)) return false;
-    Setting s = ladder[c].setting;
-    if (s.engine == "dmd") {
-        const double x = std::floor(xStar * 1000.0) / 1000.0; // 3 decimals of kT, rounded safe
-        if (!(x > lo)) return false;
-        s = dmdSetting(s.ladder, x);
-    } else {
-        const double sample = t.scene.run.sample_fs;
-        int k = static_cast<int>(std::ceil(sample / xStar - 1e-9));
-        while (!stepsFitGrid(t.scene, k))
-            ++k;
-        const double dt = sample / k;
-        if (!(dt > lo * (1 + 1e-9))) return false;
-        s = smdSetting(s.ladder.substr(4), dt);
-    }
+    Setting s = settingAtOrBelow(t, ladder[c].setting, xStar);
+    if (!(s.x > lo * (1 + 1e-9))) return false;
     s.interpolated = true;
     Rung r;
     r.setting = s;
     ladder.insert(ladder.begin() + c + 1, r);
     t.notes.push_back(s.label() + " placed by the bias law between " + ladder[c].setting.label() +
                       " and " + ladder[c + 2].setting.label());
+    return true;
+}
+
+/// A ladder with every rung resolved Outside gets one more, more accurate, rung where its bias
+/// laws put the bias at the tolerance (by the margin, at most extrapolationReach below its most
+/// accurate rung), checked by its own runs like any other: without it a scene whose tolerance
+/// lies below the ladder gets no cost ratio. False when there is nothing to place (with a note
+/// when the law puts the setting beyond reach).
+bool extrapolate(Tradeoff& t, std::vector<Rung>& ladder) {
+    if (ladder.empty() || t.interpolatedLadders.count(ladder.front().setting.ladder)) return false;
+    for (const Rung& r : ladder)
+        if (r.decision != Decision::Outside || !r.failure.empty()) return false;
+    t.interpolatedLadders.insert(ladder.front().setting.ladder);
+    const Setting& front = ladder.front().setting;
+    const double xStar = lawSetting(t, ladder);
+    if (!(xStar < front.x)) return false;
+    const auto below = extensionBelow(front.x, xStar);
+    const std::string unit = front.engine == "dmd" ? " kT" : " fs";
+    if (!below) {
+        t.notes.push_back(front.ladder + ": the bias law reaches the tolerance only at " +
+                          showNumber(xStar) + unit + ", beyond the reach of " +
+                          showNumber(front.x * extrapolationReach) + unit + "; not run");
+        return false;
+    }
+    Setting s = settingAtOrBelow(t, front, *below);
+    if (!(s.x > 0.0 && s.x < front.x)) return false;
+    s.interpolated = true;
+    Rung r;
+    r.setting = s;
+    ladder.insert(ladder.begin(), r);
+    t.notes.push_back(s.label() + " placed by the bias law below " + front.label() +
+                      " (every rung was outside; the law crosses the tolerance at " +
+                      showNumber(xStar) + unit + ")");
     return true;
 }
 
@@ -649,7 +688,7 @@ int runTradeoff(const TradeoffOptions& options) {
         if (!more) { // every ladder decided as far as it can be: place settings by the laws
             bool placed = false;
             for (auto& ladder : t.ladders)
-                placed = interpolate(t, ladder) || placed;
+                placed = interpolate(t, ladder) || extrapolate(t, ladder) || placed;
             more = placed && raiseTargets(t);
         }
         if (!more) break;

@@ -212,4 +212,23 @@ TradeoffLadders tradeoffLadders(const Scene& scene, const TradeoffOptions& optio
     return out;
 }
 
+double lawCrossing(const std::vector<double>& x, const std::vector<LadderBiases>& observables,
+                   std::optional<double> order) {
+    double crossing = std::numeric_limits<double>::infinity();
+    for (const LadderBiases& o : observables) {
+        const auto law = analysis::fitPowerLaw(x, o.bias, order);
+        if (!law.ok) continue;
+        const double at = analysis::settingAtTolerance(law, o.tolerance).value;
+        if (std::isfinite(at)) crossing = std::min(crossing, at);
+    }
+    return crossing;
+}
+
+std::optional<double> extensionBelow(double front, double crossing) {
+    if (!(crossing < front)) return std::nullopt;
+    const double x = crossing * extrapolationMargin;
+    if (!(x >= front * extrapolationReach)) return std::nullopt;
+    return x;
+}
+
 } // namespace terrace::cli

@@ -102,4 +102,27 @@ Setting smdSetting(const std::string& scheme, double dtFs);
 /// yoshida4; DMD's is fitted.
 std::optional<double> knownOrder(const Setting& s);
 
+/// One observable's biases along a ladder (one per x) and its tolerance.
+struct LadderBiases {
+    std::vector<analysis::Estimate> bias;
+    double tolerance = 0.0;
+};
+
+/// The x (ΔV/kT or dt in fs) at which the first of the power laws fitted to each observable's
+/// biases along x reaches its tolerance, with the law's exponent fixed where theory fixes it;
+/// +inf when no law is fitted or none reaches its tolerance.
+double lawCrossing(const std::vector<double>& x, const std::vector<LadderBiases>& observables,
+                   std::optional<double> order);
+
+/// How far below its most accurate rung a ladder is extended by its law: a sixteenth of it.
+constexpr double extrapolationReach = 1.0 / 16.0;
+/// The extended setting sits this far inside the law's crossing, so that its own runs, which
+/// decide, are not left at the edge of the tolerance by the law's error.
+constexpr double extrapolationMargin = 0.8;
+
+/// Where a ladder whose every rung lies outside its tolerance is extended: the law's crossing
+/// (lawCrossing) by the margin, when that lies below the most accurate rung `front` and within
+/// reach of it; nullopt otherwise (the law does not cross below front, or crosses out of reach).
+std::optional<double> extensionBelow(double front, double crossing);
+
 } // namespace terrace::cli

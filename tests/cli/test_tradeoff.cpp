@@ -227,3 +227,35 @@ TEST(Tradeoff, ScalarBiasAgainstTheReferenceIsDecidedAtItsTolerance) {
     EXPECT_FALSE(scalarBias(Observable::U, Estimator::Own, replicas({-2.0}, "u"), ref,
                             {0.005, true}, 0.0, 2.0));
 }
+
+TEST(Tradeoff, LawCrossingIsTheFirstObservableToReachItsTolerance) {
+    // Biases 0.4·x (p fitted) and 0.1·x² (p fitted) at x = 1, 1/2, 1/4 with small errors: the
+    // first reaches 0.05 at x = 1/8, the second 0.05 at x = 1/√2, so the ladder's crossing is
+    // the smaller, 1/8.
+    const std::vector<double> x{1.0, 0.5, 0.25};
+    LadderBiases linear{{}, 0.05}, square{{}, 0.05};
+    for (const double v : x) {
+        linear.bias.push_back(analysis::Estimate{0.4 * v, 1e-4 * v, 30.0});
+        square.bias.push_back(analysis::Estimate{0.1 * v * v, 1e-4 * v, 30.0});
+    }
+    EXPECT_NEAR(lawCrossing(x, {linear}, std::nullopt), 0.125, 1e-3);
+    EXPECT_NEAR(lawCrossing(x, {square}, std::nullopt), std::sqrt(0.5), 1e-3);
+    EXPECT_NEAR(lawCrossing(x, {linear, square}, std::nullopt), 0.125, 1e-3);
+    // A known order is used as given: 0.4·x read as x² crosses elsewhere than at 1/8.
+    EXPECT_GT(std::abs(lawCrossing(x, {linear}, 2.0) - 0.125), 0.05);
+    // Two points cannot fix a free exponent: no law, no crossing.
+    EXPECT_TRUE(std::isinf(lawCrossing(
+        {1.0, 0.5}, {LadderBiases{{linear.bias[0], linear.bias[1]}, 0.05}}, std::nullopt)));
+}
+
+TEST(Tradeoff, ALadderOutsideEverywhereIsExtendedWithinReachOnly) {
+    // The law crosses at 1/8 below a front rung of 1/2: extended to 0.8 of the crossing.
+    ASSERT_TRUE(extensionBelow(0.5, 0.125).has_value());
+    EXPECT_DOUBLE_EQ(*extensionBelow(0.5, 0.125), 0.125 * extrapolationMargin);
+    // Not below the front rung: nothing to extend to.
+    EXPECT_FALSE(extensionBelow(0.5, 0.6).has_value());
+    EXPECT_FALSE(extensionBelow(0.5, std::numeric_limits<double>::infinity()).has_value());
+    // Out of reach (a sixteenth of the front rung): not run.
+    EXPECT_FALSE(extensionBelow(0.5, 0.5 * extrapolationReach).has_value());
+    EXPECT_TRUE(extensionBelow(0.5, 0.5 * extrapolationReach / extrapolationMargin).has_value());
+}
