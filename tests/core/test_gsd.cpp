@@ -15,12 +15,21 @@ using namespace terrace;
 
 namespace {
 
-std::filesystem::path scratch(const std::string& name) {
-    const auto dir =
-        std::filesystem::temp_directory_path() / ("terrace-gsd-" + std::to_string(getpid()));
-    std::filesystem::create_directories(dir);
-    return dir / name;
+std::filesystem::path scratchDir() {
+    return std::filesystem::temp_directory_path() / ("terrace-gsd-" + std::to_string(getpid()));
 }
+
+std::filesystem::path scratch(const std::string& name) {
+    std::filesystem::create_directories(scratchDir());
+    return scratchDir() / name;
+}
+
+/// The files the tests wrote go when they end.
+class RemoveScratch : public ::testing::Environment {
+public:
+    void TearDown() override { std::filesystem::remove_all(scratchDir()); }
+};
+const auto* const removeScratch = ::testing::AddGlobalTestEnvironment(new RemoveScratch);
 
 template <class T> std::vector<T> values(const std::filesystem::path& p, const GsdIndexEntry& e) {
     const std::string raw = readGsdChunk(p, e);
