@@ -218,11 +218,28 @@ void GsdWriter::writeIndexLocation() {
 
 void GsdWriter::writeChunk(const std::string& name, GsdType type, std::uint64_t n, std::uint32_t m,
                            const void* data) {
+    const std::size_t bytes = n * m * gsdTypeSize(type);
+    writeChunkPieces(name, type, n, m, [&](const std::function<void(std::string_view)>& sink) {
+        sink(std::string_view(static_cast<const char*>(data), bytes));
+    });
+}
+
+void GsdWriter::writeChunkPieces(
+    const std::string& name, GsdType type, std::uint64_t n, std::uint32_t m,
+    const std::function<void(const std::function<void(std::string_view)>&)>& produce) {
     const auto it = std::find(names_.begin(), names_.end(), name);
     if (it == names_.end()) throw std::logic_error("GsdWriter: unknown chunk " + name);
     if (n == 0 || m == 0) throw std::logic_error("GsdWriter: an empty chunk " + name);
     const std::size_t bytes = n * m * gsdTypeSize(type);
-    writeAt(end_, data, bytes);
+    std::size_t written = 0;
+    produce([&](std::string_view piece) {
+        if (written + piece.size() > bytes)
+            throw std::logic_error("GsdWriter: chunk " + name + " longer than n·m elements");
+        writeAt(end_ + std::int64_t(written), piece.data(), piece.size());
+        written += piece.size();
+    });
+    if (written != bytes)
+        throw std::logic_error("GsdWriter: chunk " + name + " shorter than n·m elements");
     GsdIndexEntry e;
     e.frame = frames_;
     e.n = n;

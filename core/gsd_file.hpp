@@ -11,7 +11,9 @@
 // last: a run stopped at any moment leaves every ended frame readable.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace terrace {
@@ -62,6 +64,11 @@ public:
     /// A chunk of the current frame: n rows of m elements of `type`, row-major.
     void writeChunk(const std::string& name, GsdType type, std::uint64_t n, std::uint32_t m,
                     const void* data);
+    /// The same, its bytes handed over in order by `produce` to the sink it is given (a chunk too
+    /// large to hold whole); they must come to n·m elements.
+    void writeChunkPieces(
+        const std::string& name, GsdType type, std::uint64_t n, std::uint32_t m,
+        const std::function<void(const std::function<void(std::string_view)>&)>& produce);
     /// Ends the current frame: its index entries (and the header, when the index moved) are
     /// written.
     void endFrame();

@@ -76,9 +76,8 @@ std::vector<std::int8_t> stringRows(const std::vector<std::string>& rows, std::u
     return out;
 }
 
-void writeConstantChunks(GsdWriter& f, const Snapshot& s, const GsdBodyType& type) {
-    const auto n = static_cast<std::uint32_t>(s.size());
-    const float L = float(s.boxLength);
+void writeConstantChunks(GsdWriter& f, std::uint32_t n, double boxLength, const GsdBodyType& type) {
+    const float L = float(boxLength);
     chunk(f, "configuration/box", GsdType::Float, 6, 1, std::vector<float>{L, L, L, 0, 0, 0});
     chunk(f, "particles/N", GsdType::UInt32, 1, 1, std::vector<std::uint32_t>{n});
     std::uint32_t width = 0;
@@ -87,7 +86,7 @@ void writeConstantChunks(GsdWriter& f, const Snapshot& s, const GsdBodyType& typ
     chunk(f, "particles/typeid", GsdType::UInt32, n, 1, std::vector<std::uint32_t>(n, 0));
     chunk(f, "particles/mass", GsdType::Float, n, 1, std::vector<float>(n, float(type.mass)));
     std::vector<float> inertia;
-    inertia.reserve(3 * n);
+    inertia.reserve(3 * std::size_t(n));
     for (std::uint32_t i = 0; i < n; ++i)
         for (int c = 0; c < 3; ++c)
             inertia.push_back(float(type.inertia[c]));
@@ -96,52 +95,116 @@ void writeConstantChunks(GsdWriter& f, const Snapshot& s, const GsdBodyType& typ
     chunk(f, "particles/type_shapes", GsdType::Int8, 1, width, shapes);
 }
 
+/// Body i's orientation as HOOMD reads it (s x y z): a top's own; a linear rotor's rotation of
+/// least angle taking the body z axis to its axis; a sphere's identity.
+Quat orientationOf(const Snapshot& s, int i, const GsdBodyType& type) {
+    Quat q = Quat::Identity();
+    if (!s.orientation.empty())
+        q = s.orientation[i];
+    else if (type.inertia.squaredNorm() > 0)
+        q = Quat::FromTwoVectors(Vec3::UnitZ(), s.axis[i]);
+    return q.normalized();
+}
+
+/// One per-body chunk, computed piece by piece: `each(snapshot, i, out)` appends body i's m values.
+template <class T>
+void bodyChunk(GsdWriter& f, const char* name, GsdType type, std::uint32_t m, int bodies,
+               const std::function<Snapshot(int, int)>& bodiesOf, int perPiece,
+               const std::function<void(const Snapshot&, int, std::vector<T>&)>& each) {
+    f.writeChunkPieces(name, type, std::uint64_t(bodies), m,
+                       [&](const std::function<void(std::string_view)>& sink) {
+                           std::vector<T> out;
+                           for (int begin = 0; begin < bodies; begin += perPiece) {
+                               const int end = std::min(bodies, begin + perPiece);
+                               const Snapshot piece = bodiesOf(begin, end);
+                               if (piece.size() != end - begin)
+                                   throw std::logic_error(
+                                       "writeHoomdFrame: a piece of the wrong size");
+                               out.clear();
+                               for (int i = 0; i < piece.size(); ++i)
+                                   each(piece, i, out);
+                               sink(std::string_view(reinterpret_cast<const char*>(out.data()),
+                                                     out.size() * sizeof(T)));
+                           }
+                       });
+}
+
 } // namespace
+
+void writeHoomdFrame(GsdWriter& f, int bodies, double time, double boxLength,
+                     const std::function<Snapshot(int, int)>& bodiesOf, const GsdBodyType& type,
+                     std::uint64_t sample, int perPiece) {
+    if (perPiece < 1) throw std::invalid_argument("writeHoomdFrame: no bodies per piece");
+    if (f.frames() == 0) writeConstantChunks(f, std::uint32_t(bodies), boxLength, type);
+    chunk(f, "configuration/step", GsdType::UInt64, 1, 1, std::vector<std::uint64_t>{sample});
+    const double L = boxLength, perPs = 1.0 / units::psPerTimeUnit;
+    // HOOMD's box spans [-L/2, L/2): our unwrapped positions are taken into it, and the images
+    // counted, so that unwrapped = position + image·L.
+    const auto image = [L](double x) { return std::floor(x / L + 0.5); };
+    bodyChunk<float>(f, "particles/position", GsdType::Float, 3, bodies, bodiesOf, perPiece,
+                     [&](const Snapshot& s, int i, std::vector<float>& out) {
+                         for (int c = 0; c < 3; ++c) {
+                             const double x = s.position[i][c];
+                             double w = x - image(x) * L;
+                             if (w >= L / 2) w -= L; // rounding at the edge
+                             out.push_back(float(w));
+                         }
+                     });
+    bodyChunk<std::int32_t>(f, "particles/image", GsdType::Int32, 3, bodies, bodiesOf, perPiece,
+                            [&](const Snapshot& s, int i, std::vector<std::int32_t>& out) {
+                                for (int c = 0; c < 3; ++c) {
+                                    const double x = s.position[i][c];
+                                    double k = image(x);
+                                    if (x - k * L >= L / 2) k += 1; // as the position's edge
+                                    out.push_back(static_cast<std::int32_t>(k));
+                                }
+                            });
+    bodyChunk<float>(
+        f, "particles/orientation", GsdType::Float, 4, bodies, bodiesOf, perPiece,
+        [&](const Snapshot& s, int i, std::vector<float>& out) {
+            const Quat q = orientationOf(s, i, type);
+            out.insert(out.end(), {float(q.w()), float(q.x()), float(q.y()), float(q.z())});
+        });
+    bodyChunk<float>(f, "particles/velocity", GsdType::Float, 3, bodies, bodiesOf, perPiece,
+                     [&](const Snapshot& s, int i, std::vector<float>& out) {
+                         for (int c = 0; c < 3; ++c)
+                             out.push_back(float(s.velocity[i][c] * perPs));
+                     });
+    bodyChunk<float>(f, "particles/angmom", GsdType::Float, 4, bodies, bodiesOf, perPiece,
+                     [&](const Snapshot& s, int i, std::vector<float>& out) {
+                         // L_body = I ω_body; HOOMD keeps p = 2 q ⊗ (0, L_body) (Kamberaj, Low and
+                         // Neal, J. Chem. Phys. 122, 224114 (2005)), from which L_body = ½ (q* ⊗
+                         // p).vec.
+                         const Quat q = orientationOf(s, i, type);
+                         const Vec3 omegaBody = s.omega.empty()
+                                                    ? Vec3::Zero()
+                                                    : Vec3(q.conjugate() * (s.omega[i] * perPs));
+                         const Vec3 l = type.inertia.cwiseProduct(omegaBody);
+                         const Quat p = q * Quat(0.0, l.x(), l.y(), l.z());
+                         out.insert(out.end(), {float(2 * p.w()), float(2 * p.x()),
+                                                float(2 * p.y()), float(2 * p.z())});
+                     });
+    chunk(f, "log/time_ps", GsdType::Double, 1, 1, std::vector<double>{units::toPs(time)});
+    f.endFrame();
+}
 
 void writeHoomdFrame(GsdWriter& f, const Snapshot& s, const GsdBodyType& type,
                      std::uint64_t sample) {
-    const std::uint64_t n = std::uint64_t(s.size());
-    if (f.frames() == 0) writeConstantChunks(f, s, type);
-    chunk(f, "configuration/step", GsdType::UInt64, 1, 1, std::vector<std::uint64_t>{sample});
-    const double L = s.boxLength, perPs = 1.0 / units::psPerTimeUnit;
-    std::vector<float> position, orientation, velocity, angmom;
-    std::vector<std::int32_t> image;
-    position.reserve(3 * n), image.reserve(3 * n), velocity.reserve(3 * n);
-    orientation.reserve(4 * n), angmom.reserve(4 * n);
-    for (std::uint64_t i = 0; i < n; ++i) {
-        for (int c = 0; c < 3; ++c) {
-            // HOOMD's box spans [-L/2, L/2); our unwrapped positions are taken into it.
-            const double x = s.position[i][c];
-            const double k = std::floor(x / L + 0.5);
-            double w = x - k * L;
-            if (w >= L / 2) w -= L; // rounding at the edge
-            position.push_back(float(w));
-            image.push_back(static_cast<std::int32_t>(k));
-            velocity.push_back(float(s.velocity[i][c] * perPs));
-        }
-        Quat q = Quat::Identity();
-        if (!s.orientation.empty())
-            q = s.orientation[i];
-        else if (type.inertia.squaredNorm() > 0)
-            q = Quat::FromTwoVectors(Vec3::UnitZ(), s.axis[i]);
-        q.normalize();
-        orientation.insert(orientation.end(),
-                           {float(q.w()), float(q.x()), float(q.y()), float(q.z())});
-        // L_body = I ω_body; HOOMD keeps p = 2 q ⊗ (0, L_body) (Kamberaj, Low and Neal, J. Chem.
-        // Phys. 122, 224114 (2005)), from which L_body = ½ (q* ⊗ p).vec.
-        Vec3 omegaBody = s.omega.empty() ? Vec3::Zero() : Vec3(q.conjugate() * s.omega[i] * perPs);
-        const Vec3 lBody = type.inertia.cwiseProduct(omegaBody);
-        const Quat p = q * Quat(0.0, lBody.x(), lBody.y(), lBody.z());
-        angmom.insert(angmom.end(),
-                      {float(2 * p.w()), float(2 * p.x()), float(2 * p.y()), float(2 * p.z())});
-    }
-    chunk(f, "particles/position", GsdType::Float, n, 3, position);
-    chunk(f, "particles/image", GsdType::Int32, n, 3, image);
-    chunk(f, "particles/orientation", GsdType::Float, n, 4, orientation);
-    chunk(f, "particles/velocity", GsdType::Float, n, 3, velocity);
-    chunk(f, "particles/angmom", GsdType::Float, n, 4, angmom);
-    chunk(f, "log/time_ps", GsdType::Double, 1, 1, std::vector<double>{units::toPs(s.time)});
-    f.endFrame();
+    const auto bodiesOf = [&s](int begin, int end) {
+        Snapshot piece;
+        piece.time = s.time;
+        piece.boxLength = s.boxLength;
+        const auto take = [&](const auto& from, auto& to) {
+            if (!from.empty()) to.assign(from.begin() + begin, from.begin() + end);
+        };
+        take(s.position, piece.position);
+        take(s.velocity, piece.velocity);
+        take(s.axis, piece.axis);
+        take(s.omega, piece.omega);
+        take(s.orientation, piece.orientation);
+        return piece;
+    };
+    writeHoomdFrame(f, s.size(), s.time, s.boxLength, bodiesOf, type, sample);
 }
 
 } // namespace terrace

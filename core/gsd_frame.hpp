@@ -11,6 +11,7 @@
 #include "core/gsd_file.hpp"
 #include "core/scene.hpp"
 #include "core/snapshot.hpp"
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -36,9 +37,15 @@ struct GsdBodyType {
 };
 GsdBodyType gsdBodyType(const Scene& scene);
 
-/// Writes frame `sample` of the trajectory: the snapshot (time in internal units, velocities per
-/// internal time unit, as Snapshot holds them) and, when it is the file's first frame, the
-/// constant chunks.
+/// Writes frame `sample` of the trajectory (time in internal units, box in Å) and, when it is the
+/// file's first frame, the constant chunks. The bodies come piece by piece from
+/// bodiesOf(begin, end), a snapshot of bodies begin … end−1 alone (as Snapshot holds them:
+/// velocities per internal time unit), once for each per-body chunk: a frame of 10⁶ bodies is
+/// never held whole.
+void writeHoomdFrame(GsdWriter& file, int bodies, double time, double boxLength,
+                     const std::function<Snapshot(int, int)>& bodiesOf, const GsdBodyType& type,
+                     std::uint64_t sample, int bodiesPerPiece = 16384);
+/// The same for a snapshot held whole.
 void writeHoomdFrame(GsdWriter& file, const Snapshot& s, const GsdBodyType& type,
                      std::uint64_t sample);
 

@@ -141,6 +141,7 @@ json toJson(const Scene& s) {
                 {"sample_fs", s.run.sample_fs},
                 {"thermostat_fs", s.run.thermostat_fs}};
     j["output"] = {{"trajectory_every_fs", s.output.trajectory_every_fs},
+                   {"trajectory_format", s.output.trajectory_format},
                    {"restart_every_ps", s.output.restart_every_ps},
                    {"thermo_every_fs", s.output.thermo_every_fs}};
     j["analysis"] = {{"blocks", s.analysis.blocks},

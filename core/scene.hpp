@@ -118,7 +118,11 @@ struct Scene {
     // Output intervals are whole multiples of run.sample_fs, no longer than run.time_ps.
     struct Output {
         double trajectory_every_fs = 0.0; // 0 = no trajectory
-        double restart_every_ps = 0.0;    // 0 = no restart files
+        // xyz: extended XYZ (trajectory.xyz), read by `terrace analyse`, OVITO and ASE; gsd:
+        // HOOMD's GSD (trajectory.gsd, core/gsd_frame.hpp), read by OVITO, freud and gsd, with
+        // orientations and shapes a viewer draws.
+        std::string trajectory_format = "xyz";
+        double restart_every_ps = 0.0; // 0 = no restart files
         // Rows of thermo.csv (energies, temperature, pressure; production only), 0 = none.
         double thermo_every_fs = 0.0;
     } output;

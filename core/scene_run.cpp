@@ -56,8 +56,10 @@ void readRun(const JsonSection& run, Scene& s) {
 }
 
 void readOutput(const JsonSection& out, Scene& s) {
-    out.onlyKeys({"trajectory_every_fs", "restart_every_ps", "thermo_every_fs"});
+    out.onlyKeys(
+        {"trajectory_every_fs", "trajectory_format", "restart_every_ps", "thermo_every_fs"});
     auto& o = s.output;
+    o.trajectory_format = out.choice("trajectory_format", o.trajectory_format, {"xyz", "gsd"});
     o.trajectory_every_fs = out.number("trajectory_every_fs", o.trajectory_every_fs, 0, 1e9);
     o.restart_every_ps = out.number("restart_every_ps", o.restart_every_ps, 0, 1e9);
     o.thermo_every_fs = out.number("thermo_every_fs", o.thermo_every_fs, 0, 1e9);

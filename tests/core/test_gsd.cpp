@@ -175,3 +175,40 @@ TEST(Gsd, HoomdFrameOfALinearRotor) {
     const auto v = values<float>(path, *find(c, 0, "particles/velocity"));
     EXPECT_NEAR(v[2], 0.3 / units::psPerTimeUnit, 1e-5);
 }
+
+TEST(Gsd, AFrameWrittenInPiecesEqualsOneWrittenWhole) {
+    Scene scene;
+    scene.potential.kind = "gay-berne";
+    const GsdBodyType type = gsdBodyType(scene);
+    EXPECT_EQ(type.shape["type"], "Ellipsoid");
+    Snapshot s;
+    s.boxLength = 8.0;
+    for (int i = 0; i < 5; ++i) {
+        s.position.push_back(Vec3(1.7 * i - 4.0, 9.0 * i, -3.9 + i));
+        s.velocity.push_back(Vec3(i, -i, 0.5));
+        s.axis.push_back(Vec3(1.0, i, 2.0).normalized());
+        s.omega.push_back(s.axis.back().unitOrthogonal() * i);
+    }
+    const auto whole = scratch("whole.gsd"), pieces = scratch("pieces.gsd");
+    {
+        GsdWriter w(whole, "t", "hoomd", 1, 4, hoomdChunkNames());
+        writeHoomdFrame(w, s, type, 0);
+    }
+    {
+        GsdWriter w(pieces, "t", "hoomd", 1, 4, hoomdChunkNames());
+        const auto bodiesOf = [&s](int begin, int end) {
+            Snapshot p;
+            p.position.assign(s.position.begin() + begin, s.position.begin() + end);
+            p.velocity.assign(s.velocity.begin() + begin, s.velocity.begin() + end);
+            p.axis.assign(s.axis.begin() + begin, s.axis.begin() + end);
+            p.omega.assign(s.omega.begin() + begin, s.omega.begin() + end);
+            return p;
+        };
+        writeHoomdFrame(w, s.size(), s.time, s.boxLength, bodiesOf, type, 0, 2);
+    }
+    const GsdContents a = readGsdContents(whole), b = readGsdContents(pieces);
+    ASSERT_EQ(a.index.size(), b.index.size());
+    for (std::size_t k = 0; k < a.index.size(); ++k)
+        EXPECT_EQ(readGsdChunk(whole, a.index[k]), readGsdChunk(pieces, b.index[k]))
+            << a.names[a.index[k].id];
+}
