@@ -2,6 +2,7 @@
 #include "analysis/run_analysis.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run_driver.hpp"
+#include "core/gsd_frame.hpp"
 #include "core/scene.hpp"
 #include "core/units.hpp"
 #include "core/xyz.hpp"
@@ -12,16 +13,29 @@
 
 namespace terrace::cli {
 
+namespace {
+
+/// The run's trajectory, extended XYZ or GSD (whichever it wrote), frame by frame.
+long forEachFrame(const std::filesystem::path& path, const std::function<void(Snapshot&&)>& each,
+                  std::string* partial) {
+    if (path.extension() == ".gsd") return forEachGsdFrame(path, each);
+    return forEachTrajectoryFrame(path.string(), each, partial);
+}
+
+} // namespace
+
 int analyseRun(const std::filesystem::path& dir) {
     // The CSVs go into DIR: not while a run is writing there.
     const OutputDirectory claimed(dir, OutputMode::Continue);
     // Two passes, never holding the trajectory: the first counts the whole frames (the blocks
     // of the analysis are laid out over them), the second streams them into the accumulators.
-    const std::string path = (dir / "trajectory.xyz").string();
+    const bool gsd = !std::filesystem::exists(dir / "trajectory.xyz") &&
+                     std::filesystem::exists(dir / "trajectory.gsd");
+    const std::filesystem::path path = dir / (gsd ? "trajectory.gsd" : "trajectory.xyz");
     std::string partial;
     int bodies = 0;
     double boxLength = 0.0, firstTime = 0.0, secondTime = 0.0;
-    const long frames = forEachTrajectoryFrame(
+    const long frames = forEachFrame(
         path,
         [&, k = 0L](Snapshot&& f) mutable {
             if (k == 0) bodies = f.size(), boxLength = f.boxLength, firstTime = f.time;
@@ -31,7 +45,7 @@ int analyseRun(const std::filesystem::path& dir) {
         &partial);
     if (!partial.empty()) std::fprintf(stderr, "terrace: warning: %s\n", partial.c_str());
     if (frames < 4)
-        throw TrajectoryError(path + ": " + std::to_string(frames) +
+        throw TrajectoryError(path.string() + ": " + std::to_string(frames) +
                               " whole frames, too few to correlate (at least 4)");
     // The run's own analysis settings where its scene.json is there, else the defaults.
     analysis::StreamingOptions options;
@@ -49,7 +63,7 @@ int analyseRun(const std::filesystem::path& dir) {
                                       frames, options);
     long fed = 0;
     std::string cutShort; // the same frame as in the first pass, already reported
-    forEachTrajectoryFrame(
+    forEachFrame(
         path,
         [&](Snapshot&& f) {
             if (fed++ < frames) accumulated.add(f);

@@ -1,6 +1,9 @@
 #include "core/gsd_frame.hpp"
 #include "core/units.hpp"
+#include "core/xyz.hpp"
 #include <cmath>
+#include <cstring>
+#include <map>
 
 namespace terrace {
 
@@ -205,6 +208,81 @@ void writeHoomdFrame(GsdWriter& f, const Snapshot& s, const GsdBodyType& type,
         return piece;
     };
     writeHoomdFrame(f, s.size(), s.time, s.boxLength, bodiesOf, type, sample);
+}
+
+namespace {
+
+template <class T>
+std::vector<T> chunkValues(const std::filesystem::path& path, const GsdIndexEntry& e,
+                           std::uint32_t m, std::uint64_t n) {
+    if (e.m != m || e.n != n || gsdTypeSize(e.type) != sizeof(T))
+        throw TrajectoryError(path.string() + ": chunk of frame " + std::to_string(e.frame) +
+                              " is not the shape this program writes");
+    const std::string raw = readGsdChunk(path, e);
+    std::vector<T> v(raw.size() / sizeof(T));
+    std::memcpy(v.data(), raw.data(), raw.size());
+    return v;
+}
+
+} // namespace
+
+long forEachGsdFrame(const std::filesystem::path& path,
+                     const std::function<void(Snapshot&&)>& each) {
+    const GsdContents c = readGsdContents(path);
+    if (c.schema != "hoomd") throw TrajectoryError(path.string() + ": not a HOOMD-schema GSD file");
+    // Per frame, its chunks by name (the index is in frame order).
+    std::vector<std::map<std::string, const GsdIndexEntry*>> frames;
+    for (const auto& e : c.index) {
+        if (e.frame >= frames.size()) frames.resize(e.frame + 1);
+        frames[e.frame][c.names[e.id]] = &e;
+    }
+    if (frames.empty()) return 0;
+    const auto need = [&](std::size_t f, const std::string& name) -> const GsdIndexEntry& {
+        const auto it = frames[f].find(name);
+        if (it == frames[f].end())
+            throw TrajectoryError(path.string() + ": frame " + std::to_string(f) + " has no " +
+                                  name);
+        return *it->second;
+    };
+    const auto n = chunkValues<std::uint32_t>(path, need(0, "particles/N"), 1, 1).at(0);
+    const float L = chunkValues<float>(path, need(0, "configuration/box"), 1, 6).at(0);
+    const auto inertia = chunkValues<float>(path, need(0, "particles/moment_inertia"), 3, n);
+    const Vec3 moments = n ? Vec3(inertia[0], inertia[1], inertia[2]) : Vec3::Zero();
+    const bool top = moments.minCoeff() > 0;
+    const double perTimeUnit = units::psPerTimeUnit; // per ps -> per time unit
+    long handed = 0;
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+        const auto time = chunkValues<double>(path, need(f, "log/time_ps"), 1, 1).at(0);
+        const auto pos = chunkValues<float>(path, need(f, "particles/position"), 3, n);
+        const auto img = chunkValues<std::int32_t>(path, need(f, "particles/image"), 3, n);
+        const auto vel = chunkValues<float>(path, need(f, "particles/velocity"), 3, n);
+        const auto ori = chunkValues<float>(path, need(f, "particles/orientation"), 4, n);
+        const auto mom = chunkValues<float>(path, need(f, "particles/angmom"), 4, n);
+        Snapshot s;
+        s.time = units::fromPs(time);
+        s.boxLength = L;
+        for (std::uint32_t i = 0; i < n; ++i) {
+            s.position.emplace_back(pos[3 * i] + double(img[3 * i]) * L,
+                                    pos[3 * i + 1] + double(img[3 * i + 1]) * L,
+                                    pos[3 * i + 2] + double(img[3 * i + 2]) * L);
+            s.velocity.emplace_back(vel[3 * i] * perTimeUnit, vel[3 * i + 1] * perTimeUnit,
+                                    vel[3 * i + 2] * perTimeUnit);
+            const Quat q =
+                Quat(ori[4 * i], ori[4 * i + 1], ori[4 * i + 2], ori[4 * i + 3]).normalized();
+            s.axis.push_back(q * Vec3::UnitZ());
+            if (top) s.orientation.push_back(q);
+            // ω_body = L_body / I about the axes with a moment; L_body = ½ (q* ⊗ p).vec.
+            const Quat p(mom[4 * i], mom[4 * i + 1], mom[4 * i + 2], mom[4 * i + 3]);
+            const Quat lb = q.conjugate() * p;
+            Vec3 omegaBody = Vec3::Zero();
+            for (int k = 0; k < 3; ++k)
+                if (moments[k] > 0) omegaBody[k] = 0.5 * lb.vec()[k] / moments[k];
+            s.omega.push_back(q * omegaBody * perTimeUnit);
+        }
+        each(std::move(s));
+        ++handed;
+    }
+    return handed;
 }
 
 } // namespace terrace

@@ -49,4 +49,11 @@ void writeHoomdFrame(GsdWriter& file, int bodies, double time, double boxLength,
 void writeHoomdFrame(GsdWriter& file, const Snapshot& s, const GsdBodyType& type,
                      std::uint64_t sample);
 
+/// Every frame of a GSD trajectory this program wrote, handed to `each` one at a time as a
+/// snapshot (unwrapped positions; velocities and angular velocities per internal time unit; the
+/// axis, and for bodies with three moments the orientation); returns the number of frames. The
+/// values are GSD's single precision. Throws TrajectoryError naming the file and what is missing.
+long forEachGsdFrame(const std::filesystem::path& path,
+                     const std::function<void(Snapshot&&)>& each);
+
 } // namespace terrace

@@ -212,3 +212,51 @@ TEST(Gsd, AFrameWrittenInPiecesEqualsOneWrittenWhole) {
         EXPECT_EQ(readGsdChunk(whole, a.index[k]), readGsdChunk(pieces, b.index[k]))
             << a.names[a.index[k].id];
 }
+
+TEST(Gsd, FramesReadBackAsTheSnapshotsWritten) {
+    // A linear rotor (default rods) and an asymmetric top: positions unwrapped again, axes,
+    // orientations and angular velocities back to GSD's single precision.
+    for (const bool top : {false, true}) {
+        Scene scene;
+        if (top) scene.body.kind = "asymmetric", scene.body.inertia = Vec3(1.0, 2.0, 3.0);
+        const GsdBodyType type = gsdBodyType(scene);
+        const auto path = scratch(top ? "top.gsd" : "rotor.gsd");
+        std::vector<Snapshot> written;
+        {
+            GsdWriter w(path, "t", "hoomd", 1, 4, hoomdChunkNames());
+            for (int f = 0; f < 3; ++f) {
+                Snapshot s;
+                s.time = units::fromPs(0.009 * f);
+                s.boxLength = 12.0;
+                for (int i = 0; i < 4; ++i) {
+                    s.position.push_back(Vec3(5.9 * i - 20.0 + f, 0.3 * i, 13.0 * f));
+                    s.velocity.push_back(Vec3(0.01 * i, -0.02, 0.03 * f));
+                    const Quat q = Quat(1.0, 0.1 * i, -0.2, 0.3 * f).normalized();
+                    s.axis.push_back(q * Vec3::UnitZ());
+                    if (top) s.orientation.push_back(q);
+                    const Vec3 w(0.2 * i, -0.1, 0.05);
+                    // A linear rotor spins only ⊥ its axis.
+                    s.omega.push_back(top ? w : w - w.dot(s.axis.back()) * s.axis.back());
+                }
+                writeHoomdFrame(w, s, type, std::uint64_t(f));
+                written.push_back(s);
+            }
+        }
+        std::vector<Snapshot> read;
+        EXPECT_EQ(forEachGsdFrame(path, [&](Snapshot&& s) { read.push_back(std::move(s)); }), 3);
+        ASSERT_EQ(read.size(), 3u);
+        for (int f = 0; f < 3; ++f) {
+            const Snapshot &a = written[f], &b = read[f];
+            EXPECT_NEAR(b.time, a.time, 1e-12);
+            EXPECT_EQ(b.boxLength, 12.0);
+            ASSERT_EQ(b.size(), a.size());
+            EXPECT_EQ(b.orientation.size(), a.orientation.size());
+            for (int i = 0; i < a.size(); ++i) {
+                EXPECT_NEAR((b.position[i] - a.position[i]).norm(), 0.0, 1e-5);
+                EXPECT_NEAR((b.velocity[i] - a.velocity[i]).norm(), 0.0, 1e-7);
+                EXPECT_NEAR((b.axis[i] - a.axis[i]).norm(), 0.0, 1e-6);
+                EXPECT_NEAR((b.omega[i] - a.omega[i]).norm(), 0.0, 1e-6) << "frame " << f;
+            }
+        }
+    }
+}
