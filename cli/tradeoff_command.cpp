@@ -388,7 +388,7 @@ bool extrapolate(Tradeoff& t, std::vector<Rung>& ladder) {
     for (const Rung& r : ladder)
         if (r.decision != Decision::Outside || !r.failure.empty()) return false;
     t.interpolatedLadders.insert(ladder.front().setting.ladder);
-    const Setting& front = ladder.front().setting;
+    const Setting front = ladder.front().setting; // a copy: the insertion below moves the rungs
     const double xStar = lawSetting(t, ladder);
     if (!(xStar < front.x)) return false;
     const auto below = extensionBelow(front.x, xStar);

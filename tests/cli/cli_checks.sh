@@ -507,6 +507,116 @@ PY
         ) || fail "ASE cannot read the $kind trajectory ($python): $out"
     done
     ;;
+gsd_read)
+    # GSD trajectories read by Debian's python3-gsd (gsd.hoomd), for every body kind and shape:
+    # the same run written as extended XYZ and as GSD (same seed, the same trajectory), frame by
+    # frame the GSD file's step, time, box, unwrapped positions (position + image·L) and axes
+    # (orientation applied to the body z axis) against the XYZ file's, to single precision; the
+    # type's shape and moments; tops' orientations; both engines. quickstart.sh installs
+    # python3-gsd: missing, the check fails rather than skips.
+    python=
+    for p in ${TERRACE_PYTHON:-} /usr/bin/python3 python3; do
+        if "$p" -c 'import gsd.hoomd' >/dev/null 2>&1; then python=$p; break; fi
+    done
+    [ -n "$python" ] || fail "no python3 with gsd (gsd.hoomd): apt-get install python3-gsd" \
+        "(./quickstart.sh installs it), or name an interpreter that has it in TERRACE_PYTHON"
+    for kind in sphere linear symmetric asymmetric gay-berne dumbbell; do
+        engine=dmd
+        case $kind in # the built-in default otherwise: rod-lj, I = (1.154, 1.154, 0) g/mol Å²
+        sphere) body='"body": {"kind": "sphere"}, "potential": {"kind": "lj"}' shape=Sphere ;;
+        linear) body='"body": {"kind": "linear"}' shape=ConvexPolyhedron engine=smd ;;
+        symmetric) body='"body": {"kind": "symmetric", "inertia": [1.154, 1.154, 0.5]}' shape=ConvexPolyhedron ;;
+        asymmetric) body='"body": {"kind": "asymmetric", "inertia": [0.8, 1.154, 0.5]}' shape=ConvexPolyhedron engine=smd ;;
+        gay-berne) shape=Ellipsoid ;;
+        dumbbell) shape=SphereUnion ;;
+        esac
+        case $kind in
+        gay-berne | dumbbell) scene=$src/experiments/scenes/$kind-liquid.json ;;
+        *)
+            printf '{"name": "%s", %s, "state": {"n": 64, "density": 0.1}}' "$kind" "$body" \
+                >"$work/$kind.json"
+            scene=$work/$kind.json
+            ;;
+        esac
+        for format in xyz gsd; do
+            "$terrace" run "$scene" --quiet --out "$work/$kind-$format" --set engine=$engine \
+                --set state.n=64 --set run.equilibrate_ps=0 --set run.time_ps=0.036 \
+                --set output.trajectory_every_fs=9 --set output.trajectory_format=$format \
+                >"$work/$kind.log" 2>&1 || fail "$kind $format run failed: $(cat "$work/$kind.log")"
+        done
+        [ ! -e "$work/$kind-gsd/trajectory.xyz" ] || fail "$kind: a GSD run also wrote trajectory.xyz"
+        out=$("$python" - "$work/$kind-xyz/trajectory.xyz" "$work/$kind-gsd/trajectory.gsd" \
+            "$shape" 2>&1 <<'PY'
+import json, sys
+import numpy as np
+import gsd.hoomd
+
+xyz, path, shape = sys.argv[1:]
+# The XYZ file's frames: Time, box, positions and axes (a top's orientation w x y z gives it).
+frames = []
+with open(xyz) as f:
+    lines = f.read().splitlines()
+i = 0
+while i < len(lines):
+    n = int(lines[i])
+    head = lines[i + 1]
+    props = head.split("Properties=")[1].split()[0].split(":")
+    cols, at = {}, 0
+    for name, kind, width in zip(props[0::3], props[1::3], props[2::3]):
+        cols[name] = (at, at + int(width))
+        at += int(width)
+    rows = np.array([[float(x) for x in l.split()[1:]] for l in lines[i + 2:i + 2 + n]])
+    def col(name):
+        a, b = cols[name]
+        return rows[:, a - 1:b - 1]
+    time = float(head.split("Time=")[1].split()[0])
+    box = float(head.split('Lattice="')[1].split()[0])
+    if "axis" in cols:
+        axis = col("axis")
+    elif "orientation" in cols:
+        q = col("orientation")  # w x y z: the image of z
+        w, x, y, z = q.T
+        axis = np.stack([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)], 1)
+    else:
+        axis = None
+    frames.append((n, time, box, col("pos"), axis, col("orientation") if "orientation" in cols else None))
+    i += n + 2
+traj = gsd.hoomd.open(path, "rb")
+if len(traj) != len(frames) or len(traj) < 5:
+    sys.exit(f"gsd read {len(traj)} frames, the XYZ file holds {len(frames)} (at least 5)")
+first = traj[0]
+shapes = first.particles.type_shapes
+if len(shapes) != 1 or shapes[0].get("type") != shape:
+    sys.exit(f"type_shapes {shapes}, expected one {shape}")
+for k, (f, (n, time, box, pos, axis, ori)) in enumerate(zip(traj, frames)):
+    p = f.particles
+    if p.N != n or f.configuration.step != k * 1:
+        sys.exit(f"frame {k}: N {p.N} (file {n}), step {f.configuration.step}")
+    if abs(f.log["time_ps"][0] * 1000 - time) > 1e-9 * max(1, time):
+        sys.exit(f"frame {k}: time {f.log['time_ps'][0]} ps, the XYZ file {time} fs")
+    if not np.allclose(f.configuration.box, [box, box, box, 0, 0, 0], rtol=1e-6):
+        sys.exit(f"frame {k}: box {f.configuration.box}, expected {box}")
+    if np.any(np.abs(p.position) > box / 2 + 1e-4):
+        sys.exit(f"frame {k}: positions outside the box")
+    unwrapped = p.position.astype(float) + p.image * box
+    if not np.allclose(unwrapped, pos, atol=1e-4 * box):
+        sys.exit(f"frame {k}: positions differ from the XYZ file's by {np.abs(unwrapped - pos).max()}")
+    q = p.orientation.astype(float)
+    if not np.allclose(np.linalg.norm(q, axis=1), 1, atol=1e-6):
+        sys.exit(f"frame {k}: orientations not unit quaternions")
+    if axis is not None:
+        w, x, y, z = q.T
+        image = np.stack([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)], 1)
+        if not np.allclose(image, axis, atol=1e-5):
+            sys.exit(f"frame {k}: orientations do not carry the axes, off by {np.abs(image - axis).max()}")
+    if ori is not None and not np.allclose(q, ori, atol=1e-6):
+        sys.exit(f"frame {k}: a top's orientations differ from the XYZ file's")
+    if k == 0 and (p.moment_inertia is None or p.mass is None):
+        sys.exit("frame 0 lacks masses or moments of inertia")
+PY
+        ) || fail "gsd cannot read the $kind trajectory as the run wrote it ($python): $out"
+    done
+    ;;
 thermo)
     # thermo.csv from both engines (cli/thermo.hpp): its header, a row at production's start and
     # every output.thermo_every_fs after it (0.54 ps / 36 fs + 1 = 16 rows), DMD's total energy
