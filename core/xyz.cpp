@@ -2,6 +2,7 @@
 #include "core/units.hpp"
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -67,10 +68,18 @@ std::string field(const std::string& line, const std::string& key) {
 
 namespace {
 
+/// A frame's time in fs to 15 significant digits: the sample grid's times are decimal numbers
+/// (k · run.sample_fs), and their binary round-off (180.00000000000003) is not part of them.
+std::string timeText(double fs) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.15g", fs);
+    return b;
+}
+
 void writeXyzHeader(std::ostream& out, int bodies, double time, double L, TrajectoryLayout layout) {
     out << bodies << '\n';
     out << "Lattice=\"" << L << " 0 0 0 " << L << " 0 0 0 " << L
-        << "\" Properties=" << columns(layout) << " Time=" << units::toFs(time)
+        << "\" Properties=" << columns(layout) << " Time=" << timeText(units::toFs(time))
         << " pbc=\"T T T\" units=\"pos:A velo:A/ps omega:rad/ps Time:fs\"\n";
 }
 

@@ -74,6 +74,15 @@ TEST(Xyz, HeaderIsOvitoExtendedXyz) {
     EXPECT_NE(header.find("Properties=species:S:1:pos:R:3:velo:R:3:axis:R:3:omega:R:3:body:I:1 "),
               std::string::npos);
     EXPECT_NE(header.find("Time=10 "), std::string::npos); // 0.1 time units = 10 fs
+    // A time on the sample grid as the decimal it is, without its binary round-off: 20 samples
+    // of 9 fs summed in internal units is 1.8000000000000003 units, shown as 180 fs.
+    double t = 0.0;
+    for (int k = 0; k < 20; ++k)
+        t += units::fromFs(9.0);
+    ASSERT_NE(units::toFs(t), 180.0);
+    Snapshot late = makeSnapshot(sys, t);
+    const std::string lateText = formatXyzFrame(late, TrajectoryLayout::Rod);
+    EXPECT_NE(lateText.find(" Time=180 "), std::string::npos) << lateText.substr(0, 200);
     // Species X (a dummy element to ASE, which takes the column for elements), the kind in the
     // body column at the end: its rotational degrees of freedom.
     EXPECT_EQ(body.substr(0, 2), "X ");
