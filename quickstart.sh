@@ -61,12 +61,13 @@ install_missing() {
             /^Setting up / { s++; if (s % 20 == 0 || s == n) printf "quickstart:   set up %d of %d\n", s, n > "/dev/stderr" }'
 }
 
-# step NAME COMMAND...: runs one step, saying so, and keeps its time for the table at the end.
+# step NAME WHAT COMMAND...: runs one step, saying what it does, and keeps its time for the table
+# at the end.
 step_names=() step_seconds=()
 step() {
     local name=$1 start
-    shift
-    say "[$name] $*"
+    say "[$name] $2"
+    shift 2
     start=$SECONDS
     "$@"
     step_names+=("$name")
@@ -110,15 +111,19 @@ build_run() {
     local options=(-DTERRACE_TESTS=OFF -DTERRACE_BENCH=OFF) data="$PWD/build-profile/data"
     case "${TERRACE_PROFILE:-off}" in
     off | OFF | 0 | no)
-        step build build build "${options[@]}" -DTERRACE_PROFILE= -- terrace paper_tools
+        step build "building terrace and paper_tools in build/" \
+            build build "${options[@]}" -DTERRACE_PROFILE= -- terrace paper_tools
         ;;
     on | ON | 1 | yes)
         # The same events as without the profile (no reassociation), only faster.
-        step build-profile build build-profile "${options[@]}" -DTERRACE_PROFILE=generate \
+        step build-profile "building an instrumented terrace in build-profile/" \
+            build build-profile "${options[@]}" -DTERRACE_PROFILE=generate \
             -DTERRACE_PROFILE_DATA="$data" -- terrace
         rm -rf "$data"
-        step train experiments/train-profile.sh build-profile/terrace build-profile/training
-        step build build build "${options[@]}" -DTERRACE_PROFILE=use \
+        step train "training the profile (experiments/train-profile.sh)" \
+            experiments/train-profile.sh build-profile/terrace build-profile/training
+        step build "building terrace and paper_tools in build/ with the profile" \
+            build build "${options[@]}" -DTERRACE_PROFILE=use \
             -DTERRACE_PROFILE_DATA="$data" -- terrace paper_tools
         ;;
     *)
@@ -145,7 +150,7 @@ sanitised_tests() {
 # kept in build-asan/fuzz-corpus, its output in build-asan/fuzz-findings/<target>.log and any
 # finding beside it in build-asan/fuzz-findings/<target>/.
 fuzz_all() {
-    local seconds="${TERRACE_FUZZ_SECONDS:-30}" target dirs log
+    local seconds="${TERRACE_FUZZ_SECONDS:-30}" target dirs log failed=()
     for target in scene sweep restart trajectory csv; do
         mkdir -p "build-asan/fuzz-corpus/$target" "build-asan/fuzz-findings/$target"
         dirs=("build-asan/fuzz-corpus/$target" "fuzz/corpus/$target")
@@ -157,38 +162,48 @@ fuzz_all() {
             -artifact_prefix="build-asan/fuzz-findings/$target/" "${dirs[@]}" >"$log" 2>&1; then
             cat "$log" >&2
             say "fuzz_$target failed; its input is in build-asan/fuzz-findings/$target/ (fuzz/README.md)"
-            return 1
+            failed+=("$target")
+            continue
         fi
-        say "  $(awk -F: '/^stat::number_of_executed_units/ { e = $2 } /^stat::new_units_added/ { n = $2 }
+        say "  $(awk -F: '/^stat::number_of_executed_units/ { e = $NF } /^stat::new_units_added/ { n = $NF }
                        END { printf "%d inputs run, %d new kept", e, n }' "$log")"
     done
+    if [ ${#failed[@]} -gt 0 ]; then
+        say "fuzz targets with findings: ${failed[*]}"
+        return 1
+    fi
 }
 sanitiser_tier() {
-    step sanitised-build sanitised_build
-    step sanitised-tests sanitised_tests
-    step fuzz fuzz_all
+    step sanitised-build "building the unit tests and fuzzers under ASan and UBSan in build-asan/" \
+        sanitised_build
+    step sanitised-tests "the unit tests under ASan and UBSan" sanitised_tests
+    step fuzz "each fuzzer for ${TERRACE_FUZZ_SECONDS:-30} s" fuzz_all
 }
 
 case "${1:-}" in
 run)
     shift
-    step install install_missing "${run_packages[@]}"
+    step install "the packages that building and running need" install_missing "${run_packages[@]}"
     build_run
     if [ $# -gt 0 ]; then exec ./build/terrace run "$@"; fi
-    step run experiments/versus.sh out/versus
+    step run "the default scene with DMD and SMD (experiments/versus.sh)" \
+        experiments/versus.sh out/versus
     step_table
     ;;
 test)
-    step install install_missing "${run_packages[@]}" "${test_packages[@]}"
+    step install "the packages that building and testing need" \
+        install_missing "${run_packages[@]}" "${test_packages[@]}"
     # No profile-guided pass: it changes the engines' speed only, not what they compute.
-    step build build build -DTERRACE_PROFILE= -DTERRACE_TESTS=ON -DTERRACE_BENCH=ON
-    step tests ctest --test-dir build --output-on-failure -j"$jobs"
+    step build "building everything in build/ (Release, assertions on)" \
+        build build -DTERRACE_PROFILE= -DTERRACE_TESTS=ON -DTERRACE_BENCH=ON
+    step tests "the whole test suite" ctest --test-dir build --output-on-failure -j"$jobs"
     sanitiser_tier
     # The Python tests' step goes here, once they exist: step python-tests <command>.
     step_table
     ;;
 sanitise)
-    step install install_missing "${run_packages[@]}" "${test_packages[@]}"
+    step install "the packages that building and testing need" \
+        install_missing "${run_packages[@]}" "${test_packages[@]}"
     sanitiser_tier
     step_table
     ;;
