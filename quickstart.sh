@@ -148,25 +148,37 @@ sanitised_tests() {
 }
 # Each fuzzer runs TERRACE_FUZZ_SECONDS from the committed corpus and regressions, its new inputs
 # kept in build-asan/fuzz-corpus, its output in build-asan/fuzz-findings/<target>.log and any
-# finding beside it in build-asan/fuzz-findings/<target>/.
+# finding beside it in build-asan/fuzz-findings/<target>/. A fuzzer uses one core, so as many run
+# at once as there are cores: on two, the five take three rounds of TERRACE_FUZZ_SECONDS, not five.
+fuzz_one() {
+    local target=$1 seconds=$2 dirs
+    mkdir -p "build-asan/fuzz-corpus/$target" "build-asan/fuzz-findings/$target"
+    rm -f "build-asan/fuzz-findings/$target.failed"
+    dirs=("build-asan/fuzz-corpus/$target" "fuzz/corpus/$target")
+    [ ! -d "fuzz/regressions/$target" ] || dirs+=("fuzz/regressions/$target")
+    "build-asan/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+        -print_final_stats=1 -artifact_prefix="build-asan/fuzz-findings/$target/" "${dirs[@]}" \
+        >"build-asan/fuzz-findings/$target.log" 2>&1 || touch "build-asan/fuzz-findings/$target.failed"
+}
 fuzz_all() {
-    local seconds="${TERRACE_FUZZ_SECONDS:-30}" target dirs log failed=()
-    for target in scene sweep restart trajectory csv; do
-        mkdir -p "build-asan/fuzz-corpus/$target" "build-asan/fuzz-findings/$target"
-        dirs=("build-asan/fuzz-corpus/$target" "fuzz/corpus/$target")
-        [ ! -d "fuzz/regressions/$target" ] || dirs+=("fuzz/regressions/$target")
-        log=build-asan/fuzz-findings/$target.log
+    local seconds="${TERRACE_FUZZ_SECONDS:-30}" target log failed=()
+    local targets=(scene sweep restart trajectory csv)
+    for target in "${targets[@]}"; do
+        while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
         say "fuzzing $target for $seconds s"
-        if ! "build-asan/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 \
-            -rss_limit_mb=2048 -print_final_stats=1 \
-            -artifact_prefix="build-asan/fuzz-findings/$target/" "${dirs[@]}" >"$log" 2>&1; then
+        fuzz_one "$target" "$seconds" &
+    done
+    wait
+    for target in "${targets[@]}"; do
+        log=build-asan/fuzz-findings/$target.log
+        if [ -e "build-asan/fuzz-findings/$target.failed" ]; then
             cat "$log" >&2
             say "fuzz_$target failed; its input is in build-asan/fuzz-findings/$target/ (fuzz/README.md)"
             failed+=("$target")
-            continue
+        else
+            say "  $target: $(awk '/^stat::number_of_executed_units/ { e = $NF } /^stat::new_units_added/ { n = $NF }
+                                 END { printf "%d inputs run, %d new kept", e, n }' "$log")"
         fi
-        say "  $(awk -F: '/^stat::number_of_executed_units/ { e = $NF } /^stat::new_units_added/ { n = $NF }
-                       END { printf "%d inputs run, %d new kept", e, n }' "$log")"
     done
     if [ ${#failed[@]} -gt 0 ]; then
         say "fuzz targets with findings: ${failed[*]}"
@@ -177,7 +189,7 @@ sanitiser_tier() {
     step sanitised-build "building the unit tests and fuzzers under ASan and UBSan in build-asan/" \
         sanitised_build
     step sanitised-tests "the unit tests under ASan and UBSan" sanitised_tests
-    step fuzz "each fuzzer for ${TERRACE_FUZZ_SECONDS:-30} s" fuzz_all
+    step fuzz "each fuzzer for ${TERRACE_FUZZ_SECONDS:-30} s, $jobs at a time" fuzz_all
 }
 
 case "${1:-}" in
