@@ -134,9 +134,9 @@ build_run() {
 }
 
 # The sanitiser tier: a clang build in build-asan with AddressSanitizer and UBSan (undefined
-# behaviour fatal) and libFuzzer's coverage, at -O1 (CMakeLists.txt, TERRACE_SANITIZE_OPT) and of
-# the unit tests' executables and the fuzzers only: not the benchmarks, not terrace for the
-# end-to-end tests (label end_to_end), which the Release build runs. Its unit tests run but for
+# behaviour fatal) and libFuzzer's coverage, of the unit tests' executables and the fuzzers only:
+# not the benchmarks, not terrace for the end-to-end tests (label end_to_end), which the Release
+# build runs. At the Release build's -O2: -O1 compiled no faster (docs/PERFORMANCE.md). Its unit tests run but for
 # those labelled unsanitised (fuzz/README.md says why a test would be).
 sanitised_build() {
     CXX=clang++ build build-asan -DTERRACE_PROFILE= -DTERRACE_SANITIZE=ON -DTERRACE_FUZZ=ON \
