@@ -23,6 +23,7 @@ cd "$(dirname "$0")"
 run_packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev
               libboost-program-options-dev libboost-math-dev nlohmann-json3-dev gnuplot-nox)
 # What the tests need besides:
+# - git: the revision that the build writes into every run's provenance;
 # - libgtest-dev, libgmock-dev, libbenchmark-dev: the test suite and benchmarks;
 # - python3-ase: the test suite reads our trajectories with ASE (tests/cli/cli_checks.sh ase_read);
 # - libopenmpi-dev, openmpi-bin: terrace sweep under mpirun (a build without them sweeps locally
@@ -36,8 +37,9 @@ test_packages=(git libgtest-dev libgmock-dev libbenchmark-dev python3-ase libope
 jobs=$(nproc)
 say() { echo "quickstart: $*" >&2; }
 
-# Recommended packages are left out: for `test` on a fresh Debian 12 they are 127 of 423 packages
-# (ImageMagick, Ghostscript, gnupg, LLVM's headers, …), none of which a step here uses.
+# Recommended packages are left out: for `test` on a fresh Debian 12 they are 120 of 423 packages
+# (ImageMagick, Ghostscript, gnupg, LLVM's headers, …), none of which a step here uses
+# (docs/PERFORMANCE.md, "The quick start's cost").
 install_missing() {
     local missing=() p
     for p in "$@"; do
