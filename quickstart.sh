@@ -145,8 +145,17 @@ sanitised_build() {
         -DTERRACE_BENCH=OFF -DTERRACE_TESTS=ON -DCMAKE_CXX_FLAGS=-gline-tables-only \
         -- unit_tests fuzzers
 }
+# Unit tests that the sanitised build cannot pass, each with its reason (fuzz/README.md); they run
+# in the Release build's suite all the same.
+# - core.AsymmetricTop.NearSeparatrixMatchesReference: the test's own long-double RK4 reference
+#   (not the code under test) converges to 1.09e-11 against its 1e-11 guard in clang's sanitised
+#   build (at -O1 and -O2), where GCC's passes. Likely cause, not yet confirmed: the two compilers'
+#   long-double code rounds differently, and near the separatrix the orbit's conditioning
+#   amplifies that round-off (the test's own comments).
+unsanitised_tests='^core\.AsymmetricTop\.NearSeparatrixMatchesReference$'
 sanitised_tests() {
-    ctest --test-dir build-asan --output-on-failure -j"$jobs" -L unit -LE 'unsanitised|end_to_end'
+    ctest --test-dir build-asan --output-on-failure -j"$jobs" -L unit -LE 'unsanitised|end_to_end' \
+        -E "$unsanitised_tests"
 }
 # Each fuzzer runs TERRACE_FUZZ_SECONDS from the committed corpus and regressions, its new inputs
 # kept in build-asan/fuzz-corpus, its output in build-asan/fuzz-findings/<target>.log and any
