@@ -25,13 +25,14 @@ run_packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev
 # What the tests need besides:
 # - git: the revision that the build writes into every run's provenance;
 # - libgtest-dev, libgmock-dev, libbenchmark-dev: the test suite and benchmarks;
-# - python3-ase: the test suite reads our trajectories with ASE (tests/cli/cli_checks.sh ase_read);
+# - python3-ase, python3-gsd: the test suite reads our trajectories with ASE and with gsd
+#   (tests/cli/cli_checks.sh ase_read, gsd_read);
 # - libopenmpi-dev, openmpi-bin: terrace sweep under mpirun (a build without them sweeps locally
 #   and says so; the test suite runs a sweep under mpirun);
 # - clang, libclang-rt-14-dev: the sanitiser tier's compiler and its runtimes (libFuzzer among
 #   them, which clang only recommends); llvm-14: llvm-symbolizer, so that a sanitiser's report
 #   names files and lines.
-test_packages=(git libgtest-dev libgmock-dev libbenchmark-dev python3-ase libopenmpi-dev
+test_packages=(git libgtest-dev libgmock-dev libbenchmark-dev python3-ase python3-gsd libopenmpi-dev
                openmpi-bin clang libclang-rt-14-dev llvm-14)
 
 jobs=$(nproc)
