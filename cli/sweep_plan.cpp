@@ -1,4 +1,5 @@
 #include "cli/sweep_plan.hpp"
+#include "cli/engine_keys.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/scene_check.hpp"
 #include "core/output_file.hpp"
@@ -116,7 +117,49 @@ std::string namePart(const std::string& key, const json& value) {
     return part;
 }
 
+/// The notes of SweepPlan::ignoredKeys: each axis key ignored by some runs' engine once, with
+/// the number of such runs and the first; each common key of an engine no run has.
+std::vector<std::string> ignoredKeyNotes(const SweepPlan& plan, const std::string& origin) {
+    std::set<std::string> engines;
+    for (const SweepRun& run : plan.runs)
+        engines.insert(run.scene.engine);
+    std::vector<std::string> notes;
+    for (const Override& o : plan.common) {
+        const std::string owner = engineOfKey(o.first);
+        if (owner.empty() || engines.count(owner)) continue;
+        notes.push_back(ignoredKeyNote(origin + ": " + overrideArgument(o) + " (for every run)",
+                                       owner, "every run's engine, " + *engines.begin() + ","));
+    }
+    struct Ignored {
+        std::string engine, firstRun;
+        int runs = 0;
+    };
+    std::vector<std::pair<std::string, Ignored>> byKey; // in order of first appearance
+    for (const SweepRun& run : plan.runs)
+        for (const Override& o : run.overrides) {
+            const std::string owner = engineOfKey(o.first);
+            if (owner.empty() || owner == run.scene.engine) continue;
+            auto at = std::find_if(byKey.begin(), byKey.end(),
+                                   [&](const auto& k) { return k.first == o.first; });
+            if (at == byKey.end()) at = byKey.insert(byKey.end(), {o.first, {owner, run.name}});
+            ++at->second.runs;
+        }
+    for (const auto& [key, ignored] : byKey) {
+        const std::string other = ignored.engine == "dmd" ? "smd" : "dmd";
+        notes.push_back(ignoredKeyNote(origin + ": axes set " + key + " for " +
+                                           std::to_string(ignored.runs) + " run" +
+                                           (ignored.runs == 1 ? "" : "s") + " of engine " + other +
+                                           " (first: " + ignored.firstRun + ")",
+                                       ignored.engine, "their engine, " + other + ","));
+    }
+    return notes;
+}
+
 } // namespace
+
+void refuseIgnoredKeys(const SweepPlan& plan) {
+    if (!plan.ignoredKeys.empty()) throw SceneError(asRefusal(plan.ignoredKeys.front()));
+}
 
 std::string valueText(const json& value) {
     return value.is_string() ? value.get<std::string>() : value.dump();
@@ -239,6 +282,7 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
             index[--a] = 0;
         if (a == 0) break;
     }
+    plan.ignoredKeys = ignoredKeyNotes(plan, origin);
     return plan;
 }
 

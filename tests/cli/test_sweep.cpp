@@ -151,6 +151,40 @@ TEST(SweepPlan, ARepeatedKeyIsRefusedNamingIt) {
     EXPECT_EQ(plan(R"({"axes": [{"cases": [{"seed": 1}, {"seed": 2}]}]})").runs.size(), 2u);
 }
 
+// Keys of one engine's section set for runs of the other (cli/engine_keys.hpp): the ladders of
+// two engines as cases, and common keys of both engines for a sweep running both, are meant; an
+// axis that sets smd.dt_fs for DMD runs, or a common key of an engine no run has, is not.
+TEST(SweepPlan, KeysTheRunsEnginesDoNotReadAreNoted) {
+    const char* ladders = R"({"axes": [{"cases": [{"engine": "dmd", "dmd.dV": 0.5},
+                                                 {"engine": "smd", "smd.dt_fs": 1.8}]}]})";
+    EXPECT_TRUE(plan(ladders).ignoredKeys.empty());
+    EXPECT_TRUE(plan(ladders, {"smd.skin=0.4", "dmd.horizon_fs=2"}).ignoredKeys.empty());
+    EXPECT_TRUE(plan(R"({"set": {"smd.skin": 0.4}, "axes": [{"engine": ["dmd", "smd"]}]})")
+                    .ignoredKeys.empty());
+
+    // A product of an engine axis and an SMD axis: the DMD runs ignore smd.dt_fs.
+    const auto product =
+        plan(R"({"axes": [{"engine": ["dmd", "smd"]}, {"smd.dt_fs": [0.9, 1.8]}]})");
+    ASSERT_EQ(product.ignoredKeys.size(), 1u);
+    EXPECT_EQ(product.ignoredKeys[0],
+              "s.json: axes set smd.dt_fs for 2 runs of engine dmd (first: engine-dmd_dt_fs-0.9): "
+              "their engine, dmd, does not read the smd section, so the setting has no effect");
+
+    // A common key of an engine no run has.
+    const auto common = plan(R"({"axes": [{"dmd.dV": [0.5, 0.25]}]})", {"smd.dt_fs=0.7"});
+    ASSERT_EQ(common.ignoredKeys.size(), 1u);
+    EXPECT_EQ(common.ignoredKeys[0],
+              "s.json: smd.dt_fs=0.7 (for every run): every run's engine, dmd, does not read the "
+              "smd section, so the setting has no effect");
+    try {
+        refuseIgnoredKeys(common);
+        ADD_FAILURE() << "--strict accepted a key no run reads";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()), common.ignoredKeys[0] + " (refused under --strict)");
+    }
+    EXPECT_NO_THROW(refuseIgnoredKeys(plan(ladders)));
+}
+
 TEST(SweepTable, RowsInSweepOrderWithStatusNumbersAndQuotedCells) {
     const auto p = plan(R"({"axes": [{"dmd.terraces": [{"levels": "optimal", "n": 3}]},
                                      {"engine": ["dmd", "smd"]}]})");
