@@ -22,7 +22,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -114,13 +113,10 @@ po::variables_map parseSceneCommand(const std::vector<std::string>& args,
     }
 }
 
-/// Whether this process is a run of a sweep, whose keys its sweep judged (cli/sweep_plan.hpp):
-/// the sweep knows which of them are common to runs of both engines, the run does not.
-bool runOfSweep() {
-    return std::getenv(cli::sweepPidVariable) != nullptr;
-}
-
-int runMain(const std::vector<std::string>& args) {
+/// `ofSweep`: this run is one of a sweep's (cli::stopWithSweep), whose keys the sweep judged
+/// (cli/sweep_plan.hpp): the sweep knows which of them are common to runs of both engines, the
+/// run does not.
+int runMain(const std::vector<std::string>& args, bool ofSweep) {
     po::options_description opts("run options");
     opts.add_options()("out", po::value<std::string>(), "output directory")(
         "overwrite", "replace the results of an earlier run in the output directory")(
@@ -144,7 +140,7 @@ int runMain(const std::vector<std::string>& args) {
     if (vm.count("set")) req.overrides = vm["set"].as<std::vector<std::string>>();
     req.quiet = quiet;
     Scene scene = cli::resolveScene(req);
-    if (!runOfSweep()) // the run shows its warnings as it starts, and records them
+    if (!ofSweep) // the run shows its warnings as it starts, and records them
         for (std::string& w :
              cli::judgeOverrides(req.overrides, scene.engine,
                                  "the run's engine, " + scene.engine + ",", vm.count("strict") > 0))
@@ -357,7 +353,7 @@ int main(int argc, char** argv) {
     // per body so, 1.003 with the threshold held (0.98 without restart points).
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
-    terrace::cli::stopWithSweep();
+    const bool ofSweep = terrace::cli::stopWithSweep();
     std::vector<std::string> args(argv + 1, argv + argc);
     if (args.empty() || args[0] == "--help" || args[0] == "-h" ||
         (args[0] == "help" && args.size() == 1)) {
@@ -380,7 +376,7 @@ int main(int argc, char** argv) {
     try {
         hugePagesWanted(); // a misspelt TERRACE_HUGE_PAGES is an error before anything runs
         measureSwitches(); // and so is a misspelt TERRACE_MEASURE
-        if (command == "run") return checkedStdout(runMain(args));
+        if (command == "run") return checkedStdout(runMain(args, ofSweep));
         if (command == "analyse" || command == "analyze") return checkedStdout(analyseMain(args));
         if (command == "compare") return checkedStdout(compareMain(args));
         if (command == "design") return checkedStdout(designMain(args));
