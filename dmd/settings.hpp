@@ -79,10 +79,10 @@ DmdSettings readDmdSettings(const DmdSection& d, const P& potential, double kT, 
     // With L < 2 r_m a pair could interact through two periodic images at once.
     if (boxLength < 2.0 * s.rm)
         throw SceneError(
-            "dmd.dV: the box edge " + std::to_string(boxLength) +
-            " Å is shorter than twice the interaction range r_m = " + std::to_string(s.rm) +
-            " Å; use at least " + std::to_string(std::pow(2.0 * s.rm / boxLength, 3)) +
-            " times as many bodies, or a larger dV");
+            "dmd.dV: the box edge " + showNumber(boxLength) +
+            " Å is shorter than twice the interaction range r_m = " + showNumber(s.rm) +
+            " Å; use at least " + showNumber(std::pow(2.0 * s.rm / boxLength, 3)) +
+            " times as many bodies at this density (state.n), or a larger dV");
     return s;
 }
 

@@ -211,6 +211,10 @@ nearest_value)
     "$terrace" run "$src/experiments/scenes/lj-liquid.json" --set state.temperature=2 --set dmd.dV=0.5 \
         --set state.n=108 --set run.equilibrate_ps=0 --set run.time_ps=0.09 --out "$work/ok" --quiet >/dev/null ||
         fail "the dV named is refused"
+    # A box narrower than twice DMD's interaction range names how many more bodies it takes.
+    expect_error "$src/experiments/scenes/lj-liquid.json" \
+        "dmd.dV: the box edge 5.42884 Å is shorter than twice the interaction range r_m = 2.75303 Å; use at least 1.04328 times as many bodies at this density (state.n), or a larger dV" \
+        --set state.n=8 --set state.density=0.05 --set dmd.dV=0.01
     # A box too small for SMD's cutoff names the bodies or density that fit.
     expect_error "$src/experiments/scenes/lj-liquid.json" \
         "potential.cutoff: the box edge 4.7622 Å is shorter than 2·(r_u + skin) = 6.6 Å; use state.n >= 288, state.density <= 0.3756" \
