@@ -41,9 +41,9 @@ const Command commands[] = {
       it ends, from which --continue goes on.
 )",
      R"(  --out DIR             the output directory (default: out/<scene name>-<engine>, then the
-                        --set keys other than name and engine, sorted, as key=value joined by
-                        ',': out/lj-liquid-smd-dt_fs=0.7). A DIR that holds an earlier run's
-                        results is refused unless --overwrite
+                        --set keys but name and engine as key=value, sorted by the whole key
+                        and joined by ',': out/lj-liquid-smd-dt_fs=0.7). A DIR that holds an
+                        earlier run's results is refused unless --overwrite
   --overwrite           remove an earlier run's results from DIR first
   --strict              refuse a --set key that the run's engine does not read (smd.* on a DMD
                         run, dmd.* on an SMD one) instead of warning about it
