@@ -135,7 +135,7 @@ const Command commands[] = {
       runs at the scene's N) and writes DIR/tradeoff.json, tradeoff.csv, tradeoff.png and the
       runs in DIR/runs. It runs both engines, so --set keys of either section apply to that
       engine's runs. Run again, the same command continues where it stopped. Exit status 0:
-      a verdict; 1: none; 2: a bad scene or option.
+      a verdict; 1: none.
 )",
      R"(  --tolerance OBS=VAL   an observable's tolerance, VAL absolute or VAL% relative; defaults:
                         u 0.5%, p 2% (of max(|P|, rho* T*)), d 3%, g 0.02, g_peak 1%, tau_v

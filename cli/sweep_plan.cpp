@@ -4,6 +4,7 @@
 #include "cli/scene_check.hpp"
 #include "core/output_file.hpp"
 #include "core/scene_json.hpp"
+#include "core/suggest.hpp"
 #include <algorithm>
 #include <map>
 #include <set>
@@ -179,9 +180,13 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
     const ordered file = ordered::parse(text, nullptr, false);
     if (file.is_discarded()) rd.fail("<top>", "not valid JSON");
     if (!file.is_object()) rd.fail("<top>", "a sweep must be a JSON object");
+    const std::vector<std::string> sweepKeys = {"scene", "set", "axes", "seeds"};
     for (const auto& [k, v] : file.items())
-        if (k != "scene" && k != "set" && k != "axes" && k != "seeds")
-            rd.fail(k, "unknown key (a sweep has scene, set, axes and seeds)");
+        if (std::find(sweepKeys.begin(), sweepKeys.end(), k) == sweepKeys.end()) {
+            const std::string near = nearestName(k, sweepKeys);
+            rd.fail(k, "unknown key" + (near.empty() ? "" : "; did you mean " + near + "?") +
+                           " (a sweep has scene, set, axes and seeds)");
+        }
 
     SweepPlan plan;
     plan.origin = origin;

@@ -112,7 +112,8 @@ TEST(SweepPlan, OverrideArgumentsAreJsonAsTerraceRunTakesThem) {
 
 TEST(SweepPlan, BadSweepFilesFailInOneLineNamingTheProblem) {
     EXPECT_NE(sweepError("{ not json").find("not valid JSON"), std::string::npos);
-    EXPECT_NE(sweepError(R"({"axis": []})").find("axis: unknown key"), std::string::npos);
+    EXPECT_NE(sweepError(R"({"axis": []})").find("axis: unknown key; did you mean axes?"),
+              std::string::npos);
     EXPECT_NE(sweepError(R"({"axes": [{"dmd.dV": [1, 2], "smd.dt_fs": [1]}]})")
                   .find("axes[0].smd.dt_fs: zipped keys need lists of one length"),
               std::string::npos);
