@@ -98,9 +98,10 @@ const Command commands[] = {
       row each in DIR/sweep.csv. Under mpirun every rank takes runs as they come (DIR on a
       file system all ranks see). Runs done before for the same scene are not run again, nor
       failed ones (unless --retry-failed); a failed run is recorded and the sweep goes on.
-      A key of one engine's section that an axis sets for runs of the other engine is a
-      warning, as is a common key ("set", --set) of an engine no run has: the keys of both
-      engines may be set for a sweep that runs both. Exit status 0: all runs done; 1: some
+      A key of one engine's section that an axis value sets for runs of the other engine,
+      with their engine or with nothing else they read, is a warning, as is a common key
+      ("set", --set) of an engine no run has: keys of both engines may be set for a sweep
+      that runs both. Exit status 0: all runs done; 1: some
       failed; 2: a bad sweep file; 3: the sweep itself failed (another sweep holds DIR, a
       table it cannot write); 128 + signal: stopped.
 )",

@@ -118,9 +118,8 @@ std::string namePart(const std::string& key, const json& value) {
     return part;
 }
 
-/// The notes of SweepPlan::ignoredKeys: each axis key ignored by some runs' engine once, with
-/// the number of such runs and the first; each common key of an engine no run has.
-std::vector<std::string> ignoredKeyNotes(const SweepPlan& plan, const std::string& origin) {
+/// The common keys ("set", --set) of an engine that no run of the sweep has, one note each.
+std::vector<std::string> ignoredCommonKeys(const SweepPlan& plan, const std::string& origin) {
     std::set<std::string> engines;
     for (const SweepRun& run : plan.runs)
         engines.insert(run.scene.engine);
@@ -131,30 +130,54 @@ std::vector<std::string> ignoredKeyNotes(const SweepPlan& plan, const std::strin
         notes.push_back(ignoredKeyNote(origin + ": " + overrideArgument(o) + " (for every run)",
                                        owner, "every run's engine, " + *engines.begin() + ","));
     }
-    struct Ignored {
-        std::string engine, firstRun;
-        int runs = 0;
-    };
-    std::vector<std::pair<std::string, Ignored>> byKey; // in order of first appearance
-    for (const SweepRun& run : plan.runs)
-        for (const Override& o : run.overrides) {
-            const std::string owner = engineOfKey(o.first);
-            if (owner.empty() || owner == run.scene.engine) continue;
-            auto at = std::find_if(byKey.begin(), byKey.end(),
-                                   [&](const auto& k) { return k.first == o.first; });
-            if (at == byKey.end()) at = byKey.insert(byKey.end(), {o.first, {owner, run.name}});
-            ++at->second.runs;
-        }
-    for (const auto& [key, ignored] : byKey) {
-        const std::string other = ignored.engine == "dmd" ? "smd" : "dmd";
-        notes.push_back(ignoredKeyNote(origin + ": axes set " + key + " for " +
-                                           std::to_string(ignored.runs) + " run" +
-                                           (ignored.runs == 1 ? "" : "s") + " of engine " + other +
-                                           " (first: " + ignored.firstRun + ")",
-                                       ignored.engine, "their engine, " + other + ","));
-    }
     return notes;
 }
+
+/// An axis's keys of one engine's section on runs of the other, when the axis's value meant
+/// them for that run: a value that also sets the run's engine (a case {"engine": "dmd",
+/// "smd.dt_fs": 0.45}), or one of keys the run reads none of (a product of an engine axis and an
+/// smd.dt_fs axis: the DMD runs along it repeat one another). A value that also sets a key the
+/// run reads (smd.skin zipped with state.density, for runs of both engines) is meant for the
+/// other engine's runs, and passes. Collected run by run, noted once a key.
+class IgnoredAxisKeys {
+public:
+    void look(const AxisValue& value, const SweepRun& run) {
+        const std::string& engine = run.scene.engine;
+        bool setsEngine = false, readsAny = false;
+        for (const auto& [key, v] : value.overrides) {
+            setsEngine = setsEngine || key == "engine";
+            const std::string owner = engineOfKey(key);
+            readsAny = readsAny || owner.empty() || owner == engine;
+        }
+        if (!setsEngine && readsAny) return;
+        for (const auto& [key, v] : value.overrides) {
+            const std::string owner = engineOfKey(key);
+            if (owner.empty() || owner == engine) continue;
+            auto at = std::find_if(byKey_.begin(), byKey_.end(),
+                                   [&](const auto& k) { return k.key == key; });
+            if (at == byKey_.end()) at = byKey_.insert(byKey_.end(), {key, engine, run.name, 0});
+            ++at->runs;
+        }
+    }
+
+    std::vector<std::string> notes(const std::string& origin) const {
+        std::vector<std::string> out;
+        for (const Ignored& k : byKey_)
+            out.push_back(ignoredKeyNote(origin + ": axes set " + k.key + " for " +
+                                             std::to_string(k.runs) + " run" +
+                                             (k.runs == 1 ? "" : "s") + " of engine " + k.engine +
+                                             " (first: " + k.firstRun + ")",
+                                         engineOfKey(k.key), "their engine, " + k.engine + ","));
+        return out;
+    }
+
+private:
+    struct Ignored {
+        std::string key, engine, firstRun;
+        int runs;
+    };
+    std::vector<Ignored> byKey_; // in order of first appearance
+};
 
 } // namespace
 
@@ -241,6 +264,7 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
         return byComponent[lastComponent(key)].size() > 1 ? key : lastComponent(key);
     };
 
+    IgnoredAxisKeys ignoredAxisKeys;
     // The product of the axes, the last fastest (an odometer over the axes' indices).
     std::vector<std::size_t> index(axes.size(), 0);
     std::set<std::string> names;
@@ -280,6 +304,8 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
         } catch (const SceneError& e) {
             rd.fail("run " + run.name, e.what());
         }
+        for (std::size_t a = 0; a < axes.size(); ++a)
+            ignoredAxisKeys.look(axes[a][index[a]], run);
         plan.runs.push_back(std::move(run));
 
         std::size_t a = axes.size();
@@ -287,7 +313,9 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
             index[--a] = 0;
         if (a == 0) break;
     }
-    plan.ignoredKeys = ignoredKeyNotes(plan, origin);
+    plan.ignoredKeys = ignoredCommonKeys(plan, origin);
+    for (std::string& note : ignoredAxisKeys.notes(origin))
+        plan.ignoredKeys.push_back(std::move(note));
     return plan;
 }
 

@@ -162,6 +162,18 @@ TEST(SweepPlan, KeysTheRunsEnginesDoNotReadAreNoted) {
     EXPECT_TRUE(plan(ladders, {"smd.skin=0.4", "dmd.horizon_fs=2"}).ignoredKeys.empty());
     EXPECT_TRUE(plan(R"({"set": {"smd.skin": 0.4}, "axes": [{"engine": ["dmd", "smd"]}]})")
                     .ignoredKeys.empty());
+    // An SMD key zipped with one both engines read serves the SMD runs (bench.json's skin).
+    EXPECT_TRUE(plan(R"({"axes": [{"state.density": [0.1, 0.3], "smd.skin": [2.4, 0.3]},
+                                  {"engine": ["dmd", "smd"]}]})")
+                    .ignoredKeys.empty());
+    // A case that sets the engine and a key of the other's section means it for that run.
+    const auto contrary =
+        plan(R"({"axes": [{"cases": [{"engine": "dmd", "smd.dt_fs": 0.9}, {"engine": "smd"}]}]})");
+    ASSERT_EQ(contrary.ignoredKeys.size(), 1u);
+    EXPECT_NE(contrary.ignoredKeys[0].find("axes set smd.dt_fs for 1 run of engine dmd (first: "
+                                           "engine-dmd_dt_fs-0.9)"),
+              std::string::npos)
+        << contrary.ignoredKeys[0];
 
     // A product of an engine axis and an SMD axis: the DMD runs ignore smd.dt_fs.
     const auto product =
