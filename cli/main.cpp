@@ -1,13 +1,11 @@
 // terrace: event-driven (DMD) and standard (SMD) rigid-body dynamics on one scene, side by side.
-//   terrace run [SCENE] [--set key.path=value]... [--out DIR] [--overwrite] [--quiet]
-//   terrace run --continue DIR
-//   terrace analyse DIR
-//   terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
-//   terrace design [SCENE] [--set key.path=value]... [--profile]
-//   terrace sweep SWEEP.json [--out DIR] [-j N] [--set key.path=value]... [--retry-failed]
+// The commands (run, analyse, compare, design, sweep, tradeoff) and their options are described
+// in cli/help_text.cpp, which `terrace --help` and `terrace COMMAND --help` print.
 #include "analysis/compare.hpp"
 #include "cli/analyse_command.hpp"
 #include "cli/design_command.hpp"
+#include "cli/engine_keys.hpp"
+#include "cli/help_text.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run_command.hpp"
 #include "cli/run_driver.hpp"
@@ -17,6 +15,7 @@
 #include "core/huge_pages.hpp"
 #include "core/measure.hpp"
 #include "core/scene_json.hpp"
+#include "core/suggest.hpp"
 #include "core/xyz.hpp"
 #include <algorithm>
 #include <boost/program_options.hpp>
@@ -35,84 +34,6 @@ namespace po = boost::program_options;
 using namespace terrace;
 
 namespace {
-
-const char* usage = R"(terrace — event-driven dynamics of rigid bodies on terraced potentials (DMD)
-and standard rigid-body MD on the continuous potential (SMD), compared on one scene.
-
-Usage:
-  terrace run [SCENE.json] [--set key.path=value]... [--out DIR] [--overwrite] [--quiet]
-      Run a scene (default: the built-in dense rods, N 512, rho* 0.5, T* 1.4).
-      --set overrides any scene key by its dotted path, e.g. --set engine=smd
-      --set dmd.dV=0.5 --set run.time_ps=4.5 (run lengths and output intervals are
-      whole multiples of their intervals, or refused). Writes DIR/summary.json,
-      scene.json, initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv and, if asked for,
-      thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE; default DIR:
-      out/<scene name>-<engine>). A DIR that holds an
-      earlier run's results is refused unless --overwrite (which removes them first).
-      With output.restart_every_ps > 0 the run keeps DIR/restart.bin (and samples.bin).
-  terrace run --continue DIR [--quiet]
-      Continue the run in DIR from its restart file, extending its output as if it had
-      never stopped.
-  terrace analyse DIR
-      Recompute the correlation CSVs of DIR from DIR/trajectory.xyz, read frame by frame
-      into the accumulators a run uses, with the run's analysis settings (DIR/scene.json;
-      without it the defaults, g(r) out to L/2). A last frame cut short by a killed run is
-      left out, with a warning.
-  terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
-      Regression check of two correlation curves; exit status 1 when they disagree.
-  terrace design [SCENE.json] [--set key.path=value]... [--profile]
-      The terraces the scene's DMD runs on (dmd.dV, dmd.levels or the design of
-      dmd.terraces), as CSV: each terrace's levels and energy; with --profile, U along
-      the design's reference alignment (s_i.s_j = 1/sqrt 2; for rods r_e = r) beside
-      its terraced value.
-  terrace sweep SWEEP.json [--out DIR] [-j N] [--set key.path=value]... [--retry-failed]
-                [--quiet]
-      Run every scene of a sweep: a base scene and axes of values for dotted scene
-      keys (product, zipped, or cases), and seeds, as in
-        {"scene": "dense-rods.json", "set": {"state.n": 216},
-         "axes": [{"state.density": [0.1, 0.5]},
-                  {"cases": [{"engine": "dmd", "dmd.dV": 0.5},
-                             {"engine": "smd", "smd.dt_fs": 1.8}]}],
-         "seeds": [1, 2]}
-      Each run goes to DIR/<its overrides> (e.g. density-0.1_engine-dmd_dV-0.5_seed-1),
-      one row each in DIR/sweep.csv (default DIR: out/<sweep file name>). -j N runs N
-      at once; under mpirun every rank takes runs as they come (DIR on a file system
-      all ranks see). Runs done before for the same scene are not run again, nor failed
-      ones (unless --retry-failed); a failed run is recorded and the sweep goes on. Exit
-      status 0: all runs done; 1: some failed; 2: a bad sweep file; 3: the sweep itself
-      failed (another sweep holds DIR, a table it cannot write); 128 + signal: stopped.
-  terrace tradeoff [SCENE.json] [--tolerance OBS=VALUE[%]]... [--set key.path=value]...
-                   [-j N] [--out DIR] [--bias-n N] [--max-replicas N] [--cost-pairs N]
-                   [--budget-cpu-hours H] [--dV LIST] [--designs uniform,optimal]
-                   [--schemes verlet,omelyan,yoshida4] [--observables LIST] [--quiet]
-      Does DMD pay for this scene at these tolerances? Measures each engine's systematic
-      error against the continuous model (reference: SMD yoshida4 at half smd.dt_fs) on
-      u = <U>/(N eps), p = P*, d = D, g = RMS of g(r), g_peak, tau_v and tau_o (the
-      VACF's and OACF's integrals), over a ladder of DMD dV (--dV 1,0.5,0.25,0.125 in kT;
-      uniform and optimal terraces) and SMD dt for verlet, omelyan and yoshida4 up to
-      the stability limit. Each bias is resolved within or outside its tolerance at 2
-      sigma (Bonferroni over the replica counts looked at), replicas added where it is
-      not, up to --max-replicas (32) or the budget (8 CPU h); the bias law (dt^2, dt^4,
-      dV^p) places a setting between the last within and the first outside, checked by
-      its own runs. Default tolerances: u 0.5%, p 2% (of max(|P|, rho* T*)), d 3%,
-      g 0.02, g_peak 1%, tau_v 3%, tau_o 3%. DMD's u, p, g and g_peak are estimated on
-      its terraced observables and by configurational estimators (continuous U, W and
-      g on its configurations); the smaller bias is used and named. Prints the verdict
-      (the cheaper engine's setting and the cost ratio with its interval, from
-      --cost-pairs alternated runs at the scene's N) and writes DIR/tradeoff.json,
-      tradeoff.csv, tradeoff.png and the runs in DIR/runs (default DIR: out/tradeoff-
-      <scene name>). Bias runs use --bias-n bodies (default: the scene's). Run again,
-      the same command continues where it stopped. Exit status 0: a verdict; 1: none.
-  terrace --help
-
-SIGINT, SIGTERM and SIGHUP end a run at the next sample with its output written (exit
-status 128 + the signal's number; the analysis, accumulated as the run went, is written
-too); a third signal ends the process at once.
-Per-body arrays of 2 MiB and more are mapped on 2-MiB boundaries and advised for transparent
-huge pages (fewer TLB misses at large N; TERRACE_HUGE_PAGES=0 in the environment turns the
-advice off, for measuring it). summary.json's memory_in_huge_pages_bytes says what the kernel gave.
-Units: lengths in Angstrom, masses g/mol, energies kJ/mol, times fs/ps on input and output.
-)";
 
 void printRunSummary(const Scene& scene, const nlohmann::json& s,
                      const std::filesystem::path& out) {
@@ -145,6 +66,31 @@ void printRunSummary(const Scene& scene, const nlohmann::json& s,
     std::printf("  output in %s/\n", out.c_str());
 }
 
+/// `terrace COMMAND --help`.
+int printHelp(const std::string& command) {
+    std::fputs(cli::commandHelp(command).c_str(), stdout);
+    return 0;
+}
+
+/// Parses `args` by `opts` and `pos`; an unknown option is refused naming the nearest known one.
+po::variables_map parseOptions(const std::vector<std::string>& args,
+                               const po::options_description& opts,
+                               const po::positional_options_description& pos) {
+    po::variables_map vm;
+    try {
+        po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
+    } catch (const po::unknown_option& e) {
+        std::vector<std::string> known;
+        for (const auto& o : opts.options())
+            if (!o->long_name().empty()) known.push_back("--" + o->long_name());
+        const std::string near = nearestName(e.get_option_name(), known);
+        throw po::error("unrecognised option '" + e.get_option_name() + "'" +
+                        (near.empty() ? "" : "; did you mean " + near + "?"));
+    }
+    po::notify(vm);
+    return vm;
+}
+
 /// The options of a command on a scene: [SCENE] [--set key.path=value]... [--help], and its own.
 po::variables_map parseSceneCommand(const std::vector<std::string>& args,
                                     po::options_description& opts) {
@@ -159,28 +105,25 @@ po::variables_map parseSceneCommand(const std::vector<std::string>& args,
                                                   : "the option '" + args[i + 1] + "'"));
     po::positional_options_description pos;
     pos.add("scene", 1);
-    po::variables_map vm;
     try {
-        po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
+        return parseOptions(args, opts, pos);
     } catch (const po::too_many_positional_options_error&) {
         throw po::error("takes one scene file; the words after the first one that are not options "
                         "or their values are more files");
     }
-    po::notify(vm);
-    return vm;
 }
 
-int runMain(const std::vector<std::string>& args) {
+/// `ofSweep`: this run is one of a sweep's (cli::stopWithSweep), whose keys the sweep judged
+/// (cli/sweep_plan.hpp): the sweep knows which of them are common to runs of both engines, the
+/// run does not.
+int runMain(const std::vector<std::string>& args, bool ofSweep) {
     po::options_description opts("run options");
     opts.add_options()("out", po::value<std::string>(), "output directory")(
         "overwrite", "replace the results of an earlier run in the output directory")(
-        "continue", po::value<std::string>(),
-        "continue the run in DIR from its restart file")("quiet", "no progress output");
+        "continue", po::value<std::string>(), "continue the run in DIR from its restart file")(
+        "quiet", "no progress output")("strict", "refuse --set keys the engine does not read");
     const auto vm = parseSceneCommand(args, opts);
-    if (vm.count("help")) {
-        std::fputs(usage, stdout);
-        return 0;
-    }
+    if (vm.count("help")) return printHelp("run");
     const bool quiet = vm.count("quiet") > 0;
     if (vm.count("continue")) {
         if (vm.count("scene") || vm.count("set") || vm.count("out") || vm.count("overwrite"))
@@ -196,10 +139,15 @@ int runMain(const std::vector<std::string>& args) {
     if (vm.count("scene")) req.scenePath = vm["scene"].as<std::string>();
     if (vm.count("set")) req.overrides = vm["set"].as<std::vector<std::string>>();
     req.quiet = quiet;
-    const Scene scene = cli::resolveScene(req);
+    Scene scene = cli::resolveScene(req);
+    if (!ofSweep) // the run shows its warnings as it starts, and records them
+        for (std::string& w :
+             cli::judgeOverrides(req.overrides, scene.engine,
+                                 "the run's engine, " + scene.engine + ",", vm.count("strict") > 0))
+            scene.warnings.push_back(std::move(w));
     cli::RunTarget target;
     target.dir = vm.count("out") ? std::filesystem::path(vm["out"].as<std::string>())
-                                 : cli::defaultOutput(scene);
+                                 : cli::defaultOutput(scene, req.overrides);
     target.mode = vm.count("overwrite") ? cli::OutputMode::Overwrite : cli::OutputMode::Fresh;
     target.quiet = quiet;
     const auto outcome = cli::runScene(scene, target);
@@ -208,25 +156,26 @@ int runMain(const std::vector<std::string>& args) {
 }
 
 int analyseMain(const std::vector<std::string>& args) {
-    if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h")) {
-        std::fputs(usage, stdout);
-        return 0;
-    }
+    if (std::find(args.begin(), args.end(), "--help") != args.end() ||
+        std::find(args.begin(), args.end(), "-h") != args.end())
+        return printHelp("analyse");
     if (args.size() != 1) throw po::error("analyse takes exactly one directory");
     return cli::analyseRun(args[0]);
 }
 
 int designMain(const std::vector<std::string>& args) {
     po::options_description opts("design options");
-    opts.add_options()("profile", "U and its terraced value along r");
+    opts.add_options()("profile", "U and its terraced value along r")(
+        "strict", "refuse --set keys of the smd section");
     const auto vm = parseSceneCommand(args, opts);
-    if (vm.count("help")) {
-        std::fputs(usage, stdout);
-        return 0;
-    }
+    if (vm.count("help")) return printHelp("design");
     cli::DesignRequest req;
     if (vm.count("scene")) req.scenePath = vm["scene"].as<std::string>();
     if (vm.count("set")) req.overrides = vm["set"].as<std::vector<std::string>>();
+    for (const std::string& w :
+         cli::judgeOverrides(req.overrides, "dmd", "terrace design, which shows DMD's terraces,",
+                             vm.count("strict") > 0))
+        std::fprintf(stderr, "terrace: warning: %s\n", w.c_str());
     req.profile = vm.count("profile") > 0;
     return cli::printDesign(req);
 }
@@ -237,17 +186,12 @@ int sweepMain(const std::vector<std::string>& args) {
         "jobs,j", po::value<int>()->default_value(1), "runs at once in this process")(
         "retry-failed", "run again the runs whose failure is recorded")(
         "quiet", "no progress output")("sweep", po::value<std::string>(), "sweep file")(
-        "set", po::value<std::vector<std::string>>()->composing(), "key.path=value")("help,h",
-                                                                                     "this help");
+        "set", po::value<std::vector<std::string>>()->composing(), "key.path=value")(
+        "strict", "refuse keys the runs' engines do not read")("help,h", "this help");
     po::positional_options_description pos;
     pos.add("sweep", 1);
-    po::variables_map vm;
-    po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
-    po::notify(vm);
-    if (vm.count("help")) {
-        std::fputs(usage, stdout);
-        return 0;
-    }
+    const auto vm = parseOptions(args, opts, pos);
+    if (vm.count("help")) return printHelp("sweep");
     if (!vm.count("sweep")) throw po::error("sweep takes a sweep file (SWEEP.json)");
     const std::filesystem::path file = vm["sweep"].as<std::string>();
     const auto sets =
@@ -255,16 +199,21 @@ int sweepMain(const std::vector<std::string>& args) {
     cli::SweepOptions options;
     options.out = vm.count("out")
                       ? std::filesystem::path(vm["out"].as<std::string>())
-                      : std::filesystem::path("out") / cli::sanitisedName(file.stem().string());
+                      : std::filesystem::path("out") /
+                            cli::nameWithOverrides(cli::sanitisedName(file.stem().string()), sets);
     options.jobs = vm["jobs"].as<int>();
     options.quiet = vm.count("quiet") > 0;
     options.retryFailed = vm.count("retry-failed") > 0;
+    options.strict = vm.count("strict") > 0;
     if (options.jobs < 0 || (options.jobs == 0 && !cli::launchedByMpi()))
         throw po::error("-j must be at least 1 (0 only under mpirun: rank 0 then only hands out)");
     if (cli::launchedByMpi()) return cli::mpiSweep(file, sets, options);
     cli::SweepPlan plan;
     try {
         plan = cli::loadSweep(file, sets);
+        if (options.strict) cli::refuseIgnoredKeys(plan);
+        for (const std::string& note : plan.ignoredKeys)
+            std::fprintf(stderr, "terrace: warning: %s\n", cli::asWarning(note).c_str());
     } catch (const SceneError& e) { // a bad sweep file: nothing has run
         std::fprintf(stderr, "terrace: %s\n", e.what());
         return 2;
@@ -295,13 +244,8 @@ int tradeoffMain(const std::vector<std::string>& args) {
                                                                                      "this help");
     po::positional_options_description pos;
     pos.add("scene", 1);
-    po::variables_map vm;
-    po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
-    po::notify(vm);
-    if (vm.count("help")) {
-        std::fputs(usage, stdout);
-        return 0;
-    }
+    const auto vm = parseOptions(args, opts, pos);
+    if (vm.count("help")) return printHelp("tradeoff");
     if (cli::launchedByMpi())
         throw po::error("tradeoff hands out its runs locally (-j N) and does not run under an MPI "
                         "launcher: every rank would run the whole tradeoff");
@@ -353,9 +297,11 @@ int tradeoffMain(const std::vector<std::string>& args) {
         const Scene scene = o.scenePath.empty()
                                 ? sceneFromJson(nlohmann::json::object(), "<built-in>", o.sets)
                                 : loadScene(o.scenePath.string(), o.sets);
-        o.out = vm.count("out")
-                    ? std::filesystem::path(vm["out"].as<std::string>())
-                    : std::filesystem::path("out") / cli::sanitisedName("tradeoff-" + scene.name);
+        o.out =
+            vm.count("out")
+                ? std::filesystem::path(vm["out"].as<std::string>())
+                : std::filesystem::path("out") /
+                      cli::nameWithOverrides(cli::sanitisedName("tradeoff-" + scene.name), o.sets);
     } catch (const SceneError& e) {
         std::fprintf(stderr, "terrace: %s\n", e.what());
         return 2;
@@ -366,13 +312,12 @@ int tradeoffMain(const std::vector<std::string>& args) {
 int compareMain(const std::vector<std::string>& args) {
     po::options_description opts("compare options");
     opts.add_options()("tol-sigma", po::value<double>()->default_value(3.0), "tolerance in sigma")(
-        "column", po::value<std::string>()->default_value(""),
-        "value column")("files", po::value<std::vector<std::string>>(), "A.csv B.csv");
+        "column", po::value<std::string>()->default_value(""), "value column")(
+        "files", po::value<std::vector<std::string>>(), "A.csv B.csv")("help,h", "this help");
     po::positional_options_description pos;
     pos.add("files", 2);
-    po::variables_map vm;
-    po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
-    po::notify(vm);
+    const auto vm = parseOptions(args, opts, pos);
+    if (vm.count("help")) return printHelp("compare");
     if (!vm.count("files") || vm["files"].as<std::vector<std::string>>().size() != 2)
         throw po::error("compare takes two CSV files");
     const auto files = vm["files"].as<std::vector<std::string>>();
@@ -408,28 +353,42 @@ int main(int argc, char** argv) {
     // per body so, 1.003 with the threshold held (0.98 without restart points).
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
 #endif
-    terrace::cli::stopWithSweep();
+    const bool ofSweep = terrace::cli::stopWithSweep();
     std::vector<std::string> args(argv + 1, argv + argc);
-    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-        std::fputs(usage, args.empty() ? stderr : stdout);
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" ||
+        (args[0] == "help" && args.size() == 1)) {
+        std::fputs(cli::generalHelp().c_str(), args.empty() ? stderr : stdout);
         return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "help") { // terrace help COMMAND
+        const std::string help = cli::commandHelp(args[1]);
+        if (help.empty()) {
+            std::fprintf(stderr,
+                         "terrace: help: no command '%s' (the commands: run, analyse, "
+                         "compare, design, sweep, tradeoff)\n",
+                         args[1].c_str());
+            return 2;
+        }
+        return checkedStdout(printHelp(args[1]));
     }
     const std::string command = args[0];
     args.erase(args.begin());
     try {
         hugePagesWanted(); // a misspelt TERRACE_HUGE_PAGES is an error before anything runs
         measureSwitches(); // and so is a misspelt TERRACE_MEASURE
-        if (command == "run") return checkedStdout(runMain(args));
+        if (command == "run") return checkedStdout(runMain(args, ofSweep));
         if (command == "analyse" || command == "analyze") return checkedStdout(analyseMain(args));
         if (command == "compare") return checkedStdout(compareMain(args));
         if (command == "design") return checkedStdout(designMain(args));
         if (command == "sweep") return checkedStdout(sweepMain(args));
         if (command == "tradeoff") return checkedStdout(tradeoffMain(args));
-        std::fprintf(stderr, "terrace: unknown command '%s' (try terrace --help)\n",
-                     command.c_str());
+        const std::string near = nearestName(command, cli::commandNames());
+        std::fprintf(stderr, "terrace: unknown command '%s'%s (try terrace --help)\n",
+                     command.c_str(), near.empty() ? "" : ("; did you mean " + near + "?").c_str());
         return 2;
     } catch (const po::error& e) {
-        std::fprintf(stderr, "terrace %s: %s (try terrace --help)\n", command.c_str(), e.what());
+        std::fprintf(stderr, "terrace %s: %s (try terrace %s --help)\n", command.c_str(), e.what(),
+                     command.c_str());
         return 2;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "terrace: out of memory (the system refused an allocation)\n");

@@ -1,7 +1,12 @@
 #include "cli/output_dir.hpp"
+#include "cli/restart.hpp"
 #include "core/output_file.hpp"
+#include "core/scene.hpp"
+#include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <fcntl.h>
+#include <map>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -16,16 +21,71 @@ const std::vector<std::string>& runFileNames() {
     return names;
 }
 
-std::string sanitisedName(const std::string& name) {
+namespace {
+
+/// Every character outside the safe set (letters, digits, '-', '_', '.') becomes '_'.
+std::string safeCharacters(const std::string& text) {
     std::string out;
-    for (const char c : name) {
+    for (const char c : text) {
         const bool safe = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
                           (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
         out += safe ? c : '_';
     }
+    return out;
+}
+
+} // namespace
+
+std::string sanitisedName(const std::string& name) {
+    std::string out = safeCharacters(name);
     const auto first = out.find_first_not_of('.');
     out = first == std::string::npos ? "" : out.substr(first);
     return out.empty() ? "scene" : out;
+}
+
+namespace {
+
+/// An override's leaves: an object value stands for the keys under it.
+void addLeaves(const std::string& key, const nlohmann::json& value,
+               std::map<std::string, nlohmann::json>& leaves) {
+    if (!value.is_object() || value.empty()) {
+        leaves[key] = value;
+        return;
+    }
+    for (const auto& [k, v] : value.items())
+        addLeaves(key + "." + k, v, leaves);
+}
+
+std::string lastComponent(const std::string& key) {
+    return key.substr(key.rfind('.') + 1);
+}
+
+} // namespace
+
+std::string overridesName(const std::vector<std::string>& overrides, std::size_t maxLength) {
+    std::map<std::string, nlohmann::json> leaves; // sorted by the whole key, the last value kept
+    for (const std::string& o : overrides)
+        if (const auto parsed = parseOverride(o)) addLeaves(parsed->first, parsed->second, leaves);
+    leaves.erase("name");
+    leaves.erase("engine");
+    std::map<std::string, int> shared;
+    for (const auto& [key, value] : leaves)
+        ++shared[lastComponent(key)];
+    std::string text;
+    for (const auto& [key, value] : leaves) {
+        const std::string shown = shared[lastComponent(key)] > 1 ? key : lastComponent(key);
+        const std::string v = value.is_string() ? value.get<std::string>() : value.dump();
+        text += (text.empty() ? "" : ",") + safeCharacters(shown) + "=" + safeCharacters(v);
+    }
+    if (text.size() <= maxLength) return text;
+    char tag[20];
+    std::snprintf(tag, sizeof tag, "-%016llx", static_cast<unsigned long long>(crc64(text)));
+    return text.substr(0, maxLength - 17) + tag;
+}
+
+std::string nameWithOverrides(const std::string& base, const std::vector<std::string>& overrides) {
+    const std::string suffix = overridesName(overrides);
+    return suffix.empty() ? base : base + "-" + suffix;
 }
 
 namespace {
@@ -86,10 +146,12 @@ OutputDirectory::OutputDirectory(const fs::path& dir, OutputMode mode) : dir_(di
     if (mode == OutputMode::Fresh) {
         ::close(lock_);
         lock_ = -1;
+        // --continue needs the restart file, which a finished run removes: named only then.
+        const bool resumable =
+            std::find(present.begin(), present.end(), "restart.bin") != present.end();
         throw IoError(dir.string() + " holds an earlier run's results (" + listed(present) +
-                      "): choose another --out, add --overwrite to replace them, or "
-                      "--continue " +
-                      dir.string() + " to resume it");
+                      "): add --overwrite to replace them or give another --out" +
+                      (resumable ? ", or resume that run with --continue " + dir.string() : ""));
     }
     for (const auto& name : present)
         if (fs::remove(dir / name, ec); ec) {

@@ -22,6 +22,19 @@ const std::vector<std::string>& runFileNames();
 /// and an empty result is "scene".
 std::string sanitisedName(const std::string& name);
 
+/// The overrides ("key.path=value", as --set takes them) as part of a default output directory's
+/// name, so that runs of one scene with different --set land apart: "key=value" for each key,
+/// by the key's last component (the whole dotted key where two overrides share it), sorted by
+/// the whole key, joined by ',', each made safe as sanitisedName does; an object value counts as
+/// its leaves, a key set twice by its last value. `name` and `engine` are left out (the name
+/// already says them), as are overrides that do not parse. "" for none. Over `maxLength`
+/// characters, the text is cut and ends in '-' and 16 hex digits of its CRC-64 instead, so that
+/// two long sets of overrides still differ.
+std::string overridesName(const std::vector<std::string>& overrides, std::size_t maxLength = 160);
+
+/// `base` (a sanitised name) followed by "-" and overridesName(overrides) when there are any.
+std::string nameWithOverrides(const std::string& base, const std::vector<std::string>& overrides);
+
 class OutputDirectory {
 public:
     OutputDirectory(const std::filesystem::path& dir, OutputMode mode);

@@ -23,8 +23,9 @@ Scene resolveScene(const RunRequest& request) {
     return scene;
 }
 
-std::filesystem::path defaultOutput(const Scene& scene) {
-    return std::filesystem::path("out") / sanitisedName(scene.name + "-" + scene.engine);
+std::filesystem::path defaultOutput(const Scene& scene, const std::vector<std::string>& overrides) {
+    return std::filesystem::path("out") /
+           nameWithOverrides(sanitisedName(scene.name + "-" + scene.engine), overrides);
 }
 
 namespace {

@@ -19,8 +19,9 @@ struct RunRequest {
 
 Scene resolveScene(const RunRequest& request);
 
-/// The default output directory of a scene: out/<sanitised name>-<engine>.
-std::filesystem::path defaultOutput(const Scene& scene);
+/// The default output directory of a scene run with `overrides` (--set): out/<sanitised
+/// name>-<engine>, followed by the overrides (overridesName: out/lj-liquid-smd-dt_fs=0.7).
+std::filesystem::path defaultOutput(const Scene& scene, const std::vector<std::string>& overrides);
 
 /// Refuses a run whose stored samples would not fit in the memory this machine has available,
 /// before anything starts, with the estimate.

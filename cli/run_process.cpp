@@ -23,13 +23,14 @@ std::filesystem::path selfExecutable() {
     return self;
 }
 
-void stopWithSweep() {
+bool stopWithSweep() {
     const char* value = std::getenv(sweepPidVariable);
-    if (value == nullptr) return;
+    if (value == nullptr) return false;
     const pid_t sweep = pid_t(std::strtol(value, nullptr, 10));
     ::unsetenv(sweepPidVariable);
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (::getppid() != sweep) ::raise(SIGTERM); // the sweep ended before the line above
+    return true;
 }
 
 namespace {

@@ -74,7 +74,8 @@ inline constexpr const char* sweepPidVariable = "TERRACE_SWEEP_PID";
 /// however it ends (kill -9 included), and stops as at a Ctrl-C, its restart file written; were
 /// it left running, it would hold its directory's lock against the next sweep. posix_spawn
 /// cannot ask for this (PR_SET_PDEATHSIG), so the child does, first thing in main(). A sweep
-/// that ended before then is no longer the parent: the child then ends at once.
-void stopWithSweep();
+/// that ended before then is no longer the parent: the child then ends at once. The variable is
+/// removed (a child's own children are not the sweep's); returns whether it was set.
+bool stopWithSweep();
 
 } // namespace terrace::cli

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #ifdef TERRACE_HAVE_MPI
+#include "cli/engine_keys.hpp"
 #include "cli/interrupt.hpp"
 #include <chrono>
 #include <cstdio>
@@ -128,6 +129,7 @@ int mpiSweep(const std::filesystem::path& sweepFile, const std::vector<std::stri
     std::string error;
     try {
         plan = loadSweep(sweepFile, extraSets);
+        if (options.strict) refuseIgnoredKeys(plan);
     } catch (const std::exception& e) {
         error = e.what();
     }
@@ -141,6 +143,9 @@ int mpiSweep(const std::filesystem::path& sweepFile, const std::vector<std::stri
         MPI_Finalize();
         return 2;
     }
+    if (rank == 0)
+        for (const std::string& note : plan.ignoredKeys)
+            std::fprintf(stderr, "terrace: warning: %s\n", asWarning(note).c_str());
     try {
         if (rank == 0) {
             MpiWorkers workers(ranks);

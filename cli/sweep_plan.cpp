@@ -1,8 +1,10 @@
 #include "cli/sweep_plan.hpp"
+#include "cli/engine_keys.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/scene_check.hpp"
 #include "core/output_file.hpp"
 #include "core/scene_json.hpp"
+#include "core/suggest.hpp"
 #include <algorithm>
 #include <map>
 #include <set>
@@ -116,7 +118,72 @@ std::string namePart(const std::string& key, const json& value) {
     return part;
 }
 
+/// The common keys ("set", --set) of an engine that no run of the sweep has, one note each.
+std::vector<std::string> ignoredCommonKeys(const SweepPlan& plan, const std::string& origin) {
+    std::set<std::string> engines;
+    for (const SweepRun& run : plan.runs)
+        engines.insert(run.scene.engine);
+    std::vector<std::string> notes;
+    for (const Override& o : plan.common) {
+        const std::string owner = engineOfKey(o.first);
+        if (owner.empty() || engines.count(owner)) continue;
+        notes.push_back(ignoredKeyNote(origin + ": " + overrideArgument(o) + " (for every run)",
+                                       owner, "every run's engine, " + *engines.begin() + ","));
+    }
+    return notes;
+}
+
+/// An axis's keys of one engine's section on runs of the other, when the axis's value meant
+/// them for that run: a value that also sets the run's engine (a case {"engine": "dmd",
+/// "smd.dt_fs": 0.45}), or one of keys the run reads none of (a product of an engine axis and an
+/// smd.dt_fs axis: the DMD runs along it repeat one another). A value that also sets a key the
+/// run reads (smd.skin zipped with state.density, for runs of both engines) is meant for the
+/// other engine's runs, and passes. Collected run by run, noted once a key.
+class IgnoredAxisKeys {
+public:
+    void look(const AxisValue& value, const SweepRun& run) {
+        const std::string& engine = run.scene.engine;
+        bool setsEngine = false, readsAny = false;
+        for (const auto& [key, v] : value.overrides) {
+            setsEngine = setsEngine || key == "engine";
+            const std::string owner = engineOfKey(key);
+            readsAny = readsAny || owner.empty() || owner == engine;
+        }
+        if (!setsEngine && readsAny) return;
+        for (const auto& [key, v] : value.overrides) {
+            const std::string owner = engineOfKey(key);
+            if (owner.empty() || owner == engine) continue;
+            auto at = std::find_if(byKey_.begin(), byKey_.end(),
+                                   [&](const auto& k) { return k.key == key; });
+            if (at == byKey_.end()) at = byKey_.insert(byKey_.end(), {key, engine, run.name, 0});
+            ++at->runs;
+        }
+    }
+
+    std::vector<std::string> notes(const std::string& origin) const {
+        std::vector<std::string> out;
+        for (const Ignored& k : byKey_)
+            out.push_back(ignoredKeyNote(origin + ": axes set " + k.key + " for " +
+                                             std::to_string(k.runs) + " run" +
+                                             (k.runs == 1 ? "" : "s") + " of engine " + k.engine +
+                                             " (first: " + k.firstRun + ")",
+                                         engineOfKey(k.key), "their engine, " + k.engine + ","));
+        return out;
+    }
+
+private:
+    struct Ignored {
+        std::string key, engine, firstRun;
+        int runs;
+    };
+    std::vector<Ignored> byKey_; // in order of first appearance
+};
+
 } // namespace
+
+void refuseIgnoredKeys(const SweepPlan& plan) {
+    if (!plan.ignoredKeys.empty()) throw SceneError(asRefusal(plan.ignoredKeys.front()));
+}
 
 std::string valueText(const json& value) {
     return value.is_string() ? value.get<std::string>() : value.dump();
@@ -136,9 +203,13 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
     const ordered file = ordered::parse(text, nullptr, false);
     if (file.is_discarded()) rd.fail("<top>", "not valid JSON");
     if (!file.is_object()) rd.fail("<top>", "a sweep must be a JSON object");
+    const std::vector<std::string> sweepKeys = {"scene", "set", "axes", "seeds"};
     for (const auto& [k, v] : file.items())
-        if (k != "scene" && k != "set" && k != "axes" && k != "seeds")
-            rd.fail(k, "unknown key (a sweep has scene, set, axes and seeds)");
+        if (std::find(sweepKeys.begin(), sweepKeys.end(), k) == sweepKeys.end()) {
+            const std::string near = nearestName(k, sweepKeys);
+            rd.fail(k, "unknown key" + (near.empty() ? "" : "; did you mean " + near + "?") +
+                           " (a sweep has scene, set, axes and seeds)");
+        }
 
     SweepPlan plan;
     plan.origin = origin;
@@ -193,6 +264,7 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
         return byComponent[lastComponent(key)].size() > 1 ? key : lastComponent(key);
     };
 
+    IgnoredAxisKeys ignoredAxisKeys;
     // The product of the axes, the last fastest (an odometer over the axes' indices).
     std::vector<std::size_t> index(axes.size(), 0);
     std::set<std::string> names;
@@ -232,6 +304,8 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
         } catch (const SceneError& e) {
             rd.fail("run " + run.name, e.what());
         }
+        for (std::size_t a = 0; a < axes.size(); ++a)
+            ignoredAxisKeys.look(axes[a][index[a]], run);
         plan.runs.push_back(std::move(run));
 
         std::size_t a = axes.size();
@@ -239,6 +313,9 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
             index[--a] = 0;
         if (a == 0) break;
     }
+    plan.ignoredKeys = ignoredCommonKeys(plan, origin);
+    for (std::string& note : ignoredAxisKeys.notes(origin))
+        plan.ignoredKeys.push_back(std::move(note));
     return plan;
 }
 

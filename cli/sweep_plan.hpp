@@ -16,7 +16,8 @@
 // Keys are the dotted scene keys of `terrace run --set`; values are JSON. A run's directory is
 // named by its overrides, axis by axis, joined by '_': "<key>-<value>" with the key's last
 // component (the whole dotted key where two of the sweep's keys share it), e.g.
-// density-0.3_engine-dmd_dV-0.5_seed-2. Every run's scene is resolved and checked when the plan
+// density-0.3_engine-dmd_dV-0.5_seed-2. A key of one engine's section set for runs of the other
+// is noted (SweepPlan::ignoredKeys). Every run's scene is resolved and checked when the plan
 // is made, so a bad sweep file fails with one line naming the run and the key before anything
 // runs.
 #include "core/scene.hpp"
@@ -42,6 +43,10 @@ struct SweepPlan {
     std::vector<Override> common;      // the file's "set", then the command line's --set
     std::vector<std::string> axisKeys; // every key an axis sets, in order of first appearance
     std::vector<SweepRun> runs;        // in sweep order
+    // Keys set for runs whose engine does not read them (cli/engine_keys.hpp), one line each: an
+    // axis's key of one engine's section on runs of the other, or a common key of an engine that
+    // no run of the sweep has. Warnings (asWarning), or refused under --strict (refuseIgnoredKeys).
+    std::vector<std::string> ignoredKeys;
 };
 
 /// Reads and checks a sweep file; `extraSets` ("key=value", as for terrace run) apply to every
@@ -53,6 +58,9 @@ SweepPlan loadSweep(const std::filesystem::path& file, const std::vector<std::st
 SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
                         const std::filesystem::path& baseDir,
                         const std::vector<std::string>& extraSets);
+
+/// Throws the first of plan.ignoredKeys as a SceneError, if there is one.
+void refuseIgnoredKeys(const SweepPlan& plan);
 
 /// "key=value" with the value as JSON, as `terrace run --set` takes it.
 std::string overrideArgument(const Override& o);

@@ -25,6 +25,7 @@ struct SweepOptions {
     int jobs = 1; // runs at once in this process
     bool quiet = false;
     bool retryFailed = false;
+    bool strict = false; // keys a run's engine does not read refuse the sweep (refuseIgnoredKeys)
 };
 
 /// Workers elsewhere (the other MPI ranks): each asks for a run, runs it and reports its end.

@@ -1,4 +1,6 @@
 #include "core/scene_json.hpp"
+#include "core/suggest.hpp"
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -34,10 +36,17 @@ std::string JsonSection::name(const std::string& key) const {
 
 void JsonSection::onlyKeys(std::initializer_list<const char*> known) const {
     if (!object_->is_object()) refuse(path_.empty() ? "<top>" : path_, "must be an object");
-    const std::set<std::string> allowed(known.begin(), known.end());
+    const std::vector<std::string> allowed(known.begin(), known.end());
     for (const auto& [key, value] : object_->items()) {
         (void)value;
-        if (!allowed.count(key)) fail(key, "unknown key");
+        if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+        const std::string near = nearestName(key, allowed);
+        if (!near.empty()) fail(key, "unknown key; did you mean " + name(near) + "?");
+        std::string list;
+        for (const auto& k : allowed)
+            list += (list.empty() ? "" : ", ") + k;
+        fail(key, "unknown key (" + (path_.empty() ? std::string("a scene") : path_) + " has " +
+                      list + ")");
     }
 }
 
@@ -89,7 +98,10 @@ std::string JsonSection::choice(const std::string& key, const std::string& def,
         if (s == a) return s;
         list += (list.empty() ? "" : " | ") + std::string(a);
     }
-    fail(key, "must be one of " + list + ", got \"" + s + "\"");
+    const std::string near =
+        nearestName(s, std::vector<std::string>(allowed.begin(), allowed.end()));
+    fail(key, "must be one of " + list + ", got \"" + s + "\"" +
+                  (near.empty() ? "" : "; did you mean " + near + "?"));
 }
 
 bool JsonSection::boolean(const std::string& key, bool def) const {

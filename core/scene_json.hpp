@@ -39,7 +39,8 @@ public:
     const nlohmann::json& object() const { return *object_; }
     bool has(const std::string& key) const { return object_->contains(key); }
     const nlohmann::json& at(const std::string& key) const { return object_->at(key); }
-    /// Refuses the section if it is not an object or holds a key outside `known`.
+    /// Refuses the section if it is not an object or holds a key outside `known`, naming the known
+    /// key nearest it ("did you mean", core/suggest.hpp) or, when none is near, all of them.
     void onlyKeys(std::initializer_list<const char*> known) const;
     /// The object under `key` (an empty one when absent), refused if it is not an object.
     JsonSection section(const std::string& key) const;
@@ -49,7 +50,7 @@ public:
                   bool loOpen = false) const;
     /// An integer in [lo, hi]; `def` when absent.
     long long integer(const std::string& key, long long def, long long lo, long long hi) const;
-    /// One of `allowed` (listed in the error in their order); `def` when absent.
+    /// One of `allowed` (listed in the error in their order, with the nearest); `def` when absent.
     std::string choice(const std::string& key, const std::string& def,
                        std::initializer_list<const char*> allowed) const;
     bool boolean(const std::string& key, bool def) const;

@@ -88,6 +88,10 @@ inline std::string terraceCountProblem(double uMin, double dV, double kT, double
       << " terraces of " << dV * kT << " kJ/mol in the well (U_min = " << uMin
       << " kJ/mol), more than the " << maxTerracesInWell
       << " a run can represent (levels would crowd the minimum at round-off); raise " << blamed;
+    if (cold)
+        o << " at least " << count / maxTerracesInWell << "-fold";
+    else
+        o << " to at least " << std::abs(uMin) / (maxTerracesInWell * kT);
     return o.str();
 }
 

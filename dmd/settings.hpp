@@ -63,7 +63,7 @@ DmdSettings readDmdSettings(const DmdSection& d, const P& potential, double kT, 
         const std::string crowded = terraceCountProblem(potential.minimumEnergy(), d.dV, kT);
         if (!crowded.empty()) throw SceneError(crowded);
         s.levels = TerraceLevels::uniform(d.dV * kT);
-        s.levels.checkMinimum(potential.minimumEnergy(), "dmd.dV");
+        s.levels.checkMinimum(potential.minimumEnergy(), "dmd.dV", kT);
     }
     for (const auto& [name, kind] : queueKinds)
         if (d.queue == name) s.queue = kind;
@@ -78,9 +78,11 @@ DmdSettings readDmdSettings(const DmdSection& d, const P& potential, double kT, 
         throw SceneError("dmd.dV: no level bounding terrace 0 is ever reached (r_m = 0)");
     // With L < 2 r_m a pair could interact through two periodic images at once.
     if (boxLength < 2.0 * s.rm)
-        throw SceneError("dmd.dV: the box edge " + std::to_string(boxLength) +
-                         " Å is shorter than twice the interaction range r_m = " +
-                         std::to_string(s.rm) + " Å; use more bodies or a larger dV");
+        throw SceneError(
+            "dmd.dV: the box edge " + showNumber(boxLength) +
+            " Å is shorter than twice the interaction range r_m = " + showNumber(s.rm) +
+            " Å; use at least " + showNumber(std::pow(2.0 * s.rm / boxLength, 3)) +
+            " times as many bodies at this density (state.n), or a larger dV");
     return s;
 }
 

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -148,14 +149,17 @@ public:
         return n;
     }
 
-    /// Reject a level within minimumClearance of the potential's minimum.
-    void checkMinimum(double uMin, const std::string& key) const {
+    /// Reject a level within minimumClearance of the potential's minimum. Uniform levels of
+    /// dmd.dV = step/kT (kT > 0 given) name the dV nearest theirs that put the minimum midway
+    /// between two levels instead.
+    void checkMinimum(double uMin, const std::string& key, double kT = 0.0) const {
         const double tol = minimumClearance * (uMin != 0.0 ? std::abs(uMin) : 1.0);
         if (isUniform()) {
             const double k = std::round(uMin / step_ + 0.5); // level index nearest the minimum
             if (std::abs((k - 0.5) * step_ - uMin) <= tol)
-                throw SceneError(key + ": a level falls on the potential minimum U = " +
-                                 std::to_string(uMin) + " kJ/mol (a terrace of zero width)");
+                throw SceneError(
+                    key + ": a level falls on the potential minimum U = " + std::to_string(uMin) +
+                    " kJ/mol (a terrace of zero width)" + midwaySteps(uMin, 1.0 - k, kT));
             return;
         }
         for (double L : levels_)
@@ -166,6 +170,23 @@ public:
     }
 
 private:
+    /// With the minimum U_min < 0 on the j-th level below 0, at −(j − ½) ΔV: the heights that put
+    /// it midway between two levels, ΔV = |U_min| / j (one more level above it) and |U_min| /
+    /// (j − 1) (one fewer; for j = 1 none is left in the well), as "; dmd.dV = ..." in kT.
+    static std::string midwaySteps(double uMin, double j, double kT) {
+        if (!(kT > 0.0) || !(uMin < 0.0) || j < 1.0) return "";
+        auto dV = [&](double levels) {
+            std::ostringstream o;
+            o.precision(6);
+            o << -uMin / (levels * kT);
+            return o.str();
+        };
+        if (j < 2.0)
+            return "; dmd.dV = " + dV(j) + " puts it midway between two levels (a dmd.dV above " +
+                   dV(j - 0.5) + " leaves no level in the well)";
+        return "; dmd.dV = " + dV(j) + " or " + dV(j - 1.0) + " put it midway between two levels";
+    }
+
     double step_ = 0.0;          // > 0: uniform levels
     std::vector<double> levels_; // explicit levels
     std::vector<double> energy_; // explicit: energy by slot (terrace n is slot n + zeroSlot_)

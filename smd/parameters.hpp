@@ -84,10 +84,22 @@ inline Parameters parameters(const Scene& scene, double boxLength, double range)
     p.dt = units::fromFs(s.dt_fs);
     p.skin = s.skin * sigma;
     const double needed = 2.0 * (range + p.skin);
-    if (!(boxLength >= needed))
+    if (!(boxLength >= needed)) {
+        // The box's volume is N/ρ: the same density needs N (needed/L)³ bodies, the same N a
+        // density ρ (L/needed)³.
+        const double grow = std::pow(needed / boxLength, 3);
+        const int bodies =
+            scene.state.particles.empty() ? scene.state.n : int(scene.state.particles.size());
+        // Four significant digits, rounded down, so that the density named is one that fits.
+        const double density = scene.state.density / grow;
+        const double digit = std::pow(10.0, std::floor(std::log10(density)) - 3.0);
         throw SceneError("potential.cutoff: the box edge " + showNumber(boxLength) +
                          " Å is shorter than 2·(r_u + skin) = " + showNumber(needed) +
-                         " Å; use more bodies, a lower density, or a smaller r_u or smd.skin");
+                         " Å; use state.n >= " +
+                         std::to_string(static_cast<long long>(std::ceil(bodies * grow))) +
+                         ", state.density <= " + showNumber(std::floor(density / digit) * digit) +
+                         ", or a smaller r_u or smd.skin");
+    }
     return p;
 }
 

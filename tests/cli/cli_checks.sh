@@ -105,6 +105,144 @@ bad_value)
     err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" extra.json 2>&1 >/dev/null)
     [[ $err == "terrace run: takes one scene file;"* ]] || fail "two scene files: $err"
     ;;
+command_help)
+    # Every command has its own help, on standard output with status 0, by --help, -h and
+    # terrace help COMMAND; each lists that command's options.
+    for c in run analyse compare design sweep tradeoff; do
+        for flag in --help -h; do
+            out=$("$terrace" $c $flag 2>"$work/err") || fail "terrace $c $flag: exit status $?"
+            [[ $out == "Usage:"*"terrace $c"*"Options:"*"--help"* ]] ||
+                fail "terrace $c $flag is not its usage: $out $(cat "$work/err")"
+            [ ! -s "$work/err" ] || fail "terrace $c $flag wrote to standard error"
+        done
+        [ "$("$terrace" help $c)" = "$out" ] || fail "terrace help $c differs from terrace $c -h"
+    done
+    "$terrace" compare --help | grep -q -- "--tol-sigma X" || fail "compare --help lacks --tol-sigma"
+    "$terrace" run --help | grep -q -- "--strict" || fail "run --help lacks --strict"
+    "$terrace" tradeoff --help | grep -q -- "--budget-cpu-hours" || fail "tradeoff --help lacks its options"
+    # A misspelt option or command: the nearest known one, status 2, nothing run.
+    err=$("$terrace" compare a.csv b.csv --tol-sigam 2 2>&1 >/dev/null)
+    [ $? -eq 2 ] || fail "a misspelt option: exit status not 2"
+    [[ $err == "terrace compare: unrecognised option '--tol-sigam'; did you mean --tol-sigma? (try terrace compare --help)" ]] ||
+        fail "a misspelt option: $err"
+    err=$("$terrace" run --out "$work/out" --strcit 2>&1 >/dev/null)
+    [[ $err == *"did you mean --strict?"* ]] || fail "a misspelt --strict: $err"
+    [ ! -e "$work/out" ] || fail "output written for a bad command line"
+    err=$("$terrace" tradof 2>&1 >/dev/null)
+    [ $? -eq 2 ] || fail "an unknown command: exit status not 2"
+    [[ $err == *"unknown command 'tradof'; did you mean tradeoff?"* ]] || fail "an unknown command: $err"
+    err=$("$terrace" help lammps 2>&1 >/dev/null)
+    [ $? -eq 2 ] || fail "help for no command: exit status not 2"
+    ;;
+did_you_mean)
+    # An unknown key names the known key nearest it, whether from --set or from the file.
+    expect_error "$src/experiments/scenes/lj-liquid.json" \
+        "smd.dt: unknown key; did you mean smd.dt_fs?" --set smd.dt=0.5
+    expect_error "$src/experiments/scenes/lj-liquid.json" \
+        "state.temp: unknown key; did you mean state.temperature?" --set state.temp=2
+    printf '{"name": "x", "state": {"desnity": 0.3}}' >"$work/s.json"
+    expect_error "$work/s.json" "state.desnity: unknown key; did you mean state.density?"
+    expect_error "$src/experiments/scenes/lj-liquid.json" \
+        'smd.scheme: must be one of omelyan | verlet | yoshida4, got "verlett"; did you mean verlet?' \
+        --set smd.scheme=verlett
+    ;;
+engine_keys)
+    # A --set key of the engine not running: a warning naming the engine, in summary.json too;
+    # under --strict a refusal before anything is written.
+    lj=("$src/experiments/scenes/lj-liquid.json" --set state.n=108 --set state.density=0.3
+        --set run.equilibrate_ps=0 --set run.time_ps=0.09)
+    "$terrace" run "${lj[@]}" --set smd.dt_fs=0.7 --out "$work/dmd" --quiet >/dev/null 2>"$work/err" ||
+        fail "a DMD run with an SMD key failed: $(cat "$work/err")"
+    grep -q "warning: --set smd.dt_fs=0.7: the run's engine, dmd, does not read the smd section, so the setting has no effect" "$work/err" ||
+        fail "no warning for an SMD key on a DMD run: $(cat "$work/err")"
+    grep -q 'does not read the smd section' "$work/dmd/summary.json" || fail "the warning is not in summary.json"
+    "$terrace" run "${lj[@]}" --set engine=smd --set dmd.dV=0.25 --out "$work/smd" --quiet >/dev/null 2>"$work/err" ||
+        fail "an SMD run with a DMD key failed: $(cat "$work/err")"
+    grep -q "warning: --set dmd.dV=0.25: the run's engine, smd, does not read the dmd section" "$work/err" ||
+        fail "no warning for a DMD key on an SMD run: $(cat "$work/err")"
+    "$terrace" run "${lj[@]}" --set engine=smd --set smd.dt_fs=0.45 --out "$work/plain" --quiet >/dev/null 2>"$work/err" ||
+        fail "an SMD run with its own key failed"
+    ! grep -q "does not read" "$work/err" || fail "a warning for the engine's own key: $(cat "$work/err")"
+    expect_error "$src/experiments/scenes/lj-liquid.json" \
+        "--set smd.dt_fs=0.7: the run's engine, dmd, does not read the smd section, so the setting has no effect (refused under --strict)" \
+        --set smd.dt_fs=0.7 --strict
+    # terrace design reads the dmd section only.
+    "$terrace" design "$src/experiments/scenes/lj-liquid.json" --set smd.dt_fs=0.7 >/dev/null 2>"$work/err" ||
+        fail "design with an SMD key failed"
+    grep -q "warning: --set smd.dt_fs=0.7: terrace design, which shows DMD's terraces, does not read the smd section" "$work/err" ||
+        fail "design: no warning: $(cat "$work/err")"
+    "$terrace" design "$src/experiments/scenes/lj-liquid.json" --set smd.dt_fs=0.7 --strict >/dev/null 2>&1 &&
+        fail "design --strict accepted an SMD key"
+    # A sweep: the ladders of two engines and common keys of both are meant, and said nothing
+    # of, by the sweep or its runs; a common key of an engine no run has is a warning, and under
+    # --strict a bad sweep (status 2, nothing run).
+    common='"state.n": 108, "state.density": 0.3, "run.equilibrate_ps": 0, "run.time_ps": 0.09, "smd.skin": 0.4'
+    cat >"$work/ladders.json" <<END
+{"scene": "$src/experiments/scenes/lj-liquid.json", "set": {$common},
+ "axes": [{"cases": [{"engine": "dmd", "dmd.dV": 0.25}, {"engine": "smd", "smd.dt_fs": 0.45}],
+           "labels": ["dmd", "smd"]}]}
+END
+    cat >"$work/dmd-only.json" <<END
+{"scene": "$src/experiments/scenes/lj-liquid.json", "set": {$common},
+ "axes": [{"cases": [{"engine": "dmd", "dmd.dV": 0.25}, {"engine": "dmd", "smd.dt_fs": 0.45}],
+           "labels": ["a", "b"]}]}
+END
+    "$terrace" sweep "$work/ladders.json" --set dmd.horizon_fs=2 --out "$work/sw" --quiet 2>"$work/err" ||
+        fail "the ladders' sweep failed: $(cat "$work/err")"
+    ! grep -q "does not read" "$work/err" "$work/sw/dmd/run.log" "$work/sw/smd/run.log" ||
+        fail "a warning for keys a sweep of both engines sets: $(cat "$work/err" "$work/sw"/*/run.log)"
+    "$terrace" sweep "$work/dmd-only.json" --out "$work/sw1" --quiet 2>"$work/err" ||
+        fail "a one-engine sweep failed: $(cat "$work/err")"
+    grep -q "warning: .*axes set smd.dt_fs for 1 run of engine dmd (first: b): their engine, dmd, does not read the smd section" "$work/err" ||
+        fail "no warning for an axis's SMD key on a DMD run: $(cat "$work/err")"
+    grep -q "warning: .*smd.skin=0.4 (for every run): every run's engine, dmd, does not read the smd section" "$work/err" ||
+        fail "no warning for a common SMD key of a DMD sweep: $(cat "$work/err")"
+    err=$("$terrace" sweep "$work/dmd-only.json" --strict --out "$work/sw2" 2>&1)
+    [ $? -eq 2 ] || fail "sweep --strict: exit status not 2: $err"
+    [[ $err == *"(refused under --strict)" ]] || fail "sweep --strict: $err"
+    [ ! -e "$work/sw2" ] || fail "sweep --strict wrote its directory"
+    ;;
+nearest_value)
+    # A refused value names the valid values nearest it: LJ at T* 2 with dV = 1 puts a level on
+    # the minimum; dV = 0.5 puts it midway between two, and runs.
+    expect_error "$src/experiments/scenes/lj-liquid.json" \
+        "dmd.dV: a level falls on the potential minimum U = -1.000000 kJ/mol (a terrace of zero width); dmd.dV = 0.5 puts it midway between two levels" \
+        --set state.temperature=2 --set dmd.dV=1
+    "$terrace" run "$src/experiments/scenes/lj-liquid.json" --set state.temperature=2 --set dmd.dV=0.5 \
+        --set state.n=108 --set run.equilibrate_ps=0 --set run.time_ps=0.09 --out "$work/ok" --quiet >/dev/null ||
+        fail "the dV named is refused"
+    # A box narrower than twice DMD's interaction range names how many more bodies it takes.
+    expect_error "$src/experiments/scenes/lj-liquid.json" \
+        "dmd.dV: the box edge 5.42884 Å is shorter than twice the interaction range r_m = 2.75303 Å; use at least 1.04328 times as many bodies at this density (state.n), or a larger dV" \
+        --set state.n=8 --set state.density=0.05 --set dmd.dV=0.01
+    # A box too small for SMD's cutoff names the bodies or density that fit.
+    expect_error "$src/experiments/scenes/lj-liquid.json" \
+        "potential.cutoff: the box edge 4.7622 Å is shorter than 2·(r_u + skin) = 6.6 Å; use state.n >= 288, state.density <= 0.3756" \
+        --set engine=smd --set state.n=108 --set state.density=1
+    ;;
+output_names)
+    # Runs of one scene with different --set land apart by default, under out/ in a name that
+    # says the overrides; a collision says --overwrite or a new --out, and --continue only where
+    # a restart file is.
+    lj=("$src/experiments/scenes/lj-liquid.json" --set state.n=108 --set state.density=0.3
+        --set run.equilibrate_ps=0 --set run.time_ps=0.09 --quiet)
+    (cd "$work" && "$terrace" run "${lj[@]}" --set engine=smd --set smd.dt_fs=0.45 >/dev/null &&
+        "$terrace" run "${lj[@]}" --set engine=smd --set smd.dt_fs=0.9 >/dev/null) || fail "a run failed"
+    # Sorted by the whole key: run.*, smd.*, state.*.
+    for d in "lj-liquid-smd-equilibrate_ps=0,time_ps=0.09,dt_fs=0.45,density=0.3,n=108" \
+             "lj-liquid-smd-equilibrate_ps=0,time_ps=0.09,dt_fs=0.9,density=0.3,n=108"; do
+        [ -s "$work/out/$d/summary.json" ] || fail "no out/$d: $(ls "$work/out")"
+    done
+    err=$(cd "$work" && "$terrace" run "${lj[@]}" --set smd.dt_fs=0.9 --set engine=smd 2>&1 >/dev/null) &&
+        fail "a second run into the same default directory was not refused"
+    [[ $err == *"holds an earlier run's results"*"add --overwrite to replace them or give another --out" ]] ||
+        fail "collision: $err"
+    [[ $err != *"--continue"* ]] || fail "--continue offered without a restart file: $err"
+    : >"$work/out/lj-liquid-smd-equilibrate_ps=0,time_ps=0.09,dt_fs=0.9,density=0.3,n=108/restart.bin"
+    err=$(cd "$work" && "$terrace" run "${lj[@]}" --set smd.dt_fs=0.9 --set engine=smd 2>&1 >/dev/null)
+    [[ $err == *", or resume that run with --continue out/lj-liquid-smd-equilibrate_ps=0,"* ]] ||
+        fail "--continue not offered beside a restart file: $err"
+    ;;
 design)
     # The table of a design: a header, then one row a terrace, terrace 0 carrying exactly 0.
     "$terrace" design "$src/experiments/scenes/dense-rods.json" \
@@ -236,6 +374,7 @@ existing_results)
         fail "exit status 0 into a directory with an earlier run's results"
     [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "error is not one line: $err"
     [[ $err == *"earlier run"*"--overwrite"* ]] || fail "error does not say what to do: $err"
+    [[ $err != *"--continue"* ]] || fail "--continue offered for a finished run: $err"
     "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/dmd" --overwrite \
         --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=0.099 >/dev/null ||
         fail "--overwrite refused"
@@ -270,7 +409,8 @@ default_name)
     (cd "$work" && "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
         --set name=../../escaped --set state.n=216 --set run.equilibrate_ps=0 \
         --set run.time_ps=0.099 >/dev/null) || fail "run failed"
-    [ -s "$work/out/_.._escaped-dmd/summary.json" ] || fail "output not under out/: $(ls -R "$work")"
+    [ -s "$work/out/_.._escaped-dmd-equilibrate_ps=0,time_ps=0.099,n=216/summary.json" ] ||
+        fail "output not under out/: $(ls -R "$work")"
     [ ! -e "$work/../escaped-dmd" ] || fail "output escaped the working directory"
     ;;
 unwritable)

@@ -112,7 +112,8 @@ TEST(SweepPlan, OverrideArgumentsAreJsonAsTerraceRunTakesThem) {
 
 TEST(SweepPlan, BadSweepFilesFailInOneLineNamingTheProblem) {
     EXPECT_NE(sweepError("{ not json").find("not valid JSON"), std::string::npos);
-    EXPECT_NE(sweepError(R"({"axis": []})").find("axis: unknown key"), std::string::npos);
+    EXPECT_NE(sweepError(R"({"axis": []})").find("axis: unknown key; did you mean axes?"),
+              std::string::npos);
     EXPECT_NE(sweepError(R"({"axes": [{"dmd.dV": [1, 2], "smd.dt_fs": [1]}]})")
                   .find("axes[0].smd.dt_fs: zipped keys need lists of one length"),
               std::string::npos);
@@ -149,6 +150,52 @@ TEST(SweepPlan, ARepeatedKeyIsRefusedNamingIt) {
               "s.json: axes[0].cases[0].seed: duplicate key");
     // The same key in two objects is no repetition.
     EXPECT_EQ(plan(R"({"axes": [{"cases": [{"seed": 1}, {"seed": 2}]}]})").runs.size(), 2u);
+}
+
+// Keys of one engine's section set for runs of the other (cli/engine_keys.hpp): the ladders of
+// two engines as cases, and common keys of both engines for a sweep running both, are meant; an
+// axis that sets smd.dt_fs for DMD runs, or a common key of an engine no run has, is not.
+TEST(SweepPlan, KeysTheRunsEnginesDoNotReadAreNoted) {
+    const char* ladders = R"({"axes": [{"cases": [{"engine": "dmd", "dmd.dV": 0.5},
+                                                 {"engine": "smd", "smd.dt_fs": 1.8}]}]})";
+    EXPECT_TRUE(plan(ladders).ignoredKeys.empty());
+    EXPECT_TRUE(plan(ladders, {"smd.skin=0.4", "dmd.horizon_fs=2"}).ignoredKeys.empty());
+    EXPECT_TRUE(plan(R"({"set": {"smd.skin": 0.4}, "axes": [{"engine": ["dmd", "smd"]}]})")
+                    .ignoredKeys.empty());
+    // An SMD key zipped with one both engines read serves the SMD runs (bench.json's skin).
+    EXPECT_TRUE(plan(R"({"axes": [{"state.density": [0.1, 0.3], "smd.skin": [2.4, 0.3]},
+                                  {"engine": ["dmd", "smd"]}]})")
+                    .ignoredKeys.empty());
+    // A case that sets the engine and a key of the other's section means it for that run.
+    const auto contrary =
+        plan(R"({"axes": [{"cases": [{"engine": "dmd", "smd.dt_fs": 0.9}, {"engine": "smd"}]}]})");
+    ASSERT_EQ(contrary.ignoredKeys.size(), 1u);
+    EXPECT_NE(contrary.ignoredKeys[0].find("axes set smd.dt_fs for 1 run of engine dmd (first: "
+                                           "engine-dmd_dt_fs-0.9)"),
+              std::string::npos)
+        << contrary.ignoredKeys[0];
+
+    // A product of an engine axis and an SMD axis: the DMD runs ignore smd.dt_fs.
+    const auto product =
+        plan(R"({"axes": [{"engine": ["dmd", "smd"]}, {"smd.dt_fs": [0.9, 1.8]}]})");
+    ASSERT_EQ(product.ignoredKeys.size(), 1u);
+    EXPECT_EQ(product.ignoredKeys[0],
+              "s.json: axes set smd.dt_fs for 2 runs of engine dmd (first: engine-dmd_dt_fs-0.9): "
+              "their engine, dmd, does not read the smd section, so the setting has no effect");
+
+    // A common key of an engine no run has.
+    const auto common = plan(R"({"axes": [{"dmd.dV": [0.5, 0.25]}]})", {"smd.dt_fs=0.7"});
+    ASSERT_EQ(common.ignoredKeys.size(), 1u);
+    EXPECT_EQ(common.ignoredKeys[0],
+              "s.json: smd.dt_fs=0.7 (for every run): every run's engine, dmd, does not read the "
+              "smd section, so the setting has no effect");
+    try {
+        refuseIgnoredKeys(common);
+        ADD_FAILURE() << "--strict accepted a key no run reads";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()), common.ignoredKeys[0] + " (refused under --strict)");
+    }
+    EXPECT_NO_THROW(refuseIgnoredKeys(plan(ladders)));
 }
 
 TEST(SweepTable, RowsInSweepOrderWithStatusNumbersAndQuotedCells) {

@@ -72,11 +72,33 @@ TEST(Scene, RoundTripsThroughJson) {
 }
 
 TEST(Scene, UnknownKeyIsNamed) {
-    EXPECT_EQ(errorOf({{"bogus", 1}}), "test.json: bogus: unknown key");
+    // With no known key near it, the section's keys are listed.
+    EXPECT_EQ(errorOf({{"bogus", 1}}),
+              "test.json: bogus: unknown key (a scene has name, seed, body, potential, state, "
+              "engine, dmd, smd, run, output, analysis)");
     EXPECT_EQ(errorOf({{"state",
                         {{"particles",
                           json::array({{{"r", {0, 0, 0}}, {"x", 1}}, {{"r", {1, 0, 0}}}})}}}}),
-              "test.json: state.particles[0].x: unknown key");
+              "test.json: state.particles[0].x: unknown key (state.particles[0] has r, v, axis, "
+              "orientation, omega)");
+}
+
+// "Did you mean": the section's known key nearest a misspelt one, from a file or --set.
+TEST(Scene, UnknownKeyNamesTheNearestKnownOne) {
+    EXPECT_EQ(errorOf({{"state", {{"desnity", 0.3}}}}),
+              "test.json: state.desnity: unknown key; did you mean state.density?");
+    EXPECT_EQ(errorOf(json::object(), {"state.temp=2"}),
+              "test.json: state.temp: unknown key; did you mean state.temperature?");
+    EXPECT_EQ(errorOf(json::object(), {"run.time=2"}),
+              "test.json: run.time: unknown key; did you mean run.time_ps?");
+    EXPECT_EQ(errorOf(json::object(), {"stat.n=64"}),
+              "test.json: stat: unknown key; did you mean state?");
+    EXPECT_EQ(errorOf(json::object(), {"output.thermo_every_ps=1"}),
+              "test.json: output.thermo_every_ps: unknown key; did you mean "
+              "output.thermo_every_fs?");
+    // A choice's misspelt value too.
+    EXPECT_EQ(errorOf({{"engine", "sdm"}}),
+              "test.json: engine: must be one of dmd | smd, got \"sdm\"; did you mean smd?");
 }
 
 TEST(Scene, BadValuesAreNamed) {
@@ -609,7 +631,7 @@ TEST(Scene, AnalysisKeysAreReadCheckedAndWrittenOut) {
     EXPECT_EQ(errorOf({{"analysis", {{"rdf_every", 0}}}}),
               "test.json: analysis.rdf_every: must be in [1, 1073741824], got 0");
     EXPECT_EQ(errorOf({{"analysis", {{"rdf_bin", 0.1}}}}),
-              "test.json: analysis.rdf_bin: unknown key");
+              "test.json: analysis.rdf_bin: unknown key; did you mean analysis.rdf_bin_angstrom?");
     // g(r) reaches half the box at most (the default box, N 512 at ρ* 0.5, is 10.08 σ wide);
     // absent, rdf_max is 5 σ, or L/2 in a narrower box.
     EXPECT_EQ(errorOf({{"analysis", {{"rdf_max", 6.0}}}}),

@@ -58,5 +58,40 @@ TEST(TerraceLevels, ALevelOnTheMinimumIsRejected) {
     }
     EXPECT_THROW(TerraceLevels::uniform(0.0), SceneError);
     EXPECT_THROW(TerraceLevels::explicitLevels({-1.0, 0.0, 1.0}), SceneError);
+}
+
+namespace {
+
+/// The refusal's text for uniform levels of `step` against a minimum `uMin`, at `kT`.
+std::string minimumRefusal(double step, double uMin, double kT) {
+    try {
+        TerraceLevels::uniform(step).checkMinimum(uMin, "dmd.dV", kT);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+// The refusal names the dV nearest the refused one that put the minimum midway between two
+// levels, each of which is then accepted.
+TEST(TerraceLevels, ALevelOnTheMinimumNamesTheNearestValidDv) {
+    // LJ at T* 2 (the case): dV = 1 puts the first level on U_min = -eps.
+    EXPECT_EQ(minimumRefusal(2.0, -1.0, 2.0),
+              "dmd.dV: a level falls on the potential minimum U = -1.000000 kJ/mol (a terrace of "
+              "zero width); dmd.dV = 0.5 puts it midway between two levels (a dmd.dV above 1 "
+              "leaves no level in the well)");
+    EXPECT_EQ(minimumRefusal(0.5, -1.0, 2.0), "");
+    // The minimum on the second level, -(2 - 1/2) dV kT: one level more or one fewer.
+    EXPECT_EQ(minimumRefusal(2.0, -3.0, 1.0),
+              "dmd.dV: a level falls on the potential minimum U = -3.000000 kJ/mol (a terrace of "
+              "zero width); dmd.dV = 1.5 or 3 put it midway between two levels");
+    EXPECT_EQ(minimumRefusal(1.5, -3.0, 1.0), "");
+    EXPECT_EQ(minimumRefusal(3.0, -3.0, 1.0), "");
+    // Without kT, as before, no dV is named.
+    EXPECT_EQ(minimumRefusal(6.0, -3.0, 0.0),
+              "dmd.dV: a level falls on the potential minimum U = -3.000000 kJ/mol (a terrace of "
+              "zero width)");
     EXPECT_THROW(TerraceLevels::explicitLevels({1.0, -1.0}), SceneError);
 }
