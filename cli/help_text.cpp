@@ -36,7 +36,9 @@ const Command commands[] = {
      R"(      Run a scene with its engine (engine = dmd | smd). Run lengths and output intervals
       are whole multiples of their intervals, or refused with the nearest valid values.
       Writes DIR/summary.json, scene.json, initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv
-      and, if asked for, thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE).
+      and, if asked for, thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE)
+      or, with output.trajectory_format=gsd, trajectory.gsd (HOOMD's GSD, read by OVITO,
+      freud and gsd, with orientations and the bodies' shapes).
       With output.restart_every_ps > 0 the run keeps DIR/restart.bin (and samples.bin) until
       it ends, from which --continue goes on.
 )",
@@ -54,8 +56,8 @@ const Command commands[] = {
      true},
     {"analyse", R"(  terrace analyse DIR
 )",
-     R"(      Recompute the correlation CSVs of DIR from DIR/trajectory.xyz, read frame by frame
-      into the accumulators a run uses, with the run's analysis settings (DIR/scene.json;
+     R"(      Recompute the correlation CSVs of DIR from DIR/trajectory.xyz (or trajectory.gsd),
+      read frame by frame into the accumulators a run uses, with the run's analysis settings (DIR/scene.json;
       without it the defaults, g(r) out to L/2). A last frame cut short by a killed run is
       left out, with a warning. Also spelt analyze.
 )",
