@@ -57,9 +57,9 @@ const Command commands[] = {
     {"analyse", R"(  terrace analyse DIR
 )",
      R"(      Recompute the correlation CSVs of DIR from DIR/trajectory.xyz (or trajectory.gsd),
-      read frame by frame into the accumulators a run uses, with the run's analysis settings (DIR/scene.json;
-      without it the defaults, g(r) out to L/2). A last frame cut short by a killed run is
-      left out, with a warning. Also spelt analyze.
+      read frame by frame into the accumulators a run uses, with the run's analysis
+      settings (DIR/scene.json; without it the defaults, g(r) out to L/2). A last frame cut
+      short by a killed run is left out, with a warning. Also spelt analyze.
 )",
      "", false},
     {"compare", R"(  terrace compare A.csv B.csv [--tol-sigma X] [--column NAME]
