@@ -2,6 +2,7 @@
 #include "cli/dispatch.hpp"
 #include "cli/run_record.hpp"
 #include "core/free_orbit.hpp"
+#include "dmd/agendas.hpp"
 #include "dmd/neighbour_lists.hpp"
 #include "dmd/settings.hpp"
 #include "smd/parameters.hpp"
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <fstream>
 #include <numbers>
+#include <sys/resource.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
@@ -192,22 +194,35 @@ DiskEstimate diskEstimate(const Scene& scene) {
     return d;
 }
 
-double availableMemory() {
+MemoryRoom availableMemory() {
+    MemoryRoom room;
     std::ifstream meminfo("/proc/meminfo");
     std::string key, unit;
-    double kib = 0.0, have = 0.0;
+    double kib = 0.0;
     while (meminfo >> key >> kib >> unit)
         if (key == "MemAvailable:") {
-            have = kib * 1024.0;
+            room.bytes = kib * 1024.0;
             break;
         }
-    if (have <= 0.0) {
+    if (room.bytes <= 0.0) {
         const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-        have = pages > 0 && size > 0 ? double(pages) * double(size) : 0.0;
+        room.bytes = pages > 0 && size > 0 ? double(pages) * double(size) : 0.0;
     }
-    const double room = cgroupRoom();
-    if (room >= 0.0 && (have <= 0.0 || room < have)) have = room;
-    return have;
+    auto tighter = [&room](double bytes, const char* whose) {
+        if (bytes >= 0.0 && (room.bytes <= 0.0 || bytes < room.bytes)) room = {bytes, whose};
+    };
+    tighter(cgroupRoom(), "the process's cgroup leaves");
+    // The address space: the limit less what the process has mapped already (VmSize).
+    rlimit as{};
+    if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) {
+        std::ifstream status("/proc/self/status");
+        std::string line;
+        double mapped = 0.0;
+        while (std::getline(status, line))
+            if (line.rfind("VmSize:", 0) == 0) mapped = std::stod(line.substr(7)) * 1024.0;
+        tighter(std::max(0.0, double(as.rlim_cur) - mapped), "ulimit -v leaves");
+    }
+    return room;
 }
 
 double freeDiskBytes(const std::filesystem::path& dir) {
@@ -232,8 +247,8 @@ std::string showBytes(double bytes) {
     return text;
 }
 
-std::string memoryRefusal(const Scene& scene, const MemoryEstimate& need, double available) {
-    if (!(available > 0.0) || need.total() <= available) return "";
+std::string memoryRefusal(const Scene& scene, const MemoryEstimate& need, const MemoryRoom& room) {
+    if (!(room.bytes > 0.0) || need.total() <= room.bytes) return "";
     const int n = scene.state.particles.empty() ? scene.state.n : int(scene.state.particles.size());
     const long samples = planRun(scene).productionSamples + 1;
     std::string key, hint;
@@ -246,8 +261,8 @@ std::string memoryRefusal(const Scene& scene, const MemoryEstimate& need, double
         hint = "use fewer analysis.follow_bodies or a longer run.sample_fs";
     }
     return key + ": the run needs about " + showBytes(need.total()) + " of memory (engine " +
-           showBytes(need.engine) + ", analysis " + showBytes(need.analysis) +
-           ") and this machine has " + showBytes(available) + " available: " + hint;
+           showBytes(need.engine) + ", analysis " + showBytes(need.analysis) + ") and " +
+           room.whose + " " + showBytes(room.bytes) + " available: " + hint;
 }
 
 DiskVerdict diskVerdict(const Scene& scene, const DiskEstimate& need, double written,
@@ -279,6 +294,12 @@ DiskVerdict diskVerdict(const Scene& scene, const DiskEstimate& need, double wri
 }
 
 void checkResources(const Scene& scene, const std::filesystem::path& dir, bool continuing) {
+    // The engine's own limit, which it would meet only after the initial state was built.
+    const int n = scene.state.particles.empty() ? scene.state.n : int(scene.state.particles.size());
+    if (scene.engine == "dmd" && n > dmd::Agendas::maxBodies)
+        throw SceneError("run: state.n = " + std::to_string(n) + ": DMD runs at most " +
+                         std::to_string(dmd::Agendas::maxBodies) +
+                         " bodies (an agenda keeps an event's partner in 26 bits)");
     const std::string memory = memoryRefusal(scene, memoryEstimate(scene), availableMemory());
     if (!memory.empty()) throw SceneError("run: " + memory);
     double written = 0.0;

@@ -39,17 +39,23 @@ struct DiskEstimate {
 
 DiskEstimate diskEstimate(const Scene& scene);
 
-/// Memory this process can take now, bytes: MemAvailable of /proc/meminfo, or less if a cgroup
-/// (v2) limit of the process or one of its ancestors leaves less room; 0 if unknown.
-double availableMemory();
+/// Memory this process can take now, and what sets it.
+struct MemoryRoom {
+    double bytes = 0.0;                     // 0 if unknown
+    std::string whose = "this machine has"; // what leaves `bytes`, as the refusal says it
+};
+
+/// MemAvailable of /proc/meminfo; less if a cgroup memory limit (v1 or v2) of the process or one
+/// of its ancestors leaves less room, or the process's address-space limit (ulimit -v).
+MemoryRoom availableMemory();
 
 /// Free bytes of the file system that holds `dir` (or its nearest existing ancestor), for an
 /// unprivileged process (statvfs f_bavail); negative if unknown.
 double freeDiskBytes(const std::filesystem::path& dir);
 
-/// "" when the estimate fits in `available` bytes (or `available` is unknown, 0); otherwise the
-/// refusal, naming the key that set the larger share, the estimate and what is available.
-std::string memoryRefusal(const Scene& scene, const MemoryEstimate& need, double available);
+/// "" when the estimate fits in the room (or the room is unknown, 0); otherwise the refusal,
+/// naming the key that set the larger share, the estimate and what is available.
+std::string memoryRefusal(const Scene& scene, const MemoryEstimate& need, const MemoryRoom& room);
 
 /// A run's bytes to write against the free space.
 struct DiskVerdict {

@@ -449,19 +449,26 @@ memory)
     [[ $err == *"run.time_ps / run.sample_fs (1000000001 samples): the run needs about"*"of memory"*"available: use fewer analysis.follow_bodies or a longer run.sample_fs" ]] ||
         fail "message: $err"
     [ ! -e "$work/big" ] || fail "output written for a run refused"
-    # 10^8 bodies (~100 GB; was stopped only by an allocation failing): refused at once, before
-    # anything is allocated, naming the estimate and what the machine has; the same for a sweep's
-    # run, which is recorded failed with the message.
-    for engine in dmd smd; do
+    # 10^8 bodies (~50 GiB; was stopped only by an allocation failing): refused at once, before
+    # anything is allocated, naming the estimate and what the process may take (under ulimit -v
+    # 8 GiB, so that a machine with that much memory refuses them too); DMD at 6·10^7, below
+    # the most bodies it runs, 67108863, which is refused as such.
+    for case in dmd:60000000 smd:100000000 dmd:70000000; do
+        engine=${case%%:*} n=${case#*:}
         start=$(date +%s%N)
-        err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/huge" \
-            --set engine=$engine --set state.n=100000000 2>&1 >/dev/null)
+        err=$(ulimit -v 8388608; "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
+            --out "$work/huge" --set engine=$engine --set state.n=$n 2>&1 >/dev/null)
         status=$?
         elapsed=$(( ($(date +%s%N) - start) / 1000000 ))
-        [ $status -eq 1 ] || fail "$engine, 10^8 bodies: exit status $status: $err"
+        [ $status -eq 1 ] || fail "$engine, $n bodies: exit status $status: $err"
         [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "not one line: $err"
-        [[ $err == "terrace: run: state.n = 100000000: the run needs about "*" GiB of memory (engine "*", analysis "*") and this machine has "*" available: use fewer bodies" ]] ||
-            fail "$engine, 10^8 bodies: message: $err"
+        if [ "$n" = 70000000 ]; then
+            [[ $err == "terrace: run: state.n = 70000000: DMD runs at most 67108863 bodies"* ]] ||
+                fail "DMD beyond its limit: $err"
+        else
+            [[ $err == "terrace: run: state.n = $n: the run needs about "*" GiB of memory (engine "*", analysis "*") and "*" available: use fewer bodies" ]] ||
+                fail "$engine, $n bodies: message: $err"
+        fi
         [ "$elapsed" -lt 5000 ] || fail "$engine: the refusal took $elapsed ms"
         [ ! -e "$work/huge" ] || fail "output written for a run refused"
     done

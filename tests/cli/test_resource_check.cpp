@@ -83,46 +83,81 @@ TEST(ResourceCheck, TheEngineEstimateGrowsWithTheBodiesAndTheirNeighbours) {
 }
 
 TEST(ResourceCheck, AnAbsurdBodyCountIsRefusedAtOnceNamingTheEstimate) {
+    // 10^8 bodies (6·10^7 for DMD, below its body limit): 50-60 GiB; under an address-space limit
+    // of 8 GiB, so that a machine with that much memory refuses them too.
+    rlimit before{};
+    ASSERT_EQ(getrlimit(RLIMIT_AS, &before), 0);
+    rlimit limited = before;
+    limited.rlim_cur = std::min<rlim_t>(before.rlim_max, rlim_t(8) << 30);
+    ASSERT_EQ(setrlimit(RLIMIT_AS, &limited), 0);
     const auto start = std::chrono::steady_clock::now();
-    const double before = peakRssBytes();
-    for (const std::string engine : {"dmd", "smd"}) {
-        const Scene s = scene({"engine=" + engine, "state.n=100000000"});
+    const double rssBefore = peakRssBytes();
+    for (const auto& [engine, n] :
+         {std::pair<std::string, std::string>{"dmd", "60000000"}, {"smd", "100000000"}}) {
+        const Scene s = scene({"engine=" + engine, "state.n=" + n});
         const auto dir = scratch("absurd");
         try {
             cli::checkResources(s, dir, false);
-            ADD_FAILURE() << engine << ": 10^8 bodies were not refused";
+            ADD_FAILURE() << engine << ": " << n << " bodies were not refused";
         } catch (const SceneError& e) {
             const std::string m = e.what();
-            EXPECT_EQ(m.rfind("run: state.n = 100000000: the run needs about ", 0), 0u) << m;
+            EXPECT_EQ(m.rfind("run: state.n = " + n + ": the run needs about ", 0), 0u) << m;
             EXPECT_NE(m.find("GiB of memory (engine "), std::string::npos) << m;
             EXPECT_NE(m.find(", analysis "), std::string::npos) << m;
-            EXPECT_NE(m.find("available"), std::string::npos) << m;
+            EXPECT_NE(m.find(" available: use fewer bodies"), std::string::npos) << m;
             EXPECT_EQ(m.find('\n'), std::string::npos) << m;
         }
         EXPECT_FALSE(std::filesystem::exists(dir));
     }
-    // Nothing of the 10^8 bodies was allocated (~100 GB), and the check took no time.
-    EXPECT_LT(peakRssBytes() - before, 64.0 * (1 << 20));
+    ASSERT_EQ(setrlimit(RLIMIT_AS, &before), 0);
+    // Nothing of the bodies was allocated (~50 GB), and the check took no time.
+    EXPECT_LT(peakRssBytes() - rssBefore, 64.0 * (1 << 20));
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+TEST(ResourceCheck, AnAddressSpaceLimitIsRoomTooAndNamed) {
+    rlimit before{};
+    ASSERT_EQ(getrlimit(RLIMIT_AS, &before), 0);
+    rlimit limited = before;
+    limited.rlim_cur = std::min<rlim_t>(before.rlim_max, rlim_t(1) << 30);
+    ASSERT_EQ(setrlimit(RLIMIT_AS, &limited), 0);
+    const cli::MemoryRoom room = cli::availableMemory();
+    ASSERT_EQ(setrlimit(RLIMIT_AS, &before), 0);
+    EXPECT_EQ(room.whose, "ulimit -v leaves");
+    EXPECT_GT(room.bytes, 0.0);
+    EXPECT_LT(room.bytes, 1.0 * (1 << 30)); // less what is mapped already
+}
+
+TEST(ResourceCheck, DmdBeyondItsBodyLimitIsRefusedBeforeItsMemory) {
+    try {
+        cli::checkResources(scene({"state.n=70000000"}), scratch("limit"), false);
+        ADD_FAILURE() << "7e7 DMD bodies were not refused";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()), "run: state.n = 70000000: DMD runs at most 67108863 "
+                                         "bodies (an agenda keeps an event's partner in 26 bits)");
+    }
 }
 
 TEST(ResourceCheck, TheRefusalNamesTheLargerShare) {
     const Scene s = scene({});
     const cli::MemoryEstimate engineHeavy{30.0 * (1 << 30), 7.0 * (1 << 30)};
-    EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, 22.0 * (1 << 30)),
+    EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, {22.0 * (1 << 30)}),
               "state.n = 512: the run needs about 37 GiB of memory (engine 30 GiB, analysis 7 GiB) "
               "and this machine has 22 GiB available: use fewer bodies");
     const cli::MemoryEstimate analysisHeavy{1.0 * (1 << 30), 40.0 * (1 << 30)};
-    EXPECT_EQ(cli::memoryRefusal(s, analysisHeavy, 22.0 * (1 << 30)),
+    EXPECT_EQ(cli::memoryRefusal(s, analysisHeavy, {22.0 * (1 << 30)}),
               "run.time_ps / run.sample_fs (1001 samples): the run needs about 41 GiB of memory "
               "(engine 1 GiB, analysis 40 GiB) and this machine has 22 GiB available: use fewer "
               "analysis.follow_bodies or a longer run.sample_fs");
-    EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, 40.0 * (1 << 30)), "");
-    EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, 0.0), ""); // unknown: nothing said
+    EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, {40.0 * (1 << 30)}), "");
+    EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, {0.0}), ""); // unknown: nothing said
+    EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, {3.0 * (1 << 30), "the process's cgroup leaves"}),
+              "state.n = 512: the run needs about 37 GiB of memory (engine 30 GiB, analysis 7 GiB) "
+              "and the process's cgroup leaves 3 GiB available: use fewer bodies");
 }
 
 TEST(ResourceCheck, AvailableMemoryIsPositiveAndAtMostTheMachines) {
-    const double have = cli::availableMemory();
+    const double have = cli::availableMemory().bytes;
     EXPECT_GT(have, 0.0);
     EXPECT_LE(have, double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE)));
 }
