@@ -113,8 +113,8 @@ huge pages (fewer TLB misses at large N; TERRACE_HUGE_PAGES=0 in the environment
 advice off, for measuring it). summary.json's memory_in_huge_pages_bytes says what the kernel gave.
 Before a run (each run of a sweep too) the memory its engine and analysis will need is estimated
 from the bodies and settings, and the bytes it will write (trajectory, thermo.csv, restart
-files): a run needing more memory than is available (MemAvailable, or the room under a cgroup
-limit) or more disk than its output directory's file system has free is refused, naming the
+files): a run needing more memory than is available (MemAvailable, or less: the room under a
+cgroup limit or ulimit -v) or more disk than its output directory's file system has free is refused, naming the
 estimate; one that would fill more than half the free space runs with a warning.
 Units: lengths in Angstrom, masses g/mol, energies kJ/mol, times fs/ps on input and output.
 )";
