@@ -170,6 +170,12 @@ const char* commonNotes =
     R"(Per-body arrays of 2 MiB and more are mapped on 2-MiB boundaries and advised for transparent
 huge pages (fewer TLB misses at large N; TERRACE_HUGE_PAGES=0 in the environment turns the
 advice off, for measuring it). summary.json's memory_in_huge_pages_bytes says what the kernel gave.
+Before a run (each run of a sweep too) the memory its engine and analysis will need is estimated
+from the bodies and settings, and the bytes it will write (trajectory, thermo.csv, restart
+files): a run needing more memory than is available (MemAvailable, or less: the room under a
+cgroup limit or ulimit -v) or more disk than its output directory's file system has free is
+refused, naming the estimate; one that would fill more than half the free space runs with a
+warning.
 Units: lengths in Angstrom, masses g/mol, energies kJ/mol, times fs/ps on input and output.
 )";
 

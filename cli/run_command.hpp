@@ -23,11 +23,8 @@ Scene resolveScene(const RunRequest& request);
 /// name>-<engine>, followed by the overrides (overridesName: out/lj-liquid-smd-dt_fs=0.7).
 std::filesystem::path defaultOutput(const Scene& scene, const std::vector<std::string>& overrides);
 
-/// Refuses a run whose stored samples would not fit in the memory this machine has available,
-/// before anything starts, with the estimate.
-void checkSampleMemory(const Scene& scene);
-
-/// Runs the scene into target.dir (fresh or overwrite).
+/// Runs the scene into target.dir (fresh or overwrite), once its memory and disk are checked
+/// (cli/resource_check.hpp).
 RunOutcome runScene(const Scene& scene, const RunTarget& target);
 /// Continues the run whose restart file is in dir; returns its scene too.
 RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scene);

@@ -5,6 +5,7 @@
 #include "core/output_file.hpp"
 #include "core/scene_json.hpp"
 #include "core/suggest.hpp"
+#include "core/utf8.hpp"
 #include <algorithm>
 #include <map>
 #include <set>
@@ -197,6 +198,8 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
                         const std::filesystem::path& baseDir,
                         const std::vector<std::string>& extraSets) {
     const SweepReader rd(origin);
+    if (const auto bad = firstInvalidUtf8(text); bad != std::string::npos)
+        rd.fail(placeOfByte(text, bad), "not UTF-8 text: a sweep file is JSON, which is UTF-8");
     // As in a scene: a repeated key would otherwise be silently last-wins.
     const std::string duplicate = firstDuplicateKey(text);
     if (!duplicate.empty()) rd.fail(duplicate, "duplicate key");
@@ -226,7 +229,9 @@ SweepPlan sweepFromJson(const std::string& text, const std::string& origin,
             plan.common.emplace_back(k, SweepReader::plain(v));
         }
     }
-    for (const auto& s : extraSets) { // the same rule as terrace run --set
+    for (const auto& s : extraSets) { // the same rules as terrace run --set
+        if (const auto bad = firstInvalidUtf8(s); bad != std::string::npos)
+            rd.fail("--set " + printableBytes(s), utf8Problem(s, bad));
         auto parsed = parseOverride(s);
         if (!parsed) rd.fail("--set " + s, "expected key.path=value");
         rd.checkKey(parsed->first, "--set");

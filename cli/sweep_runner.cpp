@@ -88,12 +88,9 @@ public:
         while (true) {
             bool progressed = false;
             if (!guard.requested()) progressed |= takeBackFreed();
-            while (!guard.requested() && int(local_.size()) < options_.jobs && !queue_.empty()) {
-                const int i = next();
-                if (held(i)) { // checked here, not for remote workers: their children do
-                    wait(i);
-                    continue;
-                }
+            while (!guard.requested() && int(local_.size()) < options_.jobs) {
+                const int i = nextFree();
+                if (i < 0) break;
                 local_.push_back(
                     {RunProcess(plan_, plan_.runs[i], dir(i), actions_[i]), i, Clock::now()});
                 progressed = true;
@@ -117,16 +114,26 @@ public:
                     --remoteBusy_;
                     finish(report->run, report->exit, report->wallSeconds, start);
                 }
-                if (report->leaving) {
+                if (report->leaving)
                     ++stoppedWorkers;
-                } else if (!guard.requested() && !queue_.empty()) {
-                    const int i = next();
-                    remote_->assign(report->worker, i, actions_[i]);
-                    ++remoteBusy_;
-                } else {
-                    remote_->assign(report->worker, -1, RunAction::Skip);
-                    ++stoppedWorkers;
-                }
+                else
+                    idle_.push_back(report->worker);
+            }
+            // A remote worker waits for a run while runs wait for their directories' locks; it
+            // is let go once nothing is left to hand out.
+            while (!guard.requested() && !idle_.empty()) {
+                const int i = nextFree();
+                if (i < 0) break;
+                remote_->assign(idle_.back(), i, actions_[i]);
+                idle_.pop_back();
+                ++remoteBusy_;
+                progressed = true;
+            }
+            if ((queue_.empty() && waiting_.empty()) || guard.requested()) {
+                for (const int worker : idle_)
+                    remote_->assign(worker, -1, RunAction::Skip);
+                stoppedWorkers += int(idle_.size());
+                idle_.clear();
             }
             if (guard.requested() && !forwarded) {
                 for (const auto& slot : local_)
@@ -151,15 +158,22 @@ private:
 
     fs::path dir(std::size_t i) const { return options_.out / plan_.runs[i].name; }
 
-    int next() {
-        const int i = queue_.front();
-        queue_.pop_front();
-        return i;
+    /// The next queued run whose directory no other process holds, or -1. Those held are set
+    /// waiting: started now, a run would fail on the lock and be recorded failed ever after. For
+    /// local and remote workers alike (a remote worker's run directory is on a file system rank 0
+    /// sees too).
+    int nextFree() {
+        while (!queue_.empty()) {
+            const int i = queue_.front();
+            queue_.pop_front();
+            if (!held(i)) return i;
+            wait(i);
+        }
+        return -1;
     }
 
     /// Whether another process holds run i's directory lock (cli/output_dir.hpp): a run of an
-    /// earlier sweep still ending. Started now, the run would fail on the lock, and be recorded
-    /// failed ever after.
+    /// earlier sweep still ending.
     bool held(int i) const {
         const fs::path lock = dir(i) / ".terrace.lock";
         const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC);
@@ -258,6 +272,7 @@ private:
     std::deque<int> queue_;
     std::vector<int> waiting_; // runs whose directory another process holds
     std::vector<Slot> local_;
+    std::vector<int> idle_; // remote workers that asked for a run and have none yet
     int reused_ = 0, finished_ = 0, failed_ = 0, remoteBusy_ = 0;
     double runWall_ = 0.0;
 };

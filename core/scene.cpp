@@ -6,6 +6,7 @@
 #include "core/initial_state.hpp"
 #include "core/scene_json.hpp"
 #include "core/scene_sections.hpp"
+#include "core/utf8.hpp"
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -79,6 +80,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     if (in.bad() || text.bad())
         throw SceneError(path + ": cannot read the scene file: " + std::strerror(errno));
     const std::string content = text.str();
+    if (const auto bad = firstInvalidUtf8(content); bad != std::string::npos)
+        throw SceneError(path + ": not UTF-8 text (" + placeOfByte(content, bad) +
+                         "): a scene file is JSON, which is UTF-8");
     const std::string duplicate = firstDuplicateKey(content);
     if (!duplicate.empty()) throw SceneError(path + ": " + duplicate + ": duplicate key");
     json j = json::parse(content, nullptr, false);

@@ -1,5 +1,6 @@
 #include "core/scene_json.hpp"
 #include "core/suggest.hpp"
+#include "core/utf8.hpp"
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -160,6 +161,8 @@ void requireOnGrid(const JsonSection& at, const std::string& key, double value, 
 
 void applyOverride(json& scene, const std::string& assignment, const std::string& origin) {
     const JsonSection top(scene, "", origin);
+    if (const auto bad = firstInvalidUtf8(assignment); bad != std::string::npos)
+        top.refuse("--set " + printableBytes(assignment), utf8Problem(assignment, bad));
     const auto parsed = parseOverride(assignment);
     if (!parsed) top.refuse("--set " + assignment, "expected key.path=value");
     const auto& [path, value] = *parsed;

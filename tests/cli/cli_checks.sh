@@ -586,8 +586,76 @@ memory)
     # A run whose analysis cannot fit in memory is refused before it starts, with the estimate.
     err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/big" \
         --set run.sample_fs=0.01 --set run.time_ps=10000 2>&1 >/dev/null) && fail "exit status 0"
-    [[ $err == *"GiB of memory"*"run.sample_fs"* ]] || fail "message: $err"
+    [[ $err == *"run.time_ps / run.sample_fs (1000000001 samples): the run needs about"*"of memory"*"available: use fewer analysis.follow_bodies or a longer run.sample_fs" ]] ||
+        fail "message: $err"
     [ ! -e "$work/big" ] || fail "output written for a run refused"
+    # 10^8 bodies (~50 GiB; was stopped only by an allocation failing): refused at once, before
+    # anything is allocated, naming the estimate and what the process may take (under ulimit -v
+    # 8 GiB, so that a machine with that much memory refuses them too); DMD at 6·10^7, below
+    # the most bodies it runs, 67108863, which is refused as such.
+    for case in dmd:60000000 smd:100000000 dmd:70000000; do
+        engine=${case%%:*} n=${case#*:}
+        start=$(date +%s%N)
+        err=$(ulimit -v 8388608; "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
+            --out "$work/huge" --set engine=$engine --set state.n=$n 2>&1 >/dev/null)
+        status=$?
+        elapsed=$(( ($(date +%s%N) - start) / 1000000 ))
+        [ $status -eq 1 ] || fail "$engine, $n bodies: exit status $status: $err"
+        [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "not one line: $err"
+        if [ "$n" = 70000000 ]; then
+            [[ $err == "terrace: run: state.n = 70000000: DMD runs at most 67108863 bodies"* ]] ||
+                fail "DMD beyond its limit: $err"
+        else
+            [[ $err == "terrace: run: state.n = $n: the run needs about "*" GiB of memory (engine "*", analysis "*") and "*" available: use fewer bodies" ]] ||
+                fail "$engine, $n bodies: message: $err"
+        fi
+        [ "$elapsed" -lt 5000 ] || fail "$engine: the refusal took $elapsed ms"
+        [ ! -e "$work/huge" ] || fail "output written for a run refused"
+    done
+    ;;
+not_utf8)
+    # Bytes that are not UTF-8 in a --set (key or value), a scene file or a sweep file: one line
+    # naming the byte and where it is (the bytes shown escaped, not echoed), nothing written.
+    expect_error "$src/experiments/scenes/dense-rods.json" \
+        '--set dmd.\xff=1: not UTF-8 text (byte 0xff at character 5)' --set $'dmd.\xff=1'
+    expect_error "$src/experiments/scenes/dense-rods.json" \
+        '--set name=caf\xe9: not UTF-8 text (byte 0xe9 at character 9)' --set $'name=caf\xe9'
+    printf '{"name": "caf\xe9"}' >"$work/latin1.json"
+    expect_error "$work/latin1.json" 'not UTF-8 text (byte 0xe9 at line 1, column 14)'
+    printf '{"scene": "%s", "set": {"dmd.\xff": 1}}' "$src/experiments/scenes/dense-rods.json" \
+        >"$work/s.json"
+    err=$("$terrace" sweep "$work/s.json" --out "$work/sweep" 2>&1)
+    status=$?
+    [ $status -eq 2 ] || fail "a sweep file that is not UTF-8: exit status $status"
+    [[ $err == "terrace: $work/s.json: byte 0xff at line 1, column "*": not UTF-8 text: a sweep file is JSON, which is UTF-8" ]] ||
+        fail "sweep file: $err"
+    printf '{"scene": "%s"}' "$src/experiments/scenes/dense-rods.json" >"$work/s.json"
+    err=$("$terrace" sweep "$work/s.json" --out "$work/sweep" --set $'name=caf\xe9' 2>&1)
+    [ $? -eq 2 ] || fail "a sweep's --set that is not UTF-8: exit status not 2"
+    [[ $err == *'--set name=caf\xe9: not UTF-8 text (byte 0xe9 at character 9)'* ]] ||
+        fail "sweep --set: $err"
+    [ ! -e "$work/sweep" ] || fail "a refused sweep wrote its directory"
+    ;;
+disk)
+    # A trajectory beyond the free space of the output's file system (64 000 rods, a frame every
+    # 9 fs for 9 ns: ~17 TB) is refused before the run, naming the estimate, the free space and
+    # the key; nothing is written.
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/disk" \
+        --set state.n=64000 --set analysis.follow_bodies=100 --set run.time_ps=9000 \
+        --set output.trajectory_every_fs=9 2>&1 >/dev/null)
+    status=$?
+    [ $status -eq 1 ] || fail "exit status $status: $err"
+    [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "not one line: $err"
+    [[ $err == "terrace: run: output.trajectory_every_fs: the run will write about "*" TiB into $work/disk (trajectory.xyz "*") and its file system has "*" free: write less often, or choose another --out" ]] ||
+        fail "message: $err"
+    [ ! -e "$work/disk" ] || fail "output written for a run refused"
+    # With restarts on, samples.bin keeps every sample's bodies: named by output.restart_every_ps.
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/disk" \
+        --set state.n=64000 --set analysis.follow_bodies=100 --set run.time_ps=9000 \
+        --set output.restart_every_ps=9 2>&1 >/dev/null) && fail "restarts: exit status 0"
+    [[ $err == *"output.restart_every_ps: the run will write about"*"samples.bin"* ]] ||
+        fail "restarts: message: $err"
+    [ ! -e "$work/disk" ] || fail "output written for a run refused"
     ;;
 ase_read)
     # Trajectories a real client reads: ASE's extended XYZ reader loads every body kind's file,
@@ -812,7 +880,8 @@ sweep)
     [ $status -eq 1 ] || fail "exit status $status for a sweep with failed runs: $(cat "$work/err")"
     [ "$(wc -l <"$work/out/sweep.csv")" -eq 7 ] || fail "sweep.csv: not a header and 6 rows"
     [ "$(grep -c ',ok,' "$work/out/sweep.csv")" -eq 4 ] || fail "not 4 runs ok: $(cat "$work/out/sweep.csv")"
-    [ "$(grep -c ',failed,.*would take' "$work/out/sweep.csv")" -eq 2 ] || fail "the failures are not recorded"
+    [ "$(grep -c ',failed,.*needs about .* of memory' "$work/out/sweep.csv")" -eq 2 ] ||
+        fail "the failures are not recorded: $(cat "$work/out/sweep.csv")"
     for run in dmd_seed-1 smd_seed-2; do
         for f in summary.json scene.json rdf.csv vacf.csv run.log; do
             [ -s "$work/out/$run/$f" ] || fail "$run lacks $f"
@@ -940,6 +1009,22 @@ sweep_mpi)
     cmp -s <(cut -d, -f1-18 "$work/serial/sweep.csv") <(cut -d, -f1-18 "$work/mpi/sweep.csv") ||
         fail "sweep.csv differs under mpirun: $(diff "$work/serial/sweep.csv" "$work/mpi/sweep.csv")"
     [ "$(grep -c ',failed,' "$work/mpi/sweep.csv")" -eq 2 ] || fail "the failures got lost under mpirun"
+    # A run directory another process holds (a run of an earlier sweep still ending): rank 0
+    # waits for it before handing the run out, instead of a worker's run failing on the lock.
+    mkdir -p "$work/held/dmd_seed-1"
+    flock "$work/held/dmd_seed-1/.terrace.lock" sleep 1.5 &
+    holder=$!
+    sleep 0.2
+    mpirun --oversubscribe -np 3 "$terrace" sweep "$work/s.json" --out "$work/held" -j 0 \
+        >"$work/held.log" 2>&1
+    status=$?
+    wait $holder
+    [ $status -eq 1 ] || fail "mpirun, a held run: exit status $status: $(cat "$work/held.log")"
+    grep -q 'dmd_seed-1: another terrace run holds its directory.s lock; waiting' "$work/held.log" ||
+        fail "no word of waiting under mpirun: $(cat "$work/held.log")"
+    grep -q '^dmd_seed-1,.*,ok,' "$work/held/sweep.csv" ||
+        fail "the held run was not run once free: $(cat "$work/held/sweep.csv")"
+    [ "$(grep -c ',failed,' "$work/held/sweep.csv")" -eq 2 ] || fail "not the two refused runs failed"
     ;;
 tradeoff)
     # terrace tradeoff end to end on a small LJ gas with loose tolerances: a verdict with an

@@ -198,6 +198,25 @@ TEST(SweepPlan, KeysTheRunsEnginesDoNotReadAreNoted) {
     EXPECT_NO_THROW(refuseIgnoredKeys(plan(ladders)));
 }
 
+// Bytes that are not UTF-8, in the file or a --set of the command line: one line naming the byte
+// and where it is, not "not valid JSON" nor the raw bytes echoed.
+TEST(SweepPlan, TextThatIsNotUtf8IsRefusedNamingTheByte) {
+    EXPECT_EQ(sweepError("{\"set\": {\"dmd.\xff\": 1}}"),
+              "s.json: byte 0xff at line 1, column 15: not UTF-8 text: a sweep file is JSON, which "
+              "is UTF-8");
+    EXPECT_EQ(sweepError("{\"seeds\": [1],\n \"set\": {\"name\": \"caf\xe9\"}}"),
+              "s.json: byte 0xe9 at line 2, column 22: not UTF-8 text: a sweep file is JSON, which "
+              "is UTF-8");
+    try {
+        plan(R"({"seeds": [1]})", {"name=caf\xe9"});
+        ADD_FAILURE() << "a --set that is not UTF-8 was taken";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "s.json: --set name=caf\\xe9: not UTF-8 text (byte 0xe9 at character 9): keys "
+                  "and values are UTF-8");
+    }
+}
+
 TEST(SweepTable, RowsInSweepOrderWithStatusNumbersAndQuotedCells) {
     const auto p = plan(R"({"axes": [{"dmd.terraces": [{"levels": "optimal", "n": 3}]},
                                      {"engine": ["dmd", "smd"]}]})");

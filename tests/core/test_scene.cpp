@@ -1,9 +1,11 @@
 // Scene parsing: defaults equal the paper's dense rods, every key validated, overrides by path.
 #include "core/measure.hpp"
 #include "core/scene.hpp"
+#include "core/utf8.hpp"
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 using namespace terrace;
 using nlohmann::json;
@@ -506,14 +508,60 @@ TEST(Scene, MeasurementSwitchesAreReadStrictly) {
 // The name goes into scene.json and summary.json: bytes that are not UTF-8 would stop them.
 TEST(Scene, ANameThatIsNotUtf8IsRefused) {
     try {
-        sceneFromJson(nlohmann::json::object(), "test.json",
-                      {"name=ab\xff"
-                       "c"});
+        sceneFromJson({{"name", "ab\xff"
+                                "c"}},
+                      "test.json");
         FAIL() << "expected a SceneError";
     } catch (const SceneError& e) {
         EXPECT_EQ(std::string(e.what()), "test.json: name: must be valid UTF-8 text");
     }
     EXPECT_NO_THROW(sceneFromJson(nlohmann::json::object(), "test.json", {"name=dense-rods-ρ0.5"}));
+}
+
+TEST(Scene, ASetThatIsNotUtf8IsRefusedNamingTheByte) {
+    // In a value or in a key: the bytes are shown escaped, not echoed.
+    for (const auto& [set, shown] :
+         {std::pair<std::string, std::string>{"name=ab\xff"
+                                              "c",
+                                              "--set name=ab\\xffc: not UTF-8 text (byte 0xff at "
+                                              "character 8)"},
+          {"dmd.\xc3=1", "--set dmd.\\xc3=1: not UTF-8 text (byte 0xc3 at character 5)"},
+          {"dmd.queue=\"\xed\xa0\x80\"", // a surrogate, which UTF-8 never holds
+           "--set dmd.queue=\"\\xed\\xa0\\x80\": not UTF-8 text (byte 0xed at character 12)"}}) {
+        try {
+            sceneFromJson(nlohmann::json::object(), "test.json", {set});
+            ADD_FAILURE() << "expected a SceneError for " << shown;
+        } catch (const SceneError& e) {
+            EXPECT_EQ(std::string(e.what()), "test.json: " + shown + ": keys and values are UTF-8");
+        }
+    }
+}
+
+TEST(Scene, AFileThatIsNotUtf8IsRefusedNamingTheByte) {
+    const auto path =
+        std::filesystem::temp_directory_path() / ("terrace-latin1-" + std::to_string(::getpid()));
+    std::ofstream(path) << "{\"name\": \"rods\",\n \"state\": {\"n\": 64, \"\xe9\": 1}}\n";
+    try {
+        loadScene(path.string());
+        ADD_FAILURE() << "expected a SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  path.string() + ": not UTF-8 text (byte 0xe9 at line 2, column 22): a scene file "
+                                  "is JSON, which is UTF-8");
+    }
+    std::filesystem::remove(path);
+}
+
+TEST(Scene, Utf8IsCheckedAsUnicodeDefinesIt) {
+    EXPECT_EQ(firstInvalidUtf8("plain ascii"), std::string::npos);
+    EXPECT_EQ(firstInvalidUtf8("ρ € 𝄞"), std::string::npos); // two, three and four bytes
+    EXPECT_EQ(firstInvalidUtf8("ab\xc0\xaf"), 2u);           // an overlong '/'
+    EXPECT_EQ(firstInvalidUtf8("ab\xe2\x82"), 2u);           // cut short
+    EXPECT_EQ(firstInvalidUtf8("\xf4\x90\x80\x80"), 0u);     // beyond U+10FFFF
+    EXPECT_EQ(firstInvalidUtf8("a\x80"), 1u);                // a continuation alone
+    EXPECT_EQ(printableBytes("a\xff"
+                             "b\n"),
+              "a\\xffb\\x0a");
 }
 
 TEST(Scene, ShippedModelScenesLoadAndRoundTrip) {
