@@ -49,7 +49,8 @@ Usage:
       thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE; default DIR:
       out/<scene name>-<engine>). A DIR that holds an
       earlier run's results is refused unless --overwrite (which removes them first).
-      With output.restart_every_ps > 0 the run keeps DIR/restart.bin (and samples.bin).
+      With output.restart_every_ps > 0 the run keeps DIR/restart.bin (the bodies and
+      the analysis' accumulators, not the samples: it does not grow with the run).
   terrace run --continue DIR [--quiet]
       Continue the run in DIR from its restart file, extending its output as if it had
       never stopped.
