@@ -150,4 +150,19 @@ std::size_t RdfAccumulator::bytes() const {
            sizeof(int) * (cellOf_.size() + cellStart_.size() + fill_.capacity());
 }
 
+void RdfAccumulator::save(StateWriter& out) const {
+    out.value(std::int64_t(frames_)), out.value(std::int32_t(block_));
+    out.nested(histogram_), out.doubles(framesInBlock_);
+}
+
+void RdfAccumulator::restore(StateReader& in) {
+    const auto frames = in.value<std::int64_t>("g(r) frames");
+    const auto block = in.value<std::int32_t>("g(r) block");
+    if (frames < 0 || block < 0 || block >= blocks_)
+        throw std::invalid_argument("analysis state: g(r) frames or block out of range");
+    frames_ = long(frames), block_ = block;
+    in.nested(histogram_, "g(r) histograms");
+    in.doubles(framesInBlock_, "g(r) frames per block");
+}
+
 } // namespace terrace::analysis

@@ -8,6 +8,7 @@
 // the error. With r_max = L/2, one frame every sample and the planned number of frames all seen,
 // the histogram is that of every pair (reference/all_pairs_rdf.hpp), count for count.
 #include "analysis/rdf.hpp"
+#include "analysis/state_bytes.hpp"
 #include "core/snapshot.hpp"
 #include <cstddef>
 #include <functional>
@@ -37,6 +38,10 @@ public:
     double rMax() const { return binWidth_ * bins_; }
     /// Heap memory held, bytes.
     std::size_t bytes() const;
+    /// The histograms and frame counts (state_bytes.hpp); restore() takes them into an
+    /// accumulator built with the same settings.
+    void save(StateWriter& out) const;
+    void restore(StateReader& in);
 
 private:
     void countAllPairs(std::vector<double>& histogram);

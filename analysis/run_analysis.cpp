@@ -177,4 +177,32 @@ std::size_t RunAnalysis::bytes() const {
            2 * sizeof(double) * static_cast<std::size_t>(terracing_.bins());
 }
 
+std::vector<std::uint8_t> RunAnalysis::state() const {
+    StateWriter out;
+    out.value(std::int64_t(samples_));
+    rdf_->save(out);
+    correlations_->save(out);
+    out.doubles(terracing_.weights()), out.doubles(terracing_.counts());
+    return out.take();
+}
+
+void RunAnalysis::restore(std::span<const std::uint8_t> state) {
+    StateReader in(state);
+    const auto samples = in.value<std::int64_t>("samples");
+    if (samples < 0) throw std::invalid_argument("analysis state: a negative number of samples");
+    samples_ = long(samples);
+    rdf_->restore(in);
+    if (rdf_->frames() != (samples_ + options_.rdfEvery - 1) / options_.rdfEvery)
+        throw std::invalid_argument("analysis state: g(r)'s frames are not those of its samples");
+    correlations_->restore(in);
+    if (correlations_->samples() != samples_)
+        throw std::invalid_argument("analysis state: the time correlations' samples are not the "
+                                    "analysis'");
+    std::vector<double> weight(terracing_.bins()), count(terracing_.bins());
+    in.doubles(weight, "terracing profile's weights");
+    in.doubles(count, "terracing profile's counts");
+    terracing_.restore(std::move(weight), std::move(count));
+    in.finish();
+}
+
 } // namespace terrace::analysis

@@ -30,9 +30,11 @@
 #include "core/continuous_sums.hpp"
 #include "core/snapshot.hpp"
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <vector>
 
 namespace terrace::analysis {
@@ -80,6 +82,13 @@ public:
     nlohmann::json write(const std::filesystem::path& dir) const;
     /// Heap memory held by the accumulators, bytes.
     std::size_t bytes() const;
+    /// The accumulators' state as bytes (state_bytes.hpp), for a restart file: independent of
+    /// the number of samples taken, and of N beyond the followed bodies and g(r)'s bins.
+    std::vector<std::uint8_t> state() const;
+    /// Takes a state() into this analysis, built with the same settings: the samples are then
+    /// those of the analysis that wrote it, and the next add() goes on from there, to the same
+    /// bits. std::invalid_argument when it does not fit (this analysis is then unusable).
+    void restore(std::span<const std::uint8_t> state);
 
 private:
     StreamingOptions options_;

@@ -268,4 +268,53 @@ std::size_t StreamingCorrelations::bytes() const {
     return b + follow_.size() * (sizeof(int) + sizeof(Vec3));
 }
 
+void StreamingCorrelations::save(StateWriter& out) const {
+    out.value(std::int64_t(seen_)), out.value(std::uint8_t(rotating_)), out.value(firstTime_);
+    // The first sample's axes, zeros before it: the state's size does not change with it.
+    std::vector<double> axes(3 * std::size_t(followed()), 0.0);
+    for (std::size_t k = 0; k < firstAxis_.size(); ++k)
+        for (int a = 0; a < 3; ++a)
+            axes[3 * k + a] = firstAxis_[k][a];
+    out.doubles(axes);
+    for (int l = 1; l < levels_; ++l)
+        out.doubles(ring_[l]), out.raw(slotFine_[l]);
+    for (const auto* sums : {&tau_.vv, &tau_.ss, &tau_.s2, &tau_.origins, &tau_.msd})
+        out.nested(*sums);
+    out.doubles(tau_.msdOrigins);
+    windowed_->save(out);
+}
+
+void StreamingCorrelations::restore(StateReader& in) {
+    const auto seen = in.value<std::int64_t>("time correlations' samples");
+    const auto rotating = in.value<std::uint8_t>("time correlations' rotation flag");
+    firstTime_ = in.value<double>("time correlations' first time");
+    if (seen < 0 || rotating > 1)
+        throw std::invalid_argument("analysis state: the time correlations' samples or rotation "
+                                    "flag out of range");
+    seen_ = long(seen), rotating_ = rotating == 1;
+    std::vector<double> first(3 * std::size_t(followed()));
+    in.doubles(first, "time correlations' first axes");
+    firstAxis_.clear();
+    if (seen_ > 0) // else the first sample sets them
+        for (int k = 0; k < followed(); ++k)
+            firstAxis_.emplace_back(first[3 * k], first[3 * k + 1], first[3 * k + 2]);
+    for (int l = 1; l < levels_; ++l) {
+        in.doubles(ring_[l], "multiple-tau ring");
+        in.raw(slotFine_[l], "multiple-tau ring's blocks");
+        for (const int f : slotFine_[l])
+            if (f < 0 || f >= fine_)
+                throw std::invalid_argument("analysis state: a ring slot's block out of range");
+    }
+    in.nested(tau_.vv, "multiple-tau VACF sums");
+    in.nested(tau_.ss, "multiple-tau OACF sums");
+    in.nested(tau_.s2, "multiple-tau P2 sums");
+    in.nested(tau_.origins, "multiple-tau origin counts");
+    in.nested(tau_.msd, "multiple-tau MSD sums");
+    in.doubles(tau_.msdOrigins, "multiple-tau MSD origin counts");
+    windowed_->restore(in);
+    if (windowed_->samples() != seen_)
+        throw std::invalid_argument("analysis state: the FFT correlation's samples are not the "
+                                    "time correlations'");
+}
+
 } // namespace terrace::analysis

@@ -58,6 +58,7 @@ public:
     const std::vector<int>& followedBodies() const { return follow_; }
     int followed() const { return static_cast<int>(follow_.size()); }
     int levels() const { return levels_; }
+    long samples() const { return seen_; }
 
     /// Some body's axis changed since the first sample (orientational curves mean something).
     bool rotating() const { return rotating_; }
@@ -67,6 +68,11 @@ public:
     OrientationalCorrelation orientation() const;
     SampledCurve displacement() const;
     std::size_t bytes() const;
+    /// Everything later samples add to (state_bytes.hpp): the samples seen, the first axes, each
+    /// level's ring and the sums, and level 0's windows; restore() takes them into correlations
+    /// built with the same settings.
+    void save(StateWriter& out) const;
+    void restore(StateReader& in);
 
 private:
     /// frame's entry for followed body k: index[k], or k when index is null.

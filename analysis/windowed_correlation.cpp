@@ -753,4 +753,34 @@ std::size_t WindowedCorrelation::bytes() const {
            spectrum_.size() * sizeof(Complex) + spectra + table + fft_->bytes();
 }
 
+void WindowedCorrelation::save(StateWriter& out) const {
+    out.value(std::int64_t(seen_));
+    out.doubles(ring_);
+    out.doubles(spectrum_);
+    const Spectra& s = *sums_;
+    for (const auto* sums : {&s.vv, &s.ss, &s.s2, &s.msd, &s.squares, &s.origins})
+        out.nested(*sums);
+    out.doubles(s.msdOrigins);
+    // The MSD's squares of the last complete block, made with its transform, that the next
+    // block's window begins with.
+    out.nested(fft_->own);
+}
+
+void WindowedCorrelation::restore(StateReader& in) {
+    const auto seen = in.value<std::int64_t>("FFT correlation's samples");
+    if (seen < 0) throw std::invalid_argument("analysis state: a negative number of samples");
+    seen_ = long(seen);
+    in.doubles(ring_, "FFT correlation's ring of samples");
+    in.doubles(spectrum_, "FFT correlation's kept transforms");
+    Spectra& s = *sums_;
+    in.nested(s.vv, "FFT correlation's VACF spectra");
+    in.nested(s.ss, "FFT correlation's OACF spectra");
+    in.nested(s.s2, "FFT correlation's P2 spectra");
+    in.nested(s.msd, "FFT correlation's MSD spectra");
+    in.nested(s.squares, "FFT correlation's MSD squares");
+    in.nested(s.origins, "FFT correlation's origin counts");
+    in.doubles(s.msdOrigins, "FFT correlation's MSD origin counts");
+    in.nested(fft_->own, "FFT correlation's last block's squares");
+}
+
 } // namespace terrace::analysis

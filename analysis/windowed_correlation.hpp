@@ -59,6 +59,7 @@
 // 3–10 % below at 32 768 (4096 followed bodies). There the kept transforms, twice the size
 // of the samples they stand for, stream from L3 at every block (16 MB read and written per 16
 // samples) and the products wait on them: that, with FFTW's ten transforms, is the floor.
+#include "analysis/state_bytes.hpp"
 #include "core/snapshot.hpp"
 #include <complex>
 #include <cstddef>
@@ -91,9 +92,15 @@ public:
     /// The sums over every origin of the samples added so far (the last blocks included).
     LagSums sums() const;
     std::size_t bytes() const;
+    long samples() const { return seen_; }
     /// What each followed body holds for a window of W samples: its 2W samples in the ring and
     /// its last block's kept transforms (bytes; the memory check before a run).
     static std::size_t bytesPerBody(int window);
+    /// Everything later samples add to (state_bytes.hpp): the ring of samples, the last block's
+    /// kept transforms, the summed spectra and squares; restore() takes them into a correlation
+    /// built with the same settings. FFTW's buffers are scratch, refilled before every use.
+    void save(StateWriter& out) const;
+    void restore(StateReader& in);
 
 private:
     struct Fft;     // FFTW plans and aligned scratch

@@ -39,8 +39,9 @@ const Command commands[] = {
       and, if asked for, thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE)
       or, with output.trajectory_format=gsd, trajectory.gsd (HOOMD's GSD, read by OVITO,
       freud and gsd, with orientations and the bodies' shapes).
-      With output.restart_every_ps > 0 the run keeps DIR/restart.bin (and samples.bin) until
-      it ends, from which --continue goes on.
+      With output.restart_every_ps > 0 the run keeps DIR/restart.bin (the bodies and the
+      analysis' accumulators, not the samples' bodies) until it ends, from which --continue
+      goes on.
 )",
      R"(  --out DIR             the output directory (default: out/<scene name>-<engine>, then the
                         --set keys but name and engine as key=value, sorted by the whole key

@@ -15,6 +15,7 @@ namespace terrace::cli {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& runFileNames() {
+    // samples.bin: the samples of restart formats before 6, still cleared by --overwrite.
     static const std::vector<std::string> names = {
         "summary.json", "scene.json", "initial.xyz", "trajectory.xyz", "thermo.csv", "rdf.csv",
         "vacf.csv",     "oacf.csv",   "msd.csv",     "restart.bin",    "samples.bin"};

@@ -11,124 +11,39 @@ namespace terrace::cli {
 
 namespace {
 
-void put(std::string& out, double x) {
-    char b[sizeof x];
-    std::memcpy(b, &x, sizeof x);
-    out.append(b, sizeof x);
+/// A record's numbers in the order they are stored.
+template <class R, class F> void forEachNumber(R& e, F&& f) {
+    f(e.time), f(e.tPs), f(e.total), f(e.potential), f(e.kinetic), f(e.kineticTranslational);
+    f(e.virial), f(e.collisions), f(e.continuousPotential), f(e.continuousVirial);
 }
 
-void put(std::string& out, const Vec3& v) {
-    put(out, v.x()), put(out, v.y()), put(out, v.z());
-}
-
-std::size_t recordDoubles(int bodies, bool withOrientation) {
-    return 10 + std::size_t(bodies) * (withOrientation ? 16 : 12);
-}
-
-std::string sampleHead(double time, const SampleRecord& e) {
-    std::string out;
-    put(out, time), put(out, e.tPs), put(out, e.total), put(out, e.potential);
-    put(out, e.kinetic), put(out, e.kineticTranslational), put(out, e.virial);
-    put(out, e.collisions), put(out, e.continuousPotential), put(out, e.continuousVirial);
-    return out;
-}
-
-void putBodies(std::string& out, const Snapshot& s) {
-    const bool tops = !s.orientation.empty();
-    for (int i = 0; i < s.size(); ++i) {
-        put(out, s.position[i]), put(out, s.velocity[i]), put(out, s.axis[i]);
-        put(out, s.omega[i]);
-        if (tops) {
-            const Quat& q = s.orientation[i];
-            put(out, q.w()), put(out, q.x()), put(out, q.y()), put(out, q.z());
-        }
-    }
-}
+constexpr std::size_t recordBytes = 10 * sizeof(double);
 
 } // namespace
 
-std::string encodeSample(const Snapshot& s, const SampleRecord& e) {
-    std::string out = sampleHead(s.time, e);
-    out.reserve(recordDoubles(s.size(), !s.orientation.empty()) * sizeof(double));
-    putBodies(out, s);
-    return out;
+nlohmann::json recordsToBinary(const std::vector<SampleRecord>& records) {
+    std::vector<std::uint8_t> bytes;
+    bytes.reserve(records.size() * recordBytes);
+    for (const SampleRecord& e : records)
+        forEachNumber(e, [&](const double& x) {
+            const auto* p = reinterpret_cast<const std::uint8_t*>(&x);
+            bytes.insert(bytes.end(), p, p + sizeof x);
+        });
+    return nlohmann::json::binary(std::move(bytes));
 }
 
-void writeSamplePieces(int bodies, double time, const SampleRecord& e,
-                       const std::function<Snapshot(int, int)>& bodiesOf, const PieceSink& sink,
-                       int bodiesPerPiece) {
-    sink(sampleHead(time, e));
-    std::string out;
-    for (int begin = 0; begin < bodies; begin += bodiesPerPiece) {
-        out.clear();
-        putBodies(out, bodiesOf(begin, std::min(bodies, begin + bodiesPerPiece)));
-        sink(out);
-    }
-}
-
-void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, double boxLength,
-                   std::vector<Snapshot>& samples, std::vector<SampleRecord>& energies) {
-    const std::size_t record = recordDoubles(bodies, withOrientation) * sizeof(double);
-    if (bytes.size() % record != 0)
-        throw std::runtime_error("samples.bin does not hold whole sample records");
-    const char* p = bytes.data();
-    auto get = [&p] {
-        double x;
-        std::memcpy(&x, p, sizeof x);
-        p += sizeof x;
-        return x;
-    };
-    auto vec = [&] {
-        const double x = get(), y = get(), z = get();
-        return Vec3(x, y, z);
-    };
-    for (std::size_t k = 0; k < bytes.size() / record; ++k) {
-        Snapshot s;
-        s.boxLength = boxLength;
-        s.time = get();
-        SampleRecord e;
-        e.time = s.time;
-        e.tPs = get(), e.total = get(), e.potential = get(), e.kinetic = get();
-        e.kineticTranslational = get(), e.virial = get(), e.collisions = get();
-        e.continuousPotential = get(), e.continuousVirial = get();
-        for (int i = 0; i < bodies; ++i) {
-            s.position.push_back(vec());
-            s.velocity.push_back(vec());
-            s.axis.push_back(vec());
-            s.omega.push_back(vec());
-            if (withOrientation) {
-                const double w = get(), x = get(), y = get(), z = get();
-                s.orientation.emplace_back(w, x, y, z);
-            }
-        }
-        samples.push_back(std::move(s));
-        energies.push_back(e);
-    }
-}
-
-long forEachSample(const std::filesystem::path& path, int bodies, bool withOrientation,
-                   double boxLength,
-                   const std::function<void(const Snapshot&, const SampleRecord&)>& each) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError(path.string() + ": cannot open: " + std::strerror(errno));
-    const std::size_t record = recordDoubles(bodies, withOrientation) * sizeof(double);
-    std::string bytes(record, '\0');
-    long count = 0;
-    std::vector<Snapshot> one;
-    std::vector<SampleRecord> energy;
-    while (true) {
-        in.read(bytes.data(), std::streamsize(record));
-        const std::size_t got = static_cast<std::size_t>(in.gcount());
-        if (got == 0) break;
-        if (got != record)
-            throw std::runtime_error("samples.bin does not hold whole sample records");
-        one.clear(), energy.clear();
-        decodeSamples(bytes, bodies, withOrientation, boxLength, one, energy);
-        each(one.front(), energy.front());
-        ++count;
-    }
-    if (in.bad()) throw IoError(path.string() + ": read failed: " + std::strerror(errno));
-    return count;
+std::vector<SampleRecord> recordsFromBinary(const nlohmann::json& j) {
+    const auto& bytes = j.get_binary();
+    if (bytes.size() % recordBytes != 0)
+        throw std::runtime_error("restart: the sample records are not whole records");
+    std::vector<SampleRecord> records(bytes.size() / recordBytes);
+    const std::uint8_t* p = bytes.data();
+    for (SampleRecord& e : records)
+        forEachNumber(e, [&](double& x) {
+            std::memcpy(&x, p, sizeof x);
+            p += sizeof x;
+        });
+    return records;
 }
 
 namespace {

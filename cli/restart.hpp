@@ -14,18 +14,22 @@
 //                       their states as raw bytes: exact, and compact), the engine's checkpoint
 //                       (DMD: clock, pair terraces as raw bytes, horizon stream; SMD: step count),
 //                       the run's accumulators (production start, initial momentum, production
-//                       statistics, CPU seconds, the terracing profile of g_c(r)) and the lengths
-//                       of trajectory.xyz, thermo.csv and samples.bin at that point;
-//   DIR/samples.bin   the production samples, one fixed-size record per sample, appended as they
-//                     are taken (kept only while restarts are on; removed when the run completes):
-//                       time, t_ps, E, U, K, K_trans, W (SMD: the virial at the sample; DMD:
-//                       the running impulse virial), the collisions since production began, the
-//                       continuous U and W on g(r) frames (NaN between them), then
-//                       per body r, v, axis, ω (and a top's quaternion).
+//                       statistics, CPU seconds), the lengths of trajectory.xyz and thermo.csv at
+//                       that point with the checksums of their tails, and, in production:
+//                         analysis  the streaming analysis' accumulators as raw bytes
+//                                   (analysis/state_bytes.hpp: g(r)'s histograms and the
+//                                   terracing profile, the correlators' rings, kept transforms,
+//                                   spectra and sums, the block counts): their size is fixed by
+//                                   the settings, the followed bodies and g(r)'s bins, whatever
+//                                   the run's length;
+//                         records   the production samples' energies (SampleRecord, 80 bytes a
+//                                   sample, raw), which summary.json's statistics and errors are
+//                                   computed from over the samples the run ends with.
 //
-// A continued run cuts trajectory.xyz, thermo.csv and samples.bin back to their lengths in the
-// restart file, reads the samples back, rebuilds the engine from the bodies and the checkpoint,
-// and goes on.
+// The run's history (its samples' bodies) is not kept: a continued run cuts trajectory.xyz and
+// thermo.csv back to their lengths in the restart file, takes the analysis' state and the records
+// back, rebuilds the engine from the bodies and the checkpoint, and goes on; nothing is replayed,
+// so continuing costs the same after 10 samples as after 10⁶ (but for the records' read).
 // At every restart point the running engine is rebuilt the same way, so that a run continued from
 // a restart file undergoes the same events and writes the same bytes as one that never stopped.
 #include "core/huge_pages.hpp"
@@ -34,7 +38,6 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -45,9 +48,10 @@ namespace terrace::cli {
 
 /// Version 2: samples.bin records carry K_trans, W and the collision count, and restart.bin the
 /// length of thermo.csv. Version 3: the DMD checkpoint's pair terraces are raw bytes
-/// (dmd/engine_start.hpp). Version 5: the checksum trailer and the run's identity. Files of another
+/// (dmd/engine_start.hpp). Version 5: the checksum trailer and the run's identity. Version 6: the
+/// analysis' state and the samples' records in restart.bin, no samples.bin. Files of another
 /// version are refused, naming both versions.
-inline constexpr const char* restartFormat = "terrace restart 5";
+inline constexpr const char* restartFormat = "terrace restart 6";
 
 /// CRC-64/XZ (ECMA-182 polynomial, reflected, all ones in and out) of `bytes`, continuing from
 /// `crc` (the value returned for the bytes before them; 0 to start).
@@ -72,23 +76,11 @@ struct SampleRecord {
     double continuousVirial = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// The bytes of one samples.bin record.
-std::string encodeSample(const Snapshot& s, const SampleRecord& e);
-/// The same bytes for a sample of `bodies` bodies at `time` (time units) handed to `sink` in
-/// pieces, each piece's bodies from bodiesOf(begin, end), a snapshot of bodies begin … end−1
-/// alone: at 10⁶ rods a record is ~0.1 GB, never held whole beside the engine.
-void writeSamplePieces(int bodies, double time, const SampleRecord& e,
-                       const std::function<Snapshot(int, int)>& bodiesOf, const PieceSink& sink,
-                       int bodiesPerPiece = 4096);
-/// Every record of a samples.bin of `bytes` bytes (N bodies, tops when withOrientation).
-void decodeSamples(const std::string& bytes, int bodies, bool withOrientation, double boxLength,
-                   std::vector<Snapshot>& samples, std::vector<SampleRecord>& energies);
-/// The records of DIR/samples.bin handed to `each` one at a time, read in pieces so that the file
-/// is never held whole; returns the number of records. Throws IoError when the file cannot be
-/// read and std::runtime_error when it does not hold whole records.
-long forEachSample(const std::filesystem::path& path, int bodies, bool withOrientation,
-                   double boxLength,
-                   const std::function<void(const Snapshot&, const SampleRecord&)>& each);
+/// The records as raw bytes (10 doubles each, in SampleRecord's order): exact, and compact in
+/// CBOR.
+nlohmann::json recordsToBinary(const std::vector<SampleRecord>& records);
+/// The records of recordsToBinary; std::runtime_error when the bytes are not whole records.
+std::vector<SampleRecord> recordsFromBinary(const nlohmann::json& j);
 
 void writeRestart(const std::filesystem::path& dir, const nlohmann::json& restart);
 /// "DIR/restart.bin: damaged, or written by another version of terrace (<what is missing>)" for

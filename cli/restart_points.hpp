@@ -120,10 +120,10 @@ private:
     nlohmann::json restartFile(const std::string& reason, const Released<System>& r,
                                double phaseCpu) const {
         const bool production = at_.inProduction;
-        nlohmann::json terracing; // the g_c(r) sums so far: the samples cannot give them back
-        if (run_.analysis && run_.analysis->terracing())
-            terracing = {{"weight", run_.analysis->terracingProfile().weights()},
-                         {"count", run_.analysis->terracingProfile().counts()}};
+        // The analysis' accumulators, not the samples they were made from: a size fixed by the
+        // settings, whatever the run's length (cli/restart.hpp).
+        nlohmann::json analysis;
+        if (production && run_.analysis) analysis = nlohmann::json::binary(run_.analysis->state());
         return {{"format", restartFormat},
                 {"reason", reason},
                 {"scene", scene_},
@@ -144,7 +144,8 @@ private:
                 {"restarts_written", run_.restartsWritten + 1},
                 {"continuations", run_.continuations},
                 {"files", files_.sizes()},
-                {"terracing", terracing}};
+                {"records", recordsToBinary(run_.records)},
+                {"analysis", std::move(analysis)}};
     }
 
     const RunPlan& plan_;

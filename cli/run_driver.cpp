@@ -97,7 +97,7 @@ RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxL
 }
 
 void RunFiles::sync() {
-    for (AppendFile* f : {&trajectory, &thermo, &samples})
+    for (AppendFile* f : {&trajectory, &thermo})
         if (f->isOpen()) f->sync();
 }
 
@@ -105,8 +105,7 @@ nlohmann::json RunFiles::sizes() const {
     nlohmann::json out;
     for (const auto& [name, f] :
          {std::pair<std::string, const AppendFile*>{"trajectory", &trajectory},
-          {"thermo", &thermo},
-          {"samples", &samples}}) {
+          {"thermo", &thermo}}) {
         const std::int64_t size = f->isOpen() ? f->size() : 0;
         out[name + "_bytes"] = size;
         out[name + "_tail_crc64"] = size > 0 ? tailChecksum(f->path(), size) : std::uint64_t(0);
@@ -399,11 +398,10 @@ std::int64_t sizeOf(const std::filesystem::path& path) {
 } // namespace
 
 RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
-                      const std::filesystem::path& dir, int bodies, bool withOrientation,
-                      double boxLength, RunRecord& run, RunFiles& files) {
+                      const std::filesystem::path& dir, RunRecord& run, RunFiles& files) {
     RunPosition at;
-    std::int64_t trajectoryBytes = 0, thermoBytes = 0, samplesBytes = 0;
-    std::uint64_t trajectoryTail = 0, thermoTail = 0, samplesTail = 0;
+    std::int64_t trajectoryBytes = 0, thermoBytes = 0;
+    std::uint64_t trajectoryTail = 0, thermoTail = 0;
     try {
         at.inProduction = r.at("phase") == "production";
         at.tick = r.at("tick").get<long>();
@@ -419,15 +417,39 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
         run.continuations = r.at("continuations").get<int>() + 1;
         trajectoryBytes = r.at("files").at("trajectory_bytes").get<std::int64_t>();
         thermoBytes = r.at("files").at("thermo_bytes").get<std::int64_t>();
-        samplesBytes = r.at("files").at("samples_bytes").get<std::int64_t>();
         trajectoryTail = r.at("files").at("trajectory_tail_crc64").get<std::uint64_t>();
         thermoTail = r.at("files").at("thermo_tail_crc64").get<std::uint64_t>();
-        samplesTail = r.at("files").at("samples_tail_crc64").get<std::uint64_t>();
         run.sceneChecksum = r.at("identity").at("scene_crc64").get<std::uint64_t>();
     } catch (const nlohmann::json::exception& e) {
         throw damagedRestart(dir, e);
     }
     if (!at.inProduction) return at;
+    const std::string restartPath = (dir / "restart.bin").string();
+    // The records and the analysis' state first: a file that does not hold them cuts nothing.
+    try {
+        run.records = recordsFromBinary(r.at("records"));
+        if (long(run.records.size()) != at.sample + 1)
+            throw IoError(restartPath + ": damaged: it holds " +
+                          std::to_string(run.records.size()) +
+                          " sample records, its restart point " + std::to_string(at.sample + 1));
+        const auto& state = r.at("analysis");
+        if (run.analysis) {
+            run.analysis->restore(state.get_binary());
+            if (run.analysis->samples() != at.sample + 1)
+                throw IoError(restartPath + ": damaged: its analysis holds " +
+                              std::to_string(run.analysis->samples()) +
+                              " samples, its restart point " + std::to_string(at.sample + 1));
+        } else if (!state.is_null())
+            throw IoError(restartPath + ": damaged: an analysis' state for a run that plans none");
+    } catch (const nlohmann::json::exception& e) {
+        throw damagedRestart(dir, e);
+    } catch (const IoError&) {
+        throw;
+    } catch (const std::invalid_argument& e) { // the analysis' state does not fit
+        throw IoError(restartPath + ": " + e.what());
+    } catch (const std::runtime_error& e) { // the records are not whole
+        throw IoError(restartPath + ": damaged: " + e.what());
+    }
     // Every growing file is checked before any is cut back to its restart point.
     const bool withTrajectory = plan.trajectoryEvery > 0, withThermo = plan.thermoEvery > 0;
     struct Grown {
@@ -436,8 +458,7 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
         std::uint64_t tail;
     };
     for (const auto& [name, bytes, tail] :
-         {Grown{"samples.bin", samplesBytes, samplesTail},
-          Grown{"trajectory.xyz", withTrajectory ? trajectoryBytes : 0, trajectoryTail},
+         {Grown{"trajectory.xyz", withTrajectory ? trajectoryBytes : 0, trajectoryTail},
           Grown{"thermo.csv", withThermo ? thermoBytes : 0, thermoTail}}) {
         const std::int64_t size = sizeOf(dir / name);
         if (bytes > 0 && size < bytes)
@@ -455,24 +476,6 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
     }
     if (withTrajectory) files.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
     if (withThermo) files.thermo = AppendFile(dir / "thermo.csv", thermoBytes);
-    files.samples = AppendFile(dir / "samples.bin", samplesBytes);
-    // The samples go through the analysis again, one at a time: never all in memory.
-    const long read =
-        forEachSample(dir / "samples.bin", bodies, withOrientation, boxLength,
-                      [&run](const Snapshot& s, const SampleRecord& e) { run.add(e, s); });
-    if (read != at.sample + 1)
-        throw IoError((dir / "samples.bin").string() + " holds " + std::to_string(read) +
-                      " samples, its restart point " + std::to_string(at.sample + 1));
-    if (run.analysis && run.analysis->terracing()) try {
-            const auto& t = r.at("terracing");
-            if (!t.is_null())
-                run.analysis->terracing()->restore(t.at("weight").get<std::vector<double>>(),
-                                                   t.at("count").get<std::vector<double>>());
-        } catch (const nlohmann::json::exception& e) {
-            throw damagedRestart(dir, e);
-        } catch (const std::invalid_argument& e) {
-            throw IoError((dir / "restart.bin").string() + ": " + e.what());
-        }
     return at;
 }
 
@@ -503,7 +506,6 @@ RunOutcome finishRun(const Scene& scene, RunRecord& run, const RunPosition& at,
     if (restarts && !stopped && analysed) {
         std::error_code ec;
         std::filesystem::remove(dir / "restart.bin", ec);
-        std::filesystem::remove(dir / "samples.bin", ec);
     }
     return outcome;
 }

@@ -3,9 +3,10 @@
 // here, outside the engines, through the engine contract (core/engine.hpp) alone:
 //   equilibration  advanceTo(k·Δt_thermostat), then rescale v, ω to the scene temperature
 //   production     advanceTo(t_s) on the sample grid; each sample goes to the SampleSink
-//                  (cli/sample_sink.hpp: energies, thermo.csv, samples.bin, trajectory, analysis)
+//                  (cli/sample_sink.hpp: energies, thermo.csv, trajectory, analysis)
 //   restart points every output.restart_every_ps, at production's start and at a signal's stop
-//                  (cli/restart_points.hpp): restart.bin, and the engine rebuilt from its bodies
+//                  (cli/restart_points.hpp): restart.bin (with the analysis' state), and the
+//                  engine rebuilt from its bodies
 // CPU time is measured around the engine's advanceTo and rescale calls only, so output, analysis
 // and restart points do not count against either engine; the analysis' own CPU time is reported
 // apart (analysis_cpu_seconds).
@@ -84,8 +85,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
     RunFiles files;
     RunPosition at;
     if (target.resume)
-        at = resumeRun(*target.resume, plan, target.dir, run.bodies, rotationalDof == 3,
-                       where.boxLength, run, files);
+        at = resumeRun(*target.resume, plan, target.dir, run, files);
     else
         writeStart(*engine, scene, run, target.dir, rotationalDof);
     SampleSink sink(plan, rotationalDof, run, files);
@@ -127,7 +127,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
             at.tStart = engine->time();
             restarts.beginStretch(*engine);
             run.momentumInitial = engine->totalMomentum();
-            sink.openProduction(target.dir, restarts.on());
+            sink.openProduction(target.dir);
             record();
             // A kill then costs at most one interval of production, never the equilibration.
             if (restarts.on()) restarts.take(engine, "production", true, cpu.seconds());

@@ -54,7 +54,7 @@ struct RunPosition {
 
 /// The files production grows sample by sample (closed where the scene writes none).
 struct RunFiles {
-    AppendFile trajectory, thermo, samples;
+    AppendFile trajectory, thermo;
     /// Each open file reaches the disk: before a restart file that counts their bytes.
     void sync();
     /// Their lengths and the checksums of their tails (tailChecksum), as a restart file records
@@ -140,11 +140,11 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
                                        const InterruptGuard& interrupt, int tolerated,
                                        bool& analysed);
 
-/// The run's position and accumulators from a restart file: the samples (read back from
-/// samples.bin, after checking that the growing files still hold what the file says they did),
-/// the phase, and what the file carries over. Fills `run` and opens `files` where they were.
+/// The run's position and accumulators from a restart file: the phase, the samples' records and
+/// the analysis' state (after checking that the growing files still hold what the file says they
+/// did), and what the file carries over. Fills `run` and opens `files` where they were. Nothing
+/// is replayed: its cost does not grow with the samples taken (but for their 80-byte records).
 RunPosition resumeRun(const nlohmann::json& restart, const RunPlan& plan,
-                      const std::filesystem::path& dir, int bodies, bool withOrientation,
-                      double boxLength, RunRecord& run, RunFiles& files);
+                      const std::filesystem::path& dir, RunRecord& run, RunFiles& files);
 
 } // namespace terrace::cli

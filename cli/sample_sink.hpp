@@ -1,6 +1,7 @@
 #pragma once
 // Where a production sample goes: its energies into the run's record and thermo.csv, the bodies
-// into samples.bin (with restarts on) and trajectory.xyz (at its interval), and the analysis.
+// into trajectory.xyz (at its interval), and the analysis. A restart point keeps the analysis'
+// state and the records, never the samples' bodies (cli/restart.hpp).
 // Nothing takes a sample whole: at 10⁶ bodies a frame's text alone is ~0.3 GB, and beside the
 // engine it would raise the run's peak, so every file is written piece by piece from the engine.
 #include "cli/run_record.hpp"
@@ -13,8 +14,7 @@
 
 namespace terrace::cli {
 
-/// The engine's bodies begin … end−1 as a snapshot, taken when a piece of a frame or of a sample
-/// record is written.
+/// The engine's bodies begin … end−1 as a snapshot, taken when a piece of a frame is written.
 template <class E> auto bodiesOf(const E& engine) {
     return [&engine, bodies = std::vector<int>()](int begin, int end) mutable {
         bodies.resize(static_cast<std::size_t>(end - begin));
@@ -30,13 +30,6 @@ void writeFrame(const E& engine, int n, TrajectoryLayout layout, const PieceSink
     writeXyzFramePieces(n, none.time, none.boxLength, layout, bodiesOf(engine), sink);
 }
 
-/// The engine's bodies and the sample's energies as one samples.bin record, piece by piece.
-template <class E>
-void writeSample(const E& engine, int n, const SampleRecord& e, const PieceSink& sink) {
-    const Snapshot none = engine.snapshot(std::span<const int>()); // its time
-    writeSamplePieces(n, none.time, e, bodiesOf(engine), sink);
-}
-
 class SampleSink {
 public:
     SampleSink(const RunPlan& plan, int rotationalDof, RunRecord& run, RunFiles& files)
@@ -45,13 +38,12 @@ public:
           run_(run), files_(files) {}
 
     /// Production begins: its files are opened empty in `dir` (thermo.csv with its header).
-    void openProduction(const std::filesystem::path& dir, bool restarts) {
+    void openProduction(const std::filesystem::path& dir) {
         if (plan_.trajectoryEvery > 0) files_.trajectory = AppendFile(dir / "trajectory.xyz", 0);
         if (plan_.thermoEvery > 0) {
             files_.thermo = AppendFile(dir / "thermo.csv", 0);
             files_.thermo.append(thermoHeader(thermoLayout_));
         }
-        if (restarts) files_.samples = AppendFile(dir / "samples.bin", 0);
     }
 
     /// Production sample `sample` of the engine as it is now; `collisions` since production
@@ -81,9 +73,6 @@ public:
                 sample > 0 ? &run_.records[sample - plan_.thermoEvery] : nullptr;
             files_.thermo.append(thermoRow(e, before, continuousU, thermoLayout_));
         }
-        if (files_.samples.isOpen()) // what a continued run reads back
-            files_.samples.appendPieces(
-                [&](const PieceSink& sink) { writeSample(engine, n, e, sink); });
         if (plan_.trajectoryEvery > 0 && sample % plan_.trajectoryEvery == 0)
             files_.trajectory.appendPieces(
                 [&](const PieceSink& sink) { writeFrame(engine, n, layout_, sink); });

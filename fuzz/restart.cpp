@@ -1,6 +1,8 @@
 // Restart files as a continued run reads them before it rebuilds an engine: restart.bin's CBOR,
-// its format and the scene it records (cli/run_command.cpp continueRun), and samples.bin records.
+// its format and the scene it records (cli/run_command.cpp continueRun), and the analysis' state
+// it carries (analysis/state_bytes.hpp).
 #include "cli/restart.hpp"
+#include "analysis/run_analysis.hpp"
 #include "cli/scene_check.hpp"
 #include "core/output_file.hpp"
 #include "core/scene.hpp"
@@ -11,14 +13,14 @@ namespace terrace::fuzz {
 
 void restartInput(std::string_view bytes) {
     if (bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0xff) {
-        const int bodies = (bytes[1] & 7) + 1;
-        const bool withOrientation = (bytes[1] & 8) != 0;
-        std::vector<Snapshot> samples;
-        std::vector<cli::SampleRecord> energies;
+        analysis::StreamingOptions options;
+        options.lagsPerLevel = 4;
+        options.beta = (bytes[1] & 8) != 0 ? 1.0 : 0.0; // with a terracing profile
+        analysis::RunAnalysis analysis((bytes[1] & 7) + 2, 10.0, 0.001, 8, options);
+        const auto* state = reinterpret_cast<const std::uint8_t*>(bytes.data() + 2);
         try {
-            cli::decodeSamples(std::string(bytes.substr(2)), bodies, withOrientation, 10.0, samples,
-                               energies);
-        } catch (const std::runtime_error&) { // not whole records (documented)
+            analysis.restore({state, bytes.size() - 2});
+        } catch (const std::invalid_argument&) { // a state that does not fit (documented)
         }
         return;
     }

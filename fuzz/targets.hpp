@@ -16,8 +16,9 @@ void sceneInput(std::string_view bytes);
 /// experiments/sweeps, so that the committed sweeps' scenes are found.
 void sweepInput(std::string_view bytes);
 /// restart.bin as `terrace run --continue DIR` reads it: the CBOR document and the scene it
-/// records. An input whose first byte is 0xff is a samples.bin instead: its second byte sets the
-/// bodies (low three bits, plus one) and whether they carry an orientation (bit 3).
+/// records. An input whose first byte is 0xff is the analysis' state a restart file carries
+/// instead, restored into an analysis of 8 samples, 4 lags a level, whose bodies the second
+/// byte sets (low three bits, plus two) and whether it has a terracing profile (bit 3).
 void restartInput(std::string_view bytes);
 /// trajectory.xyz as `terrace analyse DIR` reads it (no scene.json beside it).
 void trajectoryInput(std::string_view bytes);

@@ -71,52 +71,22 @@ TEST(Restart, BodiesOfEveryKindComeBackBitForBit) {
                                    rodPotential(smallScene("asymmetric")));
 }
 
-TEST(Restart, SamplesComeBackBitForBit) {
-    const Scene scene = smallScene("asymmetric");
-    const auto sys = buildInitialState<AsymmetricTop>(scene, rodPotential(scene));
-    const Snapshot a = makeSnapshot(sys, 0.25);
-    const cli::SampleRecord e{0.125, -3.5, -10.25, 6.75, 4.5, -31.25, 1234.0, a.time};
-    const std::string bytes = cli::encodeSample(a, e) + cli::encodeSample(a, e);
-    std::vector<Snapshot> samples;
-    std::vector<cli::SampleRecord> energies;
-    cli::decodeSamples(bytes, a.size(), true, a.boxLength, samples, energies);
-    ASSERT_EQ(samples.size(), 2u);
-    EXPECT_EQ(samples[1].time, a.time);
-    EXPECT_EQ(energies[1].potential, e.potential);
-    EXPECT_EQ(energies[1].kineticTranslational, e.kineticTranslational); // the pressure's terms
-    EXPECT_EQ(energies[1].virial, e.virial);
-    EXPECT_EQ(energies[1].collisions, e.collisions);
-    EXPECT_EQ(energies[1].time, a.time);
-    for (int i = 0; i < a.size(); ++i) {
-        EXPECT_EQ(samples[1].position[i], a.position[i]);
-        EXPECT_EQ(samples[1].omega[i], a.omega[i]);
-        EXPECT_EQ(samples[1].orientation[i].coeffs(), a.orientation[i].coeffs());
-    }
-    // A record cut short (a kill during the append) is not a whole sample.
-    EXPECT_THROW(cli::decodeSamples(bytes.substr(0, bytes.size() - 8), a.size(), true, a.boxLength,
-                                    samples, energies),
-                 std::runtime_error);
-}
-
-// A record written in pieces, its bodies taken a few at a time (as the run takes them from the
-// engine), is the record whole, byte for byte.
-TEST(Restart, ASampleRecordInPiecesIsTheRecordWhole) {
-    const Scene scene = smallScene("asymmetric");
-    const auto sys = buildInitialState<AsymmetricTop>(scene, rodPotential(scene));
-    const Snapshot a = makeSnapshot(sys, 0.25);
-    const cli::SampleRecord e{0.125, -3.5, -10.25, 6.75, 4.5, -31.25, 1234.0, a.time};
-    std::string pieces;
-    int calls = 0;
-    cli::writeSamplePieces(
-        a.size(), a.time, e,
-        [&](int begin, int end) {
-            auto part = sys;
-            part.bodies.assign(sys.bodies.begin() + begin, sys.bodies.begin() + end);
-            return makeSnapshot(part, a.time);
-        },
-        [&](std::string_view piece) { pieces += piece, ++calls; }, 5);
-    EXPECT_EQ(calls, 1 + (a.size() + 4) / 5); // the head, then 5 bodies a piece
-    EXPECT_EQ(pieces, cli::encodeSample(a, e));
+// The samples' records come back bit for bit through CBOR, NaN (no g(r) frame) included; bytes
+// that are not whole records are refused.
+TEST(Restart, RecordsComeBackBitForBit) {
+    std::vector<cli::SampleRecord> records(3);
+    records[0] = {0.125, -3.5, -10.25, 6.75, 4.5, -31.25, 1234.0, 0.5};
+    records[1] = {0.25, -3.25, -10.0, 6.75, 4.25, -30.0, 2345.0, 1.0, -9.5, -29.75};
+    records[2] = {0.375, 1e-300, -0.0, 6.5, 4.0, 1e300, 3456.0, 1.5};
+    const auto cbor = nlohmann::json::to_cbor({{"records", cli::recordsToBinary(records)}});
+    const auto back = cli::recordsFromBinary(nlohmann::json::from_cbor(cbor).at("records"));
+    ASSERT_EQ(back.size(), records.size());
+    static_assert(sizeof(cli::SampleRecord) == 10 * sizeof(double));
+    for (std::size_t k = 0; k < records.size(); ++k)
+        EXPECT_EQ(std::memcmp(&back[k], &records[k], sizeof(cli::SampleRecord)), 0) << k;
+    auto bytes = cli::recordsToBinary(records).get_binary();
+    bytes.pop_back();
+    EXPECT_THROW(cli::recordsFromBinary(nlohmann::json::binary(bytes)), std::runtime_error);
 }
 
 namespace {
@@ -335,27 +305,39 @@ TEST(Restart, ADamagedRestartFileIsNamed) {
                               {"identity", cli::runIdentity(0, 8, "dmd")},
                               {"files",
                                {{"trajectory_bytes", 0},
-                                {"thermo_bytes", 0},
-                                {"samples_bytes", 100},
+                                {"thermo_bytes", 100},
                                 {"trajectory_tail_crc64", 0},
-                                {"thermo_tail_crc64", 0},
-                                {"samples_tail_crc64", 0}}}};
+                                {"thermo_tail_crc64", 0}}},
+                              {"records", cli::recordsToBinary(std::vector<cli::SampleRecord>(2))},
+                              {"analysis", nullptr}};
     restart.erase("tick");
     cli::RunRecord run;
     cli::RunFiles files;
-    const cli::RunPlan plan = cli::planRun(defaultScene());
+    cli::RunPlan plan = cli::planRun(defaultScene());
+    plan.thermoEvery = 1;
     try {
-        cli::resumeRun(restart, plan, dir, 8, false, 10.0, run, files);
+        cli::resumeRun(restart, plan, dir, run, files);
         FAIL() << "expected an IoError";
     } catch (const IoError& e) {
         EXPECT_EQ(std::string(e.what()), (dir / "restart.bin").string() +
                                              ": damaged, or written by another version of "
                                              "terrace (key 'tick' not found)");
     }
-    // Whole, but samples.bin shorter than its restart point: refused, nothing created or cut.
+    // Whole, but with records for fewer samples than its restart point: refused.
     restart["tick"] = 0;
-    EXPECT_THROW(cli::resumeRun(restart, plan, dir, 8, false, 10.0, run, files), IoError);
-    EXPECT_FALSE(std::filesystem::exists(dir / "samples.bin"));
+    try {
+        cli::resumeRun(restart, plan, dir, run, files);
+        FAIL() << "expected an IoError";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  (dir / "restart.bin").string() +
+                      ": damaged: it holds 2 sample records, its restart point 4");
+    }
+    // Its records whole, but thermo.csv shorter than its restart point: refused, nothing created
+    // or cut.
+    restart["records"] = cli::recordsToBinary(std::vector<cli::SampleRecord>(4));
+    EXPECT_THROW(cli::resumeRun(restart, plan, dir, run, files), IoError);
+    EXPECT_FALSE(std::filesystem::exists(dir / "thermo.csv"));
     std::filesystem::remove_all(dir);
 }
 
@@ -527,6 +509,35 @@ TEST(Restart, ARebuildThatFailsEndsTheRunWithItsFilesKept) {
     std::filesystem::remove_all(failed);
 }
 
+// restart.bin holds the analysis' state, not the samples: stopped at sample 100 it is larger than
+// at sample 10 by the 90 records of the energies (80 bytes each) and by the integers that grew
+// (event counters, file lengths: 1 to 9 bytes each in CBOR, some hundred bytes in all), never by
+// the bodies of the samples (90 × 64 rods × 96 bytes, 553 kB); its analysis' state is the same
+// size at both.
+TEST(Restart, ARestartFileDoesNotGrowWithTheSamplesTaken) {
+    Scene scene = watchedScene();
+    scene.run.time_ps = 1.8;              // 200 samples planned, the same analysis for both
+    scene.output.restart_every_ps = 0.09; // every 10 samples
+    const auto early = scratch("early"), late = scratch("late");
+    WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 2; // the restart point at sample 10
+    EXPECT_THROW(runWatched(scene, early), std::runtime_error);
+    WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 11; // at sample 100
+    EXPECT_THROW(runWatched(scene, late), std::runtime_error);
+    WatchedDmd::failAt = 0;
+    const nlohmann::json a = cli::readRestart(early), b = cli::readRestart(late);
+    ASSERT_EQ(a.at("sample"), 10);
+    ASSERT_EQ(b.at("sample"), 100);
+    EXPECT_FALSE(std::filesystem::exists(early / "samples.bin"));
+    EXPECT_EQ(a.at("analysis").get_binary().size(), b.at("analysis").get_binary().size());
+    const auto sizeA = std::int64_t(std::filesystem::file_size(early / "restart.bin"));
+    const auto sizeB = std::int64_t(std::filesystem::file_size(late / "restart.bin"));
+    const std::int64_t records = 90 * std::int64_t(sizeof(cli::SampleRecord));
+    EXPECT_GE(sizeB - sizeA, records) << sizeA << " then " << sizeB << " bytes";
+    EXPECT_LE(sizeB - sizeA, records + 1024) << sizeA << " then " << sizeB << " bytes";
+    std::filesystem::remove_all(early);
+    std::filesystem::remove_all(late);
+}
+
 // The checksum is CRC-64/XZ: its check value, and the same when computed in two parts.
 TEST(Restart, TheChecksumIsCrc64Xz) {
     EXPECT_EQ(cli::crc64("123456789"), 0x995DC9BBDF1939FAull);
@@ -537,7 +548,12 @@ TEST(Restart, TheChecksumIsCrc64Xz) {
 // Any one byte of a restart file changed is refused by readRestart before its content is used,
 // at every position of the file (the document and its trailer alike).
 TEST(Restart, EveryByteOfARestartFileChangedIsRefused) {
-    const Scene scene = watchedScene();
+    // A small analysis, so that the file stays small: each of its bytes is changed twice and the
+    // whole file checked each time (its analysis' state at the defaults, all 64 rods followed by
+    // 16 lags a level, would be some 0.5 MB of a 0.5 MB file).
+    Scene scene = watchedScene();
+    scene.analysis.follow_bodies = 4, scene.analysis.lags_per_level = 4;
+    scene.analysis.blocks = 2, scene.analysis.rdf_bin_angstrom = 0.25;
     const auto dir = scratch("flipped");
     WatchedDmd::rebuilds = 0, WatchedDmd::failAt = 3; // stopped at the restart point of sample 6
     EXPECT_THROW(runWatched(scene, dir), std::runtime_error);
@@ -597,7 +613,7 @@ TEST(Restart, ARestartFileWithoutItsTrailerIsOfAnotherVersion) {
 }
 
 // A restart file from another run of the same N (another seed) is refused, naming what differs:
-// alone, by the scene it was written for; with that run's scene.json too, by samples.bin's tail.
+// alone, by the scene it was written for; with that run's scene.json too, by thermo.csv's tail.
 // The run's own file still continues.
 TEST(Restart, ARestartFileFromAnotherRunIsRefused) {
     Scene scene = watchedScene(), other = watchedScene();
@@ -624,23 +640,31 @@ TEST(Restart, ARestartFileFromAnotherRunIsRefused) {
             << text;
         EXPECT_NE(text.find("; seed differs)"), std::string::npos) << text;
     }
-    // Their scene.json as well: the scene agrees, samples.bin does not, and nothing is cut back.
+    // Their scene.json as well: the scene agrees, thermo.csv does not, and nothing is cut back.
     std::filesystem::copy_file(theirs / "scene.json", mine / "scene.json",
                                std::filesystem::copy_options::overwrite_existing);
     nlohmann::json restart = cli::readRestart(mine);
     EXPECT_NO_THROW(cli::checkRunIdentity(mine, restart));
-    const auto samplesBefore = std::filesystem::file_size(mine / "samples.bin");
+    const auto thermoBefore = std::filesystem::file_size(mine / "thermo.csv");
+    const auto theirs6 = restart.at("files").at("thermo_bytes").get<std::uintmax_t>();
     try {
         runWatched(other, mine, &restart);
         ADD_FAILURE() << "expected an IoError";
     } catch (const IoError& e) {
+        // Their rows may print longer than this run's: then the file is too short for them.
+        const std::string path = (mine / "thermo.csv").string();
         EXPECT_EQ(std::string(e.what()),
-                  (mine / "samples.bin").string() + ": its last " +
-                      std::to_string(std::min<std::uintmax_t>(samplesBefore, cli::tailBytes)) +
-                      " bytes before the restart point are not those restart.bin was written "
-                      "with (checksum): the file is another run's, or was changed since");
+                  thermoBefore < theirs6
+                      ? path + " holds " + std::to_string(thermoBefore) +
+                            " bytes, fewer than the " + std::to_string(theirs6) +
+                            " of its restart point: it was changed after restart.bin was written"
+                      : path + ": its last " +
+                            std::to_string(std::min<std::uintmax_t>(theirs6, cli::tailBytes)) +
+                            " bytes before the restart point are not those restart.bin was "
+                            "written with (checksum): the file is another run's, or was changed "
+                            "since");
     }
-    EXPECT_EQ(std::filesystem::file_size(mine / "samples.bin"), samplesBefore);
+    EXPECT_EQ(std::filesystem::file_size(mine / "thermo.csv"), thermoBefore);
     // Its own restart file and scene: continued to the end.
     writeFileAtomically(mine / "restart.bin", own);
     writeFileAtomically(mine / "scene.json", ownScene);
