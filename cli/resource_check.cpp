@@ -171,22 +171,27 @@ DiskEstimate diskEstimate(const Scene& scene) {
     const RunPlan plan = planRun(scene);
     const int n = scene.state.particles.empty() ? scene.state.n : int(scene.state.particles.size());
     const int dof = rotationalDofOf(scene);
-    const double samples = double(plan.productionSamples) + 1.0;
     DiskEstimate d;
     const double frame = frameBytes(n, dof);
+    // A GSD frame: position, image, orientation, velocity, angular momentum, 17 numbers of 4 B
+    // a body, and the index's entries (core/gsd_frame.hpp).
+    const bool gsd = scene.output.trajectory_format == "gsd";
+    if (gsd) d.trajectoryName = "trajectory.gsd";
+    const double trajectoryFrame = gsd ? 17.0 * 4.0 * double(n) + 1024.0 : frame;
     if (plan.trajectoryEvery > 0)
-        d.trajectory =
-            (std::floor(double(plan.productionSamples) / plan.trajectoryEvery) + 1.0) * frame;
+        d.trajectory = (std::floor(double(plan.productionSamples) / plan.trajectoryEvery) + 1.0) *
+                       trajectoryFrame;
     // A thermo.csv row: a dozen numbers at 17 significant digits.
     if (plan.thermoEvery > 0)
         d.thermo = (std::floor(double(plan.productionSamples) / plan.thermoEvery) + 2.0) * 12.0 *
                    xyzNumberBytes;
     if (plan.restartEvery > 0) {
-        // samples.bin: per sample 10 doubles and 12 per body (16 per top; cli/restart.cpp).
-        d.samples = samples * (10.0 + double(n) * (dof == 3 ? 16.0 : 12.0)) * sizeof(double);
         // restart.bin: the bodies and the engine's checkpoint (DMD: 12 B a pair off terrace 0,
-        // a few per body), about a body's snapshot record and half again.
-        d.restart = 2.0 * 1.5 * double(n) * (dof == 3 ? 16.0 : 12.0) * sizeof(double);
+        // a few per body), about a body's snapshot record and half again, and the analysis'
+        // state: its accumulators and the samples' 80-byte records, what the analysis holds in
+        // memory (cli/restart.hpp).
+        d.restart = 2.0 * (1.5 * double(n) * (dof == 3 ? 16.0 : 12.0) * sizeof(double) +
+                           analysisBytes(scene));
     }
     // scene.json and summary.json are small; initial.xyz is a frame; the CSVs hold a row per bin
     // or lag (a few thousand rows of a few numbers).
@@ -272,16 +277,13 @@ DiskVerdict diskVerdict(const Scene& scene, const DiskEstimate& need, double wri
     // The key behind the largest file.
     std::string key = "output.trajectory_every_fs";
     double largest = need.trajectory;
-    if (need.samples + need.restart > largest)
-        key = "output.restart_every_ps", largest = need.samples + need.restart;
+    if (need.restart > largest) key = "output.restart_every_ps", largest = need.restart;
     if (need.thermo > largest) key = "output.thermo_every_fs", largest = need.thermo;
     if (need.results > largest) key = "state.n", largest = need.results;
     (void)scene;
     const std::string where = dir.string();
-    std::string parts = "trajectory.xyz " + showBytes(need.trajectory);
-    if (need.samples > 0.0)
-        parts +=
-            ", samples.bin " + showBytes(need.samples) + ", restart.bin " + showBytes(need.restart);
+    std::string parts = need.trajectoryName + " " + showBytes(need.trajectory);
+    if (need.restart > 0.0) parts += ", restart.bin " + showBytes(need.restart);
     if (need.thermo > 0.0) parts += ", thermo.csv " + showBytes(need.thermo);
     const std::string what =
         "the run will write about " + showBytes(left) + " into " + where + " (" + parts + ")";
@@ -304,7 +306,7 @@ void checkResources(const Scene& scene, const std::filesystem::path& dir, bool c
     if (!memory.empty()) throw SceneError("run: " + memory);
     double written = 0.0;
     if (continuing)
-        for (const char* name : {"trajectory.xyz", "thermo.csv", "samples.bin", "restart.bin"})
+        for (const char* name : {"trajectory.xyz", "trajectory.gsd", "thermo.csv", "restart.bin"})
             written += fileSize(dir / name);
     const DiskVerdict disk =
         diskVerdict(scene, diskEstimate(scene), written, freeDiskBytes(dir), dir);

@@ -29,12 +29,13 @@ MemoryEstimate memoryEstimate(const Scene& scene);
 
 /// Bytes a run will write into its output directory, by file.
 struct DiskEstimate {
-    double trajectory = 0.0; // trajectory.xyz (extended XYZ text, 17 significant digits)
-    double thermo = 0.0;     // thermo.csv
-    double samples = 0.0;    // samples.bin: every production sample's bodies, with restarts on
-    double restart = 0.0;    // restart.bin, twice: the new one beside the old until it replaces it
-    double results = 0.0;    // scene.json, initial.xyz, summary.json, the correlation CSVs
-    double total() const { return trajectory + thermo + samples + restart + results; }
+    double trajectory = 0.0; // trajectory.xyz (extended XYZ text, 17 significant digits) or
+                             // trajectory.gsd (single precision)
+    std::string trajectoryName = "trajectory.xyz";
+    double thermo = 0.0;  // thermo.csv
+    double restart = 0.0; // restart.bin, twice: the new one beside the old until it replaces it
+    double results = 0.0; // scene.json, initial.xyz, summary.json, the correlation CSVs
+    double total() const { return trajectory + thermo + restart + results; }
 };
 
 DiskEstimate diskEstimate(const Scene& scene);

@@ -222,14 +222,20 @@ TEST(ResourceCheck, DiskBeyondTheFreeSpaceIsRefusedAndBeyondHalfWarned) {
               cli::DiskVerdict::Kind::Fits);
     // Free space unknown: nothing said.
     EXPECT_EQ(cli::diskVerdict(s, d, 0.0, -1.0, "out/x").kind, cli::DiskVerdict::Kind::Fits);
-    // With restarts on, samples.bin holds every sample's bodies: named with its key.
+    // The restart file the largest: named with its key.
     cli::DiskEstimate r;
-    r.samples = 90.0 * (1 << 30);
-    r.restart = 1 << 20;
-    const auto samples = cli::diskVerdict(s, r, 0.0, 50.0 * (1 << 30), "out/x");
-    EXPECT_EQ(samples.kind, cli::DiskVerdict::Kind::Refuse);
-    EXPECT_EQ(samples.message.rfind("output.restart_every_ps: ", 0), 0u) << samples.message;
-    EXPECT_NE(samples.message.find("samples.bin 90 GiB"), std::string::npos) << samples.message;
+    r.restart = 90.0 * (1 << 30);
+    const auto restart = cli::diskVerdict(s, r, 0.0, 50.0 * (1 << 30), "out/x");
+    EXPECT_EQ(restart.kind, cli::DiskVerdict::Kind::Refuse);
+    EXPECT_EQ(restart.message.rfind("output.restart_every_ps: ", 0), 0u) << restart.message;
+    EXPECT_NE(restart.message.find("restart.bin 90 GiB"), std::string::npos) << restart.message;
+    // A GSD trajectory is named as such.
+    cli::DiskEstimate g;
+    g.trajectory = 6.0 * (1 << 30);
+    g.trajectoryName = "trajectory.gsd";
+    EXPECT_NE(cli::diskVerdict(s, g, 0.0, 4.0 * (1 << 30), "out/x")
+                  .message.find("(trajectory.gsd 6 GiB)"),
+              std::string::npos);
 }
 
 TEST(ResourceCheck, FreeDiskIsFoundFromTheNearestExistingDirectory) {
