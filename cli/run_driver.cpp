@@ -36,6 +36,8 @@ RunPlan planRun(const Scene& scene) {
                               : 0L;
     };
     plan.trajectoryEvery = inSamples(units::fromFs(scene.output.trajectory_every_fs));
+    plan.trajectoryGsd = scene.output.trajectory_format == "gsd";
+    if (plan.trajectoryGsd) plan.gsdType = gsdBodyType(scene);
     plan.thermoEvery = inSamples(units::fromFs(scene.output.thermo_every_fs));
     plan.restartEvery = inSamples(units::fromPs(scene.output.restart_every_ps));
     if (plan.restartEvery > 0)
@@ -96,9 +98,29 @@ RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxL
             streamingOptions(scene));
 }
 
+namespace {
+
+/// A checksum (CRC-64) of the chunks of frame frames−1 of a GSD trajectory, which later frames
+/// leave as they are: a restart point records it, so that a continued run knows the file is its
+/// own. IoError or TrajectoryError when the file does not hold that frame.
+std::uint64_t gsdLastFrameChecksum(const std::filesystem::path& path, std::uint64_t frames) {
+    const GsdContents c = readGsdContents(path);
+    std::uint64_t crc = 0;
+    bool any = false;
+    for (const auto& e : c.index)
+        if (e.frame + 1 == frames) crc = crc64(readGsdChunk(path, e), crc), any = true;
+    if (!any)
+        throw IoError(path.string() + " holds no frame " + std::to_string(frames - 1) +
+                      ": it was changed after restart.bin was written");
+    return crc;
+}
+
+} // namespace
+
 void RunFiles::sync() {
     for (AppendFile* f : {&trajectory, &thermo})
         if (f->isOpen()) f->sync();
+    if (gsd) gsd->flush();
 }
 
 nlohmann::json RunFiles::sizes() const {
@@ -109,6 +131,12 @@ nlohmann::json RunFiles::sizes() const {
         const std::int64_t size = f->isOpen() ? f->size() : 0;
         out[name + "_bytes"] = size;
         out[name + "_tail_crc64"] = size > 0 ? tailChecksum(f->path(), size) : std::uint64_t(0);
+    }
+    // A GSD file is not cut at a length (its index is rewritten in place): its frames count,
+    // and the checksum of its last frame's chunks says the file is this run's.
+    if (gsd) {
+        out["trajectory_gsd_frames"] = gsd->frames();
+        out["trajectory_gsd_tail_crc64"] = gsdLastFrameChecksum(gsd->path(), gsd->frames());
     }
     return out;
 }
@@ -458,7 +486,8 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
         std::uint64_t tail;
     };
     for (const auto& [name, bytes, tail] :
-         {Grown{"trajectory.xyz", withTrajectory ? trajectoryBytes : 0, trajectoryTail},
+         {Grown{"trajectory.xyz", withTrajectory && !plan.trajectoryGsd ? trajectoryBytes : 0,
+                trajectoryTail},
           Grown{"thermo.csv", withThermo ? thermoBytes : 0, thermoTail}}) {
         const std::int64_t size = sizeOf(dir / name);
         if (bytes > 0 && size < bytes)
@@ -474,7 +503,22 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
                           " bytes before the restart point are not those restart.bin was written "
                           "with (checksum): the file is another run's, or was changed since");
     }
-    if (withTrajectory) files.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
+    if (withTrajectory && plan.trajectoryGsd) {
+        const auto path = dir / "trajectory.gsd";
+        std::uint64_t frames = 0, tail = 0;
+        try {
+            frames = r.at("files").at("trajectory_gsd_frames").get<std::uint64_t>();
+            tail = r.at("files").at("trajectory_gsd_tail_crc64").get<std::uint64_t>();
+        } catch (const nlohmann::json::exception& e) {
+            throw damagedRestart(dir, e);
+        }
+        if (frames > 0 && gsdLastFrameChecksum(path, frames) != tail)
+            throw IoError(path.string() + ": its frame " + std::to_string(frames - 1) +
+                          " is not the one restart.bin was written with (checksum): the file is "
+                          "another run's, or was changed since");
+        files.gsd.emplace(path, hoomdChunkNames(), frames);
+    } else if (withTrajectory)
+        files.trajectory = AppendFile(dir / "trajectory.xyz", trajectoryBytes);
     if (withThermo) files.thermo = AppendFile(dir / "thermo.csv", thermoBytes);
     return at;
 }

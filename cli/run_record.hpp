@@ -6,6 +6,7 @@
 #include "cli/interrupt.hpp"
 #include "cli/restart.hpp"
 #include "cli/thermo.hpp"
+#include "core/gsd_frame.hpp"
 #include "core/output_file.hpp"
 #include "core/pressure.hpp"
 #include "core/scene.hpp"
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,8 @@ struct RunPlan {
     long equilibrationTicks = 0;     // whole thermostat intervals
     long productionSamples = 0;      // samples after the one at the start of production
     long trajectoryEvery = 0;        // in samples; 0 = none
+    bool trajectoryGsd = false;      // trajectory.gsd (output.trajectory_format gsd), else .xyz
+    GsdBodyType gsdType;             // what a GSD trajectory records of the bodies
     long thermoEvery = 0;            // in samples; 0 = none
     long restartEvery = 0;           // in samples; 0 = none
     long restartEveryTicks = 0;      // in thermostat intervals, during equilibration
@@ -55,6 +59,7 @@ struct RunPosition {
 /// The files production grows sample by sample (closed where the scene writes none).
 struct RunFiles {
     AppendFile trajectory, thermo;
+    std::optional<GsdWriter> gsd; // the trajectory, when it is GSD
     /// Each open file reaches the disk: before a restart file that counts their bytes.
     void sync();
     /// Their lengths and the checksums of their tails (tailChecksum), as a restart file records

@@ -1,9 +1,9 @@
 #pragma once
 // Where a production sample goes: its energies into the run's record and thermo.csv, the bodies
-// into trajectory.xyz (at its interval), and the analysis. A restart point keeps the analysis'
-// state and the records, never the samples' bodies (cli/restart.hpp).
-// Nothing takes a sample whole: at 10⁶ bodies a frame's text alone is ~0.3 GB, and beside the
-// engine it would raise the run's peak, so every file is written piece by piece from the engine.
+// into trajectory.xyz or trajectory.gsd (at its interval), and the analysis. A restart point keeps
+// the analysis' state and the records, never the samples' bodies (cli/restart.hpp). Nothing takes a
+// sample whole: at 10⁶ bodies a frame's text alone is ~0.3 GB, and beside the engine it would raise
+// the run's peak, so every file is written piece by piece from the engine.
 #include "cli/run_record.hpp"
 #include "core/engine.hpp"
 #include "core/units.hpp"
@@ -39,7 +39,10 @@ public:
 
     /// Production begins: its files are opened empty in `dir` (thermo.csv with its header).
     void openProduction(const std::filesystem::path& dir) {
-        if (plan_.trajectoryEvery > 0) files_.trajectory = AppendFile(dir / "trajectory.xyz", 0);
+        if (plan_.trajectoryEvery > 0 && plan_.trajectoryGsd)
+            files_.gsd.emplace(dir / "trajectory.gsd", "terrace", "hoomd", 1, 4, hoomdChunkNames());
+        else if (plan_.trajectoryEvery > 0)
+            files_.trajectory = AppendFile(dir / "trajectory.xyz", 0);
         if (plan_.thermoEvery > 0) {
             files_.thermo = AppendFile(dir / "thermo.csv", 0);
             files_.thermo.append(thermoHeader(thermoLayout_));
@@ -73,9 +76,16 @@ public:
                 sample > 0 ? &run_.records[sample - plan_.thermoEvery] : nullptr;
             files_.thermo.append(thermoRow(e, before, continuousU, thermoLayout_));
         }
-        if (plan_.trajectoryEvery > 0 && sample % plan_.trajectoryEvery == 0)
-            files_.trajectory.appendPieces(
-                [&](const PieceSink& sink) { writeFrame(engine, n, layout_, sink); });
+        if (plan_.trajectoryEvery > 0 && sample % plan_.trajectoryEvery == 0) {
+            if (files_.gsd) {
+                const Snapshot none = engine.snapshot(std::span<const int>()); // time and box
+                writeHoomdFrame(*files_.gsd, n, none.time, none.boxLength, bodiesOf(engine),
+                                plan_.gsdType, std::uint64_t(sample));
+            } else {
+                files_.trajectory.appendPieces(
+                    [&](const PieceSink& sink) { writeFrame(engine, n, layout_, sink); });
+            }
+        }
         run_.addParts(e, engine);
     }
 

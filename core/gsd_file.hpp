@@ -76,6 +76,7 @@ public:
     void flush();
     /// Frames ended so far.
     std::uint64_t frames() const { return frames_; }
+    const std::filesystem::path& path() const { return path_; }
 
 private:
     int fd_ = -1;

@@ -565,6 +565,60 @@ term_continue)
     grep -q '"continued": 1' "$work/b/summary.json" || fail "not marked continued"
     grep -q '"interrupted": false' "$work/b/summary.json" || fail "the finished run says interrupted"
     ;;
+gsd_continue)
+    # A GSD trajectory through SIGTERM and --continue: the continued file holds as many frames as
+    # the run left alone, the same up to the stop, read by gsd; and a restart point whose GSD file
+    # was replaced by another run's is refused naming the file.
+    python=
+    for p in ${TERRACE_PYTHON:-} /usr/bin/python3 python3; do
+        if "$p" -c 'import gsd.hoomd' >/dev/null 2>&1; then python=$p; break; fi
+    done
+    [ -n "$python" ] || fail "no python3 with gsd (gsd.hoomd): apt-get install python3-gsd"
+    args=(--quiet --set state.n=216 --set run.equilibrate_ps=0.18 --set run.time_ps=9
+        --set output.trajectory_every_fs=18 --set output.trajectory_format=gsd
+        --set output.restart_every_ps=0.9)
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/a" "${args[@]}" \
+        >/dev/null || fail "the uninterrupted run failed"
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/b" "${args[@]}" \
+        >/dev/null 2>&1 &
+    pid=$!
+    for _ in $(seq 1 6000); do [ -e "$work/b/restart.bin" ] && break; sleep 0.01; done
+    kill -TERM $pid
+    wait $pid
+    status=$?
+    [ $status -eq 143 ] || fail "exit status $status after SIGTERM"
+    frames() { "$python" -c 'import gsd.hoomd, sys; print(len(gsd.hoomd.open(sys.argv[1], "rb")))' "$1"; }
+    stopped=$(frames "$work/b/trajectory.gsd") || fail "gsd cannot read the stopped run's file"
+    [ "$stopped" -lt 501 ] || fail "the run ended before the signal"
+    cp -r "$work/b" "$work/c"
+    "$terrace" run --continue "$work/b" --quiet >/dev/null || fail "--continue failed"
+    out=$("$python" - "$work/a/trajectory.gsd" "$work/b/trajectory.gsd" "$stopped" 2>&1 <<'PY'
+import sys
+import numpy as np
+import gsd.hoomd
+a, b = (gsd.hoomd.open(p, "rb") for p in sys.argv[1:3])
+stopped = int(sys.argv[3])
+if len(a) != len(b):
+    sys.exit(f"{len(b)} frames continued, {len(a)} left alone")
+for k in range(stopped):
+    fa, fb = a[k], b[k]
+    if fa.configuration.step != fb.configuration.step or not np.array_equal(
+            fa.particles.position, fb.particles.position) or not np.array_equal(
+            fa.particles.orientation, fb.particles.orientation):
+        sys.exit(f"frame {k} differs before the stop")
+steps = [f.configuration.step for f in b]
+if steps != sorted(steps) or len(set(steps)) != len(steps):
+    sys.exit(f"steps not increasing once each: {steps[:5]}...")
+PY
+    ) || fail "$out"
+    # The stopped copy's trajectory swapped for another run's (another seed, as many frames):
+    # refused, naming the file. (The run left alone, the same up to the stop, would be taken.)
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/d" "${args[@]}" \
+        --set seed=2 --set run.time_ps=1.8 >/dev/null || fail "the other seed's run failed"
+    cp "$work/d/trajectory.gsd" "$work/c/trajectory.gsd"
+    err=$("$terrace" run --continue "$work/c" --quiet 2>&1 >/dev/null) && fail "another run's file taken"
+    [[ $err == *"trajectory.gsd"* ]] || fail "the refusal does not name trajectory.gsd: $err"
+    ;;
 hot_restarts)
     # A restart point rebuilds the engine from a running state: checks meant for a start (overlap)
     # are not repeated there, or a hot SMD run with restarts would fail where one without runs.
@@ -747,9 +801,11 @@ gsd_read)
             scene=$work/$kind.json
             ;;
         esac
+        n=64 # Gay–Berne and the dumbbell's box needs more at their density (twice r_m)
+        case $kind in gay-berne | dumbbell) n=128 ;; esac
         for format in xyz gsd; do
             "$terrace" run "$scene" --quiet --out "$work/$kind-$format" --set engine=$engine \
-                --set state.n=64 --set run.equilibrate_ps=0 --set run.time_ps=0.036 \
+                --set state.n=$n --set run.equilibrate_ps=0 --set run.time_ps=0.036 \
                 --set output.trajectory_every_fs=9 --set output.trajectory_format=$format \
                 >"$work/$kind.log" 2>&1 || fail "$kind $format run failed: $(cat "$work/$kind.log")"
         done
