@@ -5,6 +5,7 @@
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
 #include "core/smoothed_potential.hpp"
+#include <cmath>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -60,7 +61,12 @@ TEST(SmoothedPotential, ZeroBeyondOuterRadiusScaledInTheSwitch) {
     std::mt19937_64 rng(2);
     const double ru = model.range();
     for (double r : {ru, ru * 1.01, 30.0}) {
-        const Vec3 rij = r * randomUnit(rng), si = randomUnit(rng), sj = randomUnit(rng);
+        // r·û has a norm within an ulp of r either way; at r = r_u it must not fall below it
+        // (the switch is then a few ulp from zero, not zero: −5e-32 in clang's build).
+        Vec3 rij = r * randomUnit(rng);
+        while (rij.norm() < r)
+            rij *= std::nextafter(1.0, 2.0);
+        const Vec3 si = randomUnit(rng), sj = randomUnit(rng);
         const PairForce f = model.evaluate(rij, si, sj);
         EXPECT_EQ(f.U, 0.0);
         EXPECT_EQ(f.F, Vec3::Zero());
