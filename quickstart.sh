@@ -10,9 +10,9 @@
 #   ./quickstart.sh sanitise  the sanitiser tier (fuzz/README.md): 3. build-asan/: the unit tests
 #                             and fuzzers under AddressSanitizer and UBSan (clang); 4. the unit
 #                             tests there; 5. each fuzzer for TERRACE_FUZZ_SECONDS (default 30).
-#                             Not yet part of `test`: in clang's build three unit tests miss
-#                             tolerances set for GCC's rounding (fuzz/README.md lists them), and
-#                             the tier's time on CI's machine is not yet measured.
+#                             Not yet part of `test`: not all of its unit tests have run in
+#                             clang's build yet (fuzz/README.md), and its time on CI's machine is
+#                             not yet measured.
 # Arguments after `run` go to `terrace run` instead (e.g. ./quickstart.sh run --set engine=smd).
 # Each step says what it does and how long it took; `test` ends with a table of the steps' times.
 set -euo pipefail
