@@ -154,8 +154,9 @@ public:
         for (const auto& [key, v] : value.overrides) {
             const std::string owner = engineOfKey(key);
             if (owner.empty() || owner == engine) continue;
+            // By name: clang 14 cannot capture a structured binding.
             auto at = std::find_if(byKey_.begin(), byKey_.end(),
-                                   [&](const auto& k) { return k.key == key; });
+                                   [&name = key](const auto& k) { return k.key == name; });
             if (at == byKey_.end()) at = byKey_.insert(byKey_.end(), {key, engine, run.name, 0});
             ++at->runs;
         }
