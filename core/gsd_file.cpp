@@ -66,6 +66,19 @@ std::string readAt(int fd, const std::filesystem::path& path, std::int64_t offse
     return b;
 }
 
+/// A file open for reading, closed when it goes out of scope; IoError naming it if it cannot be
+/// opened.
+struct ReadOnlyFile {
+    int fd;
+    explicit ReadOnlyFile(const std::filesystem::path& path)
+        : fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC)) {
+        if (fd < 0) throwIoError("open", path, errno);
+    }
+    ReadOnlyFile(const ReadOnlyFile&) = delete;
+    ReadOnlyFile& operator=(const ReadOnlyFile&) = delete;
+    ~ReadOnlyFile() { ::close(fd); }
+};
+
 bool validType(std::uint8_t t) {
     return t >= 1 && t <= 10;
 }
@@ -219,14 +232,14 @@ void GsdWriter::writeIndexLocation() {
 void GsdWriter::writeChunk(const std::string& name, GsdType type, std::uint64_t n, std::uint32_t m,
                            const void* data) {
     const std::size_t bytes = n * m * gsdTypeSize(type);
-    writeChunkPieces(name, type, n, m, [&](const std::function<void(std::string_view)>& sink) {
+    writeChunkPieces(name, type, n, m, [&](const PieceSink& sink) {
         sink(std::string_view(static_cast<const char*>(data), bytes));
     });
 }
 
-void GsdWriter::writeChunkPieces(
-    const std::string& name, GsdType type, std::uint64_t n, std::uint32_t m,
-    const std::function<void(const std::function<void(std::string_view)>&)>& produce) {
+void GsdWriter::writeChunkPieces(const std::string& name, GsdType type, std::uint64_t n,
+                                 std::uint32_t m,
+                                 const std::function<void(const PieceSink&)>& produce) {
     const auto it = std::find(names_.begin(), names_.end(), name);
     if (it == names_.end()) throw std::logic_error("GsdWriter: unknown chunk " + name);
     if (n == 0 || m == 0) throw std::logic_error("GsdWriter: an empty chunk " + name);
@@ -285,12 +298,8 @@ void GsdWriter::flush() {
 }
 
 GsdContents readGsdContents(const std::filesystem::path& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throwIoError("open", path, errno);
-    struct Closer {
-        int fd;
-        ~Closer() { ::close(fd); }
-    } closer{fd};
+    const ReadOnlyFile file(path);
+    const int fd = file.fd;
     const off_t size = ::lseek(fd, 0, SEEK_END);
     if (size < 0) throwIoError("read", path, errno);
     const auto bad = [&](const std::string& what) {
@@ -352,12 +361,8 @@ GsdContents readGsdContents(const std::filesystem::path& path) {
 }
 
 std::string readGsdChunk(const std::filesystem::path& path, const GsdIndexEntry& entry) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throwIoError("open", path, errno);
-    struct Closer {
-        int fd;
-        ~Closer() { ::close(fd); }
-    } closer{fd};
+    const ReadOnlyFile file(path);
+    const int fd = file.fd;
     return readAt(fd, path, entry.location, entry.n * entry.m * gsdTypeSize(entry.type));
 }
 

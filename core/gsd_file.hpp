@@ -9,6 +9,7 @@
 // end. A frame's index entries go into the block's free slots when the frame ends, the block
 // moving to the end of the file at twice its size when it is full, and the header pointing to it
 // last: a run stopped at any moment leaves every ended frame readable.
+#include "core/output_file.hpp"
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -66,9 +67,8 @@ public:
                     const void* data);
     /// The same, its bytes handed over in order by `produce` to the sink it is given (a chunk too
     /// large to hold whole); they must come to n·m elements.
-    void writeChunkPieces(
-        const std::string& name, GsdType type, std::uint64_t n, std::uint32_t m,
-        const std::function<void(const std::function<void(std::string_view)>&)>& produce);
+    void writeChunkPieces(const std::string& name, GsdType type, std::uint64_t n, std::uint32_t m,
+                          const std::function<void(const PieceSink&)>& produce);
     /// Ends the current frame: its index entries (and the header, when the index moved) are
     /// written.
     void endFrame();

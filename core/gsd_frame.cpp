@@ -114,22 +114,20 @@ template <class T>
 void bodyChunk(GsdWriter& f, const char* name, GsdType type, std::uint32_t m, int bodies,
                const std::function<Snapshot(int, int)>& bodiesOf, int perPiece,
                const std::function<void(const Snapshot&, int, std::vector<T>&)>& each) {
-    f.writeChunkPieces(name, type, std::uint64_t(bodies), m,
-                       [&](const std::function<void(std::string_view)>& sink) {
-                           std::vector<T> out;
-                           for (int begin = 0; begin < bodies; begin += perPiece) {
-                               const int end = std::min(bodies, begin + perPiece);
-                               const Snapshot piece = bodiesOf(begin, end);
-                               if (piece.size() != end - begin)
-                                   throw std::logic_error(
-                                       "writeHoomdFrame: a piece of the wrong size");
-                               out.clear();
-                               for (int i = 0; i < piece.size(); ++i)
-                                   each(piece, i, out);
-                               sink(std::string_view(reinterpret_cast<const char*>(out.data()),
-                                                     out.size() * sizeof(T)));
-                           }
-                       });
+    f.writeChunkPieces(name, type, std::uint64_t(bodies), m, [&](const PieceSink& sink) {
+        std::vector<T> out;
+        for (int begin = 0; begin < bodies; begin += perPiece) {
+            const int end = std::min(bodies, begin + perPiece);
+            const Snapshot piece = bodiesOf(begin, end);
+            if (piece.size() != end - begin)
+                throw std::logic_error("writeHoomdFrame: a piece of the wrong size");
+            out.clear();
+            for (int i = 0; i < piece.size(); ++i)
+                each(piece, i, out);
+            sink(std::string_view(reinterpret_cast<const char*>(out.data()),
+                                  out.size() * sizeof(T)));
+        }
+    });
 }
 
 } // namespace
