@@ -55,7 +55,10 @@ find "$RUNS" -path "$RUNS/$prefix-rho*" -name summary.json -print0 |
         END { printf "runs,cpu_seconds,cpu_hours\n%d,%.1f,%.3f\n", n, s, s / 3600 }' >"$dir/$name-runs.csv"
 
 # The grid for gnuplot: one block per temperature, log10 of the efficiency; a target no design
-# reaches counts as -2 (DMD 100 times dearer), so that the contour closes around it.
+# reaches counts as -2 (DMD 100 times dearer), so that the contour closes around it. The last
+# column says what the cell holds: 0 a value, 1 a bound (a target within its statistical floor),
+# 2 no value (no design reaches the target); the figure paints only values with the colour scale,
+# hatches bounds over their colour and greys the cells without a value.
 grid() { # QUANTITY
     local t r i j=0
     for t in "${temperatures[@]}"; do
@@ -64,7 +67,8 @@ grid() { # QUANTITY
             awk -F, -v r="$r" -v t="$t" -v q="$1" -v i="$i" -v j="$j" \
                 '$1 == r && $2 == t && $3 == q {
                     e = $5 == "nan" ? -2 : log($5) / log(10)
-                    printf "%d %d %.6g %s\n", i, j, e, $5 == "nan" ? "-" : sprintf("%.2g%s", $5, $6 ? "*" : "") }' \
+                    printf "%d %d %.6g %s %d\n", i, j, e, $5 == "nan" ? "-" : sprintf("%.2g%s", $5, $6 ? "*" : ""),
+                        $5 == "nan" ? 2 : ($6 ? 1 : 0) }' \
                 "$dir/$name-best.csv"
             i=$((i + 1))
         done
@@ -91,7 +95,7 @@ done
 gnuplot <<GP
 set terminal $(png_terminal | sed "s/900,650/$((520 * ${#quantities[@]})),580/")
 set output '$dir/$name.png'
-set multiplot layout 1,${#quantities[@]} title "$system, one model: SMD cost / DMD cost at twice the error of SMD at 1.8 fs\\n(best of uniform and virial levels; * bound, - not reached; black line: break-even)"
+set multiplot layout 1,${#quantities[@]} title "$system, one model: SMD cost / DMD cost at twice the error of SMD at 1.8 fs\\n(best of uniform and virial levels; hatched *: a bound, grey -: not reached; black line: break-even)"
 set xtics (${xtics%,})
 set ytics (${ytics%,})
 set xlabel 'density {/Symbol r}*'
@@ -106,7 +110,10 @@ names = "$titles"
 files = "${quantities[*]}"
 do for [k = 1:${#quantities[@]}] {
     set title word(names, k)
-    plot '$dir/$name-grid-'.word(files, k).'.dat' using 1:2:(0.5):(0.5):3 with boxxyerror fs solid 1.0 lc palette, \
+    plot '$dir/$name-grid-'.word(files, k).'.dat' \
+             using (\$5 < 2 ? \$1 : NaN):2:(0.5):(0.5):3 with boxxyerror fs solid 1.0 lc palette, \
+         '' using (\$5 == 1 ? \$1 : NaN):2:(0.5):(0.5) with boxxyerror fs transparent pattern 4 lc rgb 'black', \
+         '' using (\$5 == 2 ? \$1 : NaN):2:(0.5):(0.5) with boxxyerror fs solid 1.0 lc rgb '#bdbdbd', \
          '' using 1:2:4 with labels font ',10', \
          '$dir/$name-contour-'.word(files, k).'.dat' using 1:2 with lines lw 3 lc rgb 'black'
 }
