@@ -681,6 +681,13 @@ TEST(Restart, ARestartFileFromAnotherRunIsRefused) {
 // that agree to the round-off the liquid's chaos grows (the rebuild re-predicts every pair from
 // now, so searches start elsewhere and find the same events to their tolerance). Its lists are
 // re-anchored, so relists and virtual events are not counted alike.
+// How the two differ, measured (largest |Δv| in Å/ps and |Δω| in rad/ps over the bodies; thermal
+// scales 0.73 Å/ps and 2.9 rad/ps): 10 fs after the rebuild 5e-14 and 1-2e-13 in both GCC's and
+// clang's builds; at 100 fs 1.7e-11 and 2.1e-10 (GCC), 2.7e-10 and 3.6e-9 (clang): the difference
+// e-folds every ~10-15 fs with jumps at near-grazing collisions, as chaos does, so at 100 fs it
+// says which compiler rounded, not whether the rebuild is right. Hence round-off is asked for
+// 10 fs after the rebuild, and at 100 fs only a margin far below what one collision changed
+// (ω by O(1 rad/ps)) would leave.
 TEST(Restart, ARebuiltDmdEngineUndergoesTheCollisionsOfOneThatGoesOn) {
     Scene scene = defaultScene();
     scene.state.n = 512;
@@ -705,6 +712,16 @@ TEST(Restart, ARebuiltDmdEngineUndergoesTheCollisionsOfOneThatGoesOn) {
     for (int b = 0; b < scene.state.n; ++b)
         renumbered += Probe::engineIndex(*rebuilt, b) != Probe::engineIndex(goesOn, b);
     EXPECT_GT(renumbered, 0);
+    // The largest difference of position (Å), velocity (Å/ps), axis and ω (rad/ps) over the bodies.
+    auto largestDifference = [&] {
+        const Snapshot a = rebuilt->snapshot(), b = goesOn.snapshot();
+        double largest = 0.0;
+        for (int i = 0; i < a.size(); ++i)
+            largest = std::max({largest, (a.position[i] - b.position[i]).norm(),
+                                (a.velocity[i] - b.velocity[i]).norm(),
+                                (a.axis[i] - b.axis[i]).norm(), (a.omega[i] - b.omega[i]).norm()});
+        return largest;
+    };
     for (int k = 1; k <= 50; ++k) {
         const double t = t1 + units::fromFs(2.0 * k);
         goesOn.advanceTo(t);
@@ -713,16 +730,11 @@ TEST(Restart, ARebuiltDmdEngineUndergoesTheCollisionsOfOneThatGoesOn) {
         for (int m = 0; m < 3; ++m)
             sum[m] += before[m];
         ASSERT_EQ(sum, collisions(Probe::counts(goesOn))) << 50 + 2 * k << " fs";
+        if (k == 5) EXPECT_LT(largestDifference(), 1e-11) << "10 fs after the rebuild";
     }
     EXPECT_GT(Probe::counts(goesOn).up + Probe::counts(goesOn).down, 1000u);
     EXPECT_EQ(rebuilt->potentialEnergy(), goesOn.potentialEnergy());
-    const Snapshot a = rebuilt->snapshot(), b = goesOn.snapshot();
-    double largest = 0.0;
-    for (int i = 0; i < a.size(); ++i)
-        largest = std::max({largest, (a.position[i] - b.position[i]).norm(),
-                            (a.velocity[i] - b.velocity[i]).norm(), (a.axis[i] - b.axis[i]).norm(),
-                            (a.omega[i] - b.omega[i]).norm()});
-    EXPECT_LT(largest, 1e-9);
+    EXPECT_LT(largestDifference(), 1e-6) << "100 fs after the rebuild";
 }
 
 // dmd.resort_cells: the engine renumbers its bodies at the start of an advanceTo where their
