@@ -6,13 +6,11 @@
 #                             out/versus/versus.png)
 #   ./quickstart.sh test      install what building and testing need, then the test command of CI
 #                             (.ci/run): 1. build/: Release with assertions, the tests and
-#                             benchmarks; 2. the whole test suite (ctest)
-#   ./quickstart.sh sanitise  the sanitiser tier (fuzz/README.md): 3. build-asan/: the unit tests
-#                             and fuzzers under AddressSanitizer and UBSan (clang); 4. the unit
-#                             tests there; 5. each fuzzer for TERRACE_FUZZ_SECONDS (default 30).
-#                             Not yet part of `test`: not all of its unit tests have run in
-#                             clang's build yet (fuzz/README.md), and its time on CI's machine is
-#                             not yet measured.
+#                             benchmarks; 2. the whole test suite (ctest); then the sanitiser tier
+#                             (fuzz/README.md): 3. build-asan/: the unit tests and fuzzers under
+#                             AddressSanitizer and UBSan (clang); 4. the unit tests there; 5. each
+#                             fuzzer for TERRACE_FUZZ_SECONDS (default 30)
+#   ./quickstart.sh sanitise  steps 3 to 5 alone
 # Arguments after `run` go to `terrace run` instead (e.g. ./quickstart.sh run --set engine=smd).
 # Each step says what it does and how long it took; `test` ends with a table of the steps' times.
 set -euo pipefail
@@ -29,13 +27,11 @@ run_packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev
 #   (tests/cli/cli_checks.sh ase_read, gsd_read);
 # - libopenmpi-dev, openmpi-bin: terrace sweep under mpirun (a build without them sweeps locally
 #   and says so; the test suite runs a sweep under mpirun);
-# The sanitiser tier's besides (./quickstart.sh sanitise):
 # - clang, libclang-rt-14-dev: the sanitiser tier's compiler and its runtimes (libFuzzer among
 #   them, which clang only recommends); llvm-14: llvm-symbolizer, so that a sanitiser's report
 #   names files and lines.
 test_packages=(git libgtest-dev libgmock-dev libbenchmark-dev python3-ase python3-gsd libopenmpi-dev
-               openmpi-bin)
-sanitiser_packages=(clang libclang-rt-14-dev llvm-14)
+               openmpi-bin clang libclang-rt-14-dev llvm-14)
 
 jobs=$(nproc)
 say() { echo "quickstart: $*" >&2; }
@@ -141,24 +137,16 @@ build_run() {
 # The sanitiser tier: a clang build in build-asan with AddressSanitizer and UBSan (undefined
 # behaviour fatal) and libFuzzer's coverage, of the unit tests' executables and the fuzzers only:
 # not the benchmarks, not terrace for the end-to-end tests (label end_to_end), which the Release
-# build runs. At the Release build's -O2: -O1 compiled no faster (docs/PERFORMANCE.md). Its unit tests run but for
-# those labelled unsanitised (fuzz/README.md says why a test would be).
+# build runs. At the Release build's -O2: -O1 compiled no faster (docs/PERFORMANCE.md). Each test
+# executable runs whole, as one ctest test (TERRACE_TESTS_WHOLE), but for those labelled
+# unsanitised (their files say why).
 sanitised_build() {
     CXX=clang++ build build-asan -DTERRACE_PROFILE= -DTERRACE_SANITIZE=ON -DTERRACE_FUZZ=ON \
-        -DTERRACE_BENCH=OFF -DTERRACE_TESTS=ON -DCMAKE_CXX_FLAGS=-gline-tables-only \
-        -- unit_tests fuzzers
+        -DTERRACE_BENCH=OFF -DTERRACE_TESTS=ON -DTERRACE_TESTS_WHOLE=ON \
+        -DCMAKE_CXX_FLAGS=-gline-tables-only -- unit_tests fuzzers
 }
-# Unit tests that the sanitised build cannot pass, each with its reason (fuzz/README.md); they run
-# in the Release build's suite all the same.
-# - core.AsymmetricTop.NearSeparatrixMatchesReference: the test's own long-double RK4 reference
-#   (not the code under test) converges to 1.09e-11 against its 1e-11 guard in clang's sanitised
-#   build (at -O1 and -O2), where GCC's passes. Likely cause, not yet confirmed: the two compilers'
-#   long-double code rounds differently, and near the separatrix the orbit's conditioning
-#   amplifies that round-off (the test's own comments).
-unsanitised_tests='^core\.AsymmetricTop\.NearSeparatrixMatchesReference$'
 sanitised_tests() {
-    ctest --test-dir build-asan --output-on-failure -j"$jobs" -L unit -LE 'unsanitised|end_to_end' \
-        -E "$unsanitised_tests"
+    ctest --test-dir build-asan --output-on-failure -j"$jobs" -L unit -LE 'unsanitised|end_to_end'
 }
 # Each fuzzer runs TERRACE_FUZZ_SECONDS from the committed corpus and regressions, its new inputs
 # kept in build-asan/fuzz-corpus, its output in build-asan/fuzz-findings/<target>.log and any
@@ -223,14 +211,13 @@ test)
     step build "building everything in build/ (Release, assertions on)" \
         build build -DTERRACE_PROFILE= -DTERRACE_TESTS=ON -DTERRACE_BENCH=ON
     step tests "the whole test suite" ctest --test-dir build --output-on-failure -j"$jobs"
-    # The sanitiser tier joins here once it passes in clang's build (the header says why not yet).
+    sanitiser_tier
     # The Python tests' step goes here, once they exist: step python-tests <command>.
     step_table
     ;;
 sanitise)
     step install "the packages that building and testing need" \
-        install_missing "${run_packages[@]}" "${test_packages[@]}" \
-        "${sanitiser_packages[@]}"
+        install_missing "${run_packages[@]}" "${test_packages[@]}"
     sanitiser_tier
     step_table
     ;;

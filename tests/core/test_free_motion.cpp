@@ -80,7 +80,7 @@ Rigid rk4(Rigid y, const RVec3& I, Real t, long steps) {
 /// Converged reference attitude after time t; checks its own convergence. The change from h to
 /// h/2 measures the reference's error: it overstates the truncation 15-fold (RK4's h⁴), and is
 /// of the size of the round-off of its ~1e5 steps, which near the separatrix is ~1e-11 and
-/// differs between compilers (1.09e-11 in clang's build at t = 60). It must be a decade inside
+/// differs between compilers (1.09e-11 in clang's sanitised build). It must be a decade inside
 /// the tolerance `tol` that the reference judges, so that it moves no verdict by more than a
 /// tenth of that tolerance.
 Mat3 referenceAttitude(const TopState& s, const Vec3& I, double t, double tol = referenceTol) {
