@@ -1,32 +1,12 @@
 #include "cli/export_command.hpp"
 #include "cli/lammps_deck.hpp"
 #include "cli/run_command.hpp"
+#include "core/output_file.hpp"
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
-#include <system_error>
 
 namespace terrace::cli {
-
-namespace {
-
-/// Writes text to dir/name through a temporary beside it, renamed into place once complete, so
-/// that an interrupted export never leaves half a data file that LAMMPS would read.
-void writeFile(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir / name, partial = dir / (name + ".partial");
-    {
-        std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out)
-            throw std::filesystem::filesystem_error("write", partial,
-                                                    std::make_error_code(std::errc::io_error));
-    }
-    std::filesystem::rename(partial, path);
-}
-
-} // namespace
 
 int exportScene(const ExportRequest& request) {
     if (request.format != "lammps")
@@ -38,9 +18,14 @@ int exportScene(const ExportRequest& request) {
     const Scene scene = resolveScene(run);
     const LammpsDeck deck = lammpsDeck(scene); // refusals before anything is written
     std::filesystem::create_directories(request.dir);
-    writeFile(request.dir, "data.lammps", deck.data);
-    if (!deck.table.empty()) writeFile(request.dir, "pair.table", deck.table);
-    writeFile(request.dir, "in.terrace", deck.input);
+    // Each file replaced whole (temporary, rename): an interrupted export leaves no half a data
+    // file for LAMMPS to read.
+    writeFileAtomically(request.dir / "data.lammps", deck.data);
+    if (!deck.table.empty())
+        writeFileAtomically(request.dir / "pair.table", deck.table);
+    else // an earlier export's table, which this deck does not read
+        std::filesystem::remove(request.dir / "pair.table");
+    writeFileAtomically(request.dir / "in.terrace", deck.input);
 
     std::printf(
         "%s: %d atoms (potential %s) written to %s/: data.lammps, in.terrace%s\n",

@@ -16,8 +16,8 @@ struct ExportRequest {
     std::vector<std::string> overrides; // --set
 };
 
-/// Writes the files and prints the summary; throws LammpsRefusal, SceneError or a
-/// filesystem_error (with the path) on failure, having written nothing of its own then.
+/// Writes the files and prints the summary. Throws LammpsRefusal or SceneError before writing
+/// anything, IoError (naming the file and the cause) when a file cannot be written.
 int exportScene(const ExportRequest& request);
 
 } // namespace terrace::cli

@@ -229,8 +229,8 @@ bool measured(int n) {
 
 void refuseSmallBox(double L, double reach, const char* what) {
     if (L < 2.0 * reach)
-        throw LammpsRefusal("state.density: the box (" + number(L) + " Å) is narrower than twice " +
-                            what + " (" + number(reach) +
+        throw LammpsRefusal("state.density: the box (" + shortNumber(L) +
+                            " Å) is narrower than twice " + what + " (" + shortNumber(reach) +
                             " Å): LAMMPS would count a pair's periodic images, terrace only the "
                             "nearest");
 }
