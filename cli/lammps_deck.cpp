@@ -70,14 +70,27 @@ struct Timing {
 long long steps(double fs, double dtFs) {
     return std::llround(fs / dtFs);
 }
+/// The steps of dt in `fs` of the key `key`; a length off the step grid (a DMD scene's, which no
+/// step checks) is rounded to the nearest whole step, said in a note.
+long long stepsNoted(const char* key, double fs, double dtFs, std::vector<std::string>& notes) {
+    const long long n = steps(fs, dtFs);
+    if (std::abs(n * dtFs - fs) > limits::gridTolerance * fs)
+        notes.push_back(std::string(key) + ": " + shortNumber(fs) +
+                        " fs is no whole number of steps of smd.dt_fs = " + shortNumber(dtFs) +
+                        " fs; the deck takes " + std::to_string(n) + " steps (" +
+                        shortNumber(n * dtFs) + " fs)");
+    return n;
+}
 Timing timing(const Scene& scene, std::vector<std::string>& notes) {
     const smd::SmdSection smd = smd::readSmdSection(scene.smd);
     Timing t;
     t.dtFs = smd.dt_fs;
     t.skinAngstrom = smd.skin * scene.potential.sigma;
-    t.equilibrate = steps(scene.run.equilibrate_ps * 1000.0, smd.dt_fs);
-    t.production = steps(scene.run.time_ps * 1000.0, smd.dt_fs);
-    t.thermostatEvery = std::max(1LL, steps(scene.run.thermostat_fs, smd.dt_fs));
+    t.equilibrate =
+        stepsNoted("run.equilibrate_ps", scene.run.equilibrate_ps * 1000.0, smd.dt_fs, notes);
+    t.production = stepsNoted("run.time_ps", scene.run.time_ps * 1000.0, smd.dt_fs, notes);
+    t.thermostatEvery =
+        std::max(1LL, stepsNoted("run.thermostat_fs", scene.run.thermostat_fs, smd.dt_fs, notes));
     t.thermoEvery =
         std::max(1LL, steps(scene.output.thermo_every_fs > 0.0 ? scene.output.thermo_every_fs
                                                                : scene.run.sample_fs,

@@ -184,6 +184,16 @@ TEST(LammpsDeck, DmdAndOtherSchemesAreNamedAsDifferences) {
         EXPECT_NE(deck.input.find("# Differs from terrace: " + n + "\n"), std::string::npos);
 }
 
+TEST(LammpsDeck, LengthsOffTheStepGridAreRoundedAndNamed) {
+    // A DMD scene's lengths lie on no step grid: 2.7 ps at 0.7 fs is 3857.14 steps.
+    const cli::LammpsDeck deck = cli::lammpsDeck(scene(ljScene, {"engine=dmd", "smd.dt_fs=0.7"}));
+    EXPECT_NE(deck.input.find("variable        steps index 3857\n"), std::string::npos);
+    bool named = false;
+    for (const std::string& n : deck.notes)
+        named = named || n.rfind("run.time_ps: 2700 fs is no whole number of steps", 0) == 0;
+    EXPECT_TRUE(named);
+}
+
 TEST(LammpsDeck, RefusesWhatLammpsCannotRepresent) {
     const auto refusal = [](const json& j, const std::vector<std::string>& sets = {}) {
         try {
