@@ -40,6 +40,8 @@ int exportScene(const ExportRequest& request) {
                     deck.energyTerrace, deck.energyDeck,
                     scale > 0.0 ? std::abs(deck.energyDeck - deck.energyTerrace) / scale : 0.0);
     }
+    for (const std::string& line : deck.mapping)
+        std::printf("  mapped: %s\n", line.c_str());
     for (const std::string& note : deck.notes)
         std::printf("  differs: %s\n", note.c_str());
     std::printf("  run: cd %s && lmp -in in.terrace\n", request.dir.c_str());

@@ -121,6 +121,8 @@ std::string deckHeader(const Scene& scene, const LammpsDeck& deck, const Timing&
           << number(deck.energyTerrace) << " kJ/mol = " << number(deck.energyTerrace * kcalPerKj)
           << " kcal/mol; this deck's model " << number(deck.energyDeck * kcalPerKj)
           << " kcal/mol.\n";
+    for (const std::string& m : deck.mapping)
+        o << "# Mapped: " << m << "\n";
     for (const std::string& n : deck.notes)
         o << "# Differs from terrace: " << n << "\n";
     o << "# Run: lmp -in in.terrace (in this directory); -var steps 0 evaluates the first frame "
@@ -287,6 +289,15 @@ LammpsDeck sphereDeck(const Scene& scene) {
     double deckEnergy = std::numeric_limits<double>::quiet_NaN();
     deck.tablePoints = refineTables(jobs, measure, deckEnergy, deck.notes);
     deck.energyDeck = measure ? deckEnergy : std::numeric_limits<double>::quiet_NaN();
+    deck.mapping.push_back(
+        "g(r)·U_LJ(r) as pair_style table linear: " + std::to_string(deck.tablePoints) +
+        " nodes uniform in r² on [" + shortNumber(jobs[0].table.rLow) + ", " +
+        shortNumber(model.range()) + "] Å, terrace's U and F at each, in kcal/mol");
+    deck.mapping.push_back("equilibration: fix temp/rescale to " +
+                           shortNumber(units::kelvin(scene.kT())) + " K every " +
+                           std::to_string(t.thermostatEvery) + " steps for " +
+                           std::to_string(t.equilibrate) + " steps, then NVE (fix nve) for " +
+                           std::to_string(t.production) + " steps");
     deck.table = "# Pair table written by `terrace export lammps`\n\n" +
                  tableSection(jobs[0].table, jobs[0].comment);
 
@@ -331,6 +342,16 @@ LammpsDeck gayBerneDeck(const Scene& scene) {
     const double inertiaLammps = m * (a * a + c * c) / 5.0; // about a transverse axis
     const double spinLammps = m * (2.0 * a * a) / 5.0;      // about the long axis
     const double eic = gb.mu > 0.0 ? 1.0 / gb.kappaPrime : 1.0;
+    deck.mapping.push_back(
+        "Gay-Berne as pair_style gayberne with gamma = 1 (U of r - sigma + sigma0), upsilon = nu "
+        "= " +
+        shortNumber(gb.nu) + ", mu = " + shortNumber(gb.mu) +
+        ", eps = eps0 = " + shortNumber(gb.epsilon * kcalPerKj) + " kcal/mol, sigma = sigma0 = " +
+        shortNumber(gb.sigma) + " Å, relative well depths (1, 1, " + shortNumber(eic) +
+        "), shape (" + shortNumber(2 * a) + ", " + shortNumber(2 * a) + ", " + shortNumber(2 * c) +
+        ") Å: terrace's U term for term (docs/LAMMPS.md)");
+    deck.mapping.push_back("orientations as quaternions taking the body z axis to each "
+                           "ellipsoid's axis; angular momenta I ω with LAMMPS's moment I");
 
     deck.notes.push_back("cutoff: terrace switches U off smoothly on [r_l, r_u] = [" +
                          shortNumber(model.cut.inner()) + ", " + shortNumber(cut) +
@@ -478,6 +499,12 @@ template <BodyKind K, AttitudeUse use> LammpsDeck sitesDeck(const Scene& scene) 
     double deckEnergy = 0.0;
     deck.tablePoints = refineTables(jobs, measure, deckEnergy, deck.notes);
     if (measure) deck.energyDeck = deckEnergy;
+    deck.mapping.push_back(std::to_string(ns) +
+                           " sites a molecule, each an atom of its own type, "
+                           "the molecule a body of fix rigid/small; site velocities v + ω × d");
+    deck.mapping.push_back(
+        std::to_string(jobs.size()) + " site-pair tables (Lorentz-Berthelot) of g(d)·U_LJ(d), " +
+        std::to_string(deck.tablePoints) + " nodes uniform in r²; intramolecular pairs excluded");
     deck.table = "# Pair tables written by `terrace export lammps`\n\n";
     for (const TableJob& j : jobs)
         deck.table += tableSection(j.table, j.comment);

@@ -29,10 +29,11 @@ public:
 };
 
 struct LammpsDeck {
-    std::string data;               // data.lammps: box, masses, atoms, velocities (+ ellipsoids)
-    std::string input;              // in.terrace: the input deck
-    std::string table;              // pair.table ("" when the deck needs none)
-    std::vector<std::string> notes; // one line per difference between the deck and terrace
+    std::string data;                 // data.lammps: box, masses, atoms, velocities (+ ellipsoids)
+    std::string input;                // in.terrace: the input deck
+    std::string table;                // pair.table ("" when the deck needs none)
+    std::vector<std::string> mapping; // one line per thing mapped, and how
+    std::vector<std::string> notes;   // one line per difference between the deck and terrace
     int atoms = 0;
     int tablePoints = 0; // nodes per table (0: no table)
     // The initial state's potential energy (kJ/mol): under terrace's model (g·U as SMD
