@@ -165,7 +165,7 @@ const Command commands[] = {
       (positions, velocities; orientations and angular momenta of ellipsoids), DIR/in.terrace
       (the input deck: lmp -in in.terrace) and, for tabulated pairs, DIR/pair.table. LJ
       spheres: pair_style table of the smoothed g(r)*U_LJ that SMD integrates, fine enough
-      that the first frame's U moves by < 1e-7 relative. Gay-Berne: pair_style gayberne and
+      that the first frame's U moves by at most 2.5e-7 relative. Gay-Berne: pair_style gayberne and
       fix nve/asphere (the same U; LAMMPS cuts at r_u where terrace switches off smoothly).
       Site molecules: fix rigid/small with site-pair tables (switched by site distance, not
       by the molecules' centres). Prints the first frame's U under both models and every
