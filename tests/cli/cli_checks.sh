@@ -789,7 +789,8 @@ lammps_energy)
     # lmp the check is skipped, saying so): the potential energy of the first frame (run 0)
     # against terrace's at the same state (thermo.csv's first row of an SMD run that starts
     # production at once). LJ spheres: the model is the same (a table of g(r)·U_LJ), to 1e-6
-    # relative; so is Gay–Berne where no pair lies in the switch band (gb-random). Otherwise
+    # relative; so are Gay–Berne and dumbbells where no pair lies in the switch band (gb-random,
+    # dumbbell-band). Otherwise
     # Gay–Berne and site molecules: LAMMPS cuts or switches differently (the export's
     # notes), so LAMMPS is held to the deck's own model, which the export evaluates in terrace,
     # to 1e-6, and the export's terrace model to the run's, to 1e-9; the gap is printed.
@@ -800,7 +801,7 @@ lammps_energy)
         exit 77
     fi
     export OMP_NUM_THREADS=1
-    for case in lj gb gb-random dumbbell triatomic; do
+    for case in lj gb gb-random dumbbell dumbbell-band triatomic; do
         case $case in
         lj) scene=lj-liquid sets=(--set state.n=256) ;;
         gb) scene=gay-berne-liquid sets=() ;;
@@ -810,6 +811,12 @@ lammps_energy)
             sets=(--set state.orientations=random --set state.density=0.035
                 --set state.lattice_aspect=1 --set 'potential.cutoff=[4.0,4.5]') ;;
         dumbbell) scene=dumbbell-liquid sets=() ;;
+        dumbbell-band) # aligned dumbbells on a lattice where every pair of molecules has its
+            # centre and all four site distances on one side of the band [8.08, 8.31] Å: there
+            # the switch by centre distance and the one by site distance give one U
+            scene=dumbbell-liquid
+            sets=(--set state.density=0.2 --set state.lattice_aspect=1
+                --set 'potential.cutoff=[2.44,2.51]') ;;
         triatomic) scene=triatomic-liquid sets=() ;;
         esac
         "$terrace" export lammps "$src/experiments/scenes/$scene.json" "$work/$case" "${sets[@]}" \
@@ -830,7 +837,7 @@ lammps_energy)
             printf "%s: first frame U, LAMMPS %.12g kJ/mol, terrace %.12g: relative %.2g (the deck'"'"'s model %.12g: %.2g)\n", c, ul, ut, d, ed, dd
             if (dd < -1e-6 || dd > 1e-6) { print c ": LAMMPS differs from the deck'"'"'s model"; exit 1 }
             if (dt < -1e-9 || dt > 1e-9) { print c ": the export'"'"'s terrace U differs from the run'"'"'s"; exit 1 }
-            if ((c == "lj" || c == "gb-random") && (d < -1e-6 || d > 1e-6)) {
+            if ((c == "lj" || c == "gb-random" || c == "dumbbell-band") && (d < -1e-6 || d > 1e-6)) {
                 print c ": LAMMPS differs from terrace"; exit 1 }
         }' || fail "$case: energies disagree"
     done
