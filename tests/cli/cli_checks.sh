@@ -852,6 +852,22 @@ lammps_energy)
         ul = pe * 4.184; d = (ul - ut) / ut
         printf "lj after 45 steps: U LAMMPS %.12g kJ/mol, terrace %.12g: relative %.2g\n", ul, ut, d
         exit !(step == 45 && ut != "" && d > -1e-6 && d < 1e-6) }' || fail "lj: U after 45 steps differs"
+    # The deck's equilibration is terrace's: velocities rescaled to T every 9 fs (45 steps) over
+    # 18 fs, then 45 steps of NVE; U at production's start and 9 fs into it, to 1e-6 each
+    # (measured: 1.6e-8 and 7.6e-8).
+    (cd "$work/lj" && "$lmp" -in in.terrace -var equilibrate 90 -var steps 45 -log none \
+        -screen equilibrated.out >/dev/null 2>&1) || fail "lj: LAMMPS failed to equilibrate"
+    "$terrace" run "$src/experiments/scenes/lj-liquid.json" --set state.n=256 --set engine=smd \
+        --set run.equilibrate_ps=0.018 --set run.sample_fs=9 --set run.time_ps=0.009 \
+        --set output.thermo_every_fs=9 --quiet --out "$work/lj-equilibrated" >/dev/null 2>&1 ||
+        fail "lj: the equilibrated terrace run failed"
+    awk -F, 'FNR == 1 { file++ }
+        file == 1 && split($0, w, " ") == 6 && w[1] ~ /^[0-9]+$/ { if (w[1] == 90) l0 = w[3]; if (w[1] == 135) l1 = w[3] }
+        file == 2 && $1 == "0" { t0 = $5 } file == 2 && $1 ~ /^0.00900000/ { t1 = $5 }
+        END { d0 = (l0 * 4.184 - t0) / t0; d1 = (l1 * 4.184 - t1) / t1
+              printf "lj equilibrated: U LAMMPS %.12g and %.12g kJ/mol, terrace %.12g and %.12g: relative %.2g and %.2g\n", l0 * 4.184, l1 * 4.184, t0, t1, d0, d1
+              exit !(l0 != "" && l1 != "" && t0 != "" && t1 != "" && d0 > -1e-6 && d0 < 1e-6 && d1 > -1e-6 && d1 < 1e-6) }' \
+        "$work/lj/equilibrated.out" "$work/lj-equilibrated/thermo.csv" || fail "lj: the equilibrated U differs"
     ;;
 gsd_read)
     # GSD trajectories read by Debian's python3-gsd (gsd.hoomd), for every body kind and shape:
