@@ -318,9 +318,11 @@ int exportMain(const std::vector<std::string>& args) {
     // format for it.
     opts.add_options()("set", po::value<std::vector<std::string>>()->composing(), "key.path=value")(
         "help,h", "this help")("scene", po::value<std::string>(), "scene file");
-    for (std::size_t i = 0; i < args.size(); ++i)
+    for (std::size_t i = 0; i < args.size(); ++i) // as parseSceneCommand's
         if (args[i] == "--set" && (i + 1 == args.size() || args[i + 1].starts_with("-")))
-            throw po::error("--set needs a key.path=value after it");
+            throw po::error("--set needs a key.path=value after it, got " +
+                            (i + 1 == args.size() ? std::string("nothing")
+                                                  : "the option '" + args[i + 1] + "'"));
     po::positional_options_description pos;
     pos.add("format", 1).add("scene", 1).add("dir", 1);
     po::variables_map vm;
