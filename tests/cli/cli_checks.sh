@@ -832,6 +832,16 @@ lammps_energy)
             fail "$case: terrace run failed"
         ut=$(awk -F, '$1 == "0" { print $5; exit }' "$work/$case-run/thermo.csv")
         read -r et ed <<<"$(awk '/U of the initial state/ { print $7, $11 }' "$work/$case.export")"
+        # The kinetic energy too: velocities, angular momenta and masses carried over, in LAMMPS's
+        # own units (its mvv2e). LAMMPS's ellipsoid has a spin, which starts at 0, and here its
+        # moment across the axis is the scene's, so K is terrace's for every case.
+        awk -F, -v c="$case" 'FNR == 1 { file++ }
+            file == 1 && /^ *Step / { getline; split($0, w, " "); kl = w[4] * 4.184 }
+            file == 2 && $1 == "0" { kt = $2 + $3 }
+            END { d = (kl - kt) / kt
+                  printf "%s: first frame K, LAMMPS %.12g kJ/mol, terrace %.12g: relative %.2g\n", c, kl, kt, d
+                  exit !(d > -1e-6 && d < 1e-6) }' "$work/$case/lammps.out" "$work/$case-run/thermo.csv" ||
+            fail "$case: kinetic energies disagree"
         awk -v pe="$pe" -v ut="$ut" -v et="$et" -v ed="$ed" -v c="$case" 'BEGIN {
             ul = pe * 4.184; d = (ul - ut) / ut; dd = (ul - ed) / ed; dt = (et - ut) / ut
             printf "%s: first frame U, LAMMPS %.12g kJ/mol, terrace %.12g: relative %.2g (the deck'"'"'s model %.12g: %.2g)\n", c, ul, ut, d, ed, dd
