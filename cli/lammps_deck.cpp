@@ -277,12 +277,10 @@ LammpsDeck sphereDeck(const Scene& scene) {
         const double cut2 = model.range() * model.range();
         for (int i = 0; i < n; ++i)
             for (int j = i + 1; j < n; ++j) {
-                const double rsq =
-                    sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r).squaredNorm();
-                if (rsq >= cut2) continue;
-                jobs[0].pairs.rsq.push_back(rsq);
-                jobs[0].pairs.exact.push_back(model.energy(
-                    sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r), Vec3(), Vec3()));
+                const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
+                if (rij.squaredNorm() >= cut2) continue;
+                jobs[0].pairs.rsq.push_back(rij.squaredNorm());
+                jobs[0].pairs.exact.push_back(model.energy(rij, Vec3(), Vec3()));
             }
         deck.energyTerrace = potentialEnergyAllPairs(sys);
     }
