@@ -27,11 +27,15 @@ run_packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev
 #   (tests/cli/cli_checks.sh ase_read, gsd_read);
 # - libopenmpi-dev, openmpi-bin: terrace sweep under mpirun (a build without them sweeps locally
 #   and says so; the test suite runs a sweep under mpirun);
+# - lammps: Debian's LAMMPS (lmp), which runs the decks of `terrace export lammps` in the test
+#   suite (cli_checks.sh lammps_energy: the first frame's U against terrace's); cheap beside the
+#   MPI packages above, whose runtime it shares: it adds liblammps0, lammps-data and their own
+#   few libraries. Without it that check is skipped, saying so;
 # - clang, libclang-rt-14-dev: the sanitiser tier's compiler and its runtimes (libFuzzer among
 #   them, which clang only recommends); llvm-14: llvm-symbolizer, so that a sanitiser's report
 #   names files and lines.
 test_packages=(git libgtest-dev libgmock-dev libbenchmark-dev python3-ase python3-gsd libopenmpi-dev
-               openmpi-bin clang libclang-rt-14-dev llvm-14)
+               openmpi-bin lammps clang libclang-rt-14-dev llvm-14)
 
 jobs=$(nproc)
 say() { echo "quickstart: $*" >&2; }

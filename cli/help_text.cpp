@@ -159,6 +159,25 @@ const Command commands[] = {
   --quiet               no progress output
 )",
      false},
+    {"export", R"(  terrace export lammps SCENE.json DIR [--set KEY=VALUE]...
+)",
+     R"(      Write the scene's model and initial state for LAMMPS (units real): DIR/data.lammps
+      (positions, velocities; orientations and angular momenta of ellipsoids), DIR/in.terrace
+      (the input deck: lmp -in in.terrace) and, for tabulated pairs, DIR/pair.table. LJ
+      spheres: pair_style table of the smoothed g(r)*U_LJ that SMD integrates, fine enough
+      that the first frame's U moves by at most 2.5e-7 relative. Gay-Berne: pair_style gayberne and
+      fix nve/asphere (the same U; LAMMPS cuts at r_u where terrace switches off smoothly).
+      Site molecules: fix rigid/small with site-pair tables (switched by site distance, not
+      by the molecules' centres). Prints the first frame's U under both models and every
+      difference; the rod potential (rod-lj) is refused, naming the reason. Files of an
+      earlier export in DIR are replaced.
+)",
+     R"(  SCENE.json            the scene (experiments/scenes/ holds some)
+  DIR                   the directory written (created if need be)
+  --set KEY=VALUE       set a scene key by its dotted path, as for terrace run (e.g.
+                        --set state.n=4000)
+)",
+     false},
 };
 
 const char* stopNotes =

@@ -1,10 +1,11 @@
 // terrace: event-driven (DMD) and standard (SMD) rigid-body dynamics on one scene, side by side.
-// The commands (run, analyse, compare, design, sweep, tradeoff) and their options are described
-// in cli/help_text.cpp, which `terrace --help` and `terrace COMMAND --help` print.
+// The commands (run, analyse, compare, design, sweep, tradeoff, export) and their options are
+// described in cli/help_text.cpp, which `terrace --help` and `terrace COMMAND --help` print.
 #include "analysis/compare.hpp"
 #include "cli/analyse_command.hpp"
 #include "cli/design_command.hpp"
 #include "cli/engine_keys.hpp"
+#include "cli/export_command.hpp"
 #include "cli/help_text.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run_command.hpp"
@@ -309,6 +310,41 @@ int tradeoffMain(const std::vector<std::string>& args) {
     return cli::runTradeoff(o);
 }
 
+int exportMain(const std::vector<std::string>& args) {
+    po::options_description opts("export options");
+    opts.add_options()("format", po::value<std::string>(),
+                       "lammps")("dir", po::value<std::string>(), "output directory");
+    // The scene is the second word here: parseSceneCommand's positional list would take the
+    // format for it.
+    opts.add_options()("set", po::value<std::vector<std::string>>()->composing(), "key.path=value")(
+        "help,h", "this help")("scene", po::value<std::string>(), "scene file");
+    for (std::size_t i = 0; i < args.size(); ++i) // as parseSceneCommand's
+        if (args[i] == "--set" && (i + 1 == args.size() || args[i + 1].starts_with("-")))
+            throw po::error("--set needs a key.path=value after it, got " +
+                            (i + 1 == args.size() ? std::string("nothing")
+                                                  : "the option '" + args[i + 1] + "'"));
+    po::positional_options_description pos;
+    pos.add("format", 1).add("scene", 1).add("dir", 1);
+    po::variables_map vm;
+    try {
+        vm = parseOptions(args, opts, pos);
+    } catch (const po::too_many_positional_options_error&) {
+        throw po::error("takes a format, a scene file and a directory, no more");
+    }
+    if (vm.count("help")) return printHelp("export");
+    if (!vm.count("format") || !vm.count("scene") || !vm.count("dir"))
+        throw po::error("takes a format, a scene file and a directory: terrace export lammps "
+                        "SCENE.json DIR");
+    cli::ExportRequest req;
+    req.format = vm["format"].as<std::string>();
+    if (req.format != "lammps")
+        throw po::error("no format '" + req.format + "' (the one there is: lammps)");
+    req.scenePath = vm["scene"].as<std::string>();
+    req.dir = vm["dir"].as<std::string>();
+    if (vm.count("set")) req.overrides = vm["set"].as<std::vector<std::string>>();
+    return cli::exportScene(req);
+}
+
 int compareMain(const std::vector<std::string>& args) {
     po::options_description opts("compare options");
     opts.add_options()("tol-sigma", po::value<double>()->default_value(3.0), "tolerance in sigma")(
@@ -365,7 +401,7 @@ int main(int argc, char** argv) {
         if (help.empty()) {
             std::fprintf(stderr,
                          "terrace: help: no command '%s' (the commands: run, analyse, "
-                         "compare, design, sweep, tradeoff)\n",
+                         "compare, design, sweep, tradeoff, export)\n",
                          args[1].c_str());
             return 2;
         }
@@ -382,6 +418,7 @@ int main(int argc, char** argv) {
         if (command == "design") return checkedStdout(designMain(args));
         if (command == "sweep") return checkedStdout(sweepMain(args));
         if (command == "tradeoff") return checkedStdout(tradeoffMain(args));
+        if (command == "export") return checkedStdout(exportMain(args));
         const std::string near = nearestName(command, cli::commandNames());
         std::fprintf(stderr, "terrace: unknown command '%s'%s (try terrace --help)\n",
                      command.c_str(), near.empty() ? "" : ("; did you mean " + near + "?").c_str());

@@ -770,6 +770,115 @@ PY
         ) || fail "ASE cannot read the $kind trajectory ($python): $out"
     done
     ;;
+export_refusal)
+    # terrace export lammps: what LAMMPS cannot represent is refused in one line naming the key,
+    # with nothing written; a usage error names the command's help.
+    err=$("$terrace" export lammps "$src/experiments/scenes/dense-rods.json" "$work/rods" 2>&1 >/dev/null) &&
+        fail "exit status 0 for the rod potential"
+    [ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || fail "refusal is not one line: $err"
+    [[ $err == *"potential.kind: rod-lj"*"no LAMMPS pair style"* ]] || fail "refusal names no reason: $err"
+    [ ! -e "$work/rods" ] || fail "files written for a refused scene"
+    err=$("$terrace" export gromacs "$src/experiments/scenes/lj-liquid.json" "$work/g" 2>&1 >/dev/null) &&
+        fail "exit status 0 for an unknown format"
+    [[ $err == *"no format 'gromacs'"*"export --help"* ]] || fail "unknown format: $err"
+    "$terrace" export --help | grep -q "terrace export lammps SCENE.json DIR" || fail "no export --help"
+    "$terrace" --help | grep -q "terrace export lammps" || fail "terrace --help lacks export"
+    ;;
+lammps_energy)
+    # The exported decks run by LAMMPS (Debian's lammps, which quickstart.sh installs; without
+    # lmp the check is skipped, saying so): the potential energy of the first frame (run 0)
+    # against terrace's at the same state (thermo.csv's first row of an SMD run that starts
+    # production at once). LJ spheres: the model is the same (a table of g(r)·U_LJ), to 1e-6
+    # relative; so are Gay–Berne and dumbbells where no pair lies in the switch band (gb-random,
+    # dumbbell-band). Otherwise
+    # Gay–Berne and site molecules: LAMMPS cuts or switches differently (the export's
+    # notes), so LAMMPS is held to the deck's own model, which the export evaluates in terrace,
+    # to 1e-6, and the export's terrace model to the run's, to 1e-9; the gap is printed.
+    # TERRACE_LMP names another LAMMPS binary (lmp_serial, lmp_mpi, a build of one's own).
+    lmp=${TERRACE_LMP:-lmp}
+    if ! command -v "$lmp" >/dev/null; then
+        echo "SKIPPED: no LAMMPS binary '$lmp' (apt-get install lammps, or ./quickstart.sh)"
+        exit 77
+    fi
+    export OMP_NUM_THREADS=1
+    for case in lj gb gb-random dumbbell dumbbell-band triatomic; do
+        case $case in
+        lj) scene=lj-liquid sets=(--set state.n=256) ;;
+        gb) scene=gay-berne-liquid sets=() ;;
+        gb-random) # random axes on a lattice whose shells (8.33, 11.78, 14.4 Å) leave the switch
+            # band [12, 13.5] Å empty: there LAMMPS's cut and terrace's switch give one U
+            scene=gay-berne-liquid
+            sets=(--set state.orientations=random --set state.density=0.035
+                --set state.lattice_aspect=1 --set 'potential.cutoff=[4.0,4.5]') ;;
+        dumbbell) scene=dumbbell-liquid sets=() ;;
+        dumbbell-band) # aligned dumbbells on a lattice where every pair of molecules has its
+            # centre and all four site distances on one side of the band [8.08, 8.31] Å: there
+            # the switch by centre distance and the one by site distance give one U
+            scene=dumbbell-liquid
+            sets=(--set state.density=0.2 --set state.lattice_aspect=1
+                --set 'potential.cutoff=[2.44,2.51]') ;;
+        triatomic) scene=triatomic-liquid sets=() ;;
+        esac
+        "$terrace" export lammps "$src/experiments/scenes/$scene.json" "$work/$case" "${sets[@]}" \
+            >"$work/$case.export" 2>&1 || fail "$case: export failed: $(cat "$work/$case.export")"
+        (cd "$work/$case" && "$lmp" -in in.terrace -var steps 0 -var equilibrate 0 -log none \
+            -screen lammps.out >/dev/null 2>&1) ||
+            fail "$case: LAMMPS failed: $(tail -5 "$work/$case/lammps.out")"
+        pe=$(awk '/^ *Step / { getline; print $3; exit }' "$work/$case/lammps.out")
+        [ -n "$pe" ] || fail "$case: no thermo row in LAMMPS's output"
+        "$terrace" run "$src/experiments/scenes/$scene.json" "${sets[@]}" --set engine=smd \
+            --set run.equilibrate_ps=0 --set run.sample_fs=9 --set run.time_ps=0.009 \
+            --set output.thermo_every_fs=9 --quiet --out "$work/$case-run" >/dev/null 2>&1 ||
+            fail "$case: terrace run failed"
+        ut=$(awk -F, '$1 == "0" { print $5; exit }' "$work/$case-run/thermo.csv")
+        read -r et ed <<<"$(awk '/U of the initial state/ { print $7, $11 }' "$work/$case.export")"
+        # The kinetic energy too: velocities, angular momenta and masses carried over, in LAMMPS's
+        # own units (its mvv2e). LAMMPS's ellipsoid has a spin, which starts at 0, and here its
+        # moment across the axis is the scene's, so K is terrace's for every case.
+        awk -F, -v c="$case" 'FNR == 1 { file++ }
+            file == 1 && /^ *Step / { getline; split($0, w, " "); kl = w[4] * 4.184 }
+            file == 2 && $1 == "0" { kt = $2 + $3 }
+            END { d = (kl - kt) / kt
+                  printf "%s: first frame K, LAMMPS %.12g kJ/mol, terrace %.12g: relative %.2g\n", c, kl, kt, d
+                  exit !(d > -1e-6 && d < 1e-6) }' "$work/$case/lammps.out" "$work/$case-run/thermo.csv" ||
+            fail "$case: kinetic energies disagree"
+        awk -v pe="$pe" -v ut="$ut" -v et="$et" -v ed="$ed" -v c="$case" 'BEGIN {
+            ul = pe * 4.184; d = (ul - ut) / ut; dd = (ul - ed) / ed; dt = (et - ut) / ut
+            printf "%s: first frame U, LAMMPS %.12g kJ/mol, terrace %.12g: relative %.2g (the deck'"'"'s model %.12g: %.2g)\n", c, ul, ut, d, ed, dd
+            if (dd < -1e-6 || dd > 1e-6) { print c ": LAMMPS differs from the deck'"'"'s model"; exit 1 }
+            if (dt < -1e-9 || dt > 1e-9) { print c ": the export'"'"'s terrace U differs from the run'"'"'s"; exit 1 }
+            if ((c == "lj" || c == "gb-random" || c == "dumbbell-band") && (d < -1e-6 || d > 1e-6)) {
+                print c ": LAMMPS differs from terrace"; exit 1 }
+        }' || fail "$case: energies disagree"
+    done
+    # A few steps: the LJ deck run 9 fs (45 steps of 0.2 fs, its thermo interval) against
+    # terrace's SMD row at 0.009 ps; the table's forces are within its interpolation of the
+    # formula's, so U stays within 1e-6 (measured: 5.6e-8).
+    (cd "$work/lj" && "$lmp" -in in.terrace -var steps 45 -var equilibrate 0 -log none \
+        -screen steps.out >/dev/null 2>&1) || fail "lj: LAMMPS failed over 45 steps"
+    pe=$(awk '/^ *Step / { getline; getline; print $1, $3; exit }' "$work/lj/steps.out")
+    ut=$(awk -F, '$1 ~ /^0.00899999/ { print $5; exit }' "$work/lj-run/thermo.csv")
+    awk -v pe="${pe#* }" -v step="${pe% *}" -v ut="$ut" 'BEGIN {
+        ul = pe * 4.184; d = (ul - ut) / ut
+        printf "lj after 45 steps: U LAMMPS %.12g kJ/mol, terrace %.12g: relative %.2g\n", ul, ut, d
+        exit !(step == 45 && ut != "" && d > -1e-6 && d < 1e-6) }' || fail "lj: U after 45 steps differs"
+    # The deck's equilibration is terrace's: velocities rescaled to T every 9 fs (45 steps) over
+    # 18 fs, then 45 steps of NVE; U at production's start and 9 fs into it, to 1e-6 each
+    # (measured: 1.6e-8 and 7.6e-8).
+    (cd "$work/lj" && "$lmp" -in in.terrace -var equilibrate 90 -var steps 45 -log none \
+        -screen equilibrated.out >/dev/null 2>&1) || fail "lj: LAMMPS failed to equilibrate"
+    "$terrace" run "$src/experiments/scenes/lj-liquid.json" --set state.n=256 --set engine=smd \
+        --set run.equilibrate_ps=0.018 --set run.sample_fs=9 --set run.time_ps=0.009 \
+        --set output.thermo_every_fs=9 --quiet --out "$work/lj-equilibrated" >/dev/null 2>&1 ||
+        fail "lj: the equilibrated terrace run failed"
+    awk -F, 'FNR == 1 { file++ }
+        file == 1 && split($0, w, " ") == 6 && w[1] ~ /^[0-9]+$/ { if (w[1] == 90) l0 = w[3]; if (w[1] == 135) l1 = w[3] }
+        file == 2 && $1 == "0" { t0 = $5 } file == 2 && $1 ~ /^0.00900000/ { t1 = $5 }
+        END { d0 = (l0 * 4.184 - t0) / t0; d1 = (l1 * 4.184 - t1) / t1
+              printf "lj equilibrated: U LAMMPS %.12g and %.12g kJ/mol, terrace %.12g and %.12g: relative %.2g and %.2g\n", l0 * 4.184, l1 * 4.184, t0, t1, d0, d1
+              exit !(l0 != "" && l1 != "" && t0 != "" && t1 != "" && d0 > -1e-6 && d0 < 1e-6 && d1 > -1e-6 && d1 < 1e-6) }' \
+        "$work/lj/equilibrated.out" "$work/lj-equilibrated/thermo.csv" || fail "lj: the equilibrated U differs"
+    ;;
 gsd_read)
     # GSD trajectories read by Debian's python3-gsd (gsd.hoomd), for every body kind and shape:
     # the same run written as extended XYZ and as GSD (same seed, the same trajectory), frame by

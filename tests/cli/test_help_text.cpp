@@ -6,8 +6,8 @@
 using namespace terrace::cli;
 
 TEST(HelpText, EveryCommandHasItsOwnHelp) {
-    const std::vector<std::string> expected = {"run",    "analyse", "compare",
-                                               "design", "sweep",   "tradeoff"};
+    const std::vector<std::string> expected = {"run",   "analyse",  "compare", "design",
+                                               "sweep", "tradeoff", "export"};
     EXPECT_EQ(commandNames(), expected);
     for (const std::string& c : commandNames()) {
         const std::string help = commandHelp(c);
@@ -24,6 +24,7 @@ TEST(HelpText, EachCommandsOptionsAreListed) {
         {"run", {"--set", "--out", "--overwrite", "--strict", "--continue", "--quiet"}},
         {"compare", {"--tol-sigma", "--column"}},
         {"design", {"--set", "--profile", "--strict"}},
+        {"export", {"--set"}},
         {"sweep", {"--set", "--out", "-j", "--retry-failed", "--strict", "--quiet"}},
         {"tradeoff",
          {"--tolerance", "--set", "-j", "--out", "--bias-n", "--max-replicas", "--cost-pairs",
