@@ -2,6 +2,7 @@
 // exceptions, and the Simulation a user advances. Scenes and runs: scene_binding.cpp; sweeps:
 // sweep_binding.cpp.
 #include "bindings.hpp"
+#include "cli/run_record.hpp"
 #include "core/output_file.hpp"
 #include "core/units.hpp"
 #include "simulation.hpp"
@@ -55,14 +56,17 @@ struct PySimulation {
     std::unique_ptr<Simulation> sim;
     Scene scene;
     int bodies = 0;
-    double intervalStart = 0.0; // time units
+    double sampleInterval = 0.0; // time units, as the CLI's run plan has it
+    double intervalStart = 0.0;  // time units
     double virialAtStart = 0.0;
 };
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-/// Advances by `ps` in chunks that end on the scene's sample grid (run.sample_fs), the points at
-/// which `terrace run` samples too, checking for Ctrl-C between chunks with the GIL held.
+/// Advances by `ps` in chunks that end on the scene's sample grid (k · run.sample_fs from the
+/// start, the instants at which `terrace run` samples a run without equilibration), checking for
+/// Ctrl-C between chunks with the GIL held. A target within round-off of a grid point is that
+/// point, so that ten advances of one sample end where one of ten samples does, bit for bit.
 void advance(PySimulation& p, double ps) {
     if (!(ps >= 0.0) || !std::isfinite(ps))
         throw std::invalid_argument("advance: ps must be a finite time >= 0, got " +
@@ -70,8 +74,10 @@ void advance(PySimulation& p, double ps) {
     Simulation& sim = *p.sim;
     p.intervalStart = sim.time();
     p.virialAtStart = sim.virial();
-    const double target = sim.time() + units::fromPs(ps);
-    const double grid = units::fromFs(p.scene.run.sample_fs);
+    const double grid = p.sampleInterval;
+    double target = sim.time() + units::fromPs(ps);
+    const double k = std::round(target / grid);
+    if (std::abs(target / grid - k) < 1e-9 * std::max(1.0, k)) target = k * grid;
     while (sim.time() < target) {
         const double next = std::min(target, (std::floor(sim.time() / grid + 1e-6) + 1.0) * grid);
         {
@@ -124,6 +130,7 @@ void bindSimulation(py::module_& m) {
         .def(py::init([](const ResolvedScene& s) {
                  PySimulation p{makeSimulation(s.scene), s.scene};
                  p.bodies = p.sim->positions().size();
+                 p.sampleInterval = cli::planRun(s.scene).sampleInterval;
                  return p;
              }),
              py::arg("scene"))

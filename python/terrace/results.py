@@ -26,7 +26,8 @@ class Result:
 
     rdf     r_angstrom, g, err (one standard error); DMD adds g_continuous, err_continuous
     vacf    t_ps, c, err       velocity autocorrelation, normalised
-    oacf    t_ps, c, err       orientational autocorrelation of the long axis (None for spheres)
+    oacf    t_ps, c1, c1_err, c2, c2_err   orientational autocorrelations of the long axis,
+            first and second Legendre order (None for spheres)
     msd     t_ps, msd_angstrom2, err
     thermo  time_ps, kinetic_translational, ..., pressure_bar (None unless
             output.thermo_every_fs was set)

@@ -61,7 +61,6 @@ def test_default_scene_and_default_output():
 @pytest.mark.parametrize("overrides, key", [
     ({"smd.bogus": 1}, "smd.bogus"),
     ({"dmd.dV": -1}, "dmd.dV"),
-    ({"state.density": 5}, "state.density"),
     ({"run.time_ps": 10}, "run.time_ps"),
     ({"state.temp": 2}, "state.temp"),
 ])
@@ -71,6 +70,18 @@ def test_bad_values_raise_the_cli_message(tmp_path, executable, overrides, key):
         terrace.Scene(DENSE_RODS, overrides)
     assert key in str(caught.value)
     assert str(caught.value) == cli_error(executable, tmp_path, DENSE_RODS, *cli_sets(overrides))
+
+
+def test_a_start_refused_as_the_run_begins_raises_the_cli_message(tmp_path, executable):
+    """A density that overlaps the lattice is found when the initial state is built."""
+    from conftest import cli_sets
+    scene = terrace.Scene(DENSE_RODS, {"state.density": 5})
+    with pytest.raises(terrace.SceneError) as caught:
+        terrace.run(scene, out=tmp_path / "py", progress=False)
+    assert str(caught.value).startswith("state.density: 5.000000 puts lattice neighbours")
+    assert str(caught.value) == cli_error(executable, tmp_path, DENSE_RODS,
+                                          *cli_sets({"state.density": 5}))
+    assert not (tmp_path / "py" / "summary.json").exists()
 
 
 def test_bad_file_raises(tmp_path, executable):
