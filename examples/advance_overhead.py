@@ -6,7 +6,8 @@ equilibration) by `terrace run` and by a Python loop of Simulation.advance, in C
 
 The CLI's figure is its summary's cpu_seconds (the engine's advances alone) and the whole
 process's CPU time; the loop's is time.process_time() around STEPS calls of advance(run.sample_fs),
-bare, and again reading energies() and state() after each (what a sampling loop does).
+bare, and again reading energies() and state() after each (what a sampling loop does); and
+the fixed cost of one call (advance(0)).
 """
 
 import os
@@ -48,9 +49,16 @@ def loop(read):
 
 
 bare, reading = loop(False), loop(True)
+# The fixed cost of a call: advance(0) moves nothing.
+sim = terrace.Simulation(scene)
+start = time.process_time()
+for _ in range(100000):
+    sim.advance(0.0)
+per_call = (time.process_time() - start) / 100000
 n = scene.resolved()["state"]["n"]
 print(f"{engine}, N = {n}, {steps} x {sample_ps} ps:")
 print(f"  terrace run: engine {cli_engine:.3f} CPU s, whole process {cli_process:.3f} CPU s")
 print(f"  Python loop, advance only:            {bare:.3f} CPU s ({bare / cli_engine:.3f} x "
       "the CLI's engine)")
 print(f"  Python loop, + energies() + state():  {reading:.3f} CPU s ({reading / cli_engine:.3f} x)")
+print(f"  one call of advance(0): {per_call * 1e6:.2f} CPU µs")

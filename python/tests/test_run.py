@@ -102,3 +102,12 @@ def test_out_none_is_a_fresh_temporary_directory():
 def test_load_refuses_what_is_no_run(tmp_path):
     with pytest.raises(terrace.IoError, match="no summary.json"):
         terrace.load(tmp_path)
+
+
+def test_resume_without_a_restart_file_raises_the_cli_message(tmp_path, executable):
+    import subprocess
+    with pytest.raises(terrace.IoError) as caught:
+        terrace.resume(tmp_path, progress=False)
+    p = subprocess.run([str(executable), "run", "--continue", str(tmp_path)],
+                       capture_output=True, text=True)
+    assert p.returncode != 0 and p.stderr.strip() == "terrace: " + str(caught.value)
