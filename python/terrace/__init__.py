@@ -6,7 +6,7 @@ as ``terrace run``, so its numbers equal the command line's bit for bit for the 
 
     import terrace
     scene = terrace.Scene("experiments/scenes/dense-rods.json", engine="smd",
-                          overrides={"state.n": 64, "run.time_ps": 0.9})
+                          overrides={"state.n": 216, "run.time_ps": 0.9})
     r = terrace.run(scene)             # a run directory, read back as NumPy
     r.rdf["g"], r.vacf["c"], r.summary["pressure"]["mean_bar"]
 

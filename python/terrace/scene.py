@@ -26,7 +26,7 @@ class Scene:
                Scene (its source and overrides, then these); None: the built-in default scene
                (the paper's dense rods).
     overrides  a dict of dotted scene keys and values, applied as ``terrace run --set`` applies
-               them: {"state.n": 64, "smd.dt_fs": 1.8}.
+               them: {"state.n": 216, "smd.dt_fs": 1.8}.
     keys       top-level keys as keywords, the same: engine="smd", seed=3, name="x".
     strict     a key of the engine that does not run (smd.dt_fs on a DMD scene) is refused
                instead of warned about, as ``terrace run --strict``.

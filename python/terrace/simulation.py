@@ -22,7 +22,7 @@ class Simulation:
     Nothing happens unless asked: no equilibration (rescale_temperature() is the CLI's
     thermostat step), no sampling, no analysis, no files. For those, terrace.run().
 
-        sim = terrace.Simulation(terrace.Scene(engine="smd", overrides={"state.n": 64}))
+        sim = terrace.Simulation(terrace.Scene(engine="smd", overrides={"state.n": 216}))
         for _ in range(100):
             sim.advance(0.009)           # ps
             e = sim.energies()["total"]
