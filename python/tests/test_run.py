@@ -111,3 +111,20 @@ def test_resume_without_a_restart_file_raises_the_cli_message(tmp_path, executab
     p = subprocess.run([str(executable), "run", "--continue", str(tmp_path)],
                        capture_output=True, text=True)
     assert p.returncode != 0 and p.stderr.strip() == "terrace: " + str(caught.value)
+
+
+def test_an_engine_failure_raises_with_the_output_written(tmp_path, executable):
+    """An unstable SMD step (9 fs steps): TerraceError with the CLI's message; the summary
+    records the error, as the CLI's does."""
+    sets = dict(SMALL, **{"smd.dt_fs": 9})
+    with pytest.raises(terrace.TerraceError) as caught:
+        terrace.run(terrace.Scene(DENSE_RODS, sets, engine="smd"), out=tmp_path / "py",
+                    progress=False)
+    assert "smd: the integration became unstable" in str(caught.value)
+    status, err = cli_run(executable, tmp_path / "cli", DENSE_RODS, *cli_sets(sets), "--set",
+                          "engine=smd")
+    assert status == 1
+    cli_message = err.strip().splitlines()[-1][len("terrace: "):]
+    assert str(caught.value) == cli_message.replace(str(tmp_path / "cli"), str(tmp_path / "py"))
+    r = terrace.load(tmp_path / "py")
+    assert r.summary["error"] in str(caught.value)
