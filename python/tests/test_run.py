@@ -3,6 +3,7 @@
 import json
 import math
 import os
+import shutil
 
 import numpy as np
 import pytest
@@ -95,8 +96,11 @@ def test_existing_results_are_refused_as_by_the_cli(both, executable, tmp_path):
 def test_out_none_is_a_fresh_temporary_directory():
     r = terrace.run(terrace.Scene(DENSE_RODS, dict(SMALL, **{"run.equilibrate_ps": 0}),
                                   engine="smd"), progress=False)
-    assert os.path.basename(r.dir).startswith("terrace-dense-rods-smd-")
-    assert r.rdf.shape[0] > 10
+    try:
+        assert os.path.basename(r.dir).startswith("terrace-dense-rods-smd-")
+        assert r.rdf.shape[0] > 10
+    finally:  # the directory is the caller's to remove
+        shutil.rmtree(r.dir)
 
 
 def test_load_refuses_what_is_no_run(tmp_path):
