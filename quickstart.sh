@@ -6,10 +6,11 @@
 #                             out/versus/versus.png)
 #   ./quickstart.sh test      install what building and testing need, then the test command of CI
 #                             (.ci/run): 1. build/: Release with assertions, the tests and
-#                             benchmarks; 2. the whole test suite (ctest); then the sanitiser tier
-#                             (fuzz/README.md): 3. build-asan/: the unit tests and fuzzers under
-#                             AddressSanitizer and UBSan (clang); 4. the unit tests there; 5. each
-#                             fuzzer for TERRACE_FUZZ_SECONDS (default 30)
+#                             benchmarks and the Python module; 2. the whole test suite (ctest,
+#                             the Python module's pytest suite in a step of its own); then the
+#                             sanitiser tier (fuzz/README.md): 3. build-asan/: the unit tests and
+#                             fuzzers under AddressSanitizer and UBSan (clang); 4. the unit tests
+#                             there; 5. each fuzzer for TERRACE_FUZZ_SECONDS (default 30)
 #   ./quickstart.sh sanitise  steps 3 to 5 alone
 # Arguments after `run` go to `terrace run` instead (e.g. ./quickstart.sh run --set engine=smd).
 # Each step says what it does and how long it took; `test` ends with a table of the steps' times.
@@ -31,13 +32,19 @@ run_packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev
 #   suite (cli_checks.sh lammps_energy: the first frame's U against terrace's); cheap beside the
 #   MPI packages above, whose runtime it shares: it adds liblammps0, lammps-data and their own
 #   few libraries. Without it that check is skipped, saying so;
+# - pybind11-dev, python3-dev, python3-numpy: the Python module terrace (python/), which a
+#   build without them leaves out and says so; python3-pytest: its tests (python/tests);
 # - clang, libclang-rt-14-dev: the sanitiser tier's compiler and its runtimes (libFuzzer among
 #   them, which clang only recommends); llvm-14: llvm-symbolizer, so that a sanitiser's report
 #   names files and lines.
 test_packages=(git libgtest-dev libgmock-dev libbenchmark-dev python3-ase python3-gsd libopenmpi-dev
-               openmpi-bin lammps clang libclang-rt-14-dev llvm-14)
+               openmpi-bin lammps pybind11-dev python3-dev python3-numpy python3-pytest clang
+               libclang-rt-14-dev llvm-14)
 
 jobs=$(nproc)
+# Debian's interpreter, which python3-numpy and pybind11-dev serve (a python3 of pyenv or a venv
+# found first on PATH would lack them).
+python=/usr/bin/python3
 say() { echo "quickstart: $*" >&2; }
 
 # Recommended packages are left out: for `test` on a fresh Debian 12 they are 120 of 423 packages
@@ -112,12 +119,27 @@ build() {
 # (cli/CMakeLists.txt, TERRACE_PROFILE): on two cores its instrumented build and training cost
 # minutes, and it saves ~6 % of DMD's CPU time, seconds of the default run (README, quick start).
 # TERRACE_PROFILE=on ./quickstart.sh run builds with it, as the paper's timings were.
+# The Python tests (python/tests) against the module in build/python. pytest's exit status 5
+# (no tests collected) fails the step as any other failure does.
+python_tests() {
+    if ! compgen -G "build/python/terrace/_terrace*.so" >/dev/null; then
+        say "the Python module was not built in build/python (the configure step says why)"
+        return 1
+    fi
+    local status=0
+    PYTHONPATH="$PWD/build/python" TERRACE_BUILD="$PWD/build" \
+        "$python" -m pytest -q -p no:cacheprovider python/tests || status=$?
+    [ "$status" -ne 5 ] || say "pytest collected no tests in python/tests"
+    return "$status"
+}
+
 build_run() {
     local options=(-DTERRACE_TESTS=OFF -DTERRACE_BENCH=OFF) data="$PWD/build-profile/data"
     case "${TERRACE_PROFILE:-off}" in
     off | OFF | 0 | no)
         step build "building terrace and paper_tools in build/" \
-            build build "${options[@]}" -DTERRACE_PROFILE= -- terrace paper_tools
+            build build "${options[@]}" -DTERRACE_PROFILE= -DPython3_EXECUTABLE="$python" -- \
+            terrace paper_tools
         ;;
     on | ON | 1 | yes)
         # The same events as without the profile (no reassociation), only faster.
@@ -213,10 +235,12 @@ test)
         install_missing "${run_packages[@]}" "${test_packages[@]}"
     # No profile-guided pass: it changes the engines' speed only, not what they compute.
     step build "building everything in build/ (Release, assertions on)" \
-        build build -DTERRACE_PROFILE= -DTERRACE_TESTS=ON -DTERRACE_BENCH=ON
-    step tests "the whole test suite" ctest --test-dir build --output-on-failure -j"$jobs"
+        build build -DTERRACE_PROFILE= -DTERRACE_TESTS=ON -DTERRACE_BENCH=ON \
+        -DPython3_EXECUTABLE="$python"
+    # The pytest suite, which ctest holds too (label python), runs in its own step below.
+    step tests "the whole test suite" ctest --test-dir build --output-on-failure -j"$jobs" -LE python
+    step python-tests "the Python module's tests (pytest, python/tests)" python_tests
     sanitiser_tier
-    # The Python tests' step goes here, once they exist: step python-tests <command>.
     step_table
     ;;
 sanitise)

@@ -23,6 +23,18 @@ std::filesystem::path selfExecutable() {
     return self;
 }
 
+namespace {
+std::filesystem::path chosenExecutable; // empty: this one
+} // namespace
+
+std::filesystem::path runExecutable() {
+    return chosenExecutable.empty() ? selfExecutable() : chosenExecutable;
+}
+
+void setRunExecutable(const std::filesystem::path& executable) {
+    chosenExecutable = executable;
+}
+
 bool stopWithSweep() {
     const char* value = std::getenv(sweepPidVariable);
     if (value == nullptr) return false;
@@ -68,7 +80,7 @@ RunProcess::RunProcess(const SweepPlan& plan, const SweepRun& run, const std::fi
     std::filesystem::create_directories(dir, ec);
     if (ec) throwIoError("create the run directory", dir, ec.value());
 
-    std::vector<std::string> args = {selfExecutable().string(), "run"};
+    std::vector<std::string> args = {runExecutable().string(), "run"};
     if (action == RunAction::Continue) {
         args.insert(args.end(), {"--continue", dir.string()});
     } else {

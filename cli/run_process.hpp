@@ -64,8 +64,13 @@ private:
     struct sigaction previousAction_;
 };
 
-/// The path of this executable (/proc/self/exe), which the children run.
+/// The path of this executable (/proc/self/exe).
 std::filesystem::path selfExecutable();
+
+/// The executable a sweep's children run: this one, unless setRunExecutable named another (the
+/// Python module, which lives in a Python process, names the terrace executable of its build).
+std::filesystem::path runExecutable();
+void setRunExecutable(const std::filesystem::path& executable);
 
 /// The environment variable through which a sweep hands its children its process id.
 inline constexpr const char* sweepPidVariable = "TERRACE_SWEEP_PID";

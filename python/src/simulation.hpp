@@ -1,0 +1,69 @@
+#pragma once
+// terrace.Simulation: one engine built from a scene exactly as `terrace run` builds it
+// (cli/dispatch.hpp), held behind an interface that forgets its (engine, body kind, potential)
+// type, so that Python advances it and reads it without a run directory. Nothing is sampled,
+// thermostatted or written unless the caller asks: this is the engine contract (core/engine.hpp)
+// and no more. Units are the engines' own here (Å, g/mol, kJ/mol, the 100 fs time unit); the
+// binding (module.cpp) turns times into ps.
+#include "core/continuous_sums.hpp"
+#include "core/engine.hpp"
+#include "core/pressure.hpp"
+#include "core/scene.hpp"
+#include "core/snapshot.hpp"
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace terrace::python {
+
+class Simulation {
+public:
+    virtual ~Simulation() = default;
+    virtual void advanceTo(double t) = 0;
+    virtual double time() const = 0;
+    virtual Snapshot snapshot() const = 0;
+    virtual Snapshot positions() const = 0;
+    virtual double kineticEnergy() const = 0;
+    virtual double translationalKineticEnergy() const = 0;
+    virtual double potentialEnergy() const = 0;
+    virtual ContinuousSums continuousSums() const = 0;
+    virtual VirialKind virialKind() const = 0;
+    virtual double virial() const = 0;
+    virtual Vec3 totalMomentum() const = 0;
+    virtual void rescaleTemperature(double kT) = 0;
+    virtual nlohmann::json statistics() const = 0;
+    virtual int rotationalDof() const = 0;
+};
+
+/// The engine E (of body kind K) behind the interface.
+template <Engine E, int RotationalDof> class EngineSimulation final : public Simulation {
+public:
+    explicit EngineSimulation(std::unique_ptr<E> engine) : engine_(std::move(engine)) {}
+    void advanceTo(double t) override { engine_->advanceTo(t); }
+    double time() const override { return engine_->time(); }
+    Snapshot snapshot() const override { return engine_->snapshot(); }
+    Snapshot positions() const override { return engine_->positions(); }
+    double kineticEnergy() const override { return engine_->kineticEnergy(); }
+    double translationalKineticEnergy() const override {
+        return engine_->translationalKineticEnergy();
+    }
+    double potentialEnergy() const override { return engine_->potentialEnergy(); }
+    ContinuousSums continuousSums() const override { return engine_->continuousSums(nullptr); }
+    VirialKind virialKind() const override { return E::virialKind; }
+    double virial() const override { return engine_->virial(); }
+    Vec3 totalMomentum() const override { return engine_->totalMomentum(); }
+    void rescaleTemperature(double kT) override { engine_->rescaleTemperature(kT); }
+    nlohmann::json statistics() const override { return engine_->statistics(); }
+    int rotationalDof() const override { return RotationalDof; }
+
+private:
+    std::unique_ptr<E> engine_;
+};
+
+/// The scene's engine (scene.engine) on the scene's initial state; the scene must be resolved
+/// (cli::resolveEngineSections). One translation unit per engine, as for the CLI's runs.
+std::unique_ptr<Simulation> makeSimulation(const Scene& scene);
+std::unique_ptr<Simulation> makeDmdSimulation(const Scene& scene);
+std::unique_ptr<Simulation> makeSmdSimulation(const Scene& scene);
+
+} // namespace terrace::python
