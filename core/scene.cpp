@@ -42,16 +42,17 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     json j = input;
     const JsonSection top(j, "", origin);
     if (!j.is_object()) top.refuse("<top>", "a scene must be a JSON object");
+    std::vector<std::string> overridden;
     for (const auto& o : overrides) {
-        if (const auto parsed = parseOverride(o); parsed && j.is_object())
-            forgetTwinOf(j, parsed->first); // either twin set replaces the one the scene gave
         applyOverride(j, o, origin);
+        if (const auto parsed = parseOverride(o)) overridden.push_back(parsed->first);
     }
     top.onlyKeys({"name", "seed", "units", "body", "potential", "state", "engine", "dmd", "smd",
                   "run", "output", "analysis"});
     Scene s;
     detail::readIdentity(top, s);
     s.units = top.choice("units", s.units, {"real", "lj"});
+    if (s.units == "lj") keepOverriddenTwins(j, overridden); // --set run.time replaces time_ps
     const JsonSection body = top.section("body");
     detail::readBody(body, s);
     detail::readPotential(top.section("potential"), s);

@@ -1,5 +1,6 @@
 #include "core/scene_units.hpp"
 #include "core/scene_json.hpp"
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -81,24 +82,25 @@ template <class F> void convertFreeKeys(json& scene, const F& f) {
 
 } // namespace
 
-void forgetTwinOf(json& scene, const std::string& dottedKey) {
+void keepOverriddenTwins(json& scene, const std::vector<std::string>& overriddenKeys) {
+    auto overridden = [&](const std::string& key) {
+        return std::find(overriddenKeys.begin(), overriddenKeys.end(), key) != overriddenKeys.end();
+    };
     for (const auto& t : unitTwins()) {
+        json* section = objectAt(scene, t.section);
+        if (!section || !section->contains(t.named) || !section->contains(t.free)) continue;
         const std::string prefix = std::string(t.section) + ".";
-        if (dottedKey == prefix + t.named || dottedKey == prefix + t.free)
-            if (json* section = objectAt(scene, t.section))
-                section->erase(dottedKey == prefix + t.named ? t.free : t.named);
+        const bool named = overridden(prefix + t.named), free = overridden(prefix + t.free);
+        if (named != free) section->erase(named ? t.free : t.named);
     }
 }
 
 void sceneKeysToReal(json& scene, const UnitSystem& u, const std::string& origin) {
+    if (!u.reduced()) return; // the twins are unknown keys to the readers
     for (const auto& t : unitTwins()) {
         json* section = objectAt(scene, t.section);
         if (!section || !section->contains(t.free)) continue;
         const JsonSection at(*section, t.section, origin);
-        if (!u.reduced())
-            at.fail(t.free, std::string("a unit-free key is read in reduced units (units lj); "
-                                        "under units real give ") +
-                                at.name(t.named));
         if (section->contains(t.named))
             at.fail(t.free, "and " + at.name(t.named) + " set the same value: give one of them");
         json value = (*section)[t.free];

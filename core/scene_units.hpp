@@ -5,9 +5,9 @@
 //   read in that unit, whatever the scene's units: a scene written for real units means the same
 //   run under lj, only its results are written in reduced units.
 //   Each such key has a unit-free twin (run.time, smd.dt, analysis.rdf_bin, ...: unitTwins), read
-//   in the scene's units, τ or σ under lj; under real, which has two time units, a unit-free
-//   twin is refused, naming the key to give. A scene gives one of the two; an override (--set)
-//   of either replaces the other (forgetTwinOf).
+//   in the scene's units, τ or σ under lj; under real, which has two time units, the twins do
+//   not exist (an unknown key, "did you mean run.time_ps?"). A scene gives one of the two; an
+//   override (--set) of either replaces the other (keepOverriddenTwins).
 //   Keys with no unit in their names are read in the scene's units: under lj, dmd.levels and
 //   dmd.values in ε, state.particles[].r in σ, .v in σ/τ, .omega in 1/τ.
 //   The model's own parameters (body.*, potential.*) define the scale and stay in real units;
@@ -21,6 +21,7 @@
 #include "core/unit_system.hpp"
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace terrace {
 
@@ -38,13 +39,15 @@ struct UnitTwin {
 /// Every twin, in the order docs/UNITS.md lists them.
 const std::vector<UnitTwin>& unitTwins();
 
-/// Before an override of `dottedKey` is applied: the twin of a key that has one is removed from
-/// `scene`, so that the override replaces whichever of the two the scene gave.
-void forgetTwinOf(nlohmann::json& scene, const std::string& dottedKey);
+/// Under lj, after the overrides (`overriddenKeys`, dotted) are applied: of a pair of twins that
+/// the scene gives both, the one no override set is removed, so that an override of either
+/// replaces the one the scene file gave.
+void keepOverriddenTwins(nlohmann::json& scene, const std::vector<std::string>& overriddenKeys);
 
 /// Rewrites a whole scene's JSON into real units for the readers: unit-free twins become their
-/// named keys, unit-free keys are scaled. A twin under real, or both of a pair, is a SceneError
-/// naming the key ("<origin>: run.time: ..."). Values of the wrong type are left for the readers.
+/// named keys, unit-free keys are scaled; under real, nothing changes. Both of a pair under lj
+/// is a SceneError naming the key ("<origin>: run.time: ..."). Values of the wrong type are
+/// left for the readers.
 void sceneKeysToReal(nlohmann::json& scene, const UnitSystem& u, const std::string& origin);
 /// The unit-free keys of a resolved scene back in `u` (a no-op under real).
 void sceneKeysFromReal(nlohmann::json& scene, const UnitSystem& u);

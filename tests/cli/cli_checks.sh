@@ -1108,7 +1108,7 @@ units)
     # Reduced units (docs/UNITS.md): the LJ liquid under units lj prints T*, U/N in ε beside the
     # total, and P*; summary.json has a "reduced" entry; thermo.csv and the analysis' CSVs are
     # in τ, σ and ε per body; scene.json records the units. Unit-free twins of named-unit keys
-    # are read in τ under lj and refused under real; the real run prints U/N beside <U>.
+    # are read in τ under lj and unknown under real; the real run prints U/N beside <U>.
     scene=$src/experiments/scenes/lj-liquid.json
     "$terrace" run "$scene" --set units=lj --set state.temperature=2 --set output.thermo_every=0.9 \
         --quiet --out "$work/lj" >"$work/lj.log" || fail "lj run failed: $(cat "$work/lj.log")"
@@ -1137,8 +1137,9 @@ units)
         --out "$work/real" >"$work/real.log" || fail "real run failed"
     grep -Eq '^  T = [0-9.]+ K \(target 240.5 K\), <U>/N = -[0-9.]+ kJ/mol \(<U> = -[0-9.]+ kJ/mol\)' \
         "$work/real.log" || fail "real line: $(cat "$work/real.log")"
-    expect_error "$scene" "run.time: a unit-free key is read in reduced units (units lj); under units real give run.time_ps" \
-        --set run.time=27
+    expect_error "$scene" "run.time: unknown key; did you mean run.time_ps?" --set run.time=27
+    expect_error "$scene" "run.time: and run.time_ps set the same value: give one of them" \
+        --set units=lj --set run.time=27 --set run.time_ps=2.7
     expect_error "$scene" "(units lj: τ = 100 fs, σ = 1 Å, ε = 1 kJ/mol;" --set units=lj --set run.time=0.01
     ;;
 *)

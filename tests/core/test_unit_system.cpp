@@ -102,11 +102,11 @@ TEST(SceneUnits, LjReadsUnitFreeTwinsInTauAndNamedKeysInTheirUnits) {
     EXPECT_EQ(r.units, "real");
 }
 
-TEST(SceneUnits, TwinsAreRefusedUnderRealAndInPairs) {
+TEST(SceneUnits, TwinsAreUnknownUnderRealAndRefusedInPairs) {
     json j = ljLiquid();
     j["run"]["time"] = 27;
-    EXPECT_EQ(errorOf(j), "test.json: run.time: a unit-free key is read in reduced units (units "
-                          "lj); under units real give run.time_ps");
+    // Under real the twins do not exist: unknown keys, naming the key with the unit.
+    EXPECT_EQ(errorOf(j), "test.json: run.time: unknown key; did you mean run.time_ps?");
     j["units"] = "lj";
     const std::string both = errorOf(j);
     EXPECT_NE(both.find("run.time: and run.time_ps set the same value: give one of them"),
