@@ -1141,6 +1141,10 @@ units)
     expect_error "$scene" "run.time: and run.time_ps set the same value: give one of them" \
         --set units=lj --set run.time=27 --set run.time_ps=2.7
     expect_error "$scene" "(units lj: τ = 100 fs, σ = 1 Å, ε = 1 kJ/mol;" --set units=lj --set run.time=0.01
+    err=$("$terrace" tradeoff "$scene" --set units=lj --out "$work/t" 2>&1) && fail "tradeoff ran under lj"
+    [[ $err == *"units: terrace tradeoff measures in real units; leave units out"* ]] ||
+        fail "tradeoff under lj: $err"
+    [ ! -e "$work/t" ] || fail "tradeoff wrote under lj"
     ;;
 *)
     fail "unknown check"
