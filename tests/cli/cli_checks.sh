@@ -1111,7 +1111,8 @@ units)
     # are read in τ under lj and unknown under real; the real run prints U/N beside <U>.
     scene=$src/experiments/scenes/lj-liquid.json
     "$terrace" run "$scene" --set units=lj --set state.temperature=2 --set output.thermo_every=0.9 \
-        --quiet --out "$work/lj" >"$work/lj.log" || fail "lj run failed: $(cat "$work/lj.log")"
+        --set output.trajectory_every=0.9 --quiet --out "$work/lj" >"$work/lj.log" ||
+        fail "lj run failed: $(cat "$work/lj.log")"
     sed -n 1p "$work/lj.log" | grep -q 'N = 256, 27 τ (τ = 100 fs) simulated' ||
         fail "no time in τ: $(cat "$work/lj.log")"
     sed -n 2p "$work/lj.log" | grep -Eq '^  T\* = [0-9.]+ \(target 2\), U/N = -[0-9.]+ ε \(U = -[0-9.e+]+ ε\)' ||
@@ -1129,6 +1130,9 @@ units)
         head -n 1 "$work/lj/${f%%:*}" | grep -q "^${f#*:}" ||
             fail "${f%%:*} header: $(head -n 1 "$work/lj/${f%%:*}")"
     done
+    # terrace analyse rewrites the CSVs in the run's units
+    "$terrace" analyse "$work/lj" >/dev/null || fail "analyse failed"
+    head -n 1 "$work/lj/msd.csv" | grep -q '^t_tau,msd_sigma2,err$' || fail "analyse: msd.csv in real units"
     # thermo rows every 0.9 τ, T* = 2 at production's start (the thermostat's last rescaling)
     awk -F, '/^#/ || NR == 1 { next } !n++ { exit !($1 == 0 && $7 > 1.999 && $7 < 2.001) }' \
         "$work/lj/thermo.csv" || fail "thermo.csv's first row: $(sed -n 4p "$work/lj/thermo.csv")"
