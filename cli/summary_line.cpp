@@ -73,12 +73,12 @@ std::string runSummaryText(const std::string& name, const json& s,
     const bool reduced = s.contains("reduced");
     std::string text;
     if (reduced)
-        text = format("%s: %s, N = %d, %.4g τ (τ = %.4g fs) simulated in %.2f CPU s (%.4g CPU "
-                      "s/τ)\n",
-                      name.c_str(), s["engine"].get<std::string>().c_str(),
-                      s["n_bodies"].get<int>(), number(s["reduced"], "simulated_tau"),
-                      number(s["reduced"]["scale"], "tau_fs"),
-                      number(s, "cpu_seconds"), number(s["reduced"], "cpu_seconds_per_tau"));
+        text =
+            format("%s: %s, N = %d, %.4g τ (τ = %.4g fs) simulated in %.2f CPU s (%.4g CPU "
+                   "s/τ)\n",
+                   name.c_str(), s["engine"].get<std::string>().c_str(), s["n_bodies"].get<int>(),
+                   number(s["reduced"], "simulated_tau"), number(s["reduced"]["scale"], "tau_fs"),
+                   number(s, "cpu_seconds"), number(s["reduced"], "cpu_seconds_per_tau"));
     else
         text = format("%s: %s, N = %d, %.3f ps simulated in %.2f CPU s (%.3f CPU s/ps)\n",
                       name.c_str(), s["engine"].get<std::string>().c_str(),

@@ -118,7 +118,6 @@ public:
     const char* timeUnit() const { return reduced_ ? "τ" : "ps"; }
     const char* timeSuffix() const { return reduced_ ? "tau" : "ps"; }
     const char* lengthSuffix() const { return reduced_ ? "sigma" : "angstrom"; }
-    const char* energyUnit() const { return reduced_ ? "ε" : "kJ/mol"; }
 
 private:
     bool reduced_ = false;
