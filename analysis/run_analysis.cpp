@@ -34,33 +34,56 @@ nlohmann::json rdfSummary(const RadialDistribution& rdf, double from) {
     return j;
 }
 
+/// x with each element mapped by f: a column in the units of the CSV.
+template <class F> std::vector<double> mapped(const std::vector<double>& x, const F& f) {
+    std::vector<double> y(x.size());
+    std::transform(x.begin(), x.end(), y.begin(), f);
+    return y;
+}
+
 /// Writes rdf.csv, vacf.csv, msd.csv and, for rotating bodies, oacf.csv (else removes a stale
-/// one) into dir, created if needed.
+/// one) into dir, created if needed; r, t and the MSD in `units` (under real as computed).
 void writeCurveFiles(const std::filesystem::path& dir, const RadialDistribution& rdf,
                      const TerracingProfile& terracing, const SampledCurve& vacf,
-                     const OrientationalCorrelation* oacf, const SampledCurve& msd) {
+                     const OrientationalCorrelation* oacf, const SampledCurve& msd,
+                     const UnitSystem& units) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throwIoError("create the directory", dir, ec.value());
+    const bool reduced = units.reduced();
+    const std::string rName = std::string("r_") + units.lengthSuffix();
+    const std::string tName = std::string("t_") + units.timeSuffix();
+    const std::string msdName = std::string("msd_") + units.lengthSuffix() + "2";
+    auto time = [&](double ps) { return units.time(ps); };
+    auto length2 = [&](double a2) { return units.length(units.length(a2)); };
+    const std::vector<double> r =
+        reduced ? mapped(rdf.r, [&](double a) { return units.length(a); }) : rdf.r;
     if (terracing.empty()) {
-        writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err"}, {rdf.r, rdf.g, rdf.err}});
+        writeCsv(dir / "rdf.csv", {{rName, "g", "err"}, {r, rdf.g, rdf.err}});
     } else {
         std::vector<double> gc(rdf.g.size()), errc(rdf.g.size());
         for (std::size_t k = 0; k < rdf.g.size(); ++k) {
             const double w = terracing.meanWeight(k);
             gc[k] = rdf.g[k] * w, errc[k] = rdf.err[k] * w;
         }
-        writeCsv(dir / "rdf.csv", {{"r_angstrom", "g", "err", "g_continuous", "err_continuous"},
-                                   {rdf.r, rdf.g, rdf.err, gc, errc}});
+        writeCsv(dir / "rdf.csv", {{rName, "g", "err", "g_continuous", "err_continuous"},
+                                   {r, rdf.g, rdf.err, gc, errc}});
     }
-    writeCsv(dir / "vacf.csv", {{"t_ps", "c", "err"}, {vacf.tPs, vacf.value, vacf.err}});
+    writeCsv(
+        dir / "vacf.csv",
+        {{tName, "c", "err"}, {reduced ? mapped(vacf.tPs, time) : vacf.tPs, vacf.value, vacf.err}});
     if (oacf)
-        writeCsv(dir / "oacf.csv",
-                 {{"t_ps", "c1", "c1_err", "c2", "c2_err"},
-                  {oacf->c1.tPs, oacf->c1.value, oacf->c1.err, oacf->c2.value, oacf->c2.err}});
+        writeCsv(dir / "oacf.csv", {{tName, "c1", "c1_err", "c2", "c2_err"},
+                                    {reduced ? mapped(oacf->c1.tPs, time) : oacf->c1.tPs,
+                                     oacf->c1.value, oacf->c1.err, oacf->c2.value, oacf->c2.err}});
     else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
         throwIoError("remove", dir / "oacf.csv", ec.value());
-    writeCsv(dir / "msd.csv", {{"t_ps", "msd_angstrom2", "err"}, {msd.tPs, msd.value, msd.err}});
+    if (reduced)
+        writeCsv(dir / "msd.csv",
+                 {{tName, msdName, "err"},
+                  {mapped(msd.tPs, time), mapped(msd.value, length2), mapped(msd.err, length2)}});
+    else
+        writeCsv(dir / "msd.csv", {{tName, msdName, "err"}, {msd.tPs, msd.value, msd.err}});
 }
 
 } // namespace
@@ -121,7 +144,7 @@ const std::vector<int>& RunAnalysis::followedBodies() const {
     return correlations_->followedBodies();
 }
 
-nlohmann::json RunAnalysis::write(const std::filesystem::path& dir) const {
+nlohmann::json RunAnalysis::write(const std::filesystem::path& dir, const UnitSystem& units) const {
     if (samples_ < 4) throw std::invalid_argument("analysis: need at least 4 samples");
     const RadialDistribution rdf = rdf_->result();
     double v2 = 0.0;
@@ -133,7 +156,7 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir) const {
     const Diffusion d = diffusionFromMsd(msd);
     const Diffusion gk = greenKuboDiffusion(vacf, v2);
 
-    writeCurveFiles(dir, rdf, terracing_, vacf, rotating ? &oacf : nullptr, msd);
+    writeCurveFiles(dir, rdf, terracing_, vacf, rotating ? &oacf : nullptr, msd, units);
 
     const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
     nlohmann::json rdfEntry = rdfSummary(rdf, largeRFraction * rdf_->rMax());

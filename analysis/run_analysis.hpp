@@ -18,6 +18,10 @@
 //   oacf.csv  t_ps,c1,c1_err,c2,c2_err         ⟨s(0)·s(t)⟩ and ⟨P₂(s(0)·s(t))⟩
 //   msd.csv   t_ps,msd_angstrom2,err           ⟨|r(t) − r(0)|²⟩
 //
+// Under the scene's units lj (core/unit_system.hpp) the columns are r_sigma, t_tau and
+// msd_sigma2, in σ, τ and σ²; the summary entries stay in real units (the run's summary.json
+// converts them in its "reduced" entry).
+//
 // and returns the summary entries (D by Einstein and Green–Kubo, each with its block error; g at
 // large r). err is one standard error from `blocks` block estimates (block_average.hpp).
 // oacf.csv is written only when the bodies rotate (some axis changes between samples); for
@@ -29,6 +33,7 @@
 #include "analysis/rdf_accumulator.hpp" // and PositionOf
 #include "core/continuous_sums.hpp"
 #include "core/snapshot.hpp"
+#include "core/unit_system.hpp"
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -79,7 +84,9 @@ public:
     const TerracingProfile& terracingProfile() const { return terracing_; }
     /// Writes the CSVs into dir (created if needed) and returns the summary entries; needs at
     /// least 4 samples (std::invalid_argument). Everything is computed before anything is written.
-    nlohmann::json write(const std::filesystem::path& dir) const;
+    /// The CSVs' r and t columns, and the MSD, in `units`.
+    nlohmann::json write(const std::filesystem::path& dir,
+                         const UnitSystem& units = UnitSystem::real()) const;
     /// Heap memory held by the accumulators, bytes.
     std::size_t bytes() const;
     /// The accumulators' state as bytes (state_bytes.hpp), for a restart file: independent of

@@ -4,6 +4,7 @@
 #include "cli/run_driver.hpp"
 #include "core/gsd_frame.hpp"
 #include "core/scene.hpp"
+#include "core/scene_units.hpp"
 #include "core/units.hpp"
 #include "core/xyz.hpp"
 #include <algorithm>
@@ -50,9 +51,11 @@ int analyseRun(const std::filesystem::path& dir) {
     // The run's own analysis settings where its scene.json is there, else the defaults.
     analysis::StreamingOptions options;
     options.rdfMaxAngstrom = 0.0; // without a scene: out to L/2
+    UnitSystem csvUnits;          // the run's units, so that its CSVs keep their columns
     if (std::filesystem::exists(dir / "scene.json")) {
         const Scene scene = loadScene((dir / "scene.json").string());
         options = streamingOptions(scene);
+        csvUnits = unitSystem(scene);
         // g(r) frames as far apart in time as in the run (trajectory frames are sparser).
         const double frameFs = units::toFs(secondTime - firstTime);
         options.rdfEvery =
@@ -69,7 +72,7 @@ int analyseRun(const std::filesystem::path& dir) {
             if (fed++ < frames) accumulated.add(f);
         },
         &cutShort);
-    const auto summary = accumulated.write(dir);
+    const auto summary = accumulated.write(dir, csvUnits);
     std::printf("%ld frames analysed; wrote the correlation CSVs in %s/\n", frames, dir.c_str());
     std::printf("%s\n", summary.dump().c_str());
     return 0;

@@ -42,6 +42,13 @@ const Command commands[] = {
       With output.restart_every_ps > 0 the run keeps DIR/restart.bin (the bodies and the
       analysis' accumulators, not the samples' bodies) until it ends, from which --continue
       goes on.
+      Units (docs/UNITS.md): real by default (Å, g/mol, kJ/mol, K, and fs or ps as a key's
+      name says); with units=lj, reduced units of the scene's model (σ and ε of its potential,
+      m its body mass, τ = σ·sqrt(m/ε)): the closing lines, thermo.csv, the CSVs and
+      summary.json's "reduced" entry give T*, U/N in ε, times in τ, r in σ, P* and D in σ²/τ;
+      unit-free keys (run.time, run.sample, output.thermo_every, smd.dt, ...) are read in τ
+      or σ, keys named in a unit (run.time_ps) in that unit. state.temperature (T*) and
+      state.density (ρ*) are reduced under both.
 )",
      R"(  --out DIR             the output directory (default: out/<scene name>-<engine>, then the
                         --set keys but name and engine as key=value, sorted by the whole key

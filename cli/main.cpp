@@ -11,6 +11,7 @@
 #include "cli/run_command.hpp"
 #include "cli/run_driver.hpp"
 #include "cli/run_process.hpp"
+#include "cli/summary_line.hpp"
 #include "cli/sweep_mpi.hpp"
 #include "cli/tradeoff_command.hpp"
 #include "core/huge_pages.hpp"
@@ -38,33 +39,7 @@ namespace {
 
 void printRunSummary(const Scene& scene, const nlohmann::json& s,
                      const std::filesystem::path& out) {
-    std::printf("%s: %s, N = %d, %.3f ps simulated in %.2f CPU s (%.3f CPU s/ps)\n",
-                scene.name.c_str(), scene.engine.c_str(), s["n_bodies"].get<int>(),
-                s["simulated_ps"].get<double>(), s["cpu_seconds"].get<double>(),
-                s["cpu_seconds_per_ps"].get<double>());
-    if (s.contains("energy"))
-        std::printf("  T = %.1f K (target %.1f K), <U> = %.4f kJ/mol, energy rel. fluctuation "
-                    "%.3g, drift %.3g kJ/mol/ps\n",
-                    s["temperature_K"].get<double>(), s["temperature_target_K"].get<double>(),
-                    s["potential_energy_mean"].get<double>(),
-                    s["energy"]["rel_fluct"].get<double>(),
-                    s["energy"]["drift_per_ps"].get<double>());
-    if (s.contains("pressure") && s["pressure"].contains("mean_bar")) {
-        const auto& p = s["pressure"];
-        auto number = [](const nlohmann::json& x) { // a null error (one block) prints as nan
-            return x.is_number() ? x.get<double>() : std::numeric_limits<double>::quiet_NaN();
-        };
-        std::printf("  P = %.4g ± %.2g bar (P* = %.4g ± %.2g)\n", number(p["mean_bar"]),
-                    number(p["error_bar"]), number(p["mean_reduced"]), number(p["error_reduced"]));
-    }
-    if (s.contains("collisions_per_ps"))
-        std::printf("  %.4g collisions/ps, %.4g events per CPU s\n",
-                    s["collisions_per_ps"].get<double>(), s.value("events_per_cpu_second", 0.0));
-    if (s.value("interrupted", false))
-        std::printf("  interrupted by %s during %s\n",
-                    s.value("interrupted_by", std::string("a signal")).c_str(),
-                    s.value("interrupted_in", std::string("the run")).c_str());
-    std::printf("  output in %s/\n", out.c_str());
+    std::fputs(cli::runSummaryText(scene.name, s, out).c_str(), stdout);
 }
 
 /// `terrace COMMAND --help`.

@@ -32,8 +32,8 @@ nlohmann::json provenance(const Scene& scene) {
             {"date_utc", stamp}};
 }
 
-ProgressReporter::ProgressReporter(bool quiet, double endTime)
-    : quiet_(quiet), started_(wallNow()), last_(started_), endTime_(endTime) {}
+ProgressReporter::ProgressReporter(bool quiet, double endTime, const UnitSystem& units)
+    : quiet_(quiet), started_(wallNow()), last_(started_), endTime_(endTime), units_(units) {}
 
 void ProgressReporter::report(const char* phase, long done, long total, double time) {
     constexpr double everySeconds = 5.0; // quiet for short runs, a heartbeat for long ones
@@ -46,9 +46,9 @@ void ProgressReporter::report(const char* phase, long done, long total, double t
     if (time > phaseTime_ && endTime_ > time)
         std::snprintf(eta, sizeof eta, ", about %.0f s left",
                       (now - phaseWall_) / (time - phaseTime_) * (endTime_ - time));
-    std::fprintf(stderr, "terrace: %s %ld/%ld samples (%.0f%%), t = %.3f ps, %.0f s elapsed%s\n",
+    std::fprintf(stderr, "terrace: %s %ld/%ld samples (%.0f%%), t = %.3f %s, %.0f s elapsed%s\n",
                  phase, done, total, total > 0 ? 100.0 * double(done) / double(total) : 100.0,
-                 time * 0.1, now - started_, eta);
+                 units_.time(time * 0.1), units_.timeUnit(), now - started_, eta);
 }
 
 } // namespace terrace::cli

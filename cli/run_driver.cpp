@@ -3,7 +3,9 @@
 #include "analysis/cancellation.hpp"
 #include "analysis/conservation.hpp"
 #include "analysis/windowed_correlation.hpp"
+#include "cli/reduced_summary.hpp"
 #include "cli/thermo.hpp"
+#include "core/scene_units.hpp"
 #include "smd/parameters.hpp"
 #include <algorithm>
 #include <cmath>
@@ -91,7 +93,8 @@ RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxL
                      int rotationalDof, VirialKind virial)
     : sampleInterval(plan.sampleInterval), kT(scene.kT()), volume(std::pow(boxLength, 3)),
       virialKind(virial), bodies(n), dof(degreesOfFreedom(rotationalDof, n)),
-      restartEveryPs(scene.output.restart_every_ps), warnings(sceneWarnings(scene)) {
+      restartEveryPs(scene.output.restart_every_ps), warnings(sceneWarnings(scene)),
+      outputUnits(unitSystem(scene)) {
     if (plan.productionSamples + 1 >= 4)
         analysis = std::make_unique<analysis::RunAnalysis>(
             bodies, boxLength, units::toPs(plan.sampleInterval), plan.productionSamples + 1,
@@ -376,6 +379,14 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
                                        bool& analysed) {
     nlohmann::json summary = summaryOf(scene, run);
     summary["provenance"] = provenance(scene);
+    // Under lj the results in reduced units beside the real ones (cli/reduced_summary.hpp);
+    // under real the summary is as it always was.
+    const auto addReduced = [&] {
+        if (run.outputUnits.reduced())
+            summary["reduced"] = reducedSummary(summary, run.outputUnits);
+    };
+    if (run.outputUnits.reduced()) summary["units"] = run.outputUnits.name();
+    addReduced();
     analysed = !run.analysis || run.analysis->samples() < 4; // too few: nothing is due
     // Written before the analysis, so that a run killed during a long analysis keeps it.
     if (!analysed) summary["analysis"] = "not finished: the process ended during the analysis";
@@ -385,7 +396,7 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
         // A signal beyond those that stopped the run cancels the analysis.
         const analysis::ScopedCancellation hook([&] { return interrupt.count() > tolerated; });
         run.analysisClock.start();
-        summary["analysis"] = run.analysis->write(dir);
+        summary["analysis"] = run.analysis->write(dir, run.outputUnits);
         run.analysisClock.stop();
         summary["analysis_cpu_seconds"] = run.analysisClock.seconds();
         analysed = true;
@@ -411,6 +422,7 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
         summary["analysis"] = {{"error", e.what()}};
         std::fprintf(stderr, "terrace: warning: analysis failed: %s\n", e.what());
     }
+    addReduced(); // now with the analysis' diffusion
     writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
     return summary;
 }

@@ -93,7 +93,8 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
     if (at.inProduction) restarts.beginStretch(*engine);
     ProgressReporter progress(target.quiet,
                               double(plan.equilibrationTicks) * plan.thermostatInterval +
-                                  double(plan.productionSamples) * plan.sampleInterval);
+                                  double(plan.productionSamples) * plan.sampleInterval,
+                              run.outputUnits);
     CpuClock cpu;
     InterruptGuard interrupt;
     auto record = [&] {

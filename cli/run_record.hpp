@@ -105,6 +105,7 @@ struct RunRecord {
     std::uint64_t sceneChecksum = 0;   // CRC-64 of DIR/scene.json as the run wrote it
     double restartEveryPs = 0.0;       // 0: no restart files
     std::vector<std::string> warnings; // from the scene (sceneWarnings)
+    UnitSystem outputUnits;            // of thermo.csv, the CSVs and summary.json's "reduced"
 
     /// A record for a run of `bodies` bodies in a box of side boxLength (Å) under `plan`, with
     /// the analysis the scene asks for (none with fewer than 4 samples planned).

@@ -33,8 +33,9 @@ void writeFrame(const E& engine, int n, TrajectoryLayout layout, const PieceSink
 class SampleSink {
 public:
     SampleSink(const RunPlan& plan, int rotationalDof, RunRecord& run, RunFiles& files)
-        : plan_(plan), layout_(layoutFor(rotationalDof)), thermoLayout_{run.virialKind, run.volume,
-                                                                        run.dof, run.bodies},
+        : plan_(plan),
+          layout_(layoutFor(rotationalDof)), thermoLayout_{run.virialKind, run.volume, run.dof,
+                                                           run.bodies, run.outputUnits},
           run_(run), files_(files) {}
 
     /// Production begins: its files are opened empty in `dir` (thermo.csv with its header).

@@ -65,34 +65,59 @@ nlohmann::json pressureSummary(const PressureSeries& p, VirialKind kind, double 
 
 std::string thermoHeader(const ThermoLayout& layout) {
     const bool dmd = layout.kind == VirialKind::Impulse;
-    std::string text = "time_ps,kinetic_translational,kinetic_rotational,potential,"
-                       "potential_continuous,total,temperature_K,pressure_bar";
+    std::string text;
+    if (layout.units.reduced())
+        text = "time_tau,kinetic_translational_per_body,kinetic_rotational_per_body,"
+               "potential_per_body,potential_continuous_per_body,total_per_body,"
+               "temperature_reduced,pressure_reduced";
+    else
+        text = "time_ps,kinetic_translational,kinetic_rotational,potential,"
+               "potential_continuous,total,temperature_K,pressure_bar";
     text += dmd ? ",collisions\n" : "\n";
-    text += "# ps,kJ/mol,kJ/mol,kJ/mol,kJ/mol,kJ/mol,K,bar";
+    text += layout.units.reduced() ? "# tau,epsilon,epsilon,epsilon,epsilon,epsilon,T*,P*"
+                                   : "# ps,kJ/mol,kJ/mol,kJ/mol,kJ/mol,kJ/mol,K,bar";
     text += dmd ? ",count\n" : "\n";
-    text += "# energies of the whole system of " + std::to_string(layout.bodies) + " bodies; ";
-    text += dmd ? "potential terraced, potential_continuous the model's continuous U; "
-                  "pressure_bar and collisions over the interval since the previous row\n"
-                : "potential and potential_continuous the model's continuous U; pressure_bar "
-                  "at the row's instant\n";
+    if (layout.units.reduced())
+        text += "# energies per body of " + std::to_string(layout.bodies) + " in reduced units (" +
+                unitScale(layout.units) + "); ";
+    else
+        text += "# energies of the whole system of " + std::to_string(layout.bodies) + " bodies; ";
+    const std::string pressure = layout.units.reduced() ? "pressure_reduced" : "pressure_bar";
+    text += dmd ? "potential terraced, potential_continuous the model's continuous U; " + pressure +
+                      " and collisions over the interval since the previous row\n"
+                : "potential and potential_continuous the model's continuous U; " + pressure +
+                      " at the row's instant\n";
+    return text;
+}
+
+std::string unitScale(const UnitSystem& u) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "sigma = %.17g A, epsilon = %.17g kJ/mol, m = %.17g g/mol, "
+                  "tau = %.17g fs",
+                  u.sigma(), u.epsilon(), u.mass(), u.tauFs());
     return text;
 }
 
 std::string thermoRow(const SampleRecord& now, const SampleRecord* before,
                       double potentialContinuous, const ThermoLayout& layout) {
     const bool dmd = layout.kind == VirialKind::Impulse;
+    const UnitSystem& u = layout.units;
     const double pressure =
         dmd && !before
             ? std::numeric_limits<double>::quiet_NaN()
-            : units::bar(virialPressure(now.kineticTranslational,
+            : u.pressure(virialPressure(now.kineticTranslational,
                                         virialAt(now, before ? *before : now, layout.kind),
                                         layout.volume));
-    const double temperature = units::kelvin(2.0 * now.kinetic / layout.dof);
+    const double temperature = u.temperature(2.0 * now.kinetic / layout.dof);
+    // Under real every factor is 1, so the numbers are those written before units existed.
+    const double perBody = u.reduced() ? 1.0 / layout.bodies : 1.0;
+    auto energy = [&](double e) { return u.energy(e) * perBody; };
     std::string row;
     char field[32];
-    for (const double x :
-         {now.tPs, now.kineticTranslational, now.kinetic - now.kineticTranslational, now.potential,
-          potentialContinuous, now.total, temperature, pressure}) {
+    for (const double x : {u.time(now.tPs), energy(now.kineticTranslational),
+                           energy(now.kinetic - now.kineticTranslational), energy(now.potential),
+                           energy(potentialContinuous), energy(now.total), temperature, pressure}) {
         if (std::isfinite(x))
             std::snprintf(field, sizeof field, "%.17g", x);
         else

@@ -28,8 +28,13 @@
 //   collisions              DMD only: collisions (up, down, reflect) since the previous row, 0 on
 //                           the first
 // Numbers are written with 17 significant digits (exact on reading back).
+//
+// Under the scene's units lj (core/unit_system.hpp) the columns are time_tau, the energies per
+// body in ε with the suffix _per_body (as LAMMPS normalises thermo energies under its lj units),
+// temperature_reduced T* and pressure_reduced P*; the comment line names those units.
 #include "cli/restart.hpp"
 #include "core/pressure.hpp"
+#include "core/unit_system.hpp"
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -65,7 +70,11 @@ struct ThermoLayout {
     double volume = 0.0; // Å³
     int dof = 0;         // degrees of freedom of the temperature
     int bodies = 0;
+    UnitSystem units; // of the columns
 };
+
+/// The scale of reduced units in one line of ASCII (σ, ε, m, τ with 17 digits), for comments.
+std::string unitScale(const UnitSystem& u);
 
 /// thermo.csv's header: the column names, then its comment lines.
 std::string thermoHeader(const ThermoLayout& layout);

@@ -588,6 +588,12 @@ int runTradeoff(const TradeoffOptions& options) {
     t.scene = options.scenePath.empty() ? sceneFromJson(nlohmann::json::object(),
                                                         "<built-in default scene>", options.sets)
                                         : loadScene(options.scenePath.string(), options.sets);
+    // Its runs' CSVs are read by their real-unit columns (t_ps), and its tolerances and report
+    // are in real units: a scene in reduced units would fail every run one by one.
+    if (t.scene.units != "real")
+        throw SceneError("units: terrace tradeoff measures in real units; leave units out (or "
+                         "set units=real): state.temperature and state.density are reduced "
+                         "under both");
     t.biasBodies = options.biasN > 0 ? options.biasN : t.scene.state.n;
     const std::string biasSet =
         options.biasN > 0 ? "state.n=" + std::to_string(options.biasN) : std::string();

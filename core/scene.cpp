@@ -6,6 +6,7 @@
 #include "core/initial_state.hpp"
 #include "core/scene_json.hpp"
 #include "core/scene_sections.hpp"
+#include "core/scene_units.hpp"
 #include "core/utf8.hpp"
 #include <cerrno>
 #include <cmath>
@@ -41,12 +42,17 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     json j = input;
     const JsonSection top(j, "", origin);
     if (!j.is_object()) top.refuse("<top>", "a scene must be a JSON object");
-    for (const auto& o : overrides)
+    std::vector<std::string> overridden;
+    for (const auto& o : overrides) {
         applyOverride(j, o, origin);
-    top.onlyKeys({"name", "seed", "body", "potential", "state", "engine", "dmd", "smd", "run",
-                  "output", "analysis"});
+        if (const auto parsed = parseOverride(o)) overridden.push_back(parsed->first);
+    }
+    top.onlyKeys({"name", "seed", "units", "body", "potential", "state", "engine", "dmd", "smd",
+                  "run", "output", "analysis"});
     Scene s;
     detail::readIdentity(top, s);
+    s.units = top.choice("units", s.units, {"real", "lj"});
+    if (s.units == "lj") keepOverriddenTwins(j, overridden); // --set run.time replaces time_ps
     const JsonSection body = top.section("body");
     detail::readBody(body, s);
     detail::readPotential(top.section("potential"), s);
@@ -55,14 +61,23 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     else if (body.has("sites"))
         body.fail("sites", "only meaningful for potential.kind sites");
     detail::checkInertia(body, s);
-    detail::readState(top.section("state"), s);
-    detail::checkRepresentable(top, s);
-    s.engine = top.choice("engine", s.engine, {"dmd", "smd"});
-    s.dmd = top.section("dmd").object(); // read by dmd/section.hpp
-    s.smd = top.section("smd").object(); // read by smd/parameters.hpp
-    detail::readRun(top.section("run"), s);
-    detail::readOutput(top.section("output"), s);
-    detail::readAnalysis(top.section("analysis"), s);
+    // The model now gives the scale: every later key is converted to real units before its
+    // reader sees it, so readers and engines never meet reduced numbers.
+    const UnitSystem u = unitSystem(s);
+    sceneKeysToReal(j, u, origin);
+    try {
+        detail::readState(top.section("state"), s);
+        detail::checkRepresentable(top, s);
+        s.engine = top.choice("engine", s.engine, {"dmd", "smd"});
+        s.dmd = top.section("dmd").object(); // read by dmd/section.hpp
+        s.smd = top.section("smd").object(); // read by smd/parameters.hpp
+        detail::readRun(top.section("run"), s);
+        detail::readOutput(top.section("output"), s);
+        detail::readAnalysis(top.section("analysis"), s);
+    } catch (const SceneError& e) {
+        if (!u.reduced()) throw;
+        throw SceneError(std::string(e.what()) + reducedNote(u)); // its numbers are converted
+    }
     return s;
 }
 
@@ -95,6 +110,7 @@ json toJson(const Scene& s) {
     json j;
     j["name"] = s.name;
     j["seed"] = s.seed;
+    if (s.units != "real") j["units"] = s.units; // absent under real: scene.json as it was
     j["body"] = {{"kind", s.body.kind}, {"mass", s.body.mass}, {"inertia", v3(s.body.inertia)}};
     j["potential"] = {
         {"kind", s.potential.kind}, {"epsilon", s.potential.epsilon}, {"sigma", s.potential.sigma}};
@@ -155,6 +171,7 @@ json toJson(const Scene& s) {
                      {"rdf_every", s.analysis.rdf_every},
                      {"follow_bodies", s.analysis.follow_bodies},
                      {"lags_per_level", s.analysis.lags_per_level}};
+    sceneKeysFromReal(j, unitSystem(s));
     return j;
 }
 

@@ -49,6 +49,9 @@ struct SiteSpec {
 struct Scene {
     std::string name = "dense-rods";
     std::uint64_t seed = 1;
+    // real | lj: the units the keys below are read in and the results written in
+    // (core/scene_units.hpp). The fields always hold real units, whatever the scene was written in.
+    std::string units = "real";
 
     struct Body {
         std::string kind = "linear";     // sphere | linear | symmetric | asymmetric

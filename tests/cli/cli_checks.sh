@@ -1213,6 +1213,52 @@ tradeoff)
     python3 "$src/tests/cli/tradeoff_recheck.py" check "$work/t/tradeoff.json" "$work/re" ||
         fail "a chosen setting's bias is outside its tolerance in independent runs"
     ;;
+units)
+    # Reduced units (docs/UNITS.md): the LJ liquid under units lj prints T*, U/N in ε beside the
+    # total, and P*; summary.json has a "reduced" entry; thermo.csv and the analysis' CSVs are
+    # in τ, σ and ε per body; scene.json records the units. Unit-free twins of named-unit keys
+    # are read in τ under lj and unknown under real; the real run prints U/N beside <U>.
+    scene=$src/experiments/scenes/lj-liquid.json
+    "$terrace" run "$scene" --set units=lj --set state.temperature=2 --set output.thermo_every=0.9 \
+        --set output.trajectory_every=0.9 --quiet --out "$work/lj" >"$work/lj.log" ||
+        fail "lj run failed: $(cat "$work/lj.log")"
+    sed -n 1p "$work/lj.log" | grep -q 'N = 256, 27 τ (τ = 100 fs) simulated' ||
+        fail "no time in τ: $(cat "$work/lj.log")"
+    sed -n 2p "$work/lj.log" | grep -Eq '^  T\* = [0-9.]+ \(target 2\), U/N = -[0-9.]+ ε \(U = -[0-9.e+]+ ε\)' ||
+        fail "no T*, U/N in ε: $(cat "$work/lj.log")"
+    sed -n 3p "$work/lj.log" | grep -Eq '^  P\* = [0-9.]+ ± [0-9.e-]+$' || fail "no P*: $(cat "$work/lj.log")"
+    grep -q ' K\b\|kJ/mol\|bar' "$work/lj.log" && fail "real units in the lj line: $(cat "$work/lj.log")"
+    grep -q '"units": "lj"' "$work/lj/summary.json" || fail "summary.json lacks units"
+    for key in temperature_target potential_energy_per_body pressure simulated_tau einstein; do
+        grep -Eq "\"$key\": [-0-9]" "$work/lj/summary.json" || fail "summary.json lacks reduced $key"
+    done
+    grep -q '"temperature_target": 2.0' "$work/lj/summary.json" || fail "T* target is not 2"
+    grep -q '"units": "lj"' "$work/lj/scene.json" || fail "scene.json lacks units"
+    for f in rdf.csv:r_sigma,g,err vacf.csv:t_tau,c,err msd.csv:t_tau,msd_sigma2,err \
+        thermo.csv:time_tau,kinetic_translational_per_body; do
+        head -n 1 "$work/lj/${f%%:*}" | grep -q "^${f#*:}" ||
+            fail "${f%%:*} header: $(head -n 1 "$work/lj/${f%%:*}")"
+    done
+    # terrace analyse rewrites the CSVs in the run's units
+    "$terrace" analyse "$work/lj" >/dev/null || fail "analyse failed"
+    head -n 1 "$work/lj/msd.csv" | grep -q '^t_tau,msd_sigma2,err$' || fail "analyse: msd.csv in real units"
+    # thermo rows every 0.9 τ, T* = 2 at production's start (the thermostat's last rescaling)
+    awk -F, '/^#/ || NR == 1 { next } !n++ { exit !($1 == 0 && $7 > 1.999 && $7 < 2.001) }' \
+        "$work/lj/thermo.csv" || fail "thermo.csv's first row: $(sed -n 4p "$work/lj/thermo.csv")"
+    [ "$(grep -vc "^#" "$work/lj/thermo.csv")" -eq 32 ] || fail "thermo.csv: not a header and 31 rows"
+    "$terrace" run "$scene" --set state.temperature=2 --set run.time_ps=0.27 --quiet \
+        --out "$work/real" >"$work/real.log" || fail "real run failed"
+    grep -Eq '^  T = [0-9.]+ K \(target 240.5 K\), <U>/N = -[0-9.]+ kJ/mol \(<U> = -[0-9.]+ kJ/mol\)' \
+        "$work/real.log" || fail "real line: $(cat "$work/real.log")"
+    expect_error "$scene" "run.time: unknown key; did you mean run.time_ps?" --set run.time=27
+    expect_error "$scene" "run.time: and run.time_ps set the same value: give one of them" \
+        --set units=lj --set run.time=27 --set run.time_ps=2.7
+    expect_error "$scene" "(units lj: τ = 100 fs, σ = 1 Å, ε = 1 kJ/mol;" --set units=lj --set run.time=0.01
+    err=$("$terrace" tradeoff "$scene" --set units=lj --out "$work/t" 2>&1) && fail "tradeoff ran under lj"
+    [[ $err == *"units: terrace tradeoff measures in real units; leave units out"* ]] ||
+        fail "tradeoff under lj: $err"
+    [ ! -e "$work/t" ] || fail "tradeoff wrote under lj"
+    ;;
 *)
     fail "unknown check"
     ;;

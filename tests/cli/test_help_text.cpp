@@ -36,3 +36,9 @@ TEST(HelpText, EachCommandsOptionsAreListed) {
             EXPECT_NE(listed.find("\n  " + o + " "), std::string::npos) << command << " " << o;
     }
 }
+
+TEST(HelpText, RunNamesTheUnits) {
+    const std::string help = commandHelp("run");
+    for (const char* needle : {"units=lj", "T*, U/N in ε", "docs/UNITS.md", "run.time_ps"})
+        EXPECT_NE(help.find(needle), std::string::npos) << needle;
+}
