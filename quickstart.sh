@@ -34,12 +34,13 @@ run_packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev
 #   few libraries. Without it that check is skipped, saying so;
 # - pybind11-dev, python3-dev, python3-numpy: the Python module terrace (python/), which a
 #   build without them leaves out and says so; python3-pytest: its tests (python/tests);
+# - ccache: a compiler cache for the two builds (build() below);
 # - clang, libclang-rt-14-dev: the sanitiser tier's compiler and its runtimes (libFuzzer among
 #   them, which clang only recommends); llvm-14: llvm-symbolizer, so that a sanitiser's report
 #   names files and lines.
 test_packages=(git libgtest-dev libgmock-dev libbenchmark-dev python3-ase python3-gsd libopenmpi-dev
-               openmpi-bin lammps pybind11-dev python3-dev python3-numpy python3-pytest clang
-               libclang-rt-14-dev llvm-14)
+               openmpi-bin lammps pybind11-dev python3-dev python3-numpy python3-pytest ccache
+               clang libclang-rt-14-dev llvm-14)
 
 jobs=$(nproc)
 # Debian's interpreter, which python3-numpy and pybind11-dev serve (a python3 of pyenv or a venv
@@ -98,6 +99,14 @@ step_table() {
 
 # build DIR TARGET... with the given cmake options before `--`: configure, then build the targets
 # (none: all).
+# A compiler cache where one is installed (Debian's ccache; `test` installs it): a second build of
+# the same sources, in this checkout or a clone elsewhere (CCACHE_BASEDIR: paths below the
+# checkout count relative to it), takes the objects from the cache. CCACHE_DISABLE=1 builds
+# without it.
+if [ -z "${CMAKE_CXX_COMPILER_LAUNCHER:-}" ] && command -v ccache >/dev/null; then
+    export CMAKE_CXX_COMPILER_LAUNCHER=ccache CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
+    export CCACHE_NOHASHDIR=1
+fi
 build() {
     local dir=$1 options=() targets=()
     shift
