@@ -38,6 +38,23 @@ void expectEstimateNearPeak(const std::string& engine) {
     EXPECT_GT(estimate.total(), peak / estimateFactor) << engine;
 }
 
+/// Lowers the address-space limit (ulimit -v) to `bytes` for its lifetime.
+class AddressSpaceLimit {
+public:
+    explicit AddressSpaceLimit(rlim_t bytes) {
+        EXPECT_EQ(getrlimit(RLIMIT_AS, &before_), 0);
+        rlimit limited = before_;
+        limited.rlim_cur = std::min<rlim_t>(before_.rlim_max, bytes);
+        EXPECT_EQ(setrlimit(RLIMIT_AS, &limited), 0);
+    }
+    ~AddressSpaceLimit() { EXPECT_EQ(setrlimit(RLIMIT_AS, &before_), 0); }
+    AddressSpaceLimit(const AddressSpaceLimit&) = delete;
+    AddressSpaceLimit& operator=(const AddressSpaceLimit&) = delete;
+
+private:
+    rlimit before_{};
+};
+
 } // namespace
 
 TEST(ResourceCheck, TheDmdMemoryEstimateIsWithinAFactorOfThePeakRss) {
@@ -51,13 +68,9 @@ TEST(ResourceCheck, TheSmdMemoryEstimateIsWithinAFactorOfThePeakRss) {
 TEST(ResourceCheck, AnAbsurdBodyCountIsRefusedAtOnceNamingTheEstimate) {
     // 10^8 bodies (6·10^7 for DMD, below its body limit): 50-60 GiB; under an address-space limit
     // of 8 GiB, so that a machine with that much memory refuses them too.
-    rlimit before{};
-    ASSERT_EQ(getrlimit(RLIMIT_AS, &before), 0);
-    rlimit limited = before;
-    limited.rlim_cur = std::min<rlim_t>(before.rlim_max, rlim_t(8) << 30);
-    ASSERT_EQ(setrlimit(RLIMIT_AS, &limited), 0);
     const auto start = std::chrono::steady_clock::now();
     const double rssBefore = peakRssBytes();
+    const AddressSpaceLimit limited(rlim_t(8) << 30);
     for (const auto& [engine, n] :
          {std::pair<std::string, std::string>{"dmd", "60000000"}, {"smd", "100000000"}}) {
         const Scene s = scene({"engine=" + engine, "state.n=" + n});
@@ -75,20 +88,16 @@ TEST(ResourceCheck, AnAbsurdBodyCountIsRefusedAtOnceNamingTheEstimate) {
         }
         EXPECT_FALSE(std::filesystem::exists(dir));
     }
-    ASSERT_EQ(setrlimit(RLIMIT_AS, &before), 0);
     // Nothing of the bodies was allocated (~50 GB), and the check took no time.
     EXPECT_LT(peakRssBytes() - rssBefore, 64.0 * (1 << 20));
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
 TEST(ResourceCheck, AnAddressSpaceLimitIsRoomTooAndNamed) {
-    rlimit before{};
-    ASSERT_EQ(getrlimit(RLIMIT_AS, &before), 0);
-    rlimit limited = before;
-    limited.rlim_cur = std::min<rlim_t>(before.rlim_max, rlim_t(1) << 30);
-    ASSERT_EQ(setrlimit(RLIMIT_AS, &limited), 0);
-    const cli::MemoryRoom room = cli::availableMemory();
-    ASSERT_EQ(setrlimit(RLIMIT_AS, &before), 0);
+    const cli::MemoryRoom room = [] {
+        const AddressSpaceLimit limited(rlim_t(1) << 30);
+        return cli::availableMemory();
+    }();
     EXPECT_EQ(room.whose, "ulimit -v leaves");
     EXPECT_GT(room.bytes, 0.0);
     EXPECT_LT(room.bytes, 1.0 * (1 << 30)); // less what is mapped already

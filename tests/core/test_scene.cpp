@@ -2,6 +2,7 @@
 #include "core/measure.hpp"
 #include "core/scene.hpp"
 #include "core/utf8.hpp"
+#include "tests/core/scene_errors.hpp"
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -12,14 +13,7 @@ using nlohmann::json;
 
 namespace {
 
-std::string errorOf(const json& j, const std::vector<std::string>& overrides = {}) {
-    try {
-        sceneFromJson(j, "test.json", overrides);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "";
-}
+using scene_tests::errorOf;
 
 std::filesystem::path sourceDir() {
     return std::filesystem::path(TERRACE_SOURCE_DIR);

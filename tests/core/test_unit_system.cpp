@@ -4,6 +4,7 @@
 #include "core/scene.hpp"
 #include "core/scene_units.hpp"
 #include "core/unit_system.hpp"
+#include "tests/core/scene_errors.hpp"
 #include <gtest/gtest.h>
 #include <random>
 
@@ -15,14 +16,7 @@ namespace {
 /// Argon's usual LJ parameters: σ 3.405 Å, ε/k_B 119.8 K, m 39.948 g/mol.
 constexpr double argonSigma = 3.405, argonEpsilon = 119.8 * units::kB, argonMass = 39.948;
 
-std::string errorOf(const json& j, const std::vector<std::string>& overrides = {}) {
-    try {
-        sceneFromJson(j, "test.json", overrides);
-    } catch (const SceneError& e) {
-        return e.what();
-    }
-    return "";
-}
+using scene_tests::errorOf;
 
 /// A small LJ liquid in real units, as experiments/scenes/lj-liquid.json (σ = ε = m = 1: τ is
 /// the internal time unit, 100 fs).
