@@ -125,7 +125,8 @@ std::string deckHeader(const Scene& scene, const LammpsDeck& deck, const Timing&
         o << "# Mapped: " << m << "\n";
     for (const std::string& n : deck.notes)
         o << "# Differs from terrace: " << n << "\n";
-    o << "# Run: lmp -in in.terrace (in this directory); -var steps 0 evaluates the first frame "
+    o << "# Run: lmp -in in.terrace (in this directory); -var equilibrate 0 -var steps 0 evaluates "
+         "the first frame "
          "only.\n"
       << "variable        equilibrate index " << t.equilibrate << "\n"
       << "variable        steps index " << t.production << "\n"

@@ -9,6 +9,7 @@
 // the file has and the same range, LAMMPS's nodes are the file's values: its spline through the
 // file is evaluated at the file's own abscissae. Values are kept in kJ/mol and kJ/mol/Å; the file
 // is written in LAMMPS's real units (kcal/mol, kcal/mol/Å).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -43,7 +44,8 @@ struct RadialTable {
             throw std::domain_error("a pair at " + std::to_string(std::sqrt(rsq)) +
                                     " Å lies inside the table's inner end " + std::to_string(rLow) +
                                     " Å");
-        const int k = static_cast<int>((rsq - inner) * inverse);
+        // rsq a few ulp below r_hi² can round onto the last node: its interval is the last one.
+        const int k = std::min(static_cast<int>((rsq - inner) * inverse), points() - 2);
         const double fraction = (rsq - (inner + k * spacing())) * inverse;
         return u[k] + fraction * (u[k + 1] - u[k]);
     }

@@ -12,6 +12,7 @@
 #include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+#include <stdexcept>
 
 namespace py = pybind11;
 
@@ -59,7 +60,22 @@ struct PySimulation {
     double sampleInterval = 0.0; // time units, as the CLI's run plan has it
     double intervalStart = 0.0;  // time units
     double virialAtStart = 0.0;
+    // True while advance runs with the GIL released. Read and written with the GIL held only, so
+    // another thread's call meanwhile sees it and is refused instead of racing the engine.
+    bool advancing = false;
 };
+
+/// `p`, refused while another thread advances it.
+const PySimulation& idle(const PySimulation& p) {
+    if (p.advancing)
+        throw std::runtime_error("this Simulation is being advanced by another thread: one "
+                                 "thread at a time");
+    return p;
+}
+PySimulation& idle(PySimulation& p) {
+    idle(static_cast<const PySimulation&>(p));
+    return p;
+}
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
@@ -71,7 +87,12 @@ void advance(PySimulation& p, double ps) {
     if (!(ps >= 0.0) || !std::isfinite(ps))
         throw std::invalid_argument("advance: ps must be a finite time >= 0, got " +
                                     std::to_string(ps));
-    Simulation& sim = *p.sim;
+    Simulation& sim = *idle(p).sim;
+    p.advancing = true;
+    struct Done {
+        bool& flag;
+        ~Done() { flag = false; }
+    } done{p.advancing};
     p.intervalStart = sim.time();
     p.virialAtStart = sim.virial();
     const double grid = p.sampleInterval;
@@ -91,7 +112,7 @@ void advance(PySimulation& p, double ps) {
 
 /// P in bar: SMD's at the instant; DMD's over the last advance (NaN before one).
 double pressureBar(const PySimulation& p) {
-    const Simulation& sim = *p.sim;
+    const Simulation& sim = *idle(p).sim;
     const double volume = std::pow(p.scene.boxLength(), 3);
     double w = sim.virial();
     if (sim.virialKind() == VirialKind::Impulse) {
@@ -135,28 +156,28 @@ void bindSimulation(py::module_& m) {
              }),
              py::arg("scene"))
         .def("advance", &advance, py::arg("ps"))
-        .def_property_readonly("time_ps",
-                               [](const PySimulation& p) { return units::toPs(p.sim->time()); })
-        .def("state", [](const PySimulation& p) { return state(p.sim->snapshot()); })
+        .def_property_readonly(
+            "time_ps", [](const PySimulation& p) { return units::toPs(idle(p).sim->time()); })
+        .def("state", [](const PySimulation& p) { return state(idle(p).sim->snapshot()); })
         .def("positions",
-             [](const PySimulation& p) { return vectors(p.sim->positions().position, 1.0); })
+             [](const PySimulation& p) { return vectors(idle(p).sim->positions().position, 1.0); })
         .def("energies", [](const PySimulation& p) { return energies(*p.sim); })
         .def("pressure_bar", &pressureBar)
         .def("temperature_K",
              [](const PySimulation& p) {
-                 const double dof = double(3 + p.sim->rotationalDof()) * p.bodies - 3.0;
-                 return units::kelvin(2.0 * p.sim->kineticEnergy() / dof);
+                 const double dof = double(3 + idle(p).sim->rotationalDof()) * p.bodies - 3.0;
+                 return units::kelvin(2.0 * idle(p).sim->kineticEnergy() / dof);
              })
         .def("rescale_temperature",
              [](PySimulation& p, std::optional<double> kelvin) {
-                 p.sim->rescaleTemperature(kelvin ? *kelvin * units::kB : p.scene.kT());
+                 idle(p).sim->rescaleTemperature(kelvin ? *kelvin * units::kB : p.scene.kT());
              })
         .def("momentum",
              [](const PySimulation& p) {
-                 const Vec3 v = p.sim->totalMomentum() / units::psPerTimeUnit;
+                 const Vec3 v = idle(p).sim->totalMomentum() / units::psPerTimeUnit;
                  return std::vector<double>{v.x(), v.y(), v.z()};
              })
-        .def("statistics", [](const PySimulation& p) { return p.sim->statistics().dump(); });
+        .def("statistics", [](const PySimulation& p) { return idle(p).sim->statistics().dump(); });
 }
 
 } // namespace terrace::python

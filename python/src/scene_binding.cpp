@@ -54,6 +54,7 @@ void bindScene(py::module_& m) {
             target.quiet = quiet;
             // The run installs its own signal handlers (cli/interrupt.hpp) for its duration.
             const py::gil_scoped_release free;
+            const std::lock_guard one(runLock());
             return cli::runScene(s.scene, target);
         },
         py::arg("scene"), py::arg("dir"), py::arg("overwrite"), py::arg("quiet"));
@@ -62,6 +63,7 @@ void bindScene(py::module_& m) {
         [](const std::string& dir, bool quiet) {
             Scene scene;
             const py::gil_scoped_release free;
+            const std::lock_guard one(runLock());
             return cli::continueRun(dir, quiet, scene);
         },
         py::arg("dir"), py::arg("quiet"));

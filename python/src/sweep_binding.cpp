@@ -59,6 +59,7 @@ void bindSweep(py::module_& m) {
                                          "TERRACE_EXECUTABLE)");
             cli::setRunExecutable(executable);
             const py::gil_scoped_release free;
+            const std::lock_guard one(runLock());
             return cli::runSweep(plan, options);
         },
         py::arg("file"), py::arg("sets"), py::arg("out"), py::arg("jobs"), py::arg("quiet"),

@@ -32,6 +32,9 @@ class Result:
     thermo  time_ps, kinetic_translational, ..., pressure_bar (None unless
             output.thermo_every_fs was set)
 
+    These are the columns under units "real". A run under units "lj" names them in reduced
+    units (r_sigma, t_tau, msd_sigma2, time_tau, temperature_reduced, ...; docs/UNITS.md).
+
     summary is summary.json as a dict (pressure, temperature_K, energy, the engine's counters,
     cpu_seconds, provenance, ...); scene is the resolved scene the run ran (scene.json).
     An interrupted run (Ctrl-C, a time limit) reads the same, with summary["interrupted"] true

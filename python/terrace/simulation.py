@@ -37,6 +37,11 @@ class Simulation:
     State is read as copies (state(), positions()): an engine keeps its bodies in an order of its
     own and in its internal units, so the arrays are made per call, in the scene's numbering and
     in Å, ps; each array owns its memory (no second copy is made for NumPy).
+
+    One thread at a time: advance() lets other Python threads run while the engine works, and a
+    call on the same Simulation from one of them meanwhile raises RuntimeError. Runs and sweeps
+    (terrace.run, terrace.sweep) go one at a time in a process, each waiting for the last: they
+    hold the process's signal handlers for their duration.
     """
 
     def __init__(self, scene=None):

@@ -131,6 +131,24 @@ def test_ctrl_c_interrupts_advance(scene):
     sim.advance(0.009)  # usable afterwards
 
 
+def test_another_thread_is_refused_while_one_advances():
+    """advance() releases the GIL; a call from another thread meanwhile is refused, not raced."""
+    import threading
+    sim = terrace.Simulation(terrace.Scene(DENSE_RODS, SMALL, engine="dmd"))
+    worker = threading.Thread(target=sim.advance, args=(20.0,))
+    worker.start()
+    refused = None
+    while worker.is_alive() and refused is None:
+        try:
+            sim.state()
+        except RuntimeError as e:
+            refused = str(e)
+    worker.join()
+    assert refused is not None and "another thread" in refused
+    assert sim.time == pytest.approx(20.0)
+    sim.state()  # usable again once the advance has ended
+
+
 def test_help_shows_docstrings():
     assert "advance" in terrace.Simulation.__doc__
     assert "bit for bit" in terrace.run.__doc__

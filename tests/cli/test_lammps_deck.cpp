@@ -148,7 +148,6 @@ TEST(LammpsDeck, LennardJonesSpheresCarryTerracesStateInRealUnits) {
     EXPECT_TRUE(std::isfinite(deck.energyTerrace));
     EXPECT_NEAR(deck.energyDeck, deck.energyTerrace, 1e-6 * std::abs(deck.energyTerrace));
     EXPECT_NE(deck.energyDeck, deck.energyTerrace); // a table is not the formula
-    EXPECT_NEAR(deck.energyTerrace, potentialEnergyAllPairs(sys), 1e-9 * 500);
     EXPECT_NE(deck.input.find("pair_style      table linear " + std::to_string(deck.tablePoints)),
               std::string::npos);
     EXPECT_NE(deck.input.find("pair_coeff      1 1 pair.table TERRACE_LJ 3\n"), std::string::npos);
@@ -265,6 +264,7 @@ TEST(LammpsDeck, LammpsGayBerneWithTheDecksParametersIsTerraces) {
     gb.nu = 1.0;
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> radius(3.2, 12.0);
+    int compared = 0;
     for (int k = 0; k < 200; ++k) {
         const Vec3 ui = detail::randomUnitVector(rng), uj = detail::randomUnitVector(rng);
         const Vec3 rij = radius(rng) * detail::randomUnitVector(rng);
@@ -275,7 +275,9 @@ TEST(LammpsDeck, LammpsGayBerneWithTheDecksParametersIsTerraces) {
                            0.5 * gb.kappa * gb.sigma, 1.0, gb.nu, gb.mu, 1.0, 1.0 / gb.kappaPrime);
         EXPECT_NEAR(lammps, terrace, 1e-10 * (1.0 + std::abs(terrace)))
             << rij.transpose() << " | " << ui.transpose() << " | " << uj.transpose();
+        ++compared;
     }
+    EXPECT_GT(compared, 150); // most pairs at 3.2-12 Å do not overlap
 }
 
 TEST(LammpsDeck, GayBerneDeckWritesEllipsoidsAndTheirParameters) {
@@ -338,7 +340,6 @@ TEST(LammpsDeck, GayBerneDeckWritesEllipsoidsAndTheirParameters) {
             if (rij.norm() < 12.0) bare += model.bare.energy(rij, sys.bodies[i].s, sys.bodies[k].s);
         }
     EXPECT_NEAR(deck.energyDeck, bare, 1e-12 * std::abs(bare));
-    EXPECT_NEAR(deck.energyTerrace, potentialEnergyAllPairs(sys), 1e-12 * std::abs(bare));
 }
 
 TEST(LammpsDeck, SiteMoleculesAreRigidBodiesOfSiteAtoms) {
