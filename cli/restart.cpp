@@ -14,10 +14,10 @@ namespace {
 /// A record's numbers in the order they are stored.
 template <class R, class F> void forEachNumber(R& e, F&& f) {
     f(e.time), f(e.tPs), f(e.total), f(e.potential), f(e.kinetic), f(e.kineticTranslational);
-    f(e.virial), f(e.collisions), f(e.continuousPotential), f(e.continuousVirial);
+    f(e.virial), f(e.collisions), f(e.continuousPotential), f(e.continuousVirial), f(e.bath);
 }
 
-constexpr std::size_t recordBytes = 10 * sizeof(double);
+constexpr std::size_t recordBytes = 11 * sizeof(double);
 
 } // namespace
 

@@ -12,7 +12,8 @@
 //                       as the run wrote it, N, the engine), phase (equilibration | production),
 //                       the number of thermostat ticks or samples done, the bodies (every number of
 //                       their states as raw bytes: exact, and compact), the engine's checkpoint
-//                       (DMD: clock, pair terraces as raw bytes, horizon stream; SMD: step count),
+//                       (DMD: clock, pair terraces as raw bytes, horizon stream; SMD: step count;
+//                       both: the heat bath's stream, energy and clock when run.heat_bath is set),
 //                       the run's accumulators (production start, initial momentum, production
 //                       statistics, CPU seconds), the lengths of trajectory.xyz and thermo.csv at
 //                       that point with the checksums of their tails, and, in production:
@@ -22,7 +23,7 @@
 //                                   spectra and sums, the block counts): their size is fixed by
 //                                   the settings, the followed bodies and g(r)'s bins, whatever
 //                                   the run's length;
-//                         records   the production samples' energies (SampleRecord, 80 bytes a
+//                         records   the production samples' energies (SampleRecord, 88 bytes a
 //                                   sample, raw), which summary.json's statistics and errors are
 //                                   computed from over the samples the run ends with.
 //
@@ -49,9 +50,10 @@ namespace terrace::cli {
 /// Version 2: samples.bin records carry K_trans, W and the collision count, and restart.bin the
 /// length of thermo.csv. Version 3: the DMD checkpoint's pair terraces are raw bytes
 /// (dmd/engine_start.hpp). Version 5: the checksum trailer and the run's identity. Version 6: the
-/// analysis' state and the samples' records in restart.bin, no samples.bin. Files of another
+/// analysis' state and the samples' records in restart.bin, no samples.bin. Version 7: the records
+/// carry the heat bath's energy, and the engines' checkpoints its state. Files of another
 /// version are refused, naming both versions.
-inline constexpr const char* restartFormat = "terrace restart 6";
+inline constexpr const char* restartFormat = "terrace restart 7";
 
 /// CRC-64/XZ (ECMA-182 polynomial, reflected, all ones in and out) of `bytes`, continuing from
 /// `crc` (the value returned for the bytes before them; 0 to start).
@@ -74,9 +76,12 @@ struct SampleRecord {
     // kJ/mol, taken on g(r) frames; NaN on the other samples.
     double continuousPotential = std::numeric_limits<double>::quiet_NaN();
     double continuousVirial = std::numeric_limits<double>::quiet_NaN();
+    // Kinetic energy the heat bath has taken out since the run began (0 without one): total + bath
+    // is the conserved effective energy of a thermostatted run.
+    double bath = 0.0;
 };
 
-/// The records as raw bytes (10 doubles each, in SampleRecord's order): exact, and compact in
+/// The records as raw bytes (11 doubles each, in SampleRecord's order): exact, and compact in
 /// CBOR.
 nlohmann::json recordsToBinary(const std::vector<SampleRecord>& records);
 /// The records of recordsToBinary; std::runtime_error when the bytes are not whole records.

@@ -10,8 +10,11 @@ RunOutcome runDmd(const Scene& scene, const RunTarget& target) {
         using M = std::remove_const_t<decltype(model)>;
         using E = dmd::Engine<K, M>;
         // Read once: every engine of the run (restart points rebuild it) takes a copy.
-        const dmd::DmdSettings settings =
-            dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
+        const dmd::DmdSettings settings = [&] {
+            dmd::DmdSettings s = dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
+            s.bath = heatBathOf(scene);
+            return s;
+        }();
         auto make = [&settings, seed = scene.seed](System<K, M>&& system,
                                                    nlohmann::json* checkpoint) {
             if (!checkpoint) return std::make_unique<E>(std::move(system), settings, seed);

@@ -3,6 +3,7 @@
 #include "analysis/cancellation.hpp"
 #include "analysis/conservation.hpp"
 #include "analysis/windowed_correlation.hpp"
+#include "cli/heat_bath_summary.hpp"
 #include "cli/reduced_summary.hpp"
 #include "cli/thermo.hpp"
 #include "core/scene_units.hpp"
@@ -92,7 +93,8 @@ double analysisBytes(const Scene& scene) {
 RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxLength,
                      int rotationalDof, VirialKind virial)
     : sampleInterval(plan.sampleInterval), kT(scene.kT()), volume(std::pow(boxLength, 3)),
-      virialKind(virial), bodies(n), dof(degreesOfFreedom(rotationalDof, n)),
+      virialKind(virial), bodies(n),
+      dof(heatBathDof(heatBathOf(scene).kind, rotationalDof, n)), heatBath(heatBathOf(scene).on()),
       restartEveryPs(scene.output.restart_every_ps), warnings(sceneWarnings(scene)),
       outputUnits(unitSystem(scene)) {
     if (plan.productionSamples + 1 >= 4)
@@ -281,7 +283,9 @@ void addEnergy(nlohmann::json& summary, const RunRecord& run) {
     summary["potential_energy_mean"] = mean(potential);
     summary["potential_energy_std"] = uStd;
     summary["potential_energy_err"] = orNull(analysis::blockMean(potential, pressureBlocks).err);
-    if (es.maxAbsDev > energyWanderWarning * keMean) {
+    // Under a heat bath H is not conserved: the effective energy is judged instead
+    // (cli/heat_bath_summary.hpp).
+    if (!run.heatBath && es.maxAbsDev > energyWanderWarning * keMean) {
         char text[256];
         std::snprintf(text, sizeof text,
                       "total energy wandered by %.3g kJ/mol, %.2g%% of the kinetic energy: the "
@@ -348,6 +352,7 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     // Of the whole process, at the end of the engine that held most (core/huge_pages.hpp).
     summary["memory_in_huge_pages_bytes"] = run.hugePageBytes;
     addEnergy(summary, run);
+    if (run.heatBath) summary["heat_bath"] = heatBathSummary(scene, run, summary["warnings"]);
     if (!run.records.empty())
         summary["pressure"] =
             pressureSummary(pressureSeries(run.records, run.virialKind, run.volume), run.virialKind,

@@ -1,7 +1,8 @@
 #pragma once
 // The run loop shared by both engines (STYLE.md items 8-9): sampling in physical time is decided
 // here, outside the engines, through the engine contract (core/engine.hpp) alone:
-//   equilibration  advanceTo(k·Δt_thermostat), then rescale v, ω to the scene temperature
+//   equilibration  advanceTo(k·Δt_thermostat), then rescale v, ω to the scene temperature (with
+//                  run.heat_bath set, the engine's bath acts instead, as in production)
 //   production     advanceTo(t_s) on the sample grid; each sample goes to the SampleSink
 //                  (cli/sample_sink.hpp: energies, thermo.csv, trajectory, analysis)
 //   restart points every output.restart_every_ps, at production's start and at a signal's stop
@@ -113,7 +114,8 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
             while (at.tick < plan.equilibrationTicks && !interrupt.requested()) {
                 cpu.start();
                 engine->advanceTo(double(at.tick + 1) * plan.thermostatInterval);
-                engine->rescaleTemperature(run.kT);
+                // With a heat bath the bath alone equilibrates: its ensemble from the start.
+                if (!run.heatBath) engine->rescaleTemperature(run.kT);
                 cpu.stop();
                 ++at.tick;
                 progress.report("equilibration", at.tick, plan.equilibrationTicks, engine->time());

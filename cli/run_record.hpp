@@ -7,6 +7,7 @@
 #include "cli/restart.hpp"
 #include "cli/thermo.hpp"
 #include "core/gsd_frame.hpp"
+#include "core/heat_bath.hpp"
 #include "core/output_file.hpp"
 #include "core/pressure.hpp"
 #include "core/scene.hpp"
@@ -95,7 +96,8 @@ struct RunRecord {
     double sampleInterval = 0.0, kT = 0.0;
     double volume = 0.0;                               // Å³
     VirialKind virialKind = VirialKind::Instantaneous; // what records[k].virial holds
-    int bodies = 0, dof = 0;
+    int bodies = 0, dof = 0; // dof: of the kinetic energy, as the heat bath keeps momentum or not
+    bool heatBath = false;   // run.heat_bath is set: the engine thermostats the whole run
     std::string interruptedBy;         // the signal that stopped the run ("" if none)
     std::string interruptedIn;         // equilibration | production | analysis
     std::string failure;               // the first error that ended the run ("" if none)

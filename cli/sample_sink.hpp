@@ -35,7 +35,8 @@ public:
     SampleSink(const RunPlan& plan, int rotationalDof, RunRecord& run, RunFiles& files)
         : plan_(plan),
           layout_(layoutFor(rotationalDof)), thermoLayout_{run.virialKind, run.volume, run.dof,
-                                                           run.bodies, run.outputUnits},
+                                                           run.bodies, run.outputUnits,
+                                                           run.heatBath},
           run_(run), files_(files) {}
 
     /// Production begins: its files are opened empty in `dir` (thermo.csv with its header).
@@ -60,6 +61,7 @@ public:
         e.virial = engine.virial();
         e.collisions = collisions;
         e.time = engine.time();
+        e.bath = engine.thermostatEnergy();
         const int n = run_.bodies;
         // The configurational estimators on g(r) frames, where the analysis reads every body
         // anyway (an O(N) pass: every sample would cost DMD a force evaluation per sample).

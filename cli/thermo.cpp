@@ -73,10 +73,15 @@ std::string thermoHeader(const ThermoLayout& layout) {
     else
         text = "time_ps,kinetic_translational,kinetic_rotational,potential,"
                "potential_continuous,total,temperature_K,pressure_bar";
-    text += dmd ? ",collisions\n" : "\n";
+    text += dmd ? ",collisions" : "";
+    if (layout.heatBath)
+        text += layout.units.reduced() ? ",effective_total_per_body" : ",effective_total";
+    text += "\n";
     text += layout.units.reduced() ? "# tau,epsilon,epsilon,epsilon,epsilon,epsilon,T*,P*"
                                    : "# ps,kJ/mol,kJ/mol,kJ/mol,kJ/mol,kJ/mol,K,bar";
-    text += dmd ? ",count\n" : "\n";
+    text += dmd ? ",count" : "";
+    if (layout.heatBath) text += layout.units.reduced() ? ",epsilon" : ",kJ/mol";
+    text += "\n";
     if (layout.units.reduced())
         text += "# energies per body of " + std::to_string(layout.bodies) + " in reduced units (" +
                 unitScale(layout.units) + "); ";
@@ -127,6 +132,10 @@ std::string thermoRow(const SampleRecord& now, const SampleRecord* before,
     if (dmd) {
         std::snprintf(field, sizeof field, ",%.0f",
                       before ? now.collisions - before->collisions : 0.0);
+        row += field;
+    }
+    if (layout.heatBath) {
+        std::snprintf(field, sizeof field, ",%.17g", energy(now.total + now.bath));
         row += field;
     }
     return row + "\n";

@@ -27,6 +27,8 @@
 //                           row (impulse virial difference), nan on the first row
 //   collisions              DMD only: collisions (up, down, reflect) since the previous row, 0 on
 //                           the first
+//   effective_total         with run.heat_bath only: total + the kinetic energy the bath removed
+//                           since the run began, which the thermostatted dynamics conserves
 // Numbers are written with 17 significant digits (exact on reading back).
 //
 // Under the scene's units lj (core/unit_system.hpp) the columns are time_tau, the energies per
@@ -71,6 +73,7 @@ struct ThermoLayout {
     int dof = 0;         // degrees of freedom of the temperature
     int bodies = 0;
     UnitSystem units; // of the columns
+    bool heatBath = false; // run.heat_bath set: the effective energy's column last
 };
 
 /// The scale of reduced units in one line of ASCII (σ, ε, m, τ with 17 digits), for comments.

@@ -46,6 +46,8 @@ concept Engine = requires(E e, const E ce, double t, std::span<const int> bodies
     { ce.virial() } -> std::convertible_to<double>;       // core/pressure.hpp
     { ce.totalMomentum() } -> std::convertible_to<Vec3>;  // g/mol Å per time unit
     e.rescaleTemperature(t); // scale v and ω so that the kinetic temperature is kT = t
+    // kinetic energy the heat bath (run.heat_bath) has taken out since the run began, kJ/mol
+    { ce.thermostatEnergy() } -> std::convertible_to<double>;
     { ce.statistics() } -> std::convertible_to<nlohmann::json>; // engine-specific summary keys
     { ce.checkpoint() } -> std::convertible_to<nlohmann::json>; // beyond the bodies, at time()
     ce.system();                                                // the bodies now (a copy)

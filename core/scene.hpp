@@ -116,6 +116,16 @@ struct Scene {
         // equilibrate_ps / thermostat_fs whole intervals; the default equals the default
         // sample_fs, so that default runs are unchanged, but sample_fs no longer sets it.
         double thermostat_fs = 9.0;
+        // The heat bath (core/heat_bath.hpp), in equilibration and production: none (NVE
+        // production, equilibration by the rescales above), andersen (each body's velocities
+        // drawn afresh as a Poisson process of rate_per_ps) or csvr (Bussi's stochastic
+        // rescaling, kinetic energy relaxing in tau_fs). Key: run.heat_bath, "none" or an object
+        // {"kind": ..., its one parameter}; written back only when not none.
+        struct HeatBath {
+            std::string kind = "none"; // none | andersen | csvr
+            double rate_per_ps = 0.0;  // andersen: collisions per body per ps, > 0
+            double tau_fs = 0.0;       // csvr: > 0 (under SMD >= smd.dt_fs)
+        } heat_bath;
     } run;
 
     // Output intervals are whole multiples of run.sample_fs, no longer than run.time_ps.

@@ -23,10 +23,57 @@ void requireOutputInterval(const JsonSection& out, const std::string& key, doubl
     requireOnGrid(out, out.name(key), value, unit, fsPerUnit, "run.sample_fs", s.run.sample_fs);
 }
 
+/// run.heat_bath: "none", or an object of a kind and that kind's one parameter.
+void readHeatBath(const JsonSection& run, Scene& s) {
+    auto& h = s.run.heat_bath;
+    if (!run.has("heat_bath")) return;
+    const auto& value = run.at("heat_bath");
+    const std::string example = "; give {\"kind\": \"andersen\", \"rate_per_ps\": ν} or "
+                                "{\"kind\": \"csvr\", \"tau_fs\": τ}";
+    if (value.is_string()) {
+        h.kind = run.choice("heat_bath", "none", {"none", "andersen", "csvr"});
+        if (h.kind != "none")
+            run.fail("heat_bath", "\"" + h.kind + "\" needs its parameter" + example);
+        return;
+    }
+    if (!value.is_object())
+        run.fail("heat_bath", "must be \"none\" or an object, got " + showJson(value) + example);
+    const JsonSection bath = run.section("heat_bath");
+    bath.onlyKeys({"kind", "rate_per_ps", "tau_fs"});
+    if (!bath.has("kind")) bath.fail("kind", "is missing: none | andersen | csvr");
+    h.kind = bath.choice("kind", h.kind, {"none", "andersen", "csvr"});
+    const char* needed = h.kind == "andersen" ? "rate_per_ps" : h.kind == "csvr" ? "tau_fs" : "";
+    for (const char* key : {"rate_per_ps", "tau_fs"})
+        if (bath.has(key) && std::string(key) != needed)
+            bath.fail(key, "is not read by heat_bath.kind " + h.kind +
+                               (*needed ? std::string(" (its parameter is ") + needed + ")" : ""));
+    if (*needed && !bath.has(needed)) bath.fail(needed, "is missing for kind " + h.kind);
+    // A collision per body every 1e-6 ps or oftener, or a relaxation within minIntervalFs, is
+    // faster than any thermal motion the run resolves: the dynamics would be the bath's alone.
+    if (h.kind == "andersen")
+        h.rate_per_ps = bath.number("rate_per_ps", 0.0, 0.0, 1e3 / limits::minIntervalFs, true);
+    if (h.kind == "csvr") {
+        h.tau_fs = bath.number("tau_fs", 0.0, 0.0, 1e12, true);
+        if (h.tau_fs < limits::minIntervalFs)
+            bath.fail("tau_fs", "must be >= " + showNumber(limits::minIntervalFs) + " fs, got " +
+                                    showNumber(h.tau_fs) +
+                                    ": the bath would fix the kinetic energy faster than any "
+                                    "motion the run resolves");
+    }
+}
+
 } // namespace
 
 void readRun(const JsonSection& run, Scene& s) {
-    run.onlyKeys({"equilibrate_ps", "time_ps", "sample_fs", "thermostat_fs"});
+    // run.thermostat is the unit-free twin of run.thermostat_fs (core/scene_units.hpp); a kind of
+    // bath given there is pointed to its own key.
+    if (run.has("thermostat") && (run.at("thermostat").is_string() || run.at("thermostat").is_object()))
+        run.fail("thermostat", "the kind of heat bath is run.heat_bath (\"none\", "
+                               "{\"kind\": \"andersen\", \"rate_per_ps\": ν} or {\"kind\": "
+                               "\"csvr\", \"tau_fs\": τ}); run.thermostat_fs is the "
+                               "equilibration's rescale interval");
+    run.onlyKeys({"equilibrate_ps", "time_ps", "sample_fs", "thermostat_fs", "heat_bath"});
+    readHeatBath(run, s);
     auto& r = s.run;
     r.equilibrate_ps = run.number("equilibrate_ps", r.equilibrate_ps, 0, 1e9);
     r.time_ps = run.number("time_ps", r.time_ps, 0, 1e9, true);

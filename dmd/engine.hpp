@@ -35,8 +35,17 @@
 // state of its own, is a member beside it (no virtual call, no pointer in the pair loop).
 // A clock that stops advancing (a Zeno-like cascade of events at one instant) raises an error
 // (dmd/stall_watch.hpp).
+// Heat bath (run.heat_bath, core/heat_bath.hpp): Andersen's collisions are events of their own,
+// the N bodies' Poisson processes of rate ν drawn as one of rate Nν whose every event picks a body
+// at random; the body is then handled as one side of a collision (brought to now, its orbit
+// refreshed, its events invalidated and its pairs predicted afresh). CSVR rescales every body by
+// its exact propagator's factor at the end of every advanceTo (the run's samples and equilibration
+// ticks), over the time since the last: velocities change only there, so the flow between is the
+// NVE one, and since both the flow and the rescale leave the canonical distribution of the
+// terraced model invariant, the run samples it exactly, whatever the interval.
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
 #include "core/engine.hpp"
+#include "core/heat_bath.hpp"
 #include "core/free_orbit.hpp"
 #include "core/gather_in_place.hpp"
 #include "core/snapshot.hpp"
@@ -67,9 +76,9 @@ namespace terrace::dmd {
 
 struct EventCounts {
     std::uint64_t up = 0, down = 0, reflect = 0, virtualEvents = 0, cell = 0, relist = 0,
-                  sample = 0;
+                  sample = 0, thermostat = 0;
     std::uint64_t total() const {
-        return up + down + reflect + virtualEvents + cell + relist + sample;
+        return up + down + reflect + virtualEvents + cell + relist + sample + thermostat;
     }
 };
 
@@ -110,10 +119,11 @@ private:
            const nlohmann::json* resume, nlohmann::json* spent)
         : s_(std::move(initial), std::move(settings)),
           predict_(s_.settings, s_.sys.potential, seed, s_.sys.size()),
-          listedBefore_(s_.sys.size(), 0), scanned_(64), seed_(seed) {
+          listedBefore_(s_.sys.size(), 0), scanned_(64), seed_(seed), bathState_(seed) {
         checkBodies(s_.sys);
         if (s_.settings.sortBodies) sortBodiesByCell();
         if (resume) resumeClocks(s_, predict_.jitter(), *resume);
+        startBath(resume);
         cacheOrbits(s_);
         s_.schedule.openCalendar(s_.settings.queue, s_.settings.horizon, s_.time);
         for (int i = 0; i < s_.sys.size(); ++i)
@@ -141,6 +151,11 @@ public:
         requireEvents();
         if (orderHasDecayed()) renumberBodies();
         visitQueue([&](auto& q) {
+            if (s_.settings.bath.kind == HeatBath::Kind::Andersen)
+                while (bathState_.clock < t) {
+                    runUntil(q, bathState_.clock);
+                    andersenCollision(q);
+                }
             Event sample;
             sample.time = t;
             sample.kind = EventKind::Sample;
@@ -149,6 +164,7 @@ public:
             }
         });
         synchronise(s_, t);
+        if (s_.settings.bath.kind == HeatBath::Kind::Csvr) csvrRescale();
         // A pass over the bodies like the one just made, and only when most spills are idle.
         s_.schedule.compactSpills();
         s_.lists.compactSpills();
@@ -251,6 +267,8 @@ public:
                        {"cell", counts_.cell},
                        {"relist", counts_.relist},
                        {"sample", counts_.sample}};
+        if (s_.settings.bath.kind == HeatBath::Kind::Andersen)
+            j["events"]["thermostat"] = counts_.thermostat;
         j["dV_kJ_per_mol"] = s_.settings.levels.isUniform() ? nlohmann::json(s_.terraceHeight())
                                                             : nlohmann::json(nullptr);
         j["r_m_angstrom"] = s_.settings.rm;
@@ -285,7 +303,13 @@ public:
         return j;
     }
     /// What a resumed engine needs beyond the bodies (dmd/engine_start.hpp).
-    nlohmann::json checkpoint() const { return checkpointOf(s_, predict_.jitter()); }
+    nlohmann::json checkpoint() const {
+        nlohmann::json c = checkpointOf(s_, predict_.jitter());
+        if (s_.settings.bath.on()) c["heat_bath"] = bathState_.save();
+        return c;
+    }
+    /// Kinetic energy the heat bath has taken out since the run began (kJ/mol; 0 without one).
+    double thermostatEnergy() const { return bathState_.removed; }
     /// All bodies brought to time(): the system as it is now, its bodies in the scene's order.
     System<K, P> system() const {
         System<K, P> s = s_.sys;
@@ -411,6 +435,76 @@ private:
         predict_.screened = screened;
         stallWatch_.setLimit(stallLimit);
         if (holdScreen != predict_.holdScreen) setHoldScreen(holdScreen);
+    }
+
+    // ---- the heat bath (core/heat_bath.hpp) ----
+
+    /// The bath's state: from the checkpoint when resuming, else fresh at the start (Andersen's
+    /// first event drawn, CSVR's interval starting now).
+    void startBath(const nlohmann::json* resume) {
+        const HeatBath& bath = s_.settings.bath;
+        if (!bath.on()) return;
+        if (resume) {
+            if (!resume->contains("heat_bath"))
+                throw SceneError("restart: the DMD checkpoint holds no heat bath state, and the "
+                                 "scene asks for one (run.heat_bath)");
+            bathState_.restore(resume->at("heat_bath"));
+            return;
+        }
+        bathState_.clock = s_.time;
+        if (bath.kind == HeatBath::Kind::Andersen) bathState_.clock += andersenWait();
+    }
+    double andersenWait() {
+        return exponentialWait(s_.settings.bath.rate * s_.sys.size(), bathState_.rng);
+    }
+
+    /// Every event before t processed, the engine's time at t; the clocks stay where they are.
+    template <class Q> void runUntil(Q& q, double t) {
+        Event stop;
+        stop.time = t;
+        stop.kind = EventKind::Sample;
+        q.push(stop);
+        while (step(q)) {
+        }
+        s_.time = t;
+    }
+
+    /// One of Andersen's collisions now: a body drawn at random (by its scene number) gets fresh
+    /// Maxwell–Boltzmann velocities, and its events are predicted again as after a collision.
+    template <class Q> void andersenCollision(Q& q) {
+        std::uniform_int_distribution<int> pick(0, s_.sys.size() - 1);
+        const int i = s_.engineIndex(pick(bathState_.rng));
+        bringToNow(s_, i);
+        bathState_.removed += terrace::andersenCollision<K>(s_.sys.bodies[i], s_.sys.body,
+                                                            s_.settings.bath.kT, bathState_.rng);
+        refreshOrbit(s_, i);
+        ++counts_.thermostat;
+        s_.schedule.invalidate(q, i, s_.prefetching);
+        predict_.predictBody(s_, i, -1);
+        s_.schedule.settle(q, s_.time);
+        s_.schedule.afterEvent(q, s_.time);
+        bathState_.clock += andersenWait();
+    }
+
+    /// CSVR over the time since its last rescale: every clock at s_.time.
+    void csvrRescale() {
+        const double dt = s_.time - bathState_.clock;
+        const double now = kineticEnergy();
+        bathState_.clock = s_.time;
+        if (!(dt > 0.0) || !(now > 0.0)) return;
+        const HeatBath& bath = s_.settings.bath;
+        const int f = heatBathDof(bath.kind, K::rotationalDof, s_.sys.size());
+        double sign = 1.0;
+        const double next =
+            csvrKinetic(now, 0.5 * f * bath.kT, f, std::exp(-dt / bath.tau), bathState_.rng, sign);
+        const double alpha = sign * std::sqrt(next / now);
+        for (int i = 0; i < s_.sys.size(); ++i) {
+            s_.sys.bodies[i].v *= alpha;
+            K::scaleAngularVelocity(s_.sys.bodies[i], s_.sys.body, alpha);
+            refreshOrbit(s_, i);
+        }
+        predict_.repredictAll(s_);
+        bathState_.removed += now - next;
     }
 
     /// After shed() only the bodies, the checkpoint and destruction are left.
@@ -699,6 +793,7 @@ private:
     bool shed_ = false;         // shed(): fit only for a checkpoint, the bodies and destruction
     EventCounts counts_;
     std::uint64_t staleEvents_ = 0;
+    HeatBathState bathState_; // the bath's stream, energy and clock (unused without a bath)
 };
 
 } // namespace terrace::dmd

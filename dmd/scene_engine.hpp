@@ -14,7 +14,9 @@ namespace terrace::dmd {
 
 template <BodyKind K, PairPotential P>
 DmdSettings settingsFor(const Scene& scene, const System<K, P>& s) {
-    return readDmdSettings(scene.dmd, s.potential, s.kT, s.box.length);
+    DmdSettings settings = readDmdSettings(scene.dmd, s.potential, s.kT, s.box.length);
+    settings.bath = heatBathOf(scene);
+    return settings;
 }
 
 template <BodyKind K, PairPotential P> class SceneEngine : public Engine<K, P> {

@@ -3,6 +3,7 @@
 // its keys) and the model: the levels, the interaction range r_m and the box it must fit in,
 // checked before any work (DESIGN.md "Interfaces", "Bad input"): every problem is a SceneError
 // naming its key. The measurement switches (core/measure.hpp) come from the environment.
+#include "core/heat_bath.hpp"
 #include "core/measure.hpp"
 #include "core/scene.hpp"
 #include "core/units.hpp"
@@ -42,6 +43,7 @@ struct DmdSettings {
     // (0: never; unset: auto)
     bool sortBodies = true;
     std::optional<double> resortCells;
+    HeatBath bath; // run.heat_bath (core/heat_bath.hpp): none unless the caller sets it
 };
 
 template <PairPotential P>

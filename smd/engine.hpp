@@ -20,7 +20,13 @@
 // trajectory, are the same bit for bit with and without the sort; outside the engine (snapshot(),
 // system(), the sums over all bodies) everything is in the scene's numbering. Units: Å, g/mol,
 // kJ/mol, time unit 100 fs.
+// Heat bath (run.heat_bath, core/heat_bath.hpp): applied at the step boundary after every whole
+// step (not split into half-steps around it): Andersen gives each body, with probability
+// 1 − e^{−ν dt}, fresh velocities; CSVR rescales all of them by the factor of its exact
+// kinetic-energy propagator over dt. The bodies are visited in the scene's order, so the draws do
+// not depend on the engine's own order.
 #include "core/engine.hpp"
+#include "core/heat_bath.hpp"
 #include "core/measure.hpp"
 #include "core/overlap.hpp"
 #include "core/snapshot.hpp"
@@ -58,11 +64,18 @@ private:
     void resumeSteps(const nlohmann::json& checkpoint) {
         steps_ = checkpoint.at("steps").get<long>();
         if (steps_ < 0) throw SceneError("restart: a negative SMD step count");
+        if (!bath_.on()) return;
+        if (!checkpoint.contains("heat_bath"))
+            throw SceneError("restart: the SMD checkpoint holds no heat bath state, and the scene "
+                             "asks for run.heat_bath " +
+                             std::string(bath_.kind == HeatBath::Kind::Csvr ? "csvr" : "andersen"));
+        bathState_.restore(checkpoint.at("heat_bath"));
     }
     // `initial` is moved from: a reference, so that the settings may be read from it first.
     Engine(System<K, P>& initial, SmdSettings settings, bool isStart)
         : sys_(std::move(initial)), par_(settings.par), scheme_(std::move(settings.scheme)),
-          sigmaUnit_(settings.sigma), sortBodies_(settings.sortBodies) {
+          sigmaUnit_(settings.sigma), sortBodies_(settings.sortBodies), bath_(settings.bath),
+          bathState_(settings.seed) {
         for (const auto& b : sys_.bodies)
             if (!b.r.allFinite() || !b.v.allFinite() || !K::axis(b).allFinite() ||
                 !K::angularVelocity(b, sys_.body).allFinite())
@@ -99,7 +112,16 @@ public:
     }
 
     /// The step count: with the bodies, all a resumed engine needs.
-    nlohmann::json checkpoint() const { return {{"steps", steps_}}; }
+    /// The step count (and the heat bath's state when there is one): with the bodies, all a
+    /// resumed engine needs.
+    nlohmann::json checkpoint() const {
+        nlohmann::json c{{"steps", steps_}};
+        if (bath_.on()) c["heat_bath"] = bathState_.save();
+        return c;
+    }
+
+    /// Kinetic energy the heat bath has taken out since the run began (kJ/mol; 0 without one).
+    double thermostatEnergy() const { return bathState_.removed; }
 
     /// Whole dt steps up to the first grid point at or after t (time units).
     void advanceTo(double t) {
@@ -107,8 +129,38 @@ public:
         if (remaining <= 0.0) return;
         // A target within round-off of a grid point means that grid point, not one step more.
         const long steps = static_cast<long>(std::ceil(remaining - gridTolerance));
-        for (long k = 0; k < steps; ++k)
+        for (long k = 0; k < steps; ++k) {
             step();
+            if (bath_.on()) applyBath();
+        }
+    }
+
+    /// The heat bath over one step dt, at the step boundary.
+    void applyBath() {
+        const int n = sys_.size();
+        auto& rng = bathState_.rng;
+        if (bath_.kind == HeatBath::Kind::Andersen) {
+            // Each body's Poisson process of rate ν fires within dt with this probability.
+            const double p = -std::expm1(-bath_.rate * par_.dt);
+            std::uniform_real_distribution<double> uniform(0.0, 1.0);
+            for (int b = 0; b < n; ++b)
+                if (uniform(rng) < p)
+                    bathState_.removed += andersenCollision<K>(
+                        sys_.bodies[sortBodies_ ? engineOf_[b] : b], sys_.body, bath_.kT, rng);
+            return;
+        }
+        const double now = kineticEnergy();
+        if (!(now > 0.0)) return;
+        const int f = heatBathDof(bath_.kind, K::rotationalDof, n);
+        double sign = 1.0;
+        const double next = csvrKinetic(now, 0.5 * f * bath_.kT, f, std::exp(-par_.dt / bath_.tau),
+                                        rng, sign);
+        const double alpha = sign * std::sqrt(next / now);
+        for (auto& b : sys_.bodies) {
+            b.v *= alpha;
+            K::scaleAngularVelocity(b, sys_.body, alpha);
+        }
+        bathState_.removed += now - next;
     }
 
     /// One splitting step: kick, then (drift, force, kick) once per drift of the scheme.
@@ -397,6 +449,8 @@ private:
     std::vector<int> sceneOf_;        // with the sort: scene number of each body of sys_
     std::vector<int> engineOf_;       // with the sort: index in sys_ of each scene number
     std::vector<std::uint8_t> moved_; // scratch of the re-sort
+    HeatBath bath_;
+    HeatBathState bathState_;
 };
 
 } // namespace terrace::smd

@@ -11,6 +11,7 @@
 // periodic image within reach. The bodies' cell order is a measurement switch
 // (TERRACE_MEASURE=no-sort-smd, core/measure.hpp), not a key.
 #include "core/measure.hpp"
+#include "core/heat_bath.hpp"
 #include "core/scene.hpp"
 #include "core/scene_json.hpp"
 #include "core/units.hpp"
@@ -63,6 +64,13 @@ inline SmdSection resolveSmdSection(Scene& scene, const std::string& origin = ""
                              showNumber(run.time_ps) + " ps: no step would be taken");
     requireOnGrid(at, "run.sample_fs", run.sample_fs, "fs", 1.0, "smd.dt_fs", s.dt_fs);
     requireOnGrid(at, "run.thermostat_fs", run.thermostat_fs, "fs", 1.0, "smd.dt_fs", s.dt_fs);
+    // CSVR acts once a step (smd/engine.hpp): a relaxation within one step is not resolved.
+    if (run.heat_bath.kind == "csvr" && run.heat_bath.tau_fs < s.dt_fs)
+        at.refuse("run.heat_bath.tau_fs",
+                  showNumber(run.heat_bath.tau_fs) + " fs is shorter than smd.dt_fs = " +
+                      showNumber(s.dt_fs) +
+                      " fs: the bath acts once a step, so it cannot relax the kinetic energy "
+                      "faster; give tau_fs >= dt_fs (typically 100 dt or more)");
     return s;
 }
 
@@ -111,12 +119,14 @@ struct SmdSettings {
     Splitting scheme;
     double sigma = 0.0; // Å
     bool sortBodies = true;
+    HeatBath bath;          // run.heat_bath (core/heat_bath.hpp), applied after every step
+    std::uint64_t seed = 1; // the scene's: the bath's stream
 };
 
 /// The SMD settings of `scene` for a box of edge boxLength (Å) and a model of range r_u (Å).
 inline SmdSettings smdSettings(const Scene& scene, double boxLength, double range) {
     return {parameters(scene, boxLength, range), splitting(readSmdSection(scene.smd).scheme),
-            scene.potential.sigma, measureSwitches().sortSmd};
+            scene.potential.sigma, measureSwitches().sortSmd, heatBathOf(scene), scene.seed};
 }
 
 } // namespace terrace::smd

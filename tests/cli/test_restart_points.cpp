@@ -58,6 +58,7 @@ public:
     double virial() const { return 0.0; }
     Vec3 totalMomentum() const { return Vec3(time_, 0.0, 0.0); }
     void rescaleTemperature(double) {}
+    double thermostatEnergy() const { return 0.0; }
     nlohmann::json statistics() const { return {{"steps", steps_}, {"time", time_}}; }
     nlohmann::json checkpoint() const { return {{"time", time_}}; }
     ToySystem system() const { return sys_; }
