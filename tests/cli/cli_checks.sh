@@ -495,13 +495,17 @@ second_signal)
 kill_resume)
     # A run killed with SIGKILL and continued from its restart file ends with the same
     # trajectory, thermo.csv, correlation files and pressure, byte for byte, as the same run left
-    # alone: DMD and SMD killed in production, DMD killed during a long equilibration.
-    for case in dmd:0.18:9 smd:0.18:9 dmd:9:0.9; do
-        IFS=: read -r engine equilibrate ps <<<"$case"
-        name=$engine-$equilibrate
+    # alone: DMD and SMD killed in production, DMD killed during a long equilibration; and under
+    # each heat bath (its stream and energy carried by restart.bin), with its summary block too.
+    andersen='{"kind":"andersen","rate_per_ps":5}' csvr='{"kind":"csvr","tau_fs":90}'
+    for case in dmd:0.18:9 smd:0.18:9 dmd:9:0.9 dmd:0.18:9:andersen smd:0.18:9:andersen \
+        dmd:0.18:9:csvr smd:0.18:9:csvr dmd:9:0.9:andersen; do
+        IFS=: read -r engine equilibrate ps bath <<<"$case"
+        name=$engine-$equilibrate${bath:+-$bath}
         args=(--quiet --set engine=$engine --set state.n=216 --set run.equilibrate_ps=$equilibrate
             --set run.time_ps=$ps --set output.trajectory_every_fs=18
             --set output.thermo_every_fs=36 --set output.restart_every_ps=0.9)
+        [ -z "$bath" ] || args+=(--set "run.heat_bath=${!bath}")
         "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$name-a" \
             "${args[@]}" >/dev/null || fail "$name: the uninterrupted run failed"
         "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$name-b" \
@@ -531,6 +535,12 @@ kill_resume)
         [ -n "$(pressure "$work/$name-a")" ] || fail "$name: no pressure in summary.json"
         [ "$(pressure "$work/$name-a")" = "$(pressure "$work/$name-b")" ] ||
             fail "$name: the continued run's pressure differs: $(pressure "$work/$name-b")"
+        if [ -n "$bath" ]; then
+            block() { sed -n '/^  "heat_bath": {/,/^  }/p' "$1/summary.json"; }
+            [ -n "$(block "$work/$name-a")" ] || fail "$name: no heat_bath in summary.json"
+            [ "$(block "$work/$name-a")" = "$(block "$work/$name-b")" ] ||
+                fail "$name: the continued run's heat_bath differs: $(block "$work/$name-b")"
+        fi
         grep -q '"continued": 1' "$work/$name-b/summary.json" || fail "$name: not marked continued"
         [ ! -e "$work/$name-b/restart.bin" ] || fail "$name: restart file left after the end"
     done
@@ -538,6 +548,42 @@ kill_resume)
     err=$("$terrace" run --continue "$work/dmd-0.18-b" --set run.time_ps=0.9 2>&1)
     [ $? -eq 2 ] && [[ $err == *"--continue DIR takes no scene, --set"* ]] ||
         fail "--continue with --set: $err"
+    ;;
+heat_bath)
+    # run.heat_bath "none" is NVE as without the key: every file the same, byte for byte (the
+    # summary but for its CPU times). A bath's run reports it; a CSVR τ below SMD's step is refused.
+    args=(--quiet --set state.n=216 --set run.equilibrate_ps=0.18 --set run.time_ps=0.9
+        --set output.trajectory_every_fs=18 --set output.thermo_every_fs=36)
+    for engine in dmd smd; do
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$engine-plain" \
+            "${args[@]}" --set engine=$engine >/dev/null || fail "$engine: the plain run failed"
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$engine-none" \
+            "${args[@]}" --set engine=$engine --set run.heat_bath=none >/dev/null ||
+            fail "$engine: the run with heat_bath none failed"
+        for f in scene.json initial.xyz trajectory.xyz thermo.csv rdf.csv vacf.csv msd.csv; do
+            cmp -s "$work/$engine-plain/$f" "$work/$engine-none/$f" ||
+                fail "$engine: $f differs under run.heat_bath none"
+        done
+        # The CPU times (SMD's phase_seconds among them) and the date vary from run to run.
+        timeless() {
+            grep -v -e seconds -e _per_cpu -e memory -e date_utc -e '"drift":' -e '"force":' \
+                -e '"kick":' -e '"neighbour":' "$1/summary.json"
+        }
+        [ "$(timeless "$work/$engine-plain")" = "$(timeless "$work/$engine-none")" ] ||
+            fail "$engine: summary.json differs under run.heat_bath none"
+        ! grep -q heat_bath "$work/$engine-none/summary.json" || fail "$engine: a heat_bath block under none"
+        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$engine-csvr" \
+            "${args[@]}" --set engine=$engine --set 'run.heat_bath={"kind":"csvr","tau_fs":90}' \
+            >/dev/null || fail "$engine: the CSVR run failed"
+        grep -q '"degrees_of_freedom": 1077' "$work/$engine-csvr/summary.json" ||
+            fail "$engine: no heat_bath block with f = 5N - 3 in summary.json"
+        head -1 "$work/$engine-csvr/thermo.csv" | grep -q ',effective_total$' ||
+            fail "$engine: thermo.csv lacks effective_total: $(head -1 "$work/$engine-csvr/thermo.csv")"
+    done
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/short" --set engine=smd \
+        --set 'run.heat_bath={"kind":"csvr","tau_fs":1}' 2>&1) && fail "tau_fs < dt_fs accepted"
+    [[ $err == *"run.heat_bath.tau_fs: 1 fs is shorter than smd.dt_fs = 1.8 fs"* ]] ||
+        fail "tau_fs < dt_fs: $err"
     ;;
 term_continue)
     # A run stopped by SIGTERM keeps its stop as a restart point: continued, it loses nothing and

@@ -144,3 +144,34 @@ TEST(HeatBath, NoneIsNve) {
         EXPECT_EQ(b.second, 0.0) << engineName;
     }
 }
+
+// An engine rebuilt from another's bodies and checkpoint goes on with the bath's stream where it
+// stood: over the next 90 fs (about 100 Andersen collisions at 5/ps, or 50 CSVR steps) it follows
+// the engine that went on, to round-off; a stream started afresh would part at once.
+TEST(HeatBath, TheCheckpointCarriesTheBath) {
+    for (const std::string engineName : {"dmd", "smd"})
+        for (const std::string bath :
+             {R"({"kind":"andersen","rate_per_ps":5})", R"({"kind":"csvr","tau_fs":90})"}) {
+            const Scene scene = rodScene(engineName, bath);
+            auto check = [&]<class E>(E& a) {
+                a.advanceTo(units::fromFs(180.0));
+                auto released = E(a.system(), scene, a.checkpoint());
+                E& b = released;
+                for (E* e : {&a, &b})
+                    e->advanceTo(units::fromFs(270.0));
+                EXPECT_NEAR(b.kineticEnergy(), a.kineticEnergy(), 1e-8 * a.kineticEnergy())
+                    << engineName << " " << bath;
+                EXPECT_NEAR(b.thermostatEnergy(), a.thermostatEnergy(),
+                            1e-8 * a.kineticEnergy() + 1e-9)
+                    << engineName << " " << bath;
+                EXPECT_NE(a.thermostatEnergy(), 0.0);
+            };
+            if (engineName == "dmd") {
+                DmdRods a(buildInitialState<LinearRotor>(scene, model(scene)), scene);
+                check(a);
+            } else {
+                SmdRods a(buildInitialState<LinearRotor>(scene, model(scene)), scene);
+                check(a);
+            }
+        }
+}
