@@ -16,9 +16,7 @@ struct CanonicalKinetic {
     double canonicalMean = 0.0, canonicalVariance = 0.0;
     /// Deviations from the canonical values in units of their errors (NaN without an error).
     double meanDeviation() const { return (mean.mean - canonicalMean) / mean.err; }
-    double varianceDeviation() const {
-        return (variance.mean - canonicalVariance) / variance.err;
-    }
+    double varianceDeviation() const { return (variance.mean - canonicalVariance) / variance.err; }
 };
 
 /// The series' mean and variance against the canonical ones for f degrees of freedom at kT.

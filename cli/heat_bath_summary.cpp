@@ -34,9 +34,12 @@ nlohmann::json heatBathSummary(const Scene& scene, const RunRecord& run, nlohman
     }
     j["energy_removed"] = run.records.back().bath - run.records.front().bath;
     const auto es = analysis::energyStats(t, effective, potential);
-    j["effective_energy"] = {{"initial", es.initial},     {"final", es.final},
-                             {"std", es.std},             {"max_abs_dev", es.maxAbsDev},
-                             {"drift_per_ps", es.driftPerPs}, {"units", "kJ/mol"}};
+    j["effective_energy"] = {{"initial", es.initial},
+                             {"final", es.final},
+                             {"std", es.std},
+                             {"max_abs_dev", es.maxAbsDev},
+                             {"drift_per_ps", es.driftPerPs},
+                             {"units", "kJ/mol"}};
     const int blocks = std::max(2, std::min<int>(scene.analysis.blocks, int(kinetic.size())));
     const auto c = analysis::canonicalKinetic(kinetic, run.dof, run.kT, blocks);
     j["kinetic_energy"] = {{"mean", c.mean.mean},
@@ -53,8 +56,8 @@ nlohmann::json heatBathSummary(const Scene& scene, const RunRecord& run, nlohman
         char text[256];
         std::snprintf(text, sizeof text,
                       "effective energy (H + the energy the heat bath removed) wandered by %.3g "
-                      "kJ/mol, %.2g%% of the kinetic energy: the integration does not conserve "
-                      "energy at this time step",
+                      "kJ/mol, %.2g%% of the kinetic energy: the integration's error at this time "
+                      "step, which the bath's draws turn from a fluctuation of H into a drift",
                       es.maxAbsDev, 100.0 * es.maxAbsDev / c.mean.mean);
         warnings.push_back(text);
         std::fprintf(stderr, "terrace: warning: %s\n", text);

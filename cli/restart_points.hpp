@@ -143,6 +143,7 @@ private:
                 {"cpu_seconds_equilibration", at_.cpuEquilibration + (production ? 0.0 : phaseCpu)},
                 {"restarts_written", run_.restartsWritten + 1},
                 {"continuations", run_.continuations},
+                {"melt_warning", run_.meltWarning},
                 {"files", files_.sizes()},
                 {"records", recordsToBinary(run_.records)},
                 {"analysis", std::move(analysis)}};

@@ -11,7 +11,8 @@ RunOutcome runDmd(const Scene& scene, const RunTarget& target) {
         using E = dmd::Engine<K, M>;
         // Read once: every engine of the run (restart points rebuild it) takes a copy.
         const dmd::DmdSettings settings = [&] {
-            dmd::DmdSettings s = dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
+            dmd::DmdSettings s =
+                dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
             s.bath = heatBathOf(scene);
             return s;
         }();

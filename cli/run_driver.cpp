@@ -93,10 +93,9 @@ double analysisBytes(const Scene& scene) {
 RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxLength,
                      int rotationalDof, VirialKind virial)
     : sampleInterval(plan.sampleInterval), kT(scene.kT()), volume(std::pow(boxLength, 3)),
-      virialKind(virial), bodies(n),
-      dof(heatBathDof(heatBathOf(scene).kind, rotationalDof, n)), heatBath(heatBathOf(scene).on()),
-      restartEveryPs(scene.output.restart_every_ps), warnings(sceneWarnings(scene)),
-      outputUnits(unitSystem(scene)) {
+      virialKind(virial), bodies(n), dof(heatBathDof(heatBathOf(scene).kind, rotationalDof, n)),
+      heatBath(heatBathOf(scene).on()), restartEveryPs(scene.output.restart_every_ps),
+      warnings(sceneWarnings(scene)), outputUnits(unitSystem(scene)) {
     if (plan.productionSamples + 1 >= 4)
         analysis = std::make_unique<analysis::RunAnalysis>(
             bodies, boxLength, units::toPs(plan.sampleInterval), plan.productionSamples + 1,
@@ -345,6 +344,7 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     summary["cpu_seconds_per_ps"] = run.simulatedPs > 0 ? run.cpuSeconds / run.simulatedPs : 0.0;
     summary["temperature_target_K"] = units::kelvin(run.kT);
     summary["warnings"] = run.warnings;
+    if (!run.meltWarning.empty()) summary["warnings"].push_back(run.meltWarning);
     if (run.restartEveryPs > 0.0)
         summary["restarts"] = {{"every_ps", run.restartEveryPs},
                                {"written", run.restartsWritten},
@@ -460,6 +460,7 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
             Vec3(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
         run.restartsWritten = r.at("restarts_written").get<long>();
         run.continuations = r.at("continuations").get<int>() + 1;
+        run.meltWarning = r.at("melt_warning").get<std::string>();
         trajectoryBytes = r.at("files").at("trajectory_bytes").get<std::int64_t>();
         thermoBytes = r.at("files").at("thermo_bytes").get<std::int64_t>();
         trajectoryTail = r.at("files").at("trajectory_tail_crc64").get<std::uint64_t>();

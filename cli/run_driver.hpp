@@ -18,6 +18,7 @@
 // write ends it with what was gathered until then written and the first error raised again.
 #include "cli/cpu_clock.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/melt_check.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/provenance.hpp"
 #include "cli/restart_points.hpp"
@@ -128,6 +129,14 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
             cpu.reset();
             at.inProduction = true;
             at.tStart = engine->time();
+            // A lattice start still ordered after its equilibration (cli/melt_check.hpp).
+            if (scene.state.particles.empty() && plan.equilibrationTicks > 0)
+                if (auto w = meltWarning(
+                        scene, latticeOrder(scene, *engine, run.bodies, rotationalDof > 0),
+                        run.bodies, rotationalDof > 0)) {
+                    run.meltWarning = *w;
+                    std::fprintf(stderr, "terrace: warning: %s\n", w->c_str());
+                }
             restarts.beginStretch(*engine);
             run.momentumInitial = engine->totalMomentum();
             sink.openProduction(target.dir);

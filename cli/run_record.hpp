@@ -96,17 +96,18 @@ struct RunRecord {
     double sampleInterval = 0.0, kT = 0.0;
     double volume = 0.0;                               // Å³
     VirialKind virialKind = VirialKind::Instantaneous; // what records[k].virial holds
-    int bodies = 0, dof = 0; // dof: of the kinetic energy, as the heat bath keeps momentum or not
-    bool heatBath = false;   // run.heat_bath is set: the engine thermostats the whole run
-    std::string interruptedBy;         // the signal that stopped the run ("" if none)
-    std::string interruptedIn;         // equilibration | production | analysis
-    std::string failure;               // the first error that ended the run ("" if none)
-    long restartsWritten = 0;          // restart files written over the whole run
+    int bodies = 0, dof = 0;   // dof: of the kinetic energy, as the heat bath keeps momentum or not
+    bool heatBath = false;     // run.heat_bath is set: the engine thermostats the whole run
+    std::string interruptedBy; // the signal that stopped the run ("" if none)
+    std::string interruptedIn; // equilibration | production | analysis
+    std::string failure;       // the first error that ended the run ("" if none)
+    long restartsWritten = 0;  // restart files written over the whole run
     std::size_t hugePageBytes = 0;     // most of the process seen in huge pages at an engine's end
     int continuations = 0;             // times the run was continued from a restart file
     std::uint64_t sceneChecksum = 0;   // CRC-64 of DIR/scene.json as the run wrote it
     double restartEveryPs = 0.0;       // 0: no restart files
     std::vector<std::string> warnings; // from the scene (sceneWarnings)
+    std::string meltWarning;           // a lattice start not melted by equilibration's end
     UnitSystem outputUnits;            // of thermo.csv, the CSVs and summary.json's "reduced"
 
     /// A record for a run of `bodies` bodies in a box of side boxLength (Å) under `plan`, with

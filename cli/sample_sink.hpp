@@ -34,9 +34,9 @@ class SampleSink {
 public:
     SampleSink(const RunPlan& plan, int rotationalDof, RunRecord& run, RunFiles& files)
         : plan_(plan),
-          layout_(layoutFor(rotationalDof)), thermoLayout_{run.virialKind, run.volume, run.dof,
-                                                           run.bodies, run.outputUnits,
-                                                           run.heatBath},
+          layout_(layoutFor(rotationalDof)), thermoLayout_{run.virialKind,  run.volume,
+                                                           run.dof,         run.bodies,
+                                                           run.outputUnits, run.heatBath},
           run_(run), files_(files) {}
 
     /// Production begins: its files are opened empty in `dir` (thermo.csv with its header).

@@ -72,7 +72,7 @@ struct ThermoLayout {
     double volume = 0.0; // Å³
     int dof = 0;         // degrees of freedom of the temperature
     int bodies = 0;
-    UnitSystem units; // of the columns
+    UnitSystem units;      // of the columns
     bool heatBath = false; // run.heat_bath set: the effective energy's column last
 };
 

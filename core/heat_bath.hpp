@@ -63,7 +63,8 @@ double exponentialWait(double rate, std::mt19937_64& rng);
 /// from the Maxwell–Boltzmann distribution at kT (the body-frame canonical distribution with the
 /// principal inertias: core/initial_state.hpp thermalise). Returns the kinetic energy removed.
 template <BodyKind K>
-double andersenCollision(typename K::State& b, const BodyParams& p, double kT, std::mt19937_64& rng) {
+double andersenCollision(typename K::State& b, const BodyParams& p, double kT,
+                         std::mt19937_64& rng) {
     const double before = kineticEnergy<K>(b, p);
     detail::thermalise<K>(b, p, kT, rng);
     return before - kineticEnergy<K>(b, p);

@@ -163,7 +163,8 @@ json toJson(const Scene& s) {
     // Written only when set: a scene without a bath resolves to the same bytes as before it
     // existed (scene.json, its checksum, the provenance).
     if (s.run.heat_bath.kind == "andersen")
-        j["run"]["heat_bath"] = {{"kind", "andersen"}, {"rate_per_ps", s.run.heat_bath.rate_per_ps}};
+        j["run"]["heat_bath"] = {{"kind", "andersen"},
+                                 {"rate_per_ps", s.run.heat_bath.rate_per_ps}};
     else if (s.run.heat_bath.kind == "csvr")
         j["run"]["heat_bath"] = {{"kind", "csvr"}, {"tau_fs", s.run.heat_bath.tau_fs}};
     j["output"] = {{"trajectory_every_fs", s.output.trajectory_every_fs},

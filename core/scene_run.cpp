@@ -67,7 +67,8 @@ void readHeatBath(const JsonSection& run, Scene& s) {
 void readRun(const JsonSection& run, Scene& s) {
     // run.thermostat is the unit-free twin of run.thermostat_fs (core/scene_units.hpp); a kind of
     // bath given there is pointed to its own key.
-    if (run.has("thermostat") && (run.at("thermostat").is_string() || run.at("thermostat").is_object()))
+    if (run.has("thermostat") &&
+        (run.at("thermostat").is_string() || run.at("thermostat").is_object()))
         run.fail("thermostat", "the kind of heat bath is run.heat_bath (\"none\", "
                                "{\"kind\": \"andersen\", \"rate_per_ps\": ν} or {\"kind\": "
                                "\"csvr\", \"tau_fs\": τ}); run.thermostat_fs is the "

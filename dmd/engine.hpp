@@ -45,9 +45,9 @@
 // terraced model invariant, the run samples it exactly, whatever the interval.
 // Units: Å, g/mol, kJ/mol, time unit 100 fs.
 #include "core/engine.hpp"
-#include "core/heat_bath.hpp"
 #include "core/free_orbit.hpp"
 #include "core/gather_in_place.hpp"
+#include "core/heat_bath.hpp"
 #include "core/snapshot.hpp"
 #include "core/system.hpp"
 #include "dmd/body_clocks.hpp"

@@ -153,8 +153,8 @@ public:
         if (!(now > 0.0)) return;
         const int f = heatBathDof(bath_.kind, K::rotationalDof, n);
         double sign = 1.0;
-        const double next = csvrKinetic(now, 0.5 * f * bath_.kT, f, std::exp(-par_.dt / bath_.tau),
-                                        rng, sign);
+        const double next =
+            csvrKinetic(now, 0.5 * f * bath_.kT, f, std::exp(-par_.dt / bath_.tau), rng, sign);
         const double alpha = sign * std::sqrt(next / now);
         for (auto& b : sys_.bodies) {
             b.v *= alpha;

@@ -10,8 +10,8 @@
 // hold two cutoffs plus skins, L >= 2 (r_u + skin), so that a pair within reach has exactly one
 // periodic image within reach. The bodies' cell order is a measurement switch
 // (TERRACE_MEASURE=no-sort-smd, core/measure.hpp), not a key.
-#include "core/measure.hpp"
 #include "core/heat_bath.hpp"
+#include "core/measure.hpp"
 #include "core/scene.hpp"
 #include "core/scene_json.hpp"
 #include "core/units.hpp"
@@ -67,8 +67,8 @@ inline SmdSection resolveSmdSection(Scene& scene, const std::string& origin = ""
     // CSVR acts once a step (smd/engine.hpp): a relaxation within one step is not resolved.
     if (run.heat_bath.kind == "csvr" && run.heat_bath.tau_fs < s.dt_fs)
         at.refuse("run.heat_bath.tau_fs",
-                  showNumber(run.heat_bath.tau_fs) + " fs is shorter than smd.dt_fs = " +
-                      showNumber(s.dt_fs) +
+                  showNumber(run.heat_bath.tau_fs) +
+                      " fs is shorter than smd.dt_fs = " + showNumber(s.dt_fs) +
                       " fs: the bath acts once a step, so it cannot relax the kinetic energy "
                       "faster; give tau_fs >= dt_fs (typically 100 dt or more)");
     return s;
@@ -125,8 +125,12 @@ struct SmdSettings {
 
 /// The SMD settings of `scene` for a box of edge boxLength (Å) and a model of range r_u (Å).
 inline SmdSettings smdSettings(const Scene& scene, double boxLength, double range) {
-    return {parameters(scene, boxLength, range), splitting(readSmdSection(scene.smd).scheme),
-            scene.potential.sigma, measureSwitches().sortSmd, heatBathOf(scene), scene.seed};
+    return {parameters(scene, boxLength, range),
+            splitting(readSmdSection(scene.smd).scheme),
+            scene.potential.sigma,
+            measureSwitches().sortSmd,
+            heatBathOf(scene),
+            scene.seed};
 }
 
 } // namespace terrace::smd

@@ -123,8 +123,8 @@ TEST(HeatBath, SceneKey) {
         sceneFromJson(none, "t", {R"(run.heat_bath={"kind":"andersen","rate_per_ps":2})"});
     EXPECT_EQ(s.run.heat_bath.kind, "andersen");
     EXPECT_EQ(toJson(s)["run"]["heat_bath"]["rate_per_ps"], 2.0);
-    EXPECT_FALSE(toJson(sceneFromJson(none, "t", {"run.heat_bath=none"}))["run"].contains(
-        "heat_bath"));
+    EXPECT_FALSE(
+        toJson(sceneFromJson(none, "t", {"run.heat_bath=none"}))["run"].contains("heat_bath"));
     EXPECT_NEAR(heatBathOf(s).rate, 0.2, 1e-15); // per 100 fs
     auto refused = [&](const std::string& set, const std::string& words) {
         const std::string e = errorOf(none, {set});

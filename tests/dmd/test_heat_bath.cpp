@@ -82,8 +82,9 @@ double maxDeviation(const std::vector<double>& e) {
     return worst;
 }
 
-template <class E> Series runBath(const std::string& engineName, const std::string& bath, double ps,
-                                  const char* what) {
+template <class E>
+Series runBath(const std::string& engineName, const std::string& bath, double ps,
+               const char* what) {
     const Scene scene = rodScene(engineName, bath);
     E engine(buildInitialState<LinearRotor>(scene, model(scene)), scene);
     const Series s = sample(engine, ps);
