@@ -302,6 +302,7 @@ TEST(Restart, ADamagedRestartFileIsNamed) {
                               {"momentum_initial", {0.0, 0.0, 0.0}},
                               {"restarts_written", 1},
                               {"continuations", 0},
+                              {"melt_warning", ""},
                               {"identity", cli::runIdentity(0, 8, "dmd")},
                               {"files",
                                {{"trajectory_bytes", 0},
