@@ -580,6 +580,16 @@ heat_bath)
         head -1 "$work/$engine-csvr/thermo.csv" | grep -q ',effective_total$' ||
             fail "$engine: thermo.csv lacks effective_total: $(head -1 "$work/$engine-csvr/thermo.csv")"
     done
+    # A lattice start still aligned after equilibration is a warning (stderr and summary.json).
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/aligned" --quiet \
+        --set state.n=216 --set state.orientations=aligned --set run.equilibrate_ps=0.018 \
+        --set run.time_ps=0.09 2>&1 >/dev/null) || fail "the aligned run failed"
+    [[ $err == *"the lattice start has not melted after run.equilibrate_ps = 0.018 ps"*"S2 = "* ]] ||
+        fail "no melt warning: $err"
+    grep -q "has not melted" "$work/aligned/summary.json" || fail "no melt warning in summary.json"
+    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/melted" --quiet \
+        --set state.n=216 --set run.time_ps=0.09 2>&1 >/dev/null) || fail "the default run failed"
+    [[ $err != *"has not melted"* ]] || fail "a melted start warned: $err"
     err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/short" --set engine=smd \
         --set 'run.heat_bath={"kind":"csvr","tau_fs":1}' 2>&1) && fail "tau_fs < dt_fs accepted"
     [[ $err == *"run.heat_bath.tau_fs: 1 fs is shorter than smd.dt_fs = 1.8 fs"* ]] ||
