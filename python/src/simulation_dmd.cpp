@@ -11,8 +11,9 @@ std::unique_ptr<Simulation> makeDmdSimulation(const Scene& scene) {
             const auto model = cli::sceneModel(scene, potential, true);
             using M = std::remove_const_t<decltype(model)>;
             using E = dmd::Engine<K, M>;
-            const dmd::DmdSettings settings =
+            dmd::DmdSettings settings =
                 dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
+            settings.bath = heatBathOf(scene); // run.heat_bath, as the command line's runs
             return std::make_unique<EngineSimulation<E, K::rotationalDof>>(
                 std::make_unique<E>(buildInitialState<K, M>(scene, model), settings, scene.seed));
         });
