@@ -42,6 +42,10 @@ const Command commands[] = {
       With output.restart_every_ps > 0 the run keeps DIR/restart.bin (the bodies and the
       analysis' accumulators, not the samples' bodies) until it ends, from which --continue
       goes on.
+      Production is NVE unless run.heat_bath sets a heat bath, which acts from the start of
+      equilibration: {"kind":"andersen","rate_per_ps":ν} (both engines) or
+      {"kind":"csvr","tau_fs":τ} (Bussi's stochastic rescaling); summary.json's heat_bath
+      then gives the effective energy and ⟨K⟩, Var(K) against the canonical ones.
       Units (docs/UNITS.md): real by default (Å, g/mol, kJ/mol, K, and fs or ps as a key's
       name says); with units=lj, reduced units of the scene's model (σ and ε of its potential,
       m its body mass, τ = σ·sqrt(m/ε)): the closing lines, thermo.csv, the CSVs and

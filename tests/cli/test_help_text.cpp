@@ -42,3 +42,9 @@ TEST(HelpText, RunNamesTheUnits) {
     for (const char* needle : {"units=lj", "T*, U/N in ε", "docs/UNITS.md", "run.time_ps"})
         EXPECT_NE(help.find(needle), std::string::npos) << needle;
 }
+
+TEST(HelpText, RunNamesTheHeatBath) {
+    const std::string help = commandHelp("run");
+    for (const char* needle : {"run.heat_bath", "andersen", "csvr", "NVE"})
+        EXPECT_NE(help.find(needle), std::string::npos) << needle;
+}
