@@ -129,7 +129,8 @@ const Command commands[] = {
      R"(  terrace tradeoff [SCENE.json] [--tolerance OBS=VALUE[%]]... [--set KEY=VALUE]...
                    [-j N] [--out DIR] [--bias-n N] [--max-replicas N] [--cost-pairs N]
                    [--budget-cpu-hours H] [--dV LIST] [--designs uniform,optimal]
-                   [--schemes verlet,omelyan,yoshida4] [--observables LIST] [--quiet]
+                   [--schemes verlet,omelyan,yoshida4] [--observables LIST] [--frontier]
+                   [--quiet]
 )",
      R"(      Does DMD pay for this scene at these tolerances? Measures each engine's systematic
       error against the continuous model (reference: SMD yoshida4 at half smd.dt_fs) on
@@ -139,7 +140,11 @@ const Command commands[] = {
       resolved within or outside its tolerance at 2 sigma (Bonferroni over the replica
       counts looked at), replicas added where it is not, up to --max-replicas or the budget;
       the bias law (dt^2, dt^4, dV^p) places a setting between the last within and the first
-      outside, checked by its own runs. DMD's u, p, g and g_peak are estimated on its
+      outside, checked by its own runs. Once one engine's cheapest setting within costs
+      1.5x less than any setting of the other could (every cheaper one resolved outside on
+      an observable whose bias grows with dV or dt), it stops: the verdict then says "at
+      least", the ratio to the other's most accurate setting outside (--frontier resolves
+      both engines instead). DMD's u, p, g and g_peak are estimated on its
       terraced observables and by configurational estimators (continuous U, W and g on its
       configurations); the smaller bias is used and named. Prints the verdict (the cheaper
       engine's setting and the cost ratio with its interval, from --cost-pairs alternated
@@ -163,6 +168,8 @@ const Command commands[] = {
   -j N                  runs at once (default 1)
   --out DIR             the tradeoff's directory (default: out/tradeoff-<scene name>, then the
                         --set keys as for terrace run)
+  --frontier            resolve both engines' cheapest settings within, even where one
+                        engine is already cheaper than any setting of the other could be
   --quiet               no progress output
 )",
      false},

@@ -2,6 +2,7 @@
 #include "analysis/csv.hpp"
 #include "cli/design_command.hpp"
 #include "cli/sweep_runner.hpp"
+#include "cli/tradeoff_dominance.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include "core/output_file.hpp"
 #include "core/scene_json.hpp"
@@ -580,6 +581,40 @@ const Rung* cheapestOf(const Tradeoff& t, const std::string& engine) {
     return best;
 }
 
+/// One engine's chosen setting and the other engine's cost floor above it
+/// (cli/tradeoff_dominance.hpp).
+struct Dominance {
+    const Rung* chosen = nullptr; // the cheaper engine's cheapest Within rung
+    const Rung* bound = nullptr;  // the rung whose cost bounds the other engine's from below
+    CostFloor floor;
+};
+
+std::vector<RungView> viewsOf(const std::vector<Rung>& ladder) {
+    std::vector<RungView> views;
+    for (const Rung& r : ladder)
+        views.push_back({r.setting.x, r.cost(), r.decision, !r.failure.empty(), r.biases});
+    return views;
+}
+
+/// Whether one engine's cheapest Within rung costs less, by dominanceMargin at the bias runs'
+/// N, than any setting of the other engine could cost within tolerance.
+std::optional<Dominance> dominance(const Tradeoff& t) {
+    for (const std::string engine : {"smd", "dmd"}) {
+        const Rung* chosen = cheapestOf(t, engine);
+        if (!chosen || !std::isfinite(chosen->cost())) continue;
+        std::vector<std::vector<RungView>> other;
+        std::vector<const std::vector<Rung>*> ladders;
+        for (const auto& ladder : t.ladders)
+            if (!ladder.empty() && ladder.front().setting.engine != engine)
+                other.push_back(viewsOf(ladder)), ladders.push_back(&ladder);
+        if (other.empty()) continue;
+        const auto floor = engineCostFloor(other, t.z);
+        if (floor && floor->cost >= dominanceMargin * chosen->cost())
+            return Dominance{chosen, &(*ladders[floor->ladder])[floor->rung], *floor};
+    }
+    return std::nullopt;
+}
+
 } // namespace
 
 int runTradeoff(const TradeoffOptions& options) {
@@ -651,7 +686,7 @@ int runTradeoff(const TradeoffOptions& options) {
                      describe(plan.reference, t).c_str(), t.z, t.schedule.size(),
                      options.maxReplicas);
 
-    bool budgetSpent = false;
+    bool budgetSpent = false, stoppedByDominance = false;
     for (int round = 1;; ++round) {
         std::vector<const Rung*> all{&t.reference};
         for (const auto& ladder : t.ladders)
@@ -685,6 +720,10 @@ int runTradeoff(const TradeoffOptions& options) {
         nlohmann::json partial = report(t);
         partial["verdict"] = "not reached yet: round " + std::to_string(round) + " done";
         writeFileAtomically(options.out / "tradeoff.json", partial.dump(2) + "\n");
+        if (!options.frontier && dominance(t)) {
+            stoppedByDominance = true;
+            break;
+        }
         if (t.cpuSpent > options.budgetCpuHours * 3600.0) {
             budgetSpent = true;
             break;
@@ -739,28 +778,14 @@ int runTradeoff(const TradeoffOptions& options) {
                              "leaves a bound on its own bias above a quarter of a tolerance");
             }
 
-    const Rung* dmd = cheapestOf(t, "dmd");
-    const Rung* smd = cheapestOf(t, "smd");
-    std::string verdict;
-    int status = 0;
-    if (!dmd || !smd) {
-        verdict = std::string("no verdict: ") + (!dmd ? "no DMD setting" : "no SMD setting") +
-                  " was resolved within tolerance at " + toleranceText(t);
-        // What the other engine found is still an answer: the setting to use.
-        if (const Rung* found = dmd ? dmd : smd) {
-            char b[256];
-            std::snprintf(b, sizeof b, "; the cheapest within: %s, %.3g CPU s per ps at N %d",
-                          describe(found->setting, t).c_str(), found->cost(), t.biasBodies);
-            verdict += b;
-        }
-        status = 1;
-    } else {
-        // The cost window: both chosen settings at the scene's N, alternated, one at a time.
+    // The cost window: a DMD and an SMD setting at the scene's N, alternated A B A B, one run at
+    // a time, each pair a sweep of its own; the ratio DMD/SMD with its interval.
+    const auto costWindow = [&](const Setting& a, const Setting& b, const char* kind,
+                                analysis::RatioInterval& ratio) -> int {
         std::vector<double> costA, costB;
         for (int p = 1; p <= options.costPairs; ++p) {
-            // Each pair a sweep of its own, DMD then SMD, one at a time: the order is A B A B.
             std::vector<CaseRun> pair;
-            for (const Setting* s : {&dmd->setting, &smd->setting})
+            for (const Setting* s : {&a, &b})
                 pair.push_back({s, 1000 + p, "cost-" + s->label() + "_p" + std::to_string(p)});
             const int s = runCases(t, pair, "", 1);
             if (s >= 128) return s;
@@ -772,9 +797,10 @@ int runTradeoff(const TradeoffOptions& options) {
                 rb.cpuPerPs > 0)
                 costA.push_back(ra.cpuPerPs), costB.push_back(rb.cpuPerPs);
         }
-        const analysis::RatioInterval ratio = analysis::pairedRatio(costA, costB);
-        out["cost"] = {{"dmd", dmd->setting.label()},
-                       {"smd", smd->setting.label()},
+        ratio = analysis::pairedRatio(costA, costB);
+        out["cost"] = {{"kind", kind},
+                       {"dmd", a.label()},
+                       {"smd", b.label()},
                        {"dmd_cpu_s_per_ps", costA},
                        {"smd_cpu_s_per_ps", costB},
                        {"ratio_dmd_over_smd", ratio.median},
@@ -782,6 +808,79 @@ int runTradeoff(const TradeoffOptions& options) {
                        {"ratio_hi", ratio.hi},
                        {"ratio_level", ratio.level},
                        {"pairs", ratio.pairs}};
+        return 0;
+    };
+
+    const Rung* dmd = cheapestOf(t, "dmd");
+    const Rung* smd = cheapestOf(t, "smd");
+    const std::optional<Dominance> dom = options.frontier ? std::nullopt : dominance(t);
+    std::string verdict;
+    int status = 0;
+    if (dom && (stoppedByDominance || !dmd || !smd)) {
+        // One engine is cheaper than any setting of the other could be: the ratio to the other's
+        // cost floor is a lower bound on the true one.
+        const bool dmdBound = dom->bound->setting.engine == "dmd";
+        analysis::RatioInterval r;
+        if (const int s =
+                dmdBound ? costWindow(dom->bound->setting, dom->chosen->setting, "at_least", r)
+                         : costWindow(dom->chosen->setting, dom->bound->setting, "at_least", r))
+            return s;
+        // The chosen engine's advantage: the bound's cost over the chosen one's.
+        const analysis::RatioInterval ratio =
+            dmdBound
+                ? r
+                : analysis::RatioInterval{1.0 / r.median, 1.0 / r.hi, 1.0 / r.lo, r.pairs, r.level};
+        out["cost"]["cheaper"] = dom->chosen->setting.engine;
+        const std::string other = dom->bound->setting.engine == "dmd" ? "DMD" : "SMD";
+        char why[256];
+        if (dom->floor.within)
+            std::snprintf(why, sizeof why, "%s's cheapest setting within is %s", other.c_str(),
+                          describe(dom->bound->setting, t).c_str());
+        else
+            std::snprintf(why, sizeof why,
+                          "%s's most accurate setting that bounds it, %s, is outside on %s by "
+                          "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",
+                          other.c_str(), describe(dom->bound->setting, t).c_str(),
+                          observableName(dom->floor.ruling.observable),
+                          dom->floor.ruling.bias.mean / dom->floor.ruling.tolerance,
+                          dom->floor.ruling.bias.err / dom->floor.ruling.tolerance);
+        out["cost"]["bound"] = {{"setting", dom->bound->setting.label()},
+                                {"within", dom->floor.within}};
+        if (!dom->floor.within)
+            out["cost"]["bound"]["ruling"] =
+                biasJson(dom->floor.ruling, dom->bound->setting.engine);
+        char b2[768];
+        if (ratio.lo > 1.0) {
+            std::snprintf(b2, sizeof b2,
+                          "%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s setting "
+                          "within tolerance at %s (N %d): %s",
+                          describe(dom->chosen->setting, t).c_str(), ratio.median, ratio.lo,
+                          ratio.hi, 100.0 * ratio.level, other.c_str(), toleranceText(t).c_str(),
+                          t.scene.state.n, why);
+        } else {
+            std::snprintf(b2, sizeof b2,
+                          "no verdict: at N %d the cost window does not resolve %s (%.2fx, "
+                          "%.2f-%.2f) as cheaper than %s, the floor of %s's cost at %s",
+                          t.scene.state.n, describe(dom->chosen->setting, t).c_str(), ratio.median,
+                          ratio.lo, ratio.hi, describe(dom->bound->setting, t).c_str(),
+                          other.c_str(), toleranceText(t).c_str());
+            status = 1;
+        }
+        verdict = b2;
+    } else if (!dmd || !smd) {
+        verdict = std::string("no verdict: ") + (!dmd ? "no DMD setting" : "no SMD setting") +
+                  " was resolved within tolerance at " + toleranceText(t);
+        // What the other engine found is still an answer: the setting to use.
+        if (const Rung* found = dmd ? dmd : smd) {
+            char b[256];
+            std::snprintf(b, sizeof b, "; the cheapest within: %s, %.3g CPU s per ps at N %d",
+                          describe(found->setting, t).c_str(), found->cost(), t.biasBodies);
+            verdict += b;
+        }
+        status = 1;
+    } else {
+        analysis::RatioInterval ratio;
+        if (const int s = costWindow(dmd->setting, smd->setting, "ratio", ratio)) return s;
         char b2[512];
         if (ratio.median >= 1.0)
             std::snprintf(b2, sizeof b2, "%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s",
