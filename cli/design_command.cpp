@@ -59,6 +59,8 @@ int printDesign(const DesignRequest& request) {
                         scene.name.c_str(), section.terraces.levels.c_str(),
                         section.terraces.values.c_str(), section.terraces.n, section.dV,
                         section.model.c_str(), scene.kT(), settings.rm);
+        for (const std::string& w : scene.warnings)
+            std::printf("# warning: %s\n", w.c_str());
         std::printf("terrace,lower_kJ_per_mol,upper_kJ_per_mol,value_kJ_per_mol\n");
         // Uniform levels are unbounded: print the well and the wall up to 50 kT.
         const int lo = L.isUniform()

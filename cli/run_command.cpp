@@ -4,6 +4,7 @@
 #include "cli/resource_check.hpp"
 #include "cli/restart.hpp"
 #include "cli/scene_check.hpp"
+#include "cli/well_check.hpp"
 #include "core/output_file.hpp"
 #include <cstdio>
 #include <sstream>
@@ -19,6 +20,7 @@ Scene resolveScene(const RunRequest& request) {
                       ? sceneFromJson(nlohmann::json::object(), origin, request.overrides)
                       : loadScene(request.scenePath, request.overrides);
     resolveEngineSections(scene, origin);
+    warnOfSwallowedWells(scene);
     return scene;
 }
 

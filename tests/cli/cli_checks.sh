@@ -262,6 +262,13 @@ design)
         --set 'dmd.terraces={"levels":"log"}'
     expect_error "$src/experiments/scenes/dense-rods.json" "dmd.values" \
         --set 'dmd.levels=[-1,1]' --set 'dmd.values=[0,0]'
+    # A terracing that swallows the shallow Gay-Berne wells whole is said, with what resolves
+    # them; the shipped scene's own dV resolves them.
+    "$terrace" design "$src/experiments/scenes/gay-berne-liquid.json" --set dmd.dV=0.5 |
+        grep -q "^# warning: dmd: terrace 0 (V = 0) holds the whole well of [1-9][0-9]* of the" ||
+        fail "design: no warning of swallowed wells at dV = 0.5 kT"
+    "$terrace" design "$src/experiments/scenes/gay-berne-liquid.json" | grep -q "^# warning" &&
+        fail "design: the shipped Gay-Berne scene swallows a well"
     # A run on a design goes end to end.
     short_run dmd --set 'dmd.terraces={"levels":"volume","values":"virial","n":3}'
     ;;
