@@ -140,8 +140,8 @@ const Command commands[] = {
       resolved within or outside its tolerance at 2 sigma (Bonferroni over the replica
       counts looked at), replicas added where it is not, up to --max-replicas or the budget;
       the bias law (dt^2, dt^4, dV^p) places a setting between the last within and the first
-      outside, checked by its own runs. Once one engine's cheapest setting within costs
-      1.5x less than any setting of the other could (every cheaper one resolved outside on
+      outside, checked by its own runs. Once one engine's cheapest setting within is timed
+      cheaper than any setting of the other could be (every cheaper one resolved outside on
       an observable whose bias grows with dV or dt), it stops: the verdict then says "at
       least", the ratio to the other's most accurate setting outside (--frontier resolves
       both engines instead). DMD's u, p, g and g_peak are estimated on its

@@ -26,13 +26,30 @@ RunPlan planRun(const Scene& scene) {
     };
     plan.sampleInterval = onGrid(scene.run.sample_fs);
     plan.thermostatInterval = onGrid(scene.run.thermostat_fs);
-    // Run lengths are whole multiples of their intervals (the scene validation refuses any
-    // other): rounding the ratio gives the exact count, whatever the binary round-off of a
-    // decimal length.
-    plan.equilibrationTicks =
-        long(std::llround(units::fromPs(scene.run.equilibrate_ps) / plan.thermostatInterval));
+    // Run lengths are honoured as typed. Equilibration ends on a rescale at run.equilibrate_ps,
+    // its last thermostat interval cut short where the length is not a whole number of them;
+    // production is sampled at whole sample intervals and runs on, unsampled, to run.time_ps
+    // (the analysis needs equally spaced samples). A length within limits::gridTolerance of a
+    // whole number of intervals is that whole number: only its binary round-off differs.
+    // Under SMD both lengths are whole numbers of steps (smd/parameters.hpp).
+    const auto lengthOnGrid = [&](double ps) {
+        const double t = units::fromPs(ps);
+        if (scene.engine != "smd") return t;
+        const double dt = units::fromFs(smd::readSmdSection(scene.smd).dt_fs);
+        return std::round(t / dt) * dt;
+    };
+    const auto whole = [](double ratio) {
+        return std::abs(ratio - std::round(ratio)) <= limits::gridTolerance * std::max(1.0, ratio);
+    };
+    plan.equilibrationEnd = lengthOnGrid(scene.run.equilibrate_ps);
+    plan.productionLength = lengthOnGrid(scene.run.time_ps);
+    const double ticks = plan.equilibrationEnd / plan.thermostatInterval;
+    plan.partialTick = plan.equilibrationEnd > 0.0 && !whole(ticks);
+    plan.equilibrationTicks = plan.partialTick ? long(std::ceil(ticks)) : long(std::llround(ticks));
+    const double samples = plan.productionLength / plan.sampleInterval;
+    plan.unsampledTail = !whole(samples);
     plan.productionSamples =
-        long(std::llround(units::fromPs(scene.run.time_ps) / plan.sampleInterval));
+        plan.unsampledTail ? long(std::floor(samples)) : long(std::llround(samples));
     auto inSamples = [&](double interval) {
         return interval > 0.0 ? std::max(1L, long(std::llround(interval / plan.sampleInterval)))
                               : 0L;
@@ -50,9 +67,18 @@ RunPlan planRun(const Scene& scene) {
 }
 
 double RunPlan::productionTime(long s, double tStart) const {
-    if (thermostatInterval == sampleInterval)
+    if (thermostatInterval == sampleInterval && !partialTick)
         return double(equilibrationTicks + s) * sampleInterval;
     return tStart + double(s) * sampleInterval;
+}
+
+double RunPlan::tickTime(long k) const {
+    return partialTick && k == equilibrationTicks ? equilibrationEnd
+                                                  : double(k) * thermostatInterval;
+}
+
+double RunPlan::productionEnd(double tStart) const {
+    return unsampledTail ? tStart + productionLength : productionTime(productionSamples, tStart);
 }
 
 analysis::StreamingOptions streamingOptions(const Scene& scene) {

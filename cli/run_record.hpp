@@ -24,8 +24,13 @@ namespace terrace::cli {
 struct RunPlan {
     double sampleInterval = 0.0;     // time units
     double thermostatInterval = 0.0; // time units
-    long equilibrationTicks = 0;     // whole thermostat intervals
+    long equilibrationTicks = 0;     // thermostat intervals, the last one partial when
+                                     // run.equilibrate_ps is not a whole number of them
     long productionSamples = 0;      // samples after the one at the start of production
+    double equilibrationEnd = 0.0;   // run.equilibrate_ps, time units
+    double productionLength = 0.0;   // run.time_ps, time units (≥ productionSamples intervals)
+    bool partialTick = false;        // the last thermostat interval is cut short
+    bool unsampledTail = false;      // production goes on past its last sample
     long trajectoryEvery = 0;        // in samples; 0 = none
     bool trajectoryGsd = false;      // trajectory.gsd (output.trajectory_format gsd), else .xyz
     GsdBodyType gsdType;             // what a GSD trajectory records of the bodies
@@ -36,6 +41,11 @@ struct RunPlan {
     /// The time of production sample s. When the thermostat and sample intervals agree this is
     /// (ticks + s)·Δt, one grid from t = 0, as runs have always been sampled.
     double productionTime(long s, double tStart) const;
+    /// The end of equilibration's thermostat interval k (1 … equilibrationTicks): k intervals,
+    /// or run.equilibrate_ps for a last one cut short.
+    double tickTime(long k) const;
+    /// Production's end: its last sample, or run.time_ps past its start when that lies beyond.
+    double productionEnd(double tStart) const;
 };
 
 /// The scene's intervals on the engine's grid (the scene validation has checked that they are

@@ -686,6 +686,55 @@ int runTradeoff(const TradeoffOptions& options) {
                      describe(plan.reference, t).c_str(), t.z, t.schedule.size(),
                      options.maxReplicas);
 
+    nlohmann::json costRecord; // the last cost window timed
+    // The cost window: a DMD and an SMD setting at the scene's N, alternated A B A B, one run at
+    // a time, each pair a sweep of its own; the ratio DMD/SMD with its interval.
+    const auto costWindow = [&](const Setting& a, const Setting& b, const char* kind,
+                                analysis::RatioInterval& ratio) -> int {
+        std::vector<double> costA, costB;
+        for (int p = 1; p <= options.costPairs; ++p) {
+            std::vector<CaseRun> pair;
+            for (const Setting* s : {&a, &b})
+                pair.push_back({s, 1000 + p, "cost-" + s->label() + "_p" + std::to_string(p)});
+            const int s = runCases(t, pair, "", 1);
+            if (s >= 128) return s;
+            const ReplicaResult ra =
+                readReplica(t.runs() / pair[0].label, t.scene.state.n, t.scene.potential.epsilon);
+            const ReplicaResult rb =
+                readReplica(t.runs() / pair[1].label, t.scene.state.n, t.scene.potential.epsilon);
+            if (std::isfinite(ra.cpuPerPs) && std::isfinite(rb.cpuPerPs) && ra.cpuPerPs > 0 &&
+                rb.cpuPerPs > 0)
+                costA.push_back(ra.cpuPerPs), costB.push_back(rb.cpuPerPs);
+        }
+        ratio = analysis::pairedRatio(costA, costB);
+        costRecord = {{"kind", kind},
+                      {"dmd", a.label()},
+                      {"smd", b.label()},
+                      {"dmd_cpu_s_per_ps", costA},
+                      {"smd_cpu_s_per_ps", costB},
+                      {"ratio_dmd_over_smd", ratio.median},
+                      {"ratio_lo", ratio.lo},
+                      {"ratio_hi", ratio.hi},
+                      {"ratio_level", ratio.level},
+                      {"pairs", ratio.pairs}};
+        return 0;
+    };
+
+    // One engine's chosen setting against the other's cost floor: the chosen engine's advantage,
+    // the floor's cost over the chosen one's, with its interval.
+    const auto timeDominance = [&](const Dominance& d, analysis::RatioInterval& ratio) -> int {
+        const bool dmdBound = d.bound->setting.engine == "dmd";
+        analysis::RatioInterval r;
+        if (const int s = dmdBound ? costWindow(d.bound->setting, d.chosen->setting, "at_least", r)
+                                   : costWindow(d.chosen->setting, d.bound->setting, "at_least", r))
+            return s;
+        ratio = dmdBound ? r
+                         : analysis::RatioInterval{1.0 / r.median, 1.0 / r.hi, 1.0 / r.lo, r.pairs,
+                                                   r.level};
+        costRecord["cheaper"] = d.chosen->setting.engine;
+        return 0;
+    };
+
     bool budgetSpent = false, stoppedByDominance = false;
     for (int round = 1;; ++round) {
         std::vector<const Rung*> all{&t.reference};
@@ -720,10 +769,24 @@ int runTradeoff(const TradeoffOptions& options) {
         nlohmann::json partial = report(t);
         partial["verdict"] = "not reached yet: round " + std::to_string(round) + " done";
         writeFileAtomically(options.out / "tradeoff.json", partial.dump(2) + "\n");
-        if (!options.frontier && dominance(t)) {
-            stoppedByDominance = true;
-            break;
-        }
+        // One engine already cheaper than any setting of the other could be, at the bias runs' N:
+        // timed at the scene's N, a resolved advantage ends the tradeoff.
+        if (!options.frontier)
+            if (const auto d = dominance(t)) {
+                analysis::RatioInterval r;
+                if (const int s = timeDominance(*d, r)) return s;
+                if (r.lo > 1.0) {
+                    stoppedByDominance = true;
+                    break;
+                }
+                if (!options.quiet)
+                    std::fprintf(stderr,
+                                 "tradeoff: %s is not resolved cheaper than %s at N %d (%.2fx, "
+                                 "%.2f-%.2f); going on\n",
+                                 d->chosen->setting.label().c_str(),
+                                 d->bound->setting.label().c_str(), t.scene.state.n, r.median, r.lo,
+                                 r.hi);
+            }
         if (t.cpuSpent > options.budgetCpuHours * 3600.0) {
             budgetSpent = true;
             break;
@@ -778,39 +841,6 @@ int runTradeoff(const TradeoffOptions& options) {
                              "leaves a bound on its own bias above a quarter of a tolerance");
             }
 
-    // The cost window: a DMD and an SMD setting at the scene's N, alternated A B A B, one run at
-    // a time, each pair a sweep of its own; the ratio DMD/SMD with its interval.
-    const auto costWindow = [&](const Setting& a, const Setting& b, const char* kind,
-                                analysis::RatioInterval& ratio) -> int {
-        std::vector<double> costA, costB;
-        for (int p = 1; p <= options.costPairs; ++p) {
-            std::vector<CaseRun> pair;
-            for (const Setting* s : {&a, &b})
-                pair.push_back({s, 1000 + p, "cost-" + s->label() + "_p" + std::to_string(p)});
-            const int s = runCases(t, pair, "", 1);
-            if (s >= 128) return s;
-            const ReplicaResult ra =
-                readReplica(t.runs() / pair[0].label, t.scene.state.n, t.scene.potential.epsilon);
-            const ReplicaResult rb =
-                readReplica(t.runs() / pair[1].label, t.scene.state.n, t.scene.potential.epsilon);
-            if (std::isfinite(ra.cpuPerPs) && std::isfinite(rb.cpuPerPs) && ra.cpuPerPs > 0 &&
-                rb.cpuPerPs > 0)
-                costA.push_back(ra.cpuPerPs), costB.push_back(rb.cpuPerPs);
-        }
-        ratio = analysis::pairedRatio(costA, costB);
-        out["cost"] = {{"kind", kind},
-                       {"dmd", a.label()},
-                       {"smd", b.label()},
-                       {"dmd_cpu_s_per_ps", costA},
-                       {"smd_cpu_s_per_ps", costB},
-                       {"ratio_dmd_over_smd", ratio.median},
-                       {"ratio_lo", ratio.lo},
-                       {"ratio_hi", ratio.hi},
-                       {"ratio_level", ratio.level},
-                       {"pairs", ratio.pairs}};
-        return 0;
-    };
-
     const Rung* dmd = cheapestOf(t, "dmd");
     const Rung* smd = cheapestOf(t, "smd");
     const std::optional<Dominance> dom = options.frontier ? std::nullopt : dominance(t);
@@ -819,18 +849,9 @@ int runTradeoff(const TradeoffOptions& options) {
     if (dom && (stoppedByDominance || !dmd || !smd)) {
         // One engine is cheaper than any setting of the other could be: the ratio to the other's
         // cost floor is a lower bound on the true one.
-        const bool dmdBound = dom->bound->setting.engine == "dmd";
-        analysis::RatioInterval r;
-        if (const int s =
-                dmdBound ? costWindow(dom->bound->setting, dom->chosen->setting, "at_least", r)
-                         : costWindow(dom->chosen->setting, dom->bound->setting, "at_least", r))
-            return s;
-        // The chosen engine's advantage: the bound's cost over the chosen one's.
-        const analysis::RatioInterval ratio =
-            dmdBound
-                ? r
-                : analysis::RatioInterval{1.0 / r.median, 1.0 / r.hi, 1.0 / r.lo, r.pairs, r.level};
-        out["cost"]["cheaper"] = dom->chosen->setting.engine;
+        analysis::RatioInterval ratio; // the runs of a window timed in the loop are reused
+        if (const int s = timeDominance(*dom, ratio)) return s;
+        out["cost"] = costRecord;
         const std::string other = dom->bound->setting.engine == "dmd" ? "DMD" : "SMD";
         char why[256];
         if (dom->floor.within)
@@ -881,6 +902,7 @@ int runTradeoff(const TradeoffOptions& options) {
     } else {
         analysis::RatioInterval ratio;
         if (const int s = costWindow(dmd->setting, smd->setting, "ratio", ratio)) return s;
+        out["cost"] = costRecord;
         char b2[512];
         if (ratio.median >= 1.0)
             std::snprintf(b2, sizeof b2, "%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s",

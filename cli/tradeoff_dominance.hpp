@@ -43,8 +43,8 @@ std::optional<CostFloor> ladderCostFloor(const std::vector<RungView>& ladder, in
 std::optional<CostFloor> engineCostFloor(const std::vector<std::vector<RungView>>& ladders,
                                          double z);
 
-/// The early stop: the other engine's floor at least this many times the chosen cost, both as
-/// measured at the bias runs' N, before the cost window at the scene's N measures the ratio.
-constexpr double dominanceMargin = 1.5;
+/// The early stop is tried when the other engine's floor is above the chosen cost, both as
+/// measured at the bias runs' N (by this factor); the cost window at the scene's N then decides.
+constexpr double dominanceMargin = 1.0;
 
 } // namespace terrace::cli

@@ -102,12 +102,14 @@ struct Scene {
     nlohmann::json dmd = nlohmann::json::object();
     nlohmann::json smd = nlohmann::json::object();
 
-    // Every interval is honoured exactly or refused. Intervals must fit in the run and lie on the
-    // grid: time_ps is a whole multiple of sample_fs, and equilibrate_ps of thermostat_fs or 0
-    // (relative tolerance limits::gridTolerance on each ratio); sample_fs and thermostat_fs are
-    // >= 0.01 fs; under SMD, both are whole multiples of smd.dt_fs (smd/parameters.hpp). The
-    // defaults are whole multiples of 9 fs, so whole numbers of SMD steps at dt = 0.2, 0.5, 1, 1.8
-    // and 3 fs.
+    // Every interval and length is honoured exactly or refused. Lengths are honoured as typed:
+    // equilibration's last thermostat interval is cut short where equilibrate_ps is not a whole
+    // number of them (it still ends on a rescale), and production runs on, unsampled, past its
+    // last whole sample to time_ps. sample_fs must fit in the run; sample_fs and thermostat_fs
+    // are >= 0.01 fs; under SMD, intervals and lengths are whole multiples of smd.dt_fs
+    // (smd/parameters.hpp; relative tolerance limits::gridTolerance on each ratio). The
+    // defaults are whole multiples of 9 fs, so whole numbers of SMD steps at dt = 0.2, 0.5, 1,
+    // 1.8 and 3 fs.
     struct Run {
         double equilibrate_ps = 1.8; // 200 thermostat intervals
         double time_ps = 9.0;        // 1000 samples

@@ -51,7 +51,8 @@ inline nlohmann::json toJson(const SmdSection& s) {
 }
 
 /// The section of `scene` read and checked against the run it belongs to, and written back
-/// resolved. SMD advances in whole steps: under SMD no interval may fall between two.
+/// resolved. SMD advances in whole steps: under SMD no interval or run length may fall between
+/// two.
 inline SmdSection resolveSmdSection(Scene& scene, const std::string& origin = "") {
     const SmdSection s = readSmdSection(scene.smd, origin);
     scene.smd = toJson(s);
@@ -63,6 +64,12 @@ inline SmdSection resolveSmdSection(Scene& scene, const std::string& origin = ""
                              showNumber(run.time_ps) + " ps: no step would be taken");
     requireOnGrid(at, "run.sample_fs", run.sample_fs, "fs", 1.0, "smd.dt_fs", s.dt_fs);
     requireOnGrid(at, "run.thermostat_fs", run.thermostat_fs, "fs", 1.0, "smd.dt_fs", s.dt_fs);
+    // The run's lengths need not be whole intervals (the last one is cut short), but SMD cannot
+    // stop between two steps.
+    requireOnGrid(at, "run.time_ps", run.time_ps, "ps", 1000.0, "smd.dt_fs", s.dt_fs);
+    if (run.equilibrate_ps > 0.0)
+        requireOnGrid(at, "run.equilibrate_ps", run.equilibrate_ps, "ps", 1000.0, "smd.dt_fs",
+                      s.dt_fs);
     return s;
 }
 

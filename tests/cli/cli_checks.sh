@@ -82,13 +82,11 @@ bad_value)
     expect_error "$src/experiments/scenes/dense-rods.json" "dmd.dV" --set dmd.dV=-1
     expect_error "$src/experiments/scenes/dense-rods.json" "smd.dt_fs" --set smd.dt_fs=0
     expect_error "$src/experiments/scenes/dense-rods.json" "state.density" --set state.density=5
-    # What is asked for is what is run: a run length off its interval's grid is refused, not cut.
+    # What is asked for is what is run: a run length off its interval's grid is run as typed
+    # under DMD; under SMD, a length between two steps is refused with the nearest valid ones.
     expect_error "$src/experiments/scenes/dense-rods.json" \
-        "run.time_ps: must be a whole multiple of run.sample_fs = 9 fs, got 10 ps; nearest valid: 9.999 or 10.008 ps" \
-        --set run.time_ps=10
-    expect_error "$src/experiments/scenes/dense-rods.json" \
-        "run.equilibrate_ps: must be a whole multiple of run.thermostat_fs = 9 fs, got 1 ps" \
-        --set run.equilibrate_ps=1
+        "run.time_ps: must be a whole multiple of smd.dt_fs = 1.8 fs, got 2 ps; nearest valid: 1.9998 or 2.0016 ps" \
+        --set engine=smd --set run.time_ps=2
     # No level in the well and none a thermal pair meets: U = 0 throughout, refused.
     expect_error "$src/experiments/scenes/dense-rods.json" \
         "dmd.dV: 1e+06 kT puts the first level at -2.1e+06 kJ/mol" --set dmd.dV=1e6
@@ -275,6 +273,17 @@ design)
 end_to_end_dmd)
     short_run dmd
     grep -q '"collisions_per_ps"' "$work/dmd/summary.json" || fail "DMD summary lacks collisions_per_ps"
+    ;;
+lengths_as_typed)
+    # Lengths that are no whole number of their intervals run as typed: equilibration's last
+    # rescale interval is cut short, production runs on past its last sample, unsampled.
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/typed" \
+        --set state.n=216 --set run.equilibrate_ps=0.05 --set run.time_ps=0.1 >/dev/null ||
+        fail "a run of 0.1 ps (11.1 samples of 9 fs) after 0.05 ps (5.6 rescales) failed"
+    got=$(python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); print(s["simulated_ps"], s["samples"])' \
+        "$work/typed/summary.json")
+    awk -v g="$got" 'BEGIN { split(g, x, " "); exit !(x[1] > 0.1 - 1e-12 && x[1] < 0.1 + 1e-12 && x[2] == 12) }' ||
+        fail "typed lengths: simulated_ps and samples $got, not 0.1 and 12"
     ;;
 end_to_end_smd)
     short_run smd --set smd.dt_fs=1.8
@@ -502,8 +511,10 @@ second_signal)
 kill_resume)
     # A run killed with SIGKILL and continued from its restart file ends with the same
     # trajectory, thermo.csv, correlation files and pressure, byte for byte, as the same run left
-    # alone: DMD and SMD killed in production, DMD killed during a long equilibration.
-    for case in dmd:0.18:9 smd:0.18:9 dmd:9:0.9; do
+    # alone: DMD and SMD killed in production, DMD killed during a long equilibration (with
+    # lengths that are no whole number of their intervals: its last rescale interval cut short,
+    # its production's last 5 fs unsampled).
+    for case in dmd:0.18:9 smd:0.18:9 dmd:9.005:0.905; do
         IFS=: read -r engine equilibrate ps <<<"$case"
         name=$engine-$equilibrate
         args=(--quiet --set engine=$engine --set state.n=216 --set run.equilibrate_ps=$equilibrate
@@ -523,7 +534,7 @@ kill_resume)
         wait $pid
         [ -e "$work/$name-b/restart.bin" ] || fail "$name: no restart file before the kill"
         [ ! -e "$work/$name-b/summary.json" ] || fail "$name: the run ended before the kill"
-        if [ "$equilibrate" = 9 ]; then
+        if [ "$equilibrate" = 9.005 ]; then
             grep -qa equilibration "$work/$name-b/restart.bin" || fail "$name: not killed in equilibration"
             [ ! -e "$work/$name-b/trajectory.xyz" ] || fail "$name: production had begun"
             [ ! -e "$work/$name-b/thermo.csv" ] || fail "$name: thermo.csv before production"
