@@ -47,8 +47,6 @@ public:
     /// its time does not follow the last one's.
     void add(const SampleRecord& e);
     long count() const { return energy_.count(); }
-    /// The last sample added (undefined before the first).
-    const SampleRecord& last() const { return previous_; }
 
     /// summary.json's entries from the samples so far: temperature_K and its error,
     /// potential_energy_* and energy (with a warning, also on stderr, when the total energy
