@@ -40,8 +40,8 @@ const Command commands[] = {
       or, with output.trajectory_format=gsd, trajectory.gsd (HOOMD's GSD, read by OVITO,
       freud and gsd, with orientations and the bodies' shapes).
       With output.restart_every_ps > 0 the run keeps DIR/restart.bin (the bodies and the
-      analysis' accumulators, not the samples' bodies) until it ends, from which --continue
-      goes on.
+      analysis' and statistics' accumulators, no sample: its size does not grow with the run)
+      until it ends, from which --continue goes on.
       Units (docs/UNITS.md): real by default (Å, g/mol, kJ/mol, K, and fs or ps as a key's
       name says); with units=lj, reduced units of the scene's model (σ and ε of its potential,
       m its body mass, τ = σ·sqrt(m/ε)): the closing lines, thermo.csv, the CSVs and

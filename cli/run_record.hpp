@@ -1,10 +1,11 @@
 #pragma once
 // What a run keeps as it goes, apart from the engine: the plan of its time grid, its position on
-// that grid, the files it grows, and the record of its samples that becomes summary.json.
+// that grid, the files it grows, and the statistics of its samples that become summary.json.
 #include "analysis/run_analysis.hpp"
 #include "cli/cpu_clock.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/restart.hpp"
+#include "cli/sample_statistics.hpp"
 #include "cli/thermo.hpp"
 #include "core/gsd_frame.hpp"
 #include "core/output_file.hpp"
@@ -55,7 +56,8 @@ RunPlan planRun(const Scene& scene);
 /// The analysis settings of a scene (analysis.rdf_max is in σ there, in Å here).
 analysis::StreamingOptions streamingOptions(const Scene& scene);
 
-/// Bytes the run's analysis and per-sample records will hold in memory at most.
+/// Bytes the run's analysis will hold in memory at most (the sample statistics, a few hundred
+/// bytes, aside).
 double analysisBytes(const Scene& scene);
 
 /// Where the run stands on its grid: the phase, thermostat ticks and samples done, production's
@@ -96,7 +98,8 @@ void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& producti
 
 /// What a run gathered, handed from the engine loop to the summary.
 struct RunRecord {
-    std::vector<SampleRecord> records; // per production sample: energies, K_trans, virial, …
+    SampleStatistics samples; // of the production samples' energies, K_trans, virial, …
+    SampleRecord thermoRow;   // the sample of thermo.csv's last row: the next is taken since it
     std::unique_ptr<analysis::RunAnalysis> analysis; // null with fewer than 4 samples planned
     CpuClock analysisClock;                          // CPU time of the analysis
     Vec3 momentumInitial = Vec3::Zero(), momentumFinal = Vec3::Zero(); // internal units
@@ -104,7 +107,7 @@ struct RunRecord {
     double simulatedPs = 0.0, cpuSeconds = 0.0, cpuEquilibration = 0.0;
     double sampleInterval = 0.0, kT = 0.0;
     double volume = 0.0;                               // Å³
-    VirialKind virialKind = VirialKind::Instantaneous; // what records[k].virial holds
+    VirialKind virialKind = VirialKind::Instantaneous; // what SampleRecord::virial holds
     int bodies = 0, dof = 0;
     std::string interruptedBy;         // the signal that stopped the run ("" if none)
     std::string interruptedIn;         // equilibration | production | analysis
@@ -124,7 +127,7 @@ struct RunRecord {
     RunRecord() = default;
 
     void add(const SampleRecord& e, const Snapshot& s) {
-        records.push_back(e);
+        samples.add(e);
         if (!analysis) return;
         analysisClock.start();
         analysis->add(s);
@@ -135,7 +138,7 @@ struct RunRecord {
     /// no large system's sample, nor its positions, is held beside the engine (~0.1 GB of
     /// sample, 24 MB of positions, at 10⁶ rods).
     template <class E> void addParts(const SampleRecord& e, const E& engine) {
-        records.push_back(e);
+        samples.add(e);
         if (!analysis) return;
         const Snapshot followed = engine.snapshot(analysis->followedBodies());
         analysisClock.start();
@@ -156,10 +159,10 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
                                        const InterruptGuard& interrupt, int tolerated,
                                        bool& analysed);
 
-/// The run's position and accumulators from a restart file: the phase, the samples' records and
+/// The run's position and accumulators from a restart file: the phase, the sample statistics and
 /// the analysis' state (after checking that the growing files still hold what the file says they
 /// did), and what the file carries over. Fills `run` and opens `files` where they were. Nothing
-/// is replayed: its cost does not grow with the samples taken (but for their 80-byte records).
+/// is replayed: its cost does not grow with the samples taken.
 RunPosition resumeRun(const nlohmann::json& restart, const RunPlan& plan,
                       const std::filesystem::path& dir, RunRecord& run, RunFiles& files);
 

@@ -28,12 +28,14 @@ wait_frames() {
     done
 }
 
-# sweep_file FILE: six short runs of 64 rods, DMD and SMD, and two that the run refuses.
+# sweep_file FILE: six short runs of 64 rods, DMD and SMD, and two that the run refuses (a
+# trajectory of 10^11 frames, some hundred PiB, for any disk).
 sweep_file() {
     cat >"$1" <<END
 {"scene": "$src/experiments/scenes/dense-rods.json",
  "set": {"state.n": 64, "state.density": 0.1, "run.equilibrate_ps": 0.018, "run.time_ps": 0.09},
- "axes": [{"cases": [{"engine": "dmd"}, {"engine": "smd"}, {"engine": "smd", "run.time_ps": 1e9}],
+ "axes": [{"cases": [{"engine": "dmd"}, {"engine": "smd"},
+                     {"engine": "smd", "run.time_ps": 1e9, "output.trajectory_every_fs": 9}],
            "labels": ["dmd", "smd", "too-long"]}],
  "seeds": [1, 2]}
 END
@@ -568,6 +570,12 @@ term_continue)
     "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/b" "${args[@]}" \
         >/dev/null 2>&1 &
     pid=$!
+    # The first restart file of production (its first sample), kept to compare with the last.
+    for _ in $(seq 1 6000); do
+        grep -qa production "$work/b/restart.bin" 2>/dev/null && break
+        sleep 0.01
+    done
+    cp "$work/b/restart.bin" "$work/first.bin" || fail "no restart file at production's start"
     wait_frames "$work/b/trajectory.xyz" 216 60
     kill -TERM $pid
     wait $pid
@@ -575,6 +583,12 @@ term_continue)
     [ $status -eq 143 ] || fail "exit status $status after SIGTERM"
     stopped=$(grep -c '^216$' "$work/b/trajectory.xyz")
     [ "$stopped" -lt 501 ] || fail "the run ended before the signal" # 1000 samples, every 2nd
+    # The restart file holds no series of samples: after 120 samples or more it is as large as
+    # after the first (3.1 MB), but for the integers that grew, the engine's counters among them
+    # (from 0 at production's start: up to 8 bytes more each in CBOR; 665 bytes measured).
+    first=$(stat -c %s "$work/first.bin") last=$(stat -c %s "$work/b/restart.bin")
+    [ $((last - first)) -le 1024 ] && [ $((first - last)) -le 1024 ] ||
+        fail "restart.bin grew from $first bytes at the first sample to $last at sample $((2 * stopped - 2))"
     "$terrace" run --continue "$work/b" --quiet >/dev/null || fail "--continue failed"
     [ "$(grep -c '^216$' "$work/b/trajectory.xyz")" -eq "$(grep -c '^216$' "$work/a/trajectory.xyz")" ] ||
         fail "the continued trajectory has another length"
@@ -655,10 +669,14 @@ partial_frame)
     [[ $out == *"warning"*"the last frame is cut short"* ]] || fail "no warning: $out"
     ;;
 memory)
-    # A run whose analysis cannot fit in memory is refused before it starts, with the estimate.
-    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/big" \
+    # A run whose analysis cannot fit in memory is refused before it starts, with the estimate:
+    # 4096 of 8000 bodies followed with 4096 lags a level over 10^9 samples (~25 GiB, under ulimit -v
+    # 8 GiB). The samples are not kept (their statistics stream): 10^9 samples of the default
+    # analysis need some MiB, and are not refused.
+    err=$(ulimit -v 8388608; "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
+        --out "$work/big" --set state.n=8000 --set analysis.lags_per_level=4096 \
         --set run.sample_fs=0.01 --set run.time_ps=10000 2>&1 >/dev/null) && fail "exit status 0"
-    [[ $err == *"run.time_ps / run.sample_fs (1000000001 samples): the run needs about"*"of memory"*"available: use fewer analysis.follow_bodies or a longer run.sample_fs" ]] ||
+    [[ $err == "terrace: run: analysis.follow_bodies, analysis.lags_per_level (4096 bodies followed, 4096 lags a level): the run needs about"*"of memory"*"available: follow fewer bodies or use fewer lags a level" ]] ||
         fail "message: $err"
     [ ! -e "$work/big" ] || fail "output written for a run refused"
     # 10^8 bodies (~50 GiB; was stopped only by an allocation failing): refused at once, before
@@ -1056,15 +1074,15 @@ thermo)
         fail "smd: potential_continuous differs from potential"
     ;;
 sweep)
-    # Six small runs, two of which the run refuses (too many samples for any memory): four done,
-    # the two failures recorded, exit status 1; run again, nothing runs again.
+    # Six small runs, two of which the run refuses (a trajectory too large for any disk): four
+    # done, the two failures recorded, exit status 1; run again, nothing runs again.
     sweep_file "$work/s.json"
     "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err"
     status=$?
     [ $status -eq 1 ] || fail "exit status $status for a sweep with failed runs: $(cat "$work/err")"
     [ "$(wc -l <"$work/out/sweep.csv")" -eq 7 ] || fail "sweep.csv: not a header and 6 rows"
     [ "$(grep -c ',ok,' "$work/out/sweep.csv")" -eq 4 ] || fail "not 4 runs ok: $(cat "$work/out/sweep.csv")"
-    [ "$(grep -c ',failed,.*needs about .* of memory' "$work/out/sweep.csv")" -eq 2 ] ||
+    [ "$(grep -c ',failed,.*will write about .* PiB into' "$work/out/sweep.csv")" -eq 2 ] ||
         fail "the failures are not recorded: $(cat "$work/out/sweep.csv")"
     for run in dmd_seed-1 smd_seed-2; do
         for f in summary.json scene.json rdf.csv vacf.csv run.log; do
