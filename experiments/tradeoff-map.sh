@@ -105,7 +105,7 @@ set grid
 plot '$table' skip 1 using 1:(strcol(3) eq "resolved" ? \$2 : NaN):(log10(\$6)) with points pt 7 ps 3 palette title 'resolved', \
      '' skip 1 using 1:(strcol(3) eq "resolved" ? \$2 : NaN):(sprintf("%.2g", \$6)) with labels offset 0,1.5 notitle, \
      '' skip 1 using 1:(strcol(3) eq "at_least" ? \$2 : NaN):(log10(\$6)) with points pt 9 ps 3 palette title 'bound: the cheaper engine resolved, its advantage at least', \
-     '' skip 1 using 1:(strcol(3) eq "at_least" ? \$2 : NaN):(sprintf(\$6 > 1 ? ">=%.2g" : "<=%.2g", \$6)) with labels offset 0,1.5 notitle, \
+     '' skip 1 using 1:(strcol(3) eq "at_least" ? \$2 : NaN):(\$6 > 1 ? sprintf(">=%.2g", \$6) : sprintf("<=%.2g", \$6)) with labels offset 0,1.5 notitle, \
      '' skip 1 using 1:(strcol(3) ne "resolved" && strcol(3) ne "at_least" ? \$2 : NaN) with points pt 2 ps 2 lc rgb '#888888' title 'no verdict', \
      '$dir/$name-breakeven.dat' using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'black' title 'break-even (between resolved cells)'
 GP
