@@ -17,6 +17,7 @@
 #include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include <cmath>
+#include <cstdio>
 #include <gtest/gtest.h>
 #include <numbers>
 #include <vector>
@@ -86,13 +87,15 @@ TEST(StepPhysics, HardSpheresFollowCarnahanStarling) {
             << "η = " << eta << ": Z = " << m.z << " ± " << m.zError << ", CS " << cs;
         EXPECT_LT(m.zError, 0.01 * cs) << "η = " << eta; // the check has teeth
         EXPECT_NEAR(m.kT, 1.0, 1e-9);                    // reflections keep the kinetic energy
+        std::printf("hard spheres η = %.2f: Z = %.4f ± %.4f, Carnahan–Starling %.4f\n", eta, m.z,
+                    m.zError, cs);
     }
 }
 
 TEST(StepPhysics, DiluteSquareWellFollowsItsSecondVirialCoefficient) {
     constexpr double lambda = 1.5, rho = 0.005;
     const Measured m =
-        measureZ({{"steps", "square_well"}, {"lambda", lambda}}, 1000, rho, 1.5, 20.0, 20, 40.0);
+        measureZ({{"steps", "square_well"}, {"lambda", lambda}}, 1000, rho, 1.5, 200.0, 20, 100.0);
     const double l3 = lambda * lambda * lambda;
     const double b2 = 2.0 * std::numbers::pi / 3.0 * (1.0 - (l3 - 1.0) * std::expm1(1.0 / m.kT));
     // B3 ρ² (|B3| of a few σ⁶ at T* = 1.5) is below 2e-4, a tenth of the error allowed here.
@@ -100,4 +103,6 @@ TEST(StepPhysics, DiluteSquareWellFollowsItsSecondVirialCoefficient) {
         << "Z − 1 = " << m.z - 1.0 << " ± " << m.zError << ", B2 ρ = " << b2 * rho << " at kT "
         << m.kT;
     EXPECT_LT(m.zError, 0.15 * std::abs(b2 * rho)); // the check has teeth: B2's sign and size
+    std::printf("square well λ 1.5, ρ* %.3f, T* %.4f: (Z − 1)/ρ = %.3f ± %.3f, B2 = %.3f σ³\n", rho,
+                m.kT, (m.z - 1.0) / rho, m.zError / rho, b2);
 }
