@@ -69,11 +69,6 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         detail::readState(top.section("state"), s);
         detail::checkRepresentable(top, s);
         s.engine = top.choice("engine", s.engine, {"dmd", "smd"});
-        // A step's force is an impulse at one radius: there is nothing for a time step to
-        // integrate, and no continuous potential the table stands for to integrate instead.
-        if (s.potential.kind == "steps" && s.engine == "smd")
-            top.fail("engine", "smd cannot integrate potential.kind steps (a step table's forces "
-                               "are impulses at its radii): use engine dmd");
         s.dmd = top.section("dmd").object(); // read by dmd/section.hpp
         s.smd = top.section("smd").object(); // read by smd/parameters.hpp
         detail::readRun(top.section("run"), s);
@@ -83,6 +78,11 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         if (!u.reduced()) throw;
         throw SceneError(std::string(e.what()) + reducedNote(u)); // its numbers are converted
     }
+    // A step's force is an impulse at one radius: there is nothing for a time step to integrate,
+    // and no continuous potential the table stands for to integrate instead.
+    if (s.potential.kind == "steps" && s.engine == "smd")
+        top.fail("engine", "smd cannot integrate potential.kind steps (a step table's forces are "
+                           "impulses at its radii): use engine dmd");
     return s;
 }
 
