@@ -299,7 +299,7 @@ TEST(StepEngine, ShoulderAndGeneratedTablesConserveEnergyAndMissNoEvent) {
                                 216, 0.6, 1.5),
                       "<shoulder>"),
         8, 0.5);
-    runAndCheck(sceneFromJson(stepScene({{"steps", "lj"}}, 216, 0.6, 1.5), "<lj>"), 8, 0.5);
+    runAndCheck(sceneFromJson(stepScene({{"steps", "lj"}}, 216, 0.6, 1.5), "<lj>"), 4, 0.25);
 }
 
 TEST(StepEngine, PairsStartedExactlyOnAStepRunWithoutAStall) {
