@@ -35,6 +35,8 @@ const Command commands[] = {
 )",
      R"(      Run a scene with its engine (engine = dmd | smd). Run lengths and output intervals
       are whole multiples of their intervals, or refused with the nearest valid values.
+      A step table (potential.kind steps: square wells, Chapela's LJ, DynamO's tables) runs
+      under dmd only: smd refuses it, a step's force being an impulse it cannot integrate.
       Writes DIR/summary.json, scene.json, initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv
       and, if asked for, thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE)
       or, with output.trajectory_format=gsd, trajectory.gsd (HOOMD's GSD, read by OVITO,
@@ -183,8 +185,8 @@ const Command commands[] = {
       fix nve/asphere (the same U; LAMMPS cuts at r_u where terrace switches off smoothly).
       Site molecules: fix rigid/small with site-pair tables (switched by site distance, not
       by the molecules' centres). Prints the first frame's U under both models and every
-      difference; the rod potential (rod-lj) is refused, naming the reason. Files of an
-      earlier export in DIR are replaced.
+      difference; the rod potential (rod-lj) and step tables (steps) are refused, naming the
+      reason. Files of an earlier export in DIR are replaced.
 )",
      R"(  SCENE.json            the scene (experiments/scenes/ holds some)
   DIR                   the directory written (created if need be)

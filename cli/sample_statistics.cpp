@@ -112,9 +112,10 @@ nlohmann::json SampleStatistics::configurational(double sigma, double epsilon) c
     j["blocks"] = um.samples; // those holding frames
     j["potential_energy_mean"] = um.mean;
     j["potential_energy_err"] = orNull(um.err);
-    j["pressure_bar"] = units::bar(pm.mean);
+    // A step table has no configurational virial (its W is NaN): its pressure is the engine's.
+    j["pressure_bar"] = orNull(units::bar(pm.mean));
     j["pressure_err_bar"] = orNull(units::bar(pm.err));
-    j["pressure_reduced"] = reducedPressure(pm.mean, sigma, epsilon);
+    j["pressure_reduced"] = orNull(reducedPressure(pm.mean, sigma, epsilon));
     j["pressure_err_reduced"] = orNull(reducedPressure(pm.err, sigma, epsilon));
     j["method"] = "continuous U and W = sum r_ij.F_ij on the configurations of the g(r) frames";
     return j;

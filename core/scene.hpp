@@ -63,7 +63,7 @@ struct Scene {
     } body;
 
     struct Potential {
-        std::string kind = "rod-lj"; // rod-lj | lj | gay-berne | sites
+        std::string kind = "rod-lj"; // rod-lj | lj | gay-berne | sites | steps
         // The scene's energy and length units: T* = kT/ε and ρ* = Nσ³/L³, the cutoff in σ. For
         // gay-berne they are also the potential's ε0 and σ0 (= σ_s); for sites the units only,
         // the sites carrying their own.
@@ -80,6 +80,12 @@ struct Scene {
         // integrates and DMD terraces (core/smoothed_potential.hpp). Key: "cutoff": [r_l, r_u].
         double r_l = 2.5;
         double r_u = 3.0;
+        // steps only (core/step_table.hpp): the table, resolved from the one given or named
+        // (square_well, square_shoulder, chapela_lj, lj), radii in σ, energies in ε, sorted by
+        // decreasing radius; hard_core in σ, 0 for none. The first radius is the cutoff.
+        std::vector<double> step_radii;
+        std::vector<double> step_energies;
+        double hard_core = 0.0;
     } potential;
 
     struct State {
