@@ -48,6 +48,7 @@ RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scen
         const std::string origin = (dir / "restart.bin").string();
         scene = sceneFromJson(recorded, origin);
         resolveEngineSections(scene, origin);
+        warnOfSwallowedWells(scene); // as the run it continues said
         checkResources(scene, dir, true);
         RunTarget target{dir, OutputMode::Continue, quiet, &restart};
         return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);

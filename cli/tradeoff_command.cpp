@@ -587,7 +587,23 @@ struct Dominance {
     const Rung* chosen = nullptr; // the cheaper engine's cheapest Within rung
     const Rung* bound = nullptr;  // the rung whose cost bounds the other engine's from below
     CostFloor floor;
+    // The other ladders' floors within rivalFactor of the least at the bias runs' N: at the
+    // scene's N any of them may be the cheapest, so each is timed and the weakest bound kept.
+    std::vector<std::pair<const Rung*, CostFloor>> rivals;
 };
+
+/// Floors further apart than this at the bias runs' N are taken to keep their order at the
+/// scene's N.
+constexpr double rivalFactor = 1.5;
+
+/// printf into a std::string of whatever length it needs.
+template <class... A> std::string format(const char* f, A... a) {
+    const int n = std::snprintf(nullptr, 0, f, a...);
+    std::string s(std::size_t(std::max(n, 0)) + 1, '\0');
+    std::snprintf(s.data(), s.size(), f, a...);
+    s.resize(std::size_t(std::max(n, 0)));
+    return s;
+}
 
 std::vector<RungView> viewsOf(const std::vector<Rung>& ladder) {
     std::vector<RungView> views;
@@ -609,8 +625,13 @@ std::optional<Dominance> dominance(const Tradeoff& t) {
                 other.push_back(viewsOf(ladder)), ladders.push_back(&ladder);
         if (other.empty()) continue;
         const auto floor = engineCostFloor(other, t.z);
-        if (floor && floor->cost >= dominanceMargin * chosen->cost())
-            return Dominance{chosen, &(*ladders[floor->ladder])[floor->rung], *floor};
+        if (!floor || !(floor->cost >= dominanceMargin * chosen->cost())) continue;
+        Dominance d{chosen, &(*ladders[floor->ladder])[floor->rung], *floor, {}};
+        for (int l = 0; l < int(other.size()); ++l)
+            if (const auto f = ladderCostFloor(other[l], l, t.z);
+                f && l != floor->ladder && f->cost <= rivalFactor * floor->cost)
+                d.rivals.push_back({&(*ladders[l])[f->rung], *f});
+        return d;
     }
     return std::nullopt;
 }
@@ -722,16 +743,31 @@ int runTradeoff(const TradeoffOptions& options) {
 
     // One engine's chosen setting against the other's cost floor: the chosen engine's advantage,
     // the floor's cost over the chosen one's, with its interval.
-    const auto timeDominance = [&](const Dominance& d, analysis::RatioInterval& ratio) -> int {
-        const bool dmdBound = d.bound->setting.engine == "dmd";
-        analysis::RatioInterval r;
-        if (const int s = dmdBound ? costWindow(d.bound->setting, d.chosen->setting, "at_least", r)
-                                   : costWindow(d.chosen->setting, d.bound->setting, "at_least", r))
-            return s;
-        ratio = dmdBound ? r
-                         : analysis::RatioInterval{1.0 / r.median, 1.0 / r.hi, 1.0 / r.lo, r.pairs,
-                                                   r.level};
+    // Each rival floor is timed as well, and the weakest advantage (the lowest end of its
+    // interval) is the one the verdict states: d.bound and d.floor become its.
+    const auto timeDominance = [&](Dominance& d, analysis::RatioInterval& ratio) -> int {
+        const auto one = [&](const Rung* bound, analysis::RatioInterval& advantage) -> int {
+            const bool dmdBound = bound->setting.engine == "dmd";
+            analysis::RatioInterval r;
+            if (const int s = dmdBound
+                                  ? costWindow(bound->setting, d.chosen->setting, "at_least", r)
+                                  : costWindow(d.chosen->setting, bound->setting, "at_least", r))
+                return s;
+            advantage = dmdBound ? r
+                                 : analysis::RatioInterval{1.0 / r.median, 1.0 / r.hi, 1.0 / r.lo,
+                                                           r.pairs, r.level};
+            return 0;
+        };
+        if (const int s = one(d.bound, ratio)) return s;
+        nlohmann::json weakest = costRecord;
+        for (const auto& [rung, floor] : d.rivals) {
+            analysis::RatioInterval r;
+            if (const int s = one(rung, r)) return s;
+            if (r.lo < ratio.lo) ratio = r, d.bound = rung, d.floor = floor, weakest = costRecord;
+        }
+        costRecord = weakest;
         costRecord["cheaper"] = d.chosen->setting.engine;
+        costRecord["rivals_timed"] = d.rivals.size();
         return 0;
     };
 
@@ -772,7 +808,7 @@ int runTradeoff(const TradeoffOptions& options) {
         // One engine already cheaper than any setting of the other could be, at the bias runs' N:
         // timed at the scene's N, a resolved advantage ends the tradeoff.
         if (!options.frontier)
-            if (const auto d = dominance(t)) {
+            if (auto d = dominance(t)) {
                 analysis::RatioInterval r;
                 if (const int s = timeDominance(*d, r)) return s;
                 if (r.lo > 1.0) {
@@ -843,7 +879,7 @@ int runTradeoff(const TradeoffOptions& options) {
 
     const Rung* dmd = cheapestOf(t, "dmd");
     const Rung* smd = cheapestOf(t, "smd");
-    const std::optional<Dominance> dom = options.frontier ? std::nullopt : dominance(t);
+    std::optional<Dominance> dom = options.frontier ? std::nullopt : dominance(t);
     std::string verdict;
     int status = 0;
     if (dom && (stoppedByDominance || !dmd || !smd)) {
@@ -853,41 +889,41 @@ int runTradeoff(const TradeoffOptions& options) {
         if (const int s = timeDominance(*dom, ratio)) return s;
         out["cost"] = costRecord;
         const std::string other = dom->bound->setting.engine == "dmd" ? "DMD" : "SMD";
-        char why[256];
-        if (dom->floor.within)
-            std::snprintf(why, sizeof why, "%s's cheapest setting within is %s", other.c_str(),
-                          describe(dom->bound->setting, t).c_str());
-        else
-            std::snprintf(why, sizeof why,
-                          "%s's most accurate setting that bounds it, %s, is outside on %s by "
-                          "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",
-                          other.c_str(), describe(dom->bound->setting, t).c_str(),
-                          observableName(dom->floor.ruling.observable),
-                          dom->floor.ruling.bias.mean / dom->floor.ruling.tolerance,
-                          dom->floor.ruling.bias.err / dom->floor.ruling.tolerance);
+        const std::string why =
+            dom->floor.within
+                ? format("%s's cheapest setting within is %s", other.c_str(),
+                         describe(dom->bound->setting, t).c_str())
+                : format("%s's most accurate setting that bounds it, %s, is outside on %s by "
+                         "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",
+                         other.c_str(), describe(dom->bound->setting, t).c_str(),
+                         observableName(dom->floor.ruling.observable),
+                         dom->floor.ruling.bias.mean / dom->floor.ruling.tolerance,
+                         dom->floor.ruling.bias.err / dom->floor.ruling.tolerance);
         out["cost"]["bound"] = {{"setting", dom->bound->setting.label()},
                                 {"within", dom->floor.within}};
         if (!dom->floor.within)
             out["cost"]["bound"]["ruling"] =
                 biasJson(dom->floor.ruling, dom->bound->setting.engine);
-        char b2[768];
         if (ratio.lo > 1.0) {
-            std::snprintf(b2, sizeof b2,
-                          "%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s setting "
-                          "within tolerance at %s (N %d): %s",
-                          describe(dom->chosen->setting, t).c_str(), ratio.median, ratio.lo,
-                          ratio.hi, 100.0 * ratio.level, other.c_str(), toleranceText(t).c_str(),
-                          t.scene.state.n, why);
+            verdict =
+                format("%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s setting "
+                       "within tolerance at %s (N %d): %s",
+                       describe(dom->chosen->setting, t).c_str(), ratio.median, ratio.lo, ratio.hi,
+                       100.0 * ratio.level, other.c_str(), toleranceText(t).c_str(),
+                       t.scene.state.n, why.c_str());
         } else {
-            std::snprintf(b2, sizeof b2,
-                          "no verdict: at N %d the cost window does not resolve %s (%.2fx, "
-                          "%.2f-%.2f) as cheaper than %s, the floor of %s's cost at %s",
-                          t.scene.state.n, describe(dom->chosen->setting, t).c_str(), ratio.median,
-                          ratio.lo, ratio.hi, describe(dom->bound->setting, t).c_str(),
-                          other.c_str(), toleranceText(t).c_str());
+            verdict =
+                format("no verdict: at N %d the cost window does not resolve %s (%.2fx, "
+                       "%.2f-%.2f) as cheaper than %s, the floor of %s's cost at %s",
+                       t.scene.state.n, describe(dom->chosen->setting, t).c_str(), ratio.median,
+                       ratio.lo, ratio.hi, describe(dom->bound->setting, t).c_str(), other.c_str(),
+                       toleranceText(t).c_str());
+            if (!dmd || !smd) // what was resolved within is still an answer: the setting to use
+                verdict += format("; the cheapest within: %s, %.3g CPU s per ps at N %d",
+                                  describe(dom->chosen->setting, t).c_str(), dom->chosen->cost(),
+                                  t.biasBodies);
             status = 1;
         }
-        verdict = b2;
     } else if (!dmd || !smd) {
         verdict = std::string("no verdict: ") + (!dmd ? "no DMD setting" : "no SMD setting") +
                   " was resolved within tolerance at " + toleranceText(t);
