@@ -26,7 +26,8 @@ TEST(Provenance, AFewExplicitBodiesAreCopiedWhole) {
 
 TEST(Provenance, ManyAreNamedByCountChecksumAndFile) {
     const Scene a = explicitStart(500);
-    const json& p = cli::provenance(a).at("scene").at("state").at("particles");
+    const json whole = cli::provenance(a);
+    const json& p = whole.at("scene").at("state").at("particles");
     ASSERT_TRUE(p.is_object());
     EXPECT_EQ(p.at("count"), 500);
     EXPECT_EQ(p.at("file"), "scene.json");
