@@ -4,6 +4,7 @@
 #include "cli/reduced_summary.hpp"
 #include "cli/thermo.hpp"
 #include "core/scene_units.hpp"
+#include "core/whole_intervals.hpp"
 #include "smd/parameters.hpp"
 #include <algorithm>
 #include <cmath>
@@ -36,18 +37,14 @@ RunPlan planRun(const Scene& scene) {
         const double dt = units::fromFs(smd::readSmdSection(scene.smd).dt_fs);
         return std::round(t / dt) * dt;
     };
-    const auto whole = [](double ratio) {
-        return std::abs(ratio - std::round(ratio)) <= limits::gridTolerance * std::max(1.0, ratio);
-    };
     plan.equilibrationEnd = lengthOnGrid(scene.run.equilibrate_ps);
     plan.productionLength = lengthOnGrid(scene.run.time_ps);
     const double ticks = plan.equilibrationEnd / plan.thermostatInterval;
-    plan.partialTick = plan.equilibrationEnd > 0.0 && !whole(ticks);
-    plan.equilibrationTicks = plan.partialTick ? long(std::ceil(ticks)) : long(std::llround(ticks));
+    plan.partialTick = plan.equilibrationEnd > 0.0 && !isWholeRatio(ticks);
+    plan.equilibrationTicks = wholeIntervals(ticks) + (plan.partialTick ? 1 : 0);
     const double samples = plan.productionLength / plan.sampleInterval;
-    plan.unsampledTail = !whole(samples);
-    plan.productionSamples =
-        plan.unsampledTail ? long(std::floor(samples)) : long(std::llround(samples));
+    plan.unsampledTail = !isWholeRatio(samples);
+    plan.productionSamples = wholeIntervals(samples);
     auto inSamples = [&](double interval) {
         return interval > 0.0 ? std::max(1L, long(std::llround(interval / plan.sampleInterval)))
                               : 0L;

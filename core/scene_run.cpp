@@ -2,6 +2,7 @@
 // the analysis accumulated as the run goes. Each interval fits in the run and lies on its grid
 // (core/scene.hpp Scene::Run); SMD's own grid, smd.dt_fs, is checked by smd/parameters.hpp.
 #include "core/scene_sections.hpp"
+#include "core/whole_intervals.hpp"
 #include <cmath>
 
 namespace terrace::detail {
@@ -73,12 +74,8 @@ void readAnalysis(const JsonSection& an, Scene& s) {
     a.blocks = static_cast<int>(an.integer("blocks", a.blocks, 2, 10000));
     // A block needs two samples (analysis/run_analysis.cpp): more blocks than that are cut to
     // what the run's samples allow. Said when asked for explicitly; the default is cut quietly.
-    const double ratio = s.run.time_ps * 1000.0 / s.run.sample_fs; // the tail is not sampled
-    const long samples = std::lround(ratio) >= 1 &&
-                                 std::abs(ratio - std::round(ratio)) <=
-                                     limits::gridTolerance * std::round(ratio)
-                             ? std::lround(ratio)
-                             : long(std::floor(ratio));
+    // The tail past the last whole sample is not sampled.
+    const long samples = wholeIntervals(s.run.time_ps * 1000.0 / s.run.sample_fs);
     if (an.has("blocks") && a.blocks > samples / 2)
         s.warnings.push_back(
             "analysis.blocks: " + std::to_string(a.blocks) + " asked for, but " +

@@ -367,7 +367,7 @@ TEST(Scene, RunLengthsAreHonouredAsTyped) {
     for (const json& run : {json{{"time_ps", 10}}, json{{"equilibrate_ps", 1}},
                             json{{"equilibrate_ps", 0.5}, {"thermostat_fs", 18}},
                             json{{"time_ps", 2}}, json{{"time_ps", 1000}},
-                            json{{"equilibrate_ps", 20}}, // a scene from before, 9 fs rescales
+                            json{{"equilibrate_ps", 20}},     // a scene from before, 9 fs rescales
                             json{{"equilibrate_ps", 0.005}}}) // one rescale, at its end
         EXPECT_EQ(errorOf({{"run", run}}), "") << run.dump();
     EXPECT_EQ(errorOf(json::object(), {"run.time_ps=0.5"}), "");
