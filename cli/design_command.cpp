@@ -41,6 +41,24 @@ int printDesign(const DesignRequest& request) {
         const auto settings = dmd::readDmdSettings(section, model, scene.kT(),
                                                    std::numeric_limits<double>::infinity());
         const auto& L = settings.levels;
+        if constexpr (isSteppedModel<P>) {
+            // A step table is its own design: its terraces are the steps, bounded by radii.
+            const StepPotential& p = *stepPotentialOf(model);
+            const auto& t = p.table;
+            std::printf("# %s: step table (potential.steps), %zu steps, hard core %.6g A; kT = "
+                        "%.6g kJ/mol, r_m = %.6g A\n",
+                        scene.name.c_str(), t.radii.size(), t.hardCore * p.sigma, scene.kT(),
+                        settings.rm);
+            std::printf("terrace,inner_A,outer_A,value_kJ_per_mol\n");
+            for (int n = L.lowestTerrace(); n <= L.highestTerrace(); ++n) {
+                const double outer = n == 0 ? std::numeric_limits<double>::infinity()
+                                            : p.radialRoots(L.lower(n)).inner;
+                const double inner =
+                    n == L.highestTerrace() ? 0.0 : p.radialRoots(L.upper(n)).inner;
+                std::printf("%d,%.9g,%.9g,%.9g\n", n, inner, outer, L.energy(n));
+            }
+            return 0;
+        }
         if (request.profile) {
             printProfile(L, model, settings.rm, scene.kT());
             return 0;
@@ -59,6 +77,8 @@ int printDesign(const DesignRequest& request) {
                         scene.name.c_str(), section.terraces.levels.c_str(),
                         section.terraces.values.c_str(), section.terraces.n, section.dV,
                         section.model.c_str(), scene.kT(), settings.rm);
+        for (const std::string& w : scene.warnings)
+            std::printf("# warning: %s\n", w.c_str());
         std::printf("terrace,lower_kJ_per_mol,upper_kJ_per_mol,value_kJ_per_mol\n");
         // Uniform levels are unbounded: print the well and the wall up to 50 kT.
         const int lo = L.isUniform()

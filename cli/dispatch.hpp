@@ -18,6 +18,8 @@ namespace terrace::cli {
 /// Calls fn.template operator()<Kind>(potential) for the scene's body kind and potential.
 template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
     if (scene.potential.kind == "lj") return fn.template operator()<Sphere>(ljPotential(scene));
+    if (scene.potential.kind == "steps")
+        return fn.template operator()<Sphere>(stepPotential(scene));
     if (scene.potential.kind == "gay-berne")
         return fn.template operator()<LinearRotor>(gayBernePotential(scene));
     if (scene.potential.kind == "sites") {
@@ -36,9 +38,10 @@ template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
 }
 
 /// The model both engines simulate: the scene's potential with its smoothed cutoff
-/// (core/smoothed_potential.hpp); for DMD with dmd.model = bare, the paper's setting, none.
+/// (core/smoothed_potential.hpp); for DMD with dmd.model = bare, the paper's setting, none; for
+/// a step table none either: the table ends at its first radius.
 template <PairPotential P> Smoothed<P> sceneModel(const Scene& scene, const P& bare, bool dmd) {
-    const bool cut = !(dmd && dmd::readDmdSection(scene.dmd).model == "bare");
+    const bool cut = !(dmd && dmd::readDmdSection(scene.dmd).model == "bare") && !isSteppedModel<P>;
     return Smoothed<P>{bare, cut ? sceneCutoff(scene) : SmoothedCutoff::none()};
 }
 

@@ -1,6 +1,4 @@
 #include "cli/heat_bath_summary.hpp"
-#include "analysis/canonical_kinetic.hpp"
-#include "analysis/conservation.hpp"
 #include <cmath>
 #include <cstdio>
 
@@ -18,30 +16,23 @@ nlohmann::json orNull(double x) {
 
 } // namespace
 
-nlohmann::json heatBathSummary(const Scene& scene, const RunRecord& run, nlohmann::json& warnings) {
+nlohmann::json heatBathSummary(const Scene& scene, const SampleStatistics& samples, int dof,
+                               nlohmann::json& warnings) {
     const auto& h = scene.run.heat_bath;
     nlohmann::json j{{"kind", h.kind}};
     if (h.kind == "andersen") j["rate_per_ps"] = h.rate_per_ps;
     if (h.kind == "csvr") j["tau_fs"] = h.tau_fs;
-    j["degrees_of_freedom"] = run.dof;
-    if (run.records.empty()) return j;
-    std::vector<double> t, effective, potential, kinetic;
-    for (const auto& r : run.records) {
-        t.push_back(r.tPs);
-        effective.push_back(r.total + r.bath);
-        potential.push_back(r.potential);
-        kinetic.push_back(r.kinetic);
-    }
-    j["energy_removed"] = run.records.back().bath - run.records.front().bath;
-    const auto es = analysis::energyStats(t, effective, potential);
+    j["degrees_of_freedom"] = dof;
+    if (samples.count() == 0) return j;
+    j["energy_removed"] = samples.bathEnergyRemoved();
+    const auto es = samples.effectiveEnergy();
     j["effective_energy"] = {{"initial", es.initial},
                              {"final", es.final},
                              {"std", es.std},
                              {"max_abs_dev", es.maxAbsDev},
                              {"drift_per_ps", es.driftPerPs},
                              {"units", "kJ/mol"}};
-    const int blocks = std::max(2, std::min<int>(scene.analysis.blocks, int(kinetic.size())));
-    const auto c = analysis::canonicalKinetic(kinetic, run.dof, run.kT, blocks);
+    const auto c = samples.canonicalKinetic();
     j["kinetic_energy"] = {{"mean", c.mean.mean},
                            {"mean_err", orNull(c.mean.err)},
                            {"canonical_mean", c.canonicalMean},
@@ -50,7 +41,7 @@ nlohmann::json heatBathSummary(const Scene& scene, const RunRecord& run, nlohman
                            {"variance_err", orNull(c.variance.err)},
                            {"canonical_variance", c.canonicalVariance},
                            {"variance_deviation_in_errors", orNull(c.varianceDeviation())},
-                           {"blocks", blocks},
+                           {"blocks", c.mean.samples},
                            {"units", "kJ/mol, (kJ/mol)^2"}};
     if (es.maxAbsDev > effectiveWanderWarning * c.mean.mean) {
         char text[256];

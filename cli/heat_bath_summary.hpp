@@ -15,13 +15,15 @@
 // the bath's draws turn from a bounded fluctuation of H into a drift (Sivak, Chodera & Crooks,
 // Phys. Rev. X 3, 011007 (2013)): for the rods at 1.8 fs, 0.002 kJ/mol/ps under CSVR (τ 50 fs) but
 // 0.44 kJ/mol/ps under Andersen at 20/ps, which resamples every body every 50 fs.
-#include "cli/run_record.hpp"
+#include "cli/sample_statistics.hpp"
 #include "core/scene.hpp"
 #include <nlohmann/json.hpp>
 
 namespace terrace::cli {
 
-/// The block; warnings are appended to `warnings` (an array) and printed.
-nlohmann::json heatBathSummary(const Scene& scene, const RunRecord& run, nlohmann::json& warnings);
+/// The block, from the production samples' statistics; warnings are appended to `warnings` (an
+/// array) and printed.
+nlohmann::json heatBathSummary(const Scene& scene, const SampleStatistics& samples, int dof,
+                               nlohmann::json& warnings);
 
 } // namespace terrace::cli

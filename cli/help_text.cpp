@@ -35,13 +35,15 @@ const Command commands[] = {
 )",
      R"(      Run a scene with its engine (engine = dmd | smd). Run lengths and output intervals
       are whole multiples of their intervals, or refused with the nearest valid values.
+      A step table (potential.kind steps: square wells, Chapela's LJ, DynamO's tables) runs
+      under dmd only: smd refuses it, a step's force being an impulse it cannot integrate.
       Writes DIR/summary.json, scene.json, initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv
       and, if asked for, thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE)
       or, with output.trajectory_format=gsd, trajectory.gsd (HOOMD's GSD, read by OVITO,
       freud and gsd, with orientations and the bodies' shapes).
       With output.restart_every_ps > 0 the run keeps DIR/restart.bin (the bodies and the
-      analysis' accumulators, not the samples' bodies) until it ends, from which --continue
-      goes on.
+      analysis' and statistics' accumulators, no sample: its size does not grow with the run)
+      until it ends, from which --continue goes on.
       Production is NVE unless run.heat_bath sets a heat bath, which acts from the start of
       equilibration: {"kind":"andersen","rate_per_ps":ν} (both engines) or
       {"kind":"csvr","tau_fs":τ} (Bussi's stochastic rescaling); summary.json's heat_bath
@@ -133,7 +135,8 @@ const Command commands[] = {
      R"(  terrace tradeoff [SCENE.json] [--tolerance OBS=VALUE[%]]... [--set KEY=VALUE]...
                    [-j N] [--out DIR] [--bias-n N] [--max-replicas N] [--cost-pairs N]
                    [--budget-cpu-hours H] [--dV LIST] [--designs uniform,optimal]
-                   [--schemes verlet,omelyan,yoshida4] [--observables LIST] [--quiet]
+                   [--schemes verlet,omelyan,yoshida4] [--observables LIST] [--frontier]
+                   [--quiet]
 )",
      R"(      Does DMD pay for this scene at these tolerances? Measures each engine's systematic
       error against the continuous model (reference: SMD yoshida4 at half smd.dt_fs) on
@@ -143,7 +146,11 @@ const Command commands[] = {
       resolved within or outside its tolerance at 2 sigma (Bonferroni over the replica
       counts looked at), replicas added where it is not, up to --max-replicas or the budget;
       the bias law (dt^2, dt^4, dV^p) places a setting between the last within and the first
-      outside, checked by its own runs. DMD's u, p, g and g_peak are estimated on its
+      outside, checked by its own runs. Once one engine's cheapest setting within is timed
+      cheaper than any setting of the other could be (every cheaper one resolved outside on
+      an observable whose bias grows with dV or dt), it stops: the verdict then says "at
+      least", the ratio to the other's most accurate setting outside (--frontier resolves
+      both engines instead). DMD's u, p, g and g_peak are estimated on its
       terraced observables and by configurational estimators (continuous U, W and g on its
       configurations); the smaller bias is used and named. Prints the verdict (the cheaper
       engine's setting and the cost ratio with its interval, from --cost-pairs alternated
@@ -167,6 +174,8 @@ const Command commands[] = {
   -j N                  runs at once (default 1)
   --out DIR             the tradeoff's directory (default: out/tradeoff-<scene name>, then the
                         --set keys as for terrace run)
+  --frontier            resolve both engines' cheapest settings within, even where one
+                        engine is already cheaper than any setting of the other could be
   --quiet               no progress output
 )",
      false},
@@ -180,8 +189,8 @@ const Command commands[] = {
       fix nve/asphere (the same U; LAMMPS cuts at r_u where terrace switches off smoothly).
       Site molecules: fix rigid/small with site-pair tables (switched by site distance, not
       by the molecules' centres). Prints the first frame's U under both models and every
-      difference; the rod potential (rod-lj) is refused, naming the reason. Files of an
-      earlier export in DIR are replaced.
+      difference; the rod potential (rod-lj) and step tables (steps) are refused, naming the
+      reason. Files of an earlier export in DIR are replaced.
 )",
      R"(  SCENE.json            the scene (experiments/scenes/ holds some)
   DIR                   the directory written (created if need be)

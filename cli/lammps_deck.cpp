@@ -549,6 +549,10 @@ LammpsDeck lammpsDeck(const Scene& scene) {
     const std::string& kind = scene.potential.kind;
     if (kind == "lj") return sphereDeck(scene);
     if (kind == "gay-berne") return gayBerneDeck(scene);
+    if (kind == "steps")
+        throw LammpsRefusal("potential.kind: steps (a step table) has no LAMMPS equivalent: its "
+                            "forces are impulses at the steps' radii, which time-stepped MD "
+                            "cannot integrate");
     if (kind == "sites") {
         if (scene.body.kind == "linear") return sitesDeck<LinearRotor, AttitudeUse::Axis>(scene);
         return sitesDeck<AsymmetricTop, AttitudeUse::Frame>(scene);

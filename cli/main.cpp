@@ -215,9 +215,10 @@ int tradeoffMain(const std::vector<std::string>& args) {
         "designs", po::value<std::string>()->default_value("uniform,optimal"), "DMD ladders")(
         "schemes", po::value<std::string>()->default_value("verlet,omelyan,yoshida4"),
         "SMD ladders")("observables", po::value<std::string>(), "u,p,d,g,g_peak,tau_v,tau_o")(
-        "quiet", "no progress output")("scene", po::value<std::string>(), "scene file")(
-        "set", po::value<std::vector<std::string>>()->composing(), "key.path=value")("help,h",
-                                                                                     "this help");
+        "frontier", "resolve both engines' cheapest settings")("quiet", "no progress output")(
+        "scene", po::value<std::string>(),
+        "scene file")("set", po::value<std::vector<std::string>>()->composing(),
+                      "key.path=value")("help,h", "this help");
     po::positional_options_description pos;
     pos.add("scene", 1);
     const auto vm = parseOptions(args, opts, pos);
@@ -234,6 +235,7 @@ int tradeoffMain(const std::vector<std::string>& args) {
     o.costPairs = vm["cost-pairs"].as<int>();
     o.budgetCpuHours = vm["budget-cpu-hours"].as<double>();
     o.quiet = vm.count("quiet") > 0;
+    o.frontier = vm.count("frontier") > 0;
     if (o.jobs < 1) throw po::error("-j must be at least 1");
     if (o.biasN < 0 || o.biasN == 1) throw po::error("--bias-n must be 0 (the scene's) or >= 2");
     if (o.maxReplicas < 2) throw po::error("--max-replicas must be at least 2");

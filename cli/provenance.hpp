@@ -8,6 +8,10 @@
 
 namespace terrace::cli {
 
+/// Explicit start bodies (state.particles) the provenance copies whole; beyond, it names them by
+/// count, checksum and the file that holds them (the run's scene.json).
+inline constexpr std::size_t provenanceParticlesInline = 64;
+
 nlohmann::json provenance(const Scene& scene);
 
 /// Prints progress lines to stderr, at most one every few seconds and only once a run has taken

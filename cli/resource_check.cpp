@@ -188,8 +188,8 @@ DiskEstimate diskEstimate(const Scene& scene) {
     if (plan.restartEvery > 0) {
         // restart.bin: the bodies and the engine's checkpoint (DMD: 12 B a pair off terrace 0,
         // a few per body), about a body's snapshot record and half again, and the analysis'
-        // state: its accumulators and the samples' 80-byte records, what the analysis holds in
-        // memory (cli/restart.hpp).
+        // state: its accumulators, what the analysis holds in memory (cli/restart.hpp), and the
+        // sample statistics' kilobyte.
         d.restart = 2.0 * (1.5 * double(n) * (dof == 3 ? 16.0 : 12.0) * sizeof(double) +
                            analysisBytes(scene));
     }
@@ -255,15 +255,19 @@ std::string showBytes(double bytes) {
 std::string memoryRefusal(const Scene& scene, const MemoryEstimate& need, const MemoryRoom& room) {
     if (!(room.bytes > 0.0) || need.total() <= room.bytes) return "";
     const int n = scene.state.particles.empty() ? scene.state.n : int(scene.state.particles.size());
-    const long samples = planRun(scene).productionSamples + 1;
     std::string key, hint;
     if (need.engine >= need.analysis) {
         key = scene.state.particles.empty() ? "state.n = " + std::to_string(n)
                                             : "state.particles (" + std::to_string(n) + " bodies)";
         hint = "use fewer bodies";
     } else {
-        key = "run.time_ps / run.sample_fs (" + std::to_string(samples) + " samples)";
-        hint = "use fewer analysis.follow_bodies or a longer run.sample_fs";
+        // The correlators' levels hold lags_per_level samples of each followed body (the samples
+        // themselves are not kept: their number enters as the levels' logarithm).
+        const auto& a = scene.analysis;
+        const int followed = a.follow_bodies > 0 ? std::min(n, a.follow_bodies) : n;
+        key = "analysis.follow_bodies, analysis.lags_per_level (" + std::to_string(followed) +
+              " bodies followed, " + std::to_string(a.lags_per_level) + " lags a level)";
+        hint = "follow fewer bodies or use fewer lags a level";
     }
     return key + ": the run needs about " + showBytes(need.total()) + " of memory (engine " +
            showBytes(need.engine) + ", analysis " + showBytes(need.analysis) + ") and " +

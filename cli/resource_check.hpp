@@ -20,7 +20,7 @@ namespace terrace::cli {
 /// Bytes of memory a run will hold at its peak, by holder.
 struct MemoryEstimate {
     double engine = 0.0;   // the engine: bodies, lists, calendar, … and the process's own
-    double analysis = 0.0; // the streaming analysis and the per-sample records (analysisBytes)
+    double analysis = 0.0; // the streaming analysis (analysisBytes)
     double total() const { return engine + analysis; }
 };
 

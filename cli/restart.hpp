@@ -23,14 +23,17 @@
 //                                   spectra and sums, the block counts): their size is fixed by
 //                                   the settings, the followed bodies and g(r)'s bins, whatever
 //                                   the run's length;
-//                         records   the production samples' energies (SampleRecord, 88 bytes a
-//                                   sample, raw), which summary.json's statistics and errors are
-//                                   computed from over the samples the run ends with.
+//                         sample_statistics  what summary.json reports of the samples, as
+//                                   raw bytes (cli/sample_statistics.hpp: energy moments and
+//                                   drift sums, block sums over the planned samples, the last
+//                                   sample), about a kilobyte;
+//                         thermo_row the sample of thermo.csv's last row (one SampleRecord).
 //
-// The run's history (its samples' bodies) is not kept: a continued run cuts trajectory.xyz and
-// thermo.csv back to their lengths in the restart file, takes the analysis' state and the records
-// back, rebuilds the engine from the bodies and the checkpoint, and goes on; nothing is replayed,
-// so continuing costs the same after 10 samples as after 10⁶ (but for the records' read).
+// The run's history (its samples) is not kept: a continued run cuts trajectory.xyz and
+// thermo.csv back to their lengths in the restart file, takes the analysis' state and the sample
+// statistics back, rebuilds the engine from the bodies and the checkpoint, and goes on; nothing
+// is replayed, and the file is as large after 10 samples as after 10⁶ (but for the integers that
+// count them), so continuing costs the same too.
 // At every restart point the running engine is rebuilt the same way, so that a run continued from
 // a restart file undergoes the same events and writes the same bytes as one that never stopped.
 #include "core/huge_pages.hpp"
@@ -50,10 +53,11 @@ namespace terrace::cli {
 /// Version 2: samples.bin records carry K_trans, W and the collision count, and restart.bin the
 /// length of thermo.csv. Version 3: the DMD checkpoint's pair terraces are raw bytes
 /// (dmd/engine_start.hpp). Version 5: the checksum trailer and the run's identity. Version 6: the
-/// analysis' state and the samples' records in restart.bin, no samples.bin. Version 7: the records
-/// carry the heat bath's energy, and the engines' checkpoints its state. Files of another
+/// analysis' state and the samples' records in restart.bin, no samples.bin. Version 7: the sample
+/// statistics' state and thermo.csv's last row in place of the samples' records. Version 8: the
+/// samples carry the heat bath's energy, and the engines' checkpoints its state. Files of another
 /// version are refused, naming both versions.
-inline constexpr const char* restartFormat = "terrace restart 7";
+inline constexpr const char* restartFormat = "terrace restart 8";
 
 /// CRC-64/XZ (ECMA-182 polynomial, reflected, all ones in and out) of `bytes`, continuing from
 /// `crc` (the value returned for the bytes before them; 0 to start).
@@ -81,8 +85,7 @@ struct SampleRecord {
     double bath = 0.0;
 };
 
-/// The records as raw bytes (11 doubles each, in SampleRecord's order): exact, and compact in
-/// CBOR.
+/// Records as raw bytes (11 doubles each, in SampleRecord's order): exact, and compact in CBOR.
 nlohmann::json recordsToBinary(const std::vector<SampleRecord>& records);
 /// The records of recordsToBinary; std::runtime_error when the bytes are not whole records.
 std::vector<SampleRecord> recordsFromBinary(const nlohmann::json& j);

@@ -120,8 +120,8 @@ private:
     nlohmann::json restartFile(const std::string& reason, const Released<System>& r,
                                double phaseCpu) const {
         const bool production = at_.inProduction;
-        // The analysis' accumulators, not the samples they were made from: a size fixed by the
-        // settings, whatever the run's length (cli/restart.hpp).
+        // The analysis' accumulators and the sample statistics, not the samples they were made
+        // from: a size fixed by the settings, whatever the run's length (cli/restart.hpp).
         nlohmann::json analysis;
         if (production && run_.analysis) analysis = nlohmann::json::binary(run_.analysis->state());
         return {{"format", restartFormat},
@@ -145,7 +145,8 @@ private:
                 {"continuations", run_.continuations},
                 {"melt_warning", run_.meltWarning},
                 {"files", files_.sizes()},
-                {"records", recordsToBinary(run_.records)},
+                {"sample_statistics", nlohmann::json::binary(run_.samples.state())},
+                {"thermo_row", recordsToBinary({run_.thermoRow})},
                 {"analysis", std::move(analysis)}};
     }
 

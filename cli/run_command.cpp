@@ -4,6 +4,7 @@
 #include "cli/resource_check.hpp"
 #include "cli/restart.hpp"
 #include "cli/scene_check.hpp"
+#include "cli/well_check.hpp"
 #include "core/output_file.hpp"
 #include <cstdio>
 #include <sstream>
@@ -19,6 +20,7 @@ Scene resolveScene(const RunRequest& request) {
                       ? sceneFromJson(nlohmann::json::object(), origin, request.overrides)
                       : loadScene(request.scenePath, request.overrides);
     resolveEngineSections(scene, origin);
+    warnOfSwallowedWells(scene);
     return scene;
 }
 
@@ -46,6 +48,7 @@ RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scen
         const std::string origin = (dir / "restart.bin").string();
         scene = sceneFromJson(recorded, origin);
         resolveEngineSections(scene, origin);
+        warnOfSwallowedWells(scene); // as the run it continues said
         checkResources(scene, dir, true);
         RunTarget target{dir, OutputMode::Continue, quiet, &restart};
         return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);

@@ -1,12 +1,11 @@
 #include "cli/run_driver.hpp"
-#include "analysis/block_average.hpp"
 #include "analysis/cancellation.hpp"
-#include "analysis/conservation.hpp"
 #include "analysis/windowed_correlation.hpp"
 #include "cli/heat_bath_summary.hpp"
 #include "cli/reduced_summary.hpp"
 #include "cli/thermo.hpp"
 #include "core/scene_units.hpp"
+#include "core/whole_intervals.hpp"
 #include "smd/parameters.hpp"
 #include <algorithm>
 #include <cmath>
@@ -27,13 +26,26 @@ RunPlan planRun(const Scene& scene) {
     };
     plan.sampleInterval = onGrid(scene.run.sample_fs);
     plan.thermostatInterval = onGrid(scene.run.thermostat_fs);
-    // Run lengths are whole multiples of their intervals (the scene validation refuses any
-    // other): rounding the ratio gives the exact count, whatever the binary round-off of a
-    // decimal length.
-    plan.equilibrationTicks =
-        long(std::llround(units::fromPs(scene.run.equilibrate_ps) / plan.thermostatInterval));
-    plan.productionSamples =
-        long(std::llround(units::fromPs(scene.run.time_ps) / plan.sampleInterval));
+    // Run lengths are honoured as typed. Equilibration ends on a rescale at run.equilibrate_ps,
+    // its last thermostat interval cut short where the length is not a whole number of them;
+    // production is sampled at whole sample intervals and runs on, unsampled, to run.time_ps
+    // (the analysis needs equally spaced samples). A length within limits::gridTolerance of a
+    // whole number of intervals is that whole number: only its binary round-off differs.
+    // Under SMD both lengths are whole numbers of steps (smd/parameters.hpp).
+    const auto lengthOnGrid = [&](double ps) {
+        const double t = units::fromPs(ps);
+        if (scene.engine != "smd") return t;
+        const double dt = units::fromFs(smd::readSmdSection(scene.smd).dt_fs);
+        return std::round(t / dt) * dt;
+    };
+    plan.equilibrationEnd = lengthOnGrid(scene.run.equilibrate_ps);
+    plan.productionLength = lengthOnGrid(scene.run.time_ps);
+    const double ticks = plan.equilibrationEnd / plan.thermostatInterval;
+    plan.partialTick = plan.equilibrationEnd > 0.0 && !isWholeRatio(ticks);
+    plan.equilibrationTicks = wholeIntervals(ticks) + (plan.partialTick ? 1 : 0);
+    const double samples = plan.productionLength / plan.sampleInterval;
+    plan.unsampledTail = !isWholeRatio(samples);
+    plan.productionSamples = wholeIntervals(samples);
     auto inSamples = [&](double interval) {
         return interval > 0.0 ? std::max(1L, long(std::llround(interval / plan.sampleInterval)))
                               : 0L;
@@ -51,9 +63,18 @@ RunPlan planRun(const Scene& scene) {
 }
 
 double RunPlan::productionTime(long s, double tStart) const {
-    if (thermostatInterval == sampleInterval)
+    if (thermostatInterval == sampleInterval && !partialTick)
         return double(equilibrationTicks + s) * sampleInterval;
     return tStart + double(s) * sampleInterval;
+}
+
+double RunPlan::tickTime(long k) const {
+    return partialTick && k == equilibrationTicks ? equilibrationEnd
+                                                  : double(k) * thermostatInterval;
+}
+
+double RunPlan::productionEnd(double tStart) const {
+    return unsampledTail ? tStart + productionLength : productionTime(productionSamples, tStart);
 }
 
 analysis::StreamingOptions streamingOptions(const Scene& scene) {
@@ -86,8 +107,7 @@ double analysisBytes(const Scene& scene) {
     const double levels = 1.0 + std::max(0.0, std::ceil(std::log2(std::max(1.0, lag / (p - 1)))));
     const double perFollowed = (levels - 1.0) * p * 9.0 * sizeof(double) +
                                double(analysis::WindowedCorrelation::bytesPerBody(int(p)));
-    return samples * sizeof(SampleRecord) + followed * perFollowed +
-           n * (3.0 * sizeof(double) + 2.0 * sizeof(int));
+    return followed * perFollowed + n * (3.0 * sizeof(double) + 2.0 * sizeof(int));
 }
 
 RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxLength,
@@ -96,10 +116,14 @@ RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxL
       virialKind(virial), bodies(n), dof(heatBathDof(heatBathOf(scene).kind, rotationalDof, n)),
       heatBath(heatBathOf(scene).on()), restartEveryPs(scene.output.restart_every_ps),
       warnings(sceneWarnings(scene)), outputUnits(unitSystem(scene)) {
-    if (plan.productionSamples + 1 >= 4)
+    const long planned = plan.productionSamples + 1;
+    if (planned >= 4)
         analysis = std::make_unique<analysis::RunAnalysis>(
-            bodies, boxLength, units::toPs(plan.sampleInterval), plan.productionSamples + 1,
-            streamingOptions(scene));
+            bodies, boxLength, units::toPs(plan.sampleInterval), planned, streamingOptions(scene));
+    // The configurational estimators come on the analysis' g(r) frames.
+    const long every = scene.analysis.rdf_every;
+    samples = SampleStatistics(
+        SamplePlan{planned, analysis ? (planned + every - 1) / every : 0, virialKind, volume, dof, kT, heatBath});
 }
 
 namespace {
@@ -227,104 +251,6 @@ void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& producti
 
 namespace {
 
-double mean(const std::vector<double>& x) {
-    double m = 0.0;
-    for (double v : x)
-        m += v / double(x.size());
-    return x.empty() ? 0.0 : m;
-}
-
-double standardDeviation(const std::vector<double>& x) {
-    const double m = mean(x);
-    double var = 0.0;
-    for (double v : x)
-        var += (v - m) * (v - m) / double(x.size());
-    return std::sqrt(var);
-}
-
-/// Total energy that wanders by more than this fraction of the kinetic energy is no longer a
-/// conserving integration (a healthy SMD run at 1.8 fs stays below 1e-3 of it).
-constexpr double energyWanderWarning = 0.01;
-
-void addEnergy(nlohmann::json& summary, const RunRecord& run) {
-    if (run.records.empty()) return;
-    auto column = [&](double SampleRecord::*field) {
-        std::vector<double> x;
-        for (const auto& r : run.records)
-            x.push_back(r.*field);
-        return x;
-    };
-    const std::vector<double> potential = column(&SampleRecord::potential);
-    const std::vector<double> kinetic = column(&SampleRecord::kinetic);
-    const double keMean = mean(kinetic);
-    summary["temperature_K"] = units::kelvin(2.0 * keMean / run.dof);
-    // One standard error of each mean from the pressure's contiguous blocks (cli/thermo.hpp), for
-    // regression checks; null with fewer than two samples.
-    const auto orNull = [](double x) {
-        return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
-    };
-    summary["temperature_err_K"] =
-        orNull(units::kelvin(2.0 * analysis::blockMean(kinetic, pressureBlocks).err / run.dof));
-    const auto es =
-        analysis::energyStats(column(&SampleRecord::tPs), column(&SampleRecord::total), potential);
-    const double uStd = standardDeviation(potential);
-    summary["energy"] = {{"initial", es.initial},
-                         {"final", es.final},
-                         {"mean", es.mean},
-                         {"std", es.std},
-                         {"max_abs_dev", es.maxAbsDev},
-                         {"rel_fluct", es.relFluct},
-                         // The paper's "relative fluctuations of the total energy to the potential
-                         // energy", read as the ratio of the two standard deviations.
-                         {"fluct_ratio_to_U", uStd > 0.0 ? es.std / uStd : 0.0},
-                         {"drift_per_ps", es.driftPerPs},
-                         {"units", "kJ/mol"}};
-    summary["potential_energy_mean"] = mean(potential);
-    summary["potential_energy_std"] = uStd;
-    summary["potential_energy_err"] = orNull(analysis::blockMean(potential, pressureBlocks).err);
-    // Under a heat bath H is not conserved: the effective energy is judged instead
-    // (cli/heat_bath_summary.hpp).
-    if (!run.heatBath && es.maxAbsDev > energyWanderWarning * keMean) {
-        char text[256];
-        std::snprintf(text, sizeof text,
-                      "total energy wandered by %.3g kJ/mol, %.2g%% of the kinetic energy: the "
-                      "integration does not conserve energy at this time step",
-                      es.maxAbsDev, 100.0 * es.maxAbsDev / keMean);
-        summary["warnings"].push_back(text);
-        std::fprintf(stderr, "terrace: warning: %s\n", text);
-    }
-}
-
-/// The configurational estimators (core/continuous_sums.hpp): the continuous model's ⟨U⟩ and its
-/// virial pressure P = (2 K_trans + W)/(3V) on the g(r) frames' configurations, each with a block
-/// error. For SMD they are its own U and P on fewer samples; for DMD they remove the terracing of
-/// the observable, leaving that of the distribution.
-nlohmann::json configurationalSummary(const RunRecord& run, double sigma, double epsilon) {
-    std::vector<double> u, p;
-    for (const auto& r : run.records)
-        if (std::isfinite(r.continuousPotential)) {
-            u.push_back(r.continuousPotential);
-            p.push_back(virialPressure(r.kineticTranslational, r.continuousVirial, run.volume));
-        }
-    nlohmann::json j{{"frames", u.size()}};
-    if (u.size() < 2) return j;
-    const auto orNull = [](double x) {
-        return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
-    };
-    const int blocks = std::min<int>(pressureBlocks, int(u.size()));
-    const analysis::Estimate um = analysis::blockMean(u, blocks);
-    const analysis::Estimate pm = analysis::blockMean(p, blocks);
-    j["blocks"] = blocks;
-    j["potential_energy_mean"] = um.mean;
-    j["potential_energy_err"] = orNull(um.err);
-    j["pressure_bar"] = units::bar(pm.mean);
-    j["pressure_err_bar"] = orNull(units::bar(pm.err));
-    j["pressure_reduced"] = reducedPressure(pm.mean, sigma, epsilon);
-    j["pressure_err_reduced"] = orNull(reducedPressure(pm.err, sigma, epsilon));
-    j["method"] = "continuous U and W = sum r_ij.F_ij on the configurations of the g(r) frames";
-    return j;
-}
-
 nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     nlohmann::json summary;
     summary["engine"] = scene.engine;
@@ -338,7 +264,7 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     if (!run.failure.empty()) summary["error"] = run.failure;
     summary["simulated_ps"] = run.simulatedPs;
     summary["sample_fs"] = units::toFs(run.sampleInterval);
-    summary["samples"] = run.records.size();
+    summary["samples"] = run.samples.count();
     summary["cpu_seconds"] = run.cpuSeconds;
     summary["cpu_seconds_equilibration"] = run.cpuEquilibration;
     summary["cpu_seconds_per_ps"] = run.simulatedPs > 0 ? run.cpuSeconds / run.simulatedPs : 0.0;
@@ -351,28 +277,17 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
                                {"continued", run.continuations}};
     // Of the whole process, at the end of the engine that held most (core/huge_pages.hpp).
     summary["memory_in_huge_pages_bytes"] = run.hugePageBytes;
-    addEnergy(summary, run);
-    if (run.heatBath) summary["heat_bath"] = heatBathSummary(scene, run, summary["warnings"]);
-    if (!run.records.empty())
-        summary["pressure"] =
-            pressureSummary(pressureSeries(run.records, run.virialKind, run.volume), run.virialKind,
-                            scene.potential.sigma, scene.potential.epsilon);
-    summary["configurational"] =
-        configurationalSummary(run, scene.potential.sigma, scene.potential.epsilon);
+    run.samples.summarise(summary, scene.potential.sigma, scene.potential.epsilon);
+    if (run.heatBath)
+        summary["heat_bath"] = heatBathSummary(scene, run.samples, run.dof, summary["warnings"]);
     summary["momentum"] = {{"initial", vec3Json(run.momentumInitial / units::psPerTimeUnit)},
                            {"final", vec3Json(run.momentumFinal / units::psPerTimeUnit)},
                            {"units", "g/mol A/ps"}};
     addEngineStatistics(summary, run.production, run.simulatedPs);
     // The collision rate's block error, from the collisions between samples (DMD only).
-    if (summary.contains("collisions_per_ps") && run.records.size() >= 3) {
-        std::vector<double> perInterval;
-        for (std::size_t k = 1; k < run.records.size(); ++k)
-            perInterval.push_back(run.records[k].collisions - run.records[k - 1].collisions);
-        const double err = analysis::blockMean(perInterval, pressureBlocks).err;
+    if (summary.contains("collisions_per_ps") && run.samples.count() >= 3)
         summary["collisions_per_ps_err"] =
-            std::isfinite(err) ? nlohmann::json(err / units::toPs(run.sampleInterval))
-                               : nlohmann::json();
-    }
+            run.samples.collisionRateError(units::toPs(run.sampleInterval));
     return summary;
 }
 
@@ -471,13 +386,18 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
     }
     if (!at.inProduction) return at;
     const std::string restartPath = (dir / "restart.bin").string();
-    // The records and the analysis' state first: a file that does not hold them cuts nothing.
+    // The statistics and the analysis' state first: a file that does not hold them cuts nothing.
     try {
-        run.records = recordsFromBinary(r.at("records"));
-        if (long(run.records.size()) != at.sample + 1)
-            throw IoError(restartPath + ": damaged: it holds " +
-                          std::to_string(run.records.size()) +
-                          " sample records, its restart point " + std::to_string(at.sample + 1));
+        run.samples.restore(r.at("sample_statistics").get_binary());
+        if (run.samples.count() != at.sample + 1)
+            throw IoError(restartPath + ": damaged: its sample statistics hold " +
+                          std::to_string(run.samples.count()) + " samples, its restart point " +
+                          std::to_string(at.sample + 1));
+        const auto row = recordsFromBinary(r.at("thermo_row"));
+        if (row.size() != 1)
+            throw IoError(restartPath + ": damaged: " + std::to_string(row.size()) +
+                          " records of thermo.csv's last row");
+        run.thermoRow = row.front();
         const auto& state = r.at("analysis");
         if (run.analysis) {
             run.analysis->restore(state.get_binary());
@@ -491,9 +411,9 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
         throw damagedRestart(dir, e);
     } catch (const IoError&) {
         throw;
-    } catch (const std::invalid_argument& e) { // the analysis' state does not fit
+    } catch (const std::invalid_argument& e) { // the analysis' or statistics' state does not fit
         throw IoError(restartPath + ": " + e.what());
-    } catch (const std::runtime_error& e) { // the records are not whole
+    } catch (const std::runtime_error& e) { // the row's record is not whole
         throw IoError(restartPath + ": damaged: " + e.what());
     }
     // Every growing file is checked before any is cut back to its restart point.

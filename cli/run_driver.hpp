@@ -93,9 +93,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
     SampleSink sink(plan, rotationalDof, run, files);
     RestartPoints<E> restarts(plan, target.dir, toJson(scene), std::move(rebuild), run, at, files);
     if (at.inProduction) restarts.beginStretch(*engine);
-    ProgressReporter progress(target.quiet,
-                              double(plan.equilibrationTicks) * plan.thermostatInterval +
-                                  double(plan.productionSamples) * plan.sampleInterval,
+    ProgressReporter progress(target.quiet, plan.equilibrationEnd + plan.productionLength,
                               run.outputUnits);
     CpuClock cpu;
     InterruptGuard interrupt;
@@ -114,7 +112,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
         if (!at.inProduction) {
             while (at.tick < plan.equilibrationTicks && !interrupt.requested()) {
                 cpu.start();
-                engine->advanceTo(double(at.tick + 1) * plan.thermostatInterval);
+                engine->advanceTo(plan.tickTime(at.tick + 1));
                 // With a heat bath the bath alone equilibrates: its ensemble from the start.
                 if (!run.heatBath) engine->rescaleTemperature(run.kT);
                 cpu.stop();
@@ -154,6 +152,12 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
             if (!interrupt.requested() && at.sample < plan.productionSamples &&
                 restarts.dueAfterSample(at.sample))
                 restarts.take(engine, "interval", true, cpu.seconds());
+        }
+        // A run.time_ps that is no whole number of samples: on to it, unsampled.
+        if (plan.unsampledTail && !interrupt.requested()) {
+            cpu.start();
+            engine->advanceTo(plan.productionEnd(at.tStart));
+            cpu.stop();
         }
     });
     const bool stopped = interrupt.requested(); // by a signal, before the run's end

@@ -1,10 +1,11 @@
 #pragma once
 // What a run keeps as it goes, apart from the engine: the plan of its time grid, its position on
-// that grid, the files it grows, and the record of its samples that becomes summary.json.
+// that grid, the files it grows, and the statistics of its samples that become summary.json.
 #include "analysis/run_analysis.hpp"
 #include "cli/cpu_clock.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/restart.hpp"
+#include "cli/sample_statistics.hpp"
 #include "cli/thermo.hpp"
 #include "core/gsd_frame.hpp"
 #include "core/heat_bath.hpp"
@@ -25,8 +26,13 @@ namespace terrace::cli {
 struct RunPlan {
     double sampleInterval = 0.0;     // time units
     double thermostatInterval = 0.0; // time units
-    long equilibrationTicks = 0;     // whole thermostat intervals
+    long equilibrationTicks = 0;     // thermostat intervals, the last one partial when
+                                     // run.equilibrate_ps is not a whole number of them
     long productionSamples = 0;      // samples after the one at the start of production
+    double equilibrationEnd = 0.0;   // run.equilibrate_ps, time units
+    double productionLength = 0.0;   // run.time_ps, time units (≥ productionSamples intervals)
+    bool partialTick = false;        // the last thermostat interval is cut short
+    bool unsampledTail = false;      // production goes on past its last sample
     long trajectoryEvery = 0;        // in samples; 0 = none
     bool trajectoryGsd = false;      // trajectory.gsd (output.trajectory_format gsd), else .xyz
     GsdBodyType gsdType;             // what a GSD trajectory records of the bodies
@@ -37,6 +43,11 @@ struct RunPlan {
     /// The time of production sample s. When the thermostat and sample intervals agree this is
     /// (ticks + s)·Δt, one grid from t = 0, as runs have always been sampled.
     double productionTime(long s, double tStart) const;
+    /// The end of equilibration's thermostat interval k (1 … equilibrationTicks): k intervals,
+    /// or run.equilibrate_ps for a last one cut short.
+    double tickTime(long k) const;
+    /// Production's end: its last sample, or run.time_ps past its start when that lies beyond.
+    double productionEnd(double tStart) const;
 };
 
 /// The scene's intervals on the engine's grid (the scene validation has checked that they are
@@ -46,7 +57,8 @@ RunPlan planRun(const Scene& scene);
 /// The analysis settings of a scene (analysis.rdf_max is in σ there, in Å here).
 analysis::StreamingOptions streamingOptions(const Scene& scene);
 
-/// Bytes the run's analysis and per-sample records will hold in memory at most.
+/// Bytes the run's analysis will hold in memory at most (the sample statistics, a few hundred
+/// bytes, aside).
 double analysisBytes(const Scene& scene);
 
 /// Where the run stands on its grid: the phase, thermostat ticks and samples done, production's
@@ -87,7 +99,8 @@ void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& producti
 
 /// What a run gathered, handed from the engine loop to the summary.
 struct RunRecord {
-    std::vector<SampleRecord> records; // per production sample: energies, K_trans, virial, …
+    SampleStatistics samples; // of the production samples' energies, K_trans, virial, …
+    SampleRecord thermoRow;   // the sample of thermo.csv's last row: the next is taken since it
     std::unique_ptr<analysis::RunAnalysis> analysis; // null with fewer than 4 samples planned
     CpuClock analysisClock;                          // CPU time of the analysis
     Vec3 momentumInitial = Vec3::Zero(), momentumFinal = Vec3::Zero(); // internal units
@@ -95,7 +108,7 @@ struct RunRecord {
     double simulatedPs = 0.0, cpuSeconds = 0.0, cpuEquilibration = 0.0;
     double sampleInterval = 0.0, kT = 0.0;
     double volume = 0.0;                               // Å³
-    VirialKind virialKind = VirialKind::Instantaneous; // what records[k].virial holds
+    VirialKind virialKind = VirialKind::Instantaneous; // what SampleRecord::virial holds
     int bodies = 0, dof = 0;   // dof: of the kinetic energy, as the heat bath keeps momentum or not
     bool heatBath = false;     // run.heat_bath is set: the engine thermostats the whole run
     std::string interruptedBy; // the signal that stopped the run ("" if none)
@@ -117,7 +130,7 @@ struct RunRecord {
     RunRecord() = default;
 
     void add(const SampleRecord& e, const Snapshot& s) {
-        records.push_back(e);
+        samples.add(e);
         if (!analysis) return;
         analysisClock.start();
         analysis->add(s);
@@ -128,7 +141,7 @@ struct RunRecord {
     /// no large system's sample, nor its positions, is held beside the engine (~0.1 GB of
     /// sample, 24 MB of positions, at 10⁶ rods).
     template <class E> void addParts(const SampleRecord& e, const E& engine) {
-        records.push_back(e);
+        samples.add(e);
         if (!analysis) return;
         const Snapshot followed = engine.snapshot(analysis->followedBodies());
         analysisClock.start();
@@ -149,10 +162,10 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
                                        const InterruptGuard& interrupt, int tolerated,
                                        bool& analysed);
 
-/// The run's position and accumulators from a restart file: the phase, the samples' records and
+/// The run's position and accumulators from a restart file: the phase, the sample statistics and
 /// the analysis' state (after checking that the growing files still hold what the file says they
 /// did), and what the file carries over. Fills `run` and opens `files` where they were. Nothing
-/// is replayed: its cost does not grow with the samples taken (but for their 80-byte records).
+/// is replayed: its cost does not grow with the samples taken.
 RunPosition resumeRun(const nlohmann::json& restart, const RunPlan& plan,
                       const std::filesystem::path& dir, RunRecord& run, RunFiles& files);
 

@@ -1,9 +1,9 @@
 #pragma once
 // Where a production sample goes: its energies into the run's record and thermo.csv, the bodies
 // into trajectory.xyz or trajectory.gsd (at its interval), and the analysis. A restart point keeps
-// the analysis' state and the records, never the samples' bodies (cli/restart.hpp). Nothing takes a
-// sample whole: at 10⁶ bodies a frame's text alone is ~0.3 GB, and beside the engine it would raise
-// the run's peak, so every file is written piece by piece from the engine.
+// the analysis' state and the sample statistics, never the samples (cli/restart.hpp). Nothing takes
+// a sample whole: at 10⁶ bodies a frame's text alone is ~0.3 GB, and beside the engine it would
+// raise the run's peak, so every file is written piece by piece from the engine.
 #include "cli/run_record.hpp"
 #include "core/engine.hpp"
 #include "core/units.hpp"
@@ -75,9 +75,9 @@ public:
             continuousU = c.potential;
         }
         if (rowDue) {
-            const SampleRecord* before =
-                sample > 0 ? &run_.records[sample - plan_.thermoEvery] : nullptr;
+            const SampleRecord* before = sample > 0 ? &run_.thermoRow : nullptr;
             files_.thermo.append(thermoRow(e, before, continuousU, thermoLayout_));
+            run_.thermoRow = e;
         }
         if (plan_.trajectoryEvery > 0 && sample % plan_.trajectoryEvery == 0) {
             if (files_.gsd) {

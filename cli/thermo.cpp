@@ -8,13 +8,6 @@
 
 namespace terrace::cli {
 
-std::vector<double> PressureSeries::total() const {
-    std::vector<double> p(kinetic.size());
-    for (std::size_t k = 0; k < p.size(); ++k)
-        p[k] = kinetic[k] + virial[k];
-    return p;
-}
-
 namespace {
 
 /// The virial (kJ/mol) of sample `now`: SMD's at its instant, DMD's over [before, now].
@@ -23,32 +16,16 @@ double virialAt(const SampleRecord& now, const SampleRecord& before, VirialKind 
     return impulseVirialOver(before.virial, now.virial, before.time, now.time);
 }
 
-double mean(const std::vector<double>& x) {
-    double sum = 0.0;
-    for (double v : x)
-        sum += v;
-    return sum / double(x.size());
-}
-
 } // namespace
 
-PressureSeries pressureSeries(std::span<const SampleRecord> samples, VirialKind kind,
-                              double volume) {
-    PressureSeries p;
-    for (std::size_t k = kind == VirialKind::Impulse ? 1 : 0; k < samples.size(); ++k) {
-        const SampleRecord& now = samples[k];
-        p.kinetic.push_back(virialPressure(now.kineticTranslational, 0.0, volume));
-        p.virial.push_back(
-            virialPressure(0.0, virialAt(now, samples[k ? k - 1 : 0], kind), volume));
-    }
-    return p;
+PressureTerms pressureTerms(const SampleRecord& now, const SampleRecord& before, VirialKind kind,
+                            double volume) {
+    return {virialPressure(now.kineticTranslational, 0.0, volume),
+            virialPressure(0.0, virialAt(now, before, kind), volume)};
 }
 
-nlohmann::json pressureSummary(const PressureSeries& p, VirialKind kind, double sigma,
-                               double epsilon) {
-    if (p.kinetic.empty()) return {{"samples", 0}};
-    const analysis::Estimate all = analysis::blockMean(p.total(), pressureBlocks);
-    const double kinetic = mean(p.kinetic), virial = mean(p.virial);
+nlohmann::json pressureSummary(const analysis::Estimate& all, double kinetic, double virial,
+                               long samples, VirialKind kind, double sigma, double epsilon) {
     auto reduced = [&](double x) { return reducedPressure(x, sigma, epsilon); };
     return {{"mean_bar", units::bar(all.mean)},
             {"error_bar", units::bar(all.err)},
@@ -56,7 +33,7 @@ nlohmann::json pressureSummary(const PressureSeries& p, VirialKind kind, double 
             {"error_reduced", reduced(all.err)},
             {"kinetic_term_reduced", reduced(kinetic)},
             {"virial_term_reduced", reduced(virial)},
-            {"samples", p.kinetic.size()},
+            {"samples", samples},
             {"blocks", pressureBlocks},
             {"method", kind == VirialKind::Impulse
                            ? "impulse virial over each sample interval, K_trans at its end"

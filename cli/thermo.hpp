@@ -9,7 +9,7 @@
 //        out.
 // summary.json "pressure" holds their mean in bar and reduced (P* = Pσ³/ε), one standard error
 // from pressureBlocks contiguous blocks of samples (analysis/block_average.hpp), and the mean's
-// kinetic and virial terms.
+// kinetic and virial terms, accumulated sample by sample (cli/sample_statistics.hpp).
 //
 // thermo.csv: a row at production's start and every output.thermo_every_fs after it, so a run
 // that goes to its end has ⌊run.time_ps / thermo_every_fs⌋ + 1 rows. Its first line names the
@@ -34,11 +34,11 @@
 // Under the scene's units lj (core/unit_system.hpp) the columns are time_tau, the energies per
 // body in ε with the suffix _per_body (as LAMMPS normalises thermo energies under its lj units),
 // temperature_reduced T* and pressure_reduced P*; the comment line names those units.
+#include "analysis/block_average.hpp"
 #include "cli/restart.hpp"
 #include "core/pressure.hpp"
 #include "core/unit_system.hpp"
 #include <nlohmann/json.hpp>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -51,20 +51,20 @@ using terrace::VirialKind;
 /// correlations).
 inline constexpr int pressureBlocks = 8;
 
-/// The two terms of P_k in kJ/mol/Å³, per sample that has a pressure (DMD: all but the first):
-/// kinetic 2K_trans/(3V) and virial W/(3V).
-struct PressureSeries {
-    std::vector<double> kinetic, virial;
-    std::vector<double> total() const;
+/// The two terms of P_k in kJ/mol/Å³ at sample `now`, `before` the sample before it (DMD: the
+/// interval's start; SMD: unused): kinetic 2K_trans/(3V) and virial W/(3V).
+struct PressureTerms {
+    double kinetic = 0.0, virial = 0.0;
 };
-
-PressureSeries pressureSeries(std::span<const SampleRecord> samples, VirialKind kind,
-                              double volume);
+PressureTerms pressureTerms(const SampleRecord& now, const SampleRecord& before, VirialKind kind,
+                            double volume);
 
 /// summary.json's "pressure": mean_bar, error_bar, mean_reduced, error_reduced, samples, blocks,
-/// kinetic_term_reduced, virial_term_reduced, method. σ in Å, ε in kJ/mol. Errors are null (NaN)
-/// when fewer than two blocks hold samples.
-nlohmann::json pressureSummary(const PressureSeries& p, VirialKind kind, double sigma,
+/// kinetic_term_reduced, virial_term_reduced, method, from the mean of P_k and its block error
+/// (`total`), the two terms' means and the number of samples behind them. σ in Å, ε in kJ/mol.
+/// Errors are null (NaN) when fewer than two blocks hold samples.
+nlohmann::json pressureSummary(const analysis::Estimate& total, double kineticMean,
+                               double virialMean, long samples, VirialKind kind, double sigma,
                                double epsilon);
 
 struct ThermoLayout {

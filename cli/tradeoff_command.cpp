@@ -2,6 +2,7 @@
 #include "analysis/csv.hpp"
 #include "cli/design_command.hpp"
 #include "cli/sweep_runner.hpp"
+#include "cli/tradeoff_dominance.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include "core/output_file.hpp"
 #include "core/scene_json.hpp"
@@ -580,6 +581,61 @@ const Rung* cheapestOf(const Tradeoff& t, const std::string& engine) {
     return best;
 }
 
+/// One engine's chosen setting and the other engine's cost floor above it
+/// (cli/tradeoff_dominance.hpp).
+struct Dominance {
+    const Rung* chosen = nullptr; // the cheaper engine's cheapest Within rung
+    const Rung* bound = nullptr;  // the rung whose cost bounds the other engine's from below
+    CostFloor floor;
+    // The other ladders' floors within rivalFactor of the least at the bias runs' N: at the
+    // scene's N any of them may be the cheapest, so each is timed and the weakest bound kept.
+    std::vector<std::pair<const Rung*, CostFloor>> rivals;
+};
+
+/// Floors further apart than this at the bias runs' N are taken to keep their order at the
+/// scene's N.
+constexpr double rivalFactor = 1.5;
+
+/// printf into a std::string of whatever length it needs.
+template <class... A> std::string format(const char* f, A... a) {
+    const int n = std::snprintf(nullptr, 0, f, a...);
+    std::string s(std::size_t(std::max(n, 0)) + 1, '\0');
+    std::snprintf(s.data(), s.size(), f, a...);
+    s.resize(std::size_t(std::max(n, 0)));
+    return s;
+}
+
+std::vector<RungView> viewsOf(const std::vector<Rung>& ladder) {
+    std::vector<RungView> views;
+    for (const Rung& r : ladder)
+        views.push_back({r.setting.x, r.cost(), r.decision, !r.failure.empty(), r.biases});
+    return views;
+}
+
+/// Whether one engine's cheapest Within rung costs less, by dominanceMargin at the bias runs'
+/// N, than any setting of the other engine could cost within tolerance.
+std::optional<Dominance> dominance(const Tradeoff& t) {
+    for (const std::string engine : {"smd", "dmd"}) {
+        const Rung* chosen = cheapestOf(t, engine);
+        if (!chosen || !std::isfinite(chosen->cost())) continue;
+        std::vector<std::vector<RungView>> other;
+        std::vector<const std::vector<Rung>*> ladders;
+        for (const auto& ladder : t.ladders)
+            if (!ladder.empty() && ladder.front().setting.engine != engine)
+                other.push_back(viewsOf(ladder)), ladders.push_back(&ladder);
+        if (other.empty()) continue;
+        const auto floor = engineCostFloor(other, t.z);
+        if (!floor || !(floor->cost >= dominanceMargin * chosen->cost())) continue;
+        Dominance d{chosen, &(*ladders[floor->ladder])[floor->rung], *floor, {}};
+        for (int l = 0; l < int(other.size()); ++l)
+            if (const auto f = ladderCostFloor(other[l], l, t.z);
+                f && l != floor->ladder && f->cost <= rivalFactor * floor->cost)
+                d.rivals.push_back({&(*ladders[l])[f->rung], *f});
+        return d;
+    }
+    return std::nullopt;
+}
+
 } // namespace
 
 int runTradeoff(const TradeoffOptions& options) {
@@ -651,7 +707,71 @@ int runTradeoff(const TradeoffOptions& options) {
                      describe(plan.reference, t).c_str(), t.z, t.schedule.size(),
                      options.maxReplicas);
 
-    bool budgetSpent = false;
+    nlohmann::json costRecord; // the last cost window timed
+    // The cost window: a DMD and an SMD setting at the scene's N, alternated A B A B, one run at
+    // a time, each pair a sweep of its own; the ratio DMD/SMD with its interval.
+    const auto costWindow = [&](const Setting& a, const Setting& b, const char* kind,
+                                analysis::RatioInterval& ratio) -> int {
+        std::vector<double> costA, costB;
+        for (int p = 1; p <= options.costPairs; ++p) {
+            std::vector<CaseRun> pair;
+            for (const Setting* s : {&a, &b})
+                pair.push_back({s, 1000 + p, "cost-" + s->label() + "_p" + std::to_string(p)});
+            const int s = runCases(t, pair, "", 1);
+            if (s >= 128) return s;
+            const ReplicaResult ra =
+                readReplica(t.runs() / pair[0].label, t.scene.state.n, t.scene.potential.epsilon);
+            const ReplicaResult rb =
+                readReplica(t.runs() / pair[1].label, t.scene.state.n, t.scene.potential.epsilon);
+            if (std::isfinite(ra.cpuPerPs) && std::isfinite(rb.cpuPerPs) && ra.cpuPerPs > 0 &&
+                rb.cpuPerPs > 0)
+                costA.push_back(ra.cpuPerPs), costB.push_back(rb.cpuPerPs);
+        }
+        ratio = analysis::pairedRatio(costA, costB);
+        costRecord = {{"kind", kind},
+                      {"dmd", a.label()},
+                      {"smd", b.label()},
+                      {"dmd_cpu_s_per_ps", costA},
+                      {"smd_cpu_s_per_ps", costB},
+                      {"ratio_dmd_over_smd", ratio.median},
+                      {"ratio_lo", ratio.lo},
+                      {"ratio_hi", ratio.hi},
+                      {"ratio_level", ratio.level},
+                      {"pairs", ratio.pairs}};
+        return 0;
+    };
+
+    // One engine's chosen setting against the other's cost floor: the chosen engine's advantage,
+    // the floor's cost over the chosen one's, with its interval.
+    // Each rival floor is timed as well, and the weakest advantage (the lowest end of its
+    // interval) is the one the verdict states: d.bound and d.floor become its.
+    const auto timeDominance = [&](Dominance& d, analysis::RatioInterval& ratio) -> int {
+        const auto one = [&](const Rung* bound, analysis::RatioInterval& advantage) -> int {
+            const bool dmdBound = bound->setting.engine == "dmd";
+            analysis::RatioInterval r;
+            if (const int s = dmdBound
+                                  ? costWindow(bound->setting, d.chosen->setting, "at_least", r)
+                                  : costWindow(d.chosen->setting, bound->setting, "at_least", r))
+                return s;
+            advantage = dmdBound ? r
+                                 : analysis::RatioInterval{1.0 / r.median, 1.0 / r.hi, 1.0 / r.lo,
+                                                           r.pairs, r.level};
+            return 0;
+        };
+        if (const int s = one(d.bound, ratio)) return s;
+        nlohmann::json weakest = costRecord;
+        for (const auto& [rung, floor] : d.rivals) {
+            analysis::RatioInterval r;
+            if (const int s = one(rung, r)) return s;
+            if (r.lo < ratio.lo) ratio = r, d.bound = rung, d.floor = floor, weakest = costRecord;
+        }
+        costRecord = weakest;
+        costRecord["cheaper"] = d.chosen->setting.engine;
+        costRecord["rivals_timed"] = d.rivals.size();
+        return 0;
+    };
+
+    bool budgetSpent = false, stoppedByDominance = false;
     for (int round = 1;; ++round) {
         std::vector<const Rung*> all{&t.reference};
         for (const auto& ladder : t.ladders)
@@ -685,6 +805,24 @@ int runTradeoff(const TradeoffOptions& options) {
         nlohmann::json partial = report(t);
         partial["verdict"] = "not reached yet: round " + std::to_string(round) + " done";
         writeFileAtomically(options.out / "tradeoff.json", partial.dump(2) + "\n");
+        // One engine already cheaper than any setting of the other could be, at the bias runs' N:
+        // timed at the scene's N, a resolved advantage ends the tradeoff.
+        if (!options.frontier)
+            if (auto d = dominance(t)) {
+                analysis::RatioInterval r;
+                if (const int s = timeDominance(*d, r)) return s;
+                if (r.lo > 1.0) {
+                    stoppedByDominance = true;
+                    break;
+                }
+                if (!options.quiet)
+                    std::fprintf(stderr,
+                                 "tradeoff: %s is not resolved cheaper than %s at N %d (%.2fx, "
+                                 "%.2f-%.2f); going on\n",
+                                 d->chosen->setting.label().c_str(),
+                                 d->bound->setting.label().c_str(), t.scene.state.n, r.median, r.lo,
+                                 r.hi);
+            }
         if (t.cpuSpent > options.budgetCpuHours * 3600.0) {
             budgetSpent = true;
             break;
@@ -741,9 +879,52 @@ int runTradeoff(const TradeoffOptions& options) {
 
     const Rung* dmd = cheapestOf(t, "dmd");
     const Rung* smd = cheapestOf(t, "smd");
+    std::optional<Dominance> dom = options.frontier ? std::nullopt : dominance(t);
     std::string verdict;
     int status = 0;
-    if (!dmd || !smd) {
+    if (dom && (stoppedByDominance || !dmd || !smd)) {
+        // One engine is cheaper than any setting of the other could be: the ratio to the other's
+        // cost floor is a lower bound on the true one.
+        analysis::RatioInterval ratio; // the runs of a window timed in the loop are reused
+        if (const int s = timeDominance(*dom, ratio)) return s;
+        out["cost"] = costRecord;
+        const std::string other = dom->bound->setting.engine == "dmd" ? "DMD" : "SMD";
+        const std::string why =
+            dom->floor.within
+                ? format("%s's cheapest setting within is %s", other.c_str(),
+                         describe(dom->bound->setting, t).c_str())
+                : format("%s's most accurate setting that bounds it, %s, is outside on %s by "
+                         "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",
+                         other.c_str(), describe(dom->bound->setting, t).c_str(),
+                         observableName(dom->floor.ruling.observable),
+                         dom->floor.ruling.bias.mean / dom->floor.ruling.tolerance,
+                         dom->floor.ruling.bias.err / dom->floor.ruling.tolerance);
+        out["cost"]["bound"] = {{"setting", dom->bound->setting.label()},
+                                {"within", dom->floor.within}};
+        if (!dom->floor.within)
+            out["cost"]["bound"]["ruling"] =
+                biasJson(dom->floor.ruling, dom->bound->setting.engine);
+        if (ratio.lo > 1.0) {
+            verdict =
+                format("%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s setting "
+                       "within tolerance at %s (N %d): %s",
+                       describe(dom->chosen->setting, t).c_str(), ratio.median, ratio.lo, ratio.hi,
+                       100.0 * ratio.level, other.c_str(), toleranceText(t).c_str(),
+                       t.scene.state.n, why.c_str());
+        } else {
+            verdict =
+                format("no verdict: at N %d the cost window does not resolve %s (%.2fx, "
+                       "%.2f-%.2f) as cheaper than %s, the floor of %s's cost at %s",
+                       t.scene.state.n, describe(dom->chosen->setting, t).c_str(), ratio.median,
+                       ratio.lo, ratio.hi, describe(dom->bound->setting, t).c_str(), other.c_str(),
+                       toleranceText(t).c_str());
+            if (!dmd || !smd) // what was resolved within is still an answer: the setting to use
+                verdict += format("; the cheapest within: %s, %.3g CPU s per ps at N %d",
+                                  describe(dom->chosen->setting, t).c_str(), dom->chosen->cost(),
+                                  t.biasBodies);
+            status = 1;
+        }
+    } else if (!dmd || !smd) {
         verdict = std::string("no verdict: ") + (!dmd ? "no DMD setting" : "no SMD setting") +
                   " was resolved within tolerance at " + toleranceText(t);
         // What the other engine found is still an answer: the setting to use.
@@ -755,33 +936,9 @@ int runTradeoff(const TradeoffOptions& options) {
         }
         status = 1;
     } else {
-        // The cost window: both chosen settings at the scene's N, alternated, one at a time.
-        std::vector<double> costA, costB;
-        for (int p = 1; p <= options.costPairs; ++p) {
-            // Each pair a sweep of its own, DMD then SMD, one at a time: the order is A B A B.
-            std::vector<CaseRun> pair;
-            for (const Setting* s : {&dmd->setting, &smd->setting})
-                pair.push_back({s, 1000 + p, "cost-" + s->label() + "_p" + std::to_string(p)});
-            const int s = runCases(t, pair, "", 1);
-            if (s >= 128) return s;
-            const ReplicaResult ra =
-                readReplica(t.runs() / pair[0].label, t.scene.state.n, t.scene.potential.epsilon);
-            const ReplicaResult rb =
-                readReplica(t.runs() / pair[1].label, t.scene.state.n, t.scene.potential.epsilon);
-            if (std::isfinite(ra.cpuPerPs) && std::isfinite(rb.cpuPerPs) && ra.cpuPerPs > 0 &&
-                rb.cpuPerPs > 0)
-                costA.push_back(ra.cpuPerPs), costB.push_back(rb.cpuPerPs);
-        }
-        const analysis::RatioInterval ratio = analysis::pairedRatio(costA, costB);
-        out["cost"] = {{"dmd", dmd->setting.label()},
-                       {"smd", smd->setting.label()},
-                       {"dmd_cpu_s_per_ps", costA},
-                       {"smd_cpu_s_per_ps", costB},
-                       {"ratio_dmd_over_smd", ratio.median},
-                       {"ratio_lo", ratio.lo},
-                       {"ratio_hi", ratio.hi},
-                       {"ratio_level", ratio.level},
-                       {"pairs", ratio.pairs}};
+        analysis::RatioInterval ratio;
+        if (const int s = costWindow(dmd->setting, smd->setting, "ratio", ratio)) return s;
+        out["cost"] = costRecord;
         char b2[512];
         if (ratio.median >= 1.0)
             std::snprintf(b2, sizeof b2, "%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s",

@@ -19,6 +19,10 @@
 //               is fitted to c·x^p per observable (p fixed at 2 or 4 for the splittings) and the
 //               setting where the first observable reaches its tolerance is placed between them
 //               and decided with its own replicas
+//   early stop  once one engine's cheapest Within rung costs less, at the bias runs' N, than the
+//               other engine's cost floor (cli/tradeoff_dominance.hpp), the two are timed in the
+//               cost window; resolved cheaper there, the question is answered: the loop stops
+//               and the verdict's ratio, to the floor's rung, says "at least" (unless --frontier)
 //   cost        the two engines' chosen settings at the scene's N, alternated A B A B for
 //               `costPairs` pairs, one run at a time; the ratio's median and its order-statistics
 //               interval

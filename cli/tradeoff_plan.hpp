@@ -61,6 +61,10 @@ struct TradeoffOptions {
     std::vector<std::string> designs{"uniform", "optimal"};            // DMD ladders
     std::vector<std::string> schemes{"verlet", "omelyan", "yoshida4"}; // SMD ladders
     bool quiet = false;
+    // Resolve both engines' cheapest settings even when one engine's is already cheaper than any
+    // setting of the other could be (cli/tradeoff_dominance.hpp); without it the tradeoff stops
+    // there and its ratio is a lower bound.
+    bool frontier = false;
 };
 
 /// The items of a comma-separated option value ("a,b,c"; an empty item stays, to be refused).

@@ -12,6 +12,7 @@
 #include "core/scene.hpp"
 #include "core/site_potential.hpp"
 #include "core/smoothed_cutoff.hpp"
+#include "core/step_potential.hpp"
 #include "core/system.hpp"
 #include "core/units.hpp"
 #include <array>
@@ -24,6 +25,8 @@ namespace terrace {
 RodPotential rodPotential(const Scene& scene);
 LJPotential ljPotential(const Scene& scene);
 GayBernePotential gayBernePotential(const Scene& scene);
+/// potential.kind steps: the scene's table in σ and ε, scaled by potential.sigma and epsilon.
+StepPotential stepPotential(const Scene& scene);
 /// body.sites as the site potential takes them.
 std::vector<Site> sceneSites(const Scene& scene);
 BodyParams bodyParams(const Scene& scene);
@@ -90,8 +93,8 @@ void refuseOverlappingNeighbours(const System<K, P>& sys, const Lattice& lattice
         for (const int j : next) {
             if (j >= n || j == i) continue;
             const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
-            const double U = sys.potential.energy(rij, orientationOf<P, K>(sys.bodies[i]),
-                                                  orientationOf<P, K>(sys.bodies[j]));
+            const double U = startEnergy(sys.potential, rij, orientationOf<P, K>(sys.bodies[i]),
+                                         orientationOf<P, K>(sys.bodies[j]));
             if (!(U <= limit))
                 throw SceneError(
                     "state.density: " + std::to_string(scene.state.density) +
@@ -157,8 +160,8 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
     if constexpr (P::attitude != AttitudeUse::Frame)
         if (n > 1) {
             const Vec3 d(spacing.x(), 0, 0);
-            const double uAligned = potential.energy(d, Vec3::UnitY(), Vec3::UnitY());
-            const double uCrossed = potential.energy(d, Vec3::UnitY(), Vec3::UnitZ());
+            const double uAligned = startEnergy(potential, d, Vec3::UnitY(), Vec3::UnitY());
+            const double uCrossed = startEnergy(potential, d, Vec3::UnitY(), Vec3::UnitZ());
             if (std::max(uAligned, uCrossed) > detail::maxStartEnergyInKT * sys.kT)
                 throw SceneError(
                     "state.density: " + std::to_string(scene.state.density) +

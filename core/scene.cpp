@@ -78,6 +78,11 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         if (!u.reduced()) throw;
         throw SceneError(std::string(e.what()) + reducedNote(u)); // its numbers are converted
     }
+    // A step's force is an impulse at one radius: there is nothing for a time step to integrate,
+    // and no continuous potential the table stands for to integrate instead.
+    if (s.potential.kind == "steps" && s.engine == "smd")
+        top.fail("engine", "smd cannot integrate potential.kind steps (a step table's forces are "
+                           "impulses at its radii): use engine dmd");
     return s;
 }
 
@@ -130,7 +135,15 @@ json toJson(const Scene& s) {
                             {"sigma", site.sigma}});
         j["body"]["sites"] = list;
     }
-    j["potential"]["cutoff"] = json::array({s.potential.r_l, s.potential.r_u});
+    if (s.potential.kind == "steps") {
+        json table = json::array();
+        for (std::size_t k = 0; k < s.potential.step_radii.size(); ++k)
+            table.push_back(json::array({s.potential.step_radii[k], s.potential.step_energies[k]}));
+        j["potential"]["steps"] = table;
+        j["potential"]["hard_core"] = s.potential.hard_core;
+    } else {
+        j["potential"]["cutoff"] = json::array({s.potential.r_l, s.potential.r_u});
+    }
     j["state"] = {
         {"n", s.state.n}, {"density", s.state.density}, {"temperature", s.state.temperature}};
     if (s.state.particles.empty()) {
@@ -208,7 +221,16 @@ std::vector<Site> sceneSites(const Scene& s) {
         sites.push_back(Site{x.r, x.epsilon, x.sigma, x.mass});
     return sites;
 }
+StepPotential stepPotential(const Scene& s) {
+    StepPotential p;
+    p.epsilon = s.potential.epsilon;
+    p.sigma = s.potential.sigma;
+    p.table = StepTable{s.potential.step_radii, s.potential.step_energies, s.potential.hard_core};
+    return p;
+}
 double sceneMinimumEnergy(const Scene& s) {
+    if (s.potential.kind == "steps")
+        return stepPotential(s).table.minimumEnergy() * s.potential.epsilon;
     if (s.potential.kind == "lj") return ljPotential(s).minimumEnergy();
     if (s.potential.kind == "gay-berne") return gayBernePotential(s).minimumEnergy();
     if (s.potential.kind == "sites")

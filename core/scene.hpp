@@ -63,7 +63,7 @@ struct Scene {
     } body;
 
     struct Potential {
-        std::string kind = "rod-lj"; // rod-lj | lj | gay-berne | sites
+        std::string kind = "rod-lj"; // rod-lj | lj | gay-berne | sites | steps
         // The scene's energy and length units: T* = kT/ε and ρ* = Nσ³/L³, the cutoff in σ. For
         // gay-berne they are also the potential's ε0 and σ0 (= σ_s); for sites the units only,
         // the sites carrying their own.
@@ -80,6 +80,12 @@ struct Scene {
         // integrates and DMD terraces (core/smoothed_potential.hpp). Key: "cutoff": [r_l, r_u].
         double r_l = 2.5;
         double r_u = 3.0;
+        // steps only (core/step_table.hpp): the table, resolved from the one given or named
+        // (square_well, square_shoulder, chapela_lj, lj), radii in σ, energies in ε, sorted by
+        // decreasing radius; hard_core in σ, 0 for none. The first radius is the cutoff.
+        std::vector<double> step_radii;
+        std::vector<double> step_energies;
+        double hard_core = 0.0;
     } potential;
 
     struct State {
@@ -102,12 +108,14 @@ struct Scene {
     nlohmann::json dmd = nlohmann::json::object();
     nlohmann::json smd = nlohmann::json::object();
 
-    // Every interval is honoured exactly or refused. Intervals must fit in the run and lie on the
-    // grid: time_ps is a whole multiple of sample_fs, and equilibrate_ps of thermostat_fs or 0
-    // (relative tolerance limits::gridTolerance on each ratio); sample_fs and thermostat_fs are
-    // >= 0.01 fs; under SMD, both are whole multiples of smd.dt_fs (smd/parameters.hpp). The
-    // defaults are whole multiples of 9 fs, so whole numbers of SMD steps at dt = 0.2, 0.5, 1, 1.8
-    // and 3 fs.
+    // Every interval and length is honoured exactly or refused. Lengths are honoured as typed:
+    // equilibration's last thermostat interval is cut short where equilibrate_ps is not a whole
+    // number of them (it still ends on a rescale), and production runs on, unsampled, past its
+    // last whole sample to time_ps. sample_fs must fit in the run; sample_fs and thermostat_fs
+    // are >= 0.01 fs; under SMD, intervals and lengths are whole multiples of smd.dt_fs
+    // (smd/parameters.hpp; relative tolerance limits::gridTolerance on each ratio). The
+    // defaults are whole multiples of 9 fs, so whole numbers of SMD steps at dt = 0.2, 0.5, 1,
+    // 1.8 and 3 fs.
     struct Run {
         double equilibrate_ps = 1.8; // 200 thermostat intervals
         double time_ps = 9.0;        // 1000 samples

@@ -3,6 +3,7 @@
 #include "core/initial_state.hpp"
 #include "core/scene_sections.hpp"
 #include "core/site_potential.hpp"
+#include "core/step_table.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -58,11 +59,87 @@ void checkInertia(const JsonSection& body, const Scene& s) {
         body.fail(key, "an asymmetric top needs three positive moments" + given);
 }
 
+namespace {
+
+constexpr const char* stepKeys[] = {"steps",       "hard_core",        "lambda",
+                                    "depth",       "attractive_steps", "range",
+                                    "energy_rule", "core_energy"};
+
+/// The keys a named table reads (the rest of stepKeys are refused with it).
+std::vector<std::string> tableKeys(const std::string& name) {
+    if (name == "square_well" || name == "square_shoulder") return {"lambda", "depth"};
+    if (name == "lj") return {"attractive_steps", "range", "energy_rule", "core_energy"};
+    if (name == "chapela_lj") return {};
+    return {"hard_core"}; // an explicit table
+}
+
+/// potential.steps: an explicit table [[r, E], ...] with hard_core, or a ready-made one by name.
+void readStepTable(const JsonSection& pot, Scene& s) {
+    if (pot.has("cutoff"))
+        pot.fail("cutoff", "a step table ends at its first radius: leave potential.cutoff out");
+    if (!pot.has("steps"))
+        pot.fail("steps", "potential.kind steps needs its table: [[r, E], ...] (σ, ε) with "
+                          "hard_core, or one of \"square_well\", \"square_shoulder\", "
+                          "\"chapela_lj\", \"lj\"");
+    const nlohmann::json& given = pot.at("steps");
+    StepTable t;
+    std::string name;
+    if (given.is_string()) {
+        name = pot.choice("steps", "", {"chapela_lj", "lj", "square_shoulder", "square_well"});
+        const double lambda = pot.number("lambda", 1.5, 1.0, 100.0, true);
+        const double depth = pot.number("depth", 1.0, -1e6, 1e6);
+        if (name == "square_well") t = steps::squareWell(lambda, depth);
+        if (name == "square_shoulder") t = steps::squareShoulder(lambda, depth);
+        if (name == "chapela_lj") t = steps::chapelaLJ();
+        if (name == "lj") {
+            const std::string rule = pot.choice("energy_rule", "volume", {"midpoint", "volume"});
+            t = steps::lennardJones(pot.number("attractive_steps", 5.8, 0.0, 1000.0, true),
+                                    pot.number("range", 3.0, std::pow(2.0, 1.0 / 6.0), 100.0, true),
+                                    rule == "volume" ? steps::StepEnergyRule::Volume
+                                                     : steps::StepEnergyRule::Midpoint,
+                                    pot.number("core_energy", 100.0, 0.0, 1e6, true));
+        }
+    } else if (given.is_array()) {
+        for (std::size_t k = 0; k < given.size(); ++k) {
+            const auto& e = given[k];
+            if (!e.is_array() || e.size() != 2 || !e[0].is_number() || !e[1].is_number())
+                pot.fail("steps", "step " + std::to_string(k) +
+                                      " must be [r, E], two numbers (σ, ε), got " + showJson(e));
+            t.radii.push_back(e[0].get<double>());
+            t.energies.push_back(e[1].get<double>());
+        }
+        t.hardCore = pot.number("hard_core", 0.0, 0.0, 1e6);
+    } else {
+        pot.fail("steps", "must be [[r, E], ...] or a table's name, got " + showJson(given));
+    }
+    const std::vector<std::string> used = tableKeys(name);
+    for (const char* key : stepKeys)
+        if (std::string(key) != "steps" && pot.has(key) &&
+            std::find(used.begin(), used.end(), key) == used.end())
+            pot.fail(key, name.empty() ? "only meaningful for a named table (potential.steps "
+                                         "\"square_well\", ...)"
+                                       : "not read by the table \"" + name + "\"");
+    try {
+        validateStepTable(t, pot.name("steps"));
+    } catch (const SceneError& e) {
+        throw SceneError((pot.origin().empty() ? "" : pot.origin() + ": ") + e.what());
+    }
+    s.potential.step_radii = t.radii;
+    s.potential.step_energies = t.energies;
+    s.potential.hard_core = t.hardCore;
+}
+
+} // namespace
+
 void readPotential(const JsonSection& pot, Scene& s) {
-    pot.onlyKeys(
-        {"kind", "epsilon", "sigma", "zeta", "cutoff", "kappa", "kappa_prime", "mu", "nu"});
+    pot.onlyKeys({"kind", "epsilon", "sigma", "zeta", "cutoff", "kappa", "kappa_prime", "mu", "nu",
+                  "steps", "hard_core", "lambda", "depth", "attractive_steps", "range",
+                  "energy_rule", "core_energy"});
     auto& p = s.potential;
-    p.kind = pot.choice("kind", p.kind, {"gay-berne", "lj", "rod-lj", "sites"});
+    p.kind = pot.choice("kind", p.kind, {"gay-berne", "lj", "rod-lj", "sites", "steps"});
+    if (p.kind == "steps") readStepTable(pot, s);
+    for (const char* key : stepKeys)
+        if (p.kind != "steps" && pot.has(key)) pot.fail(key, "only meaningful for steps");
     p.epsilon = pot.number("epsilon", p.epsilon, 0, inf, true);
     p.sigma = pot.number("sigma", p.sigma, 0, inf, true);
     p.zeta = pot.number("zeta", p.zeta, 0, inf);
@@ -90,6 +167,8 @@ void readPotential(const JsonSection& pot, Scene& s) {
         if (s.body.kind != "linear")
             pot.refuse("body.kind", "gay-berne ellipsoids are uniaxial: set body.kind to linear");
     }
+    if (p.kind == "steps" && s.body.kind != "sphere")
+        pot.fail("kind", "a step table is a potential between spheres: set body.kind to sphere");
     if (p.kind == "lj" && s.body.kind != "sphere")
         pot.fail("kind", "lj is a potential between spheres: set body.kind to sphere");
     if (p.kind == "rod-lj" && s.body.kind == "sphere")

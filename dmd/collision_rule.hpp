@@ -13,6 +13,8 @@
 //   Up (the upper level, ΔE > 0) when b² ≥ 4aΔE: S = (−b − √(b² − 4aΔE))/2a, the root nearest
 //       zero for a climbing pair (b < 0); afterwards dU/dt = +√(b² − 4aΔE) > 0.
 //   Reflect otherwise: S = −b/a (ΔE = 0), dU/dt changes sign, terrace unchanged.
+// Terraces that do not rise with U (a step table) take the same roots by the side of the level
+// instead of the sign of ΔE (solveCrossing).
 // The roots are evaluated in the cancellation-free form S = −2ΔE/(b ± √D).
 // Units: kJ/mol, g/mol, Å, time unit 100 fs; S in time units.
 #include "core/body_kind.hpp"
@@ -46,20 +48,33 @@ ImpulseCoefficients impulseCoefficients(const PairForce& f, const typename K::St
     return c;
 }
 
-/// S for a pair reaching a level that would change the terraced energy by dE (< 0: the lower
-/// level, > 0: the upper level). A climb with b ≥ 0 (the pair is not moving outwards, which only
-/// round-off at a grazing touch produces) is a reflection with S = 0: nothing to reverse.
-inline Impulse solveImpulse(const ImpulseCoefficients& c, double dE) {
+/// S for a pair reaching the upper level of its terrace (upward) or the lower one, where the
+/// crossing would change the terraced energy by dE. Terraces of a continuous U rise with U, so
+/// there dE > 0 upward and < 0 downward; a step table's do not (core/step_potential.hpp: leaving
+/// a square well outwards is a descent of its carrier that costs the well's depth), so both signs
+/// are taken either way. The pair crosses when the energy allows it, D = b² − 4a·dE ≥ 0, and it
+/// is moving towards the level (b < 0 upward, b > 0 downward) or gains energy; S is then the root
+/// that leaves it moving on through the level, dU/dt = ±√D. Otherwise it reflects, S = −b/a,
+/// or with S = 0 when it is not moving towards the level at all (round-off at a grazing touch).
+/// A hard core is a climb of dE = +∞: never afforded, always a reflection.
+inline Impulse solveCrossing(const ImpulseCoefficients& c, double dE, bool upward) {
     const double a = c.a, b = c.b;
-    if (dE < 0.0) {
-        const double root = std::sqrt(b * b - 4.0 * a * dE);
-        const double S = b > 0.0 ? -2.0 * dE / (b + root) : (root - b) / (2.0 * a);
-        return {Outcome::Down, S, dE};
-    }
+    const double towards = upward ? -b : b; // > 0: approaching the level
     const double D = b * b - 4.0 * a * dE;
-    if (b < 0.0 && D >= 0.0) return {Outcome::Up, -2.0 * dE / (b - std::sqrt(D)), dE};
-    if (b < 0.0 && a > 0.0) return {Outcome::Reflect, -b / a, 0.0};
+    if (D >= 0.0 && (dE < 0.0 || towards > 0.0)) {
+        const double root = std::sqrt(D);
+        // The cancellation-free form where b and the root's term have the same sign.
+        if (upward)
+            return {Outcome::Up, b < 0.0 ? -2.0 * dE / (b - root) : (-b - root) / (2.0 * a), dE};
+        return {Outcome::Down, b > 0.0 ? -2.0 * dE / (b + root) : (root - b) / (2.0 * a), dE};
+    }
+    if (towards > 0.0 && a > 0.0) return {Outcome::Reflect, -b / a, 0.0};
     return {Outcome::Reflect, 0.0, 0.0};
+}
+
+/// solveCrossing for terraces that rise with U: dE < 0 is the lower level, dE ≥ 0 the upper one.
+inline Impulse solveImpulse(const ImpulseCoefficients& c, double dE) {
+    return solveCrossing(c, dE, dE >= 0.0);
 }
 
 /// Apply the impulse S along (F, τ_i, τ_j) to both bodies; momenta are conserved exactly.

@@ -240,6 +240,13 @@ public:
                 const Vec3 rij = s.box.minimumImage(s.bodies[i].r - s.bodies[j].r);
                 const double r2 = rij.squaredNorm();
                 if (r2 >= range * range) return;
+                if constexpr (isSteppedModel<P>) {
+                    // The model is the table itself; its virial is all impulses (virial()).
+                    const double V = stepPotentialOf(s.potential)->tableEnergy(std::sqrt(r2));
+                    sums.potential += V;
+                    if (profile) profile->add(std::sqrt(r2), 0.0);
+                    return;
+                }
                 const PairForce f = s.potential.evaluate(rij, orientationOf<P, K>(s.bodies[i]),
                                                          orientationOf<P, K>(s.bodies[j]));
                 sums.potential += f.U;
@@ -247,6 +254,8 @@ public:
                 if (profile)
                     profile->add(std::sqrt(r2), f.U - levels.energy(levels.terraceOf(f.U)));
             });
+        // A step table has no configurational virial: its forces act only at the steps.
+        if constexpr (isSteppedModel<P>) sums.virial = std::numeric_limits<double>::quiet_NaN();
         return sums;
     }
     void rescaleTemperature(double kT) {
@@ -633,7 +642,8 @@ private:
         const int n = s_.lists.terrace(i, j);
         const int target = n + (e.side > 0 ? 1 : -1);
         const double dE = s_.settings.levels.energy(target) - s_.settings.levels.energy(n);
-        const Impulse impulse = solveImpulse(impulseCoefficients<K>(f, bi, bj, s_.sys.body), dE);
+        const Impulse impulse =
+            solveCrossing(impulseCoefficients<K>(f, bi, bj, s_.sys.body), dE, e.side > 0);
         applyImpulse<K>(bi, bj, f, impulse.S, s_.sys.body);
         s_.impulseVirial += impulse.S * rij.dot(f.F); // Δp_i = S F_ij
         refreshOrbit(s_, i);

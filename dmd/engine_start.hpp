@@ -20,6 +20,7 @@
 #include "core/overlap.hpp"
 #include "core/pair_potential.hpp"
 #include "core/scene.hpp"
+#include "core/step_potential.hpp"
 #include "core/system.hpp"
 #include "dmd/body_clocks.hpp"
 #include "dmd/engine_state.hpp"
@@ -141,10 +142,20 @@ void assignInitialTerraces(EngineState<K, P>& s, double levelTolerance) {
             if (rij.norm() > s.settings.rm) return;
             const PairForce f =
                 sys.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
-            if (overlapsAtStart(f.U, uMin)) throwOverlap(s.sceneIndex(i), s.sceneIndex(j), f.U);
             const double rate = dUdt(f, bi.v - bj.v, K::angularVelocity(bi, sys.body),
                                      K::angularVelocity(bj, sys.body));
-            s.lists.setTerrace(i, j, s.settings.levels.terraceOf(f.U, rate, levelTolerance));
+            int n = s.settings.levels.terraceOf(f.U, rate, levelTolerance);
+            if constexpr (isSteppedModel<P>) {
+                // A step table's carrier is no energy: a pair overlaps when it lies inside the
+                // hard core. One on the core's radius heading in is put outside, to reflect now.
+                const auto& L = s.settings.levels;
+                if (std::isinf(L.energy(n)) && f.U <= L.lower(n) + levelTolerance) --n;
+                if (std::isinf(L.energy(n)))
+                    throwOverlap(s.sceneIndex(i), s.sceneIndex(j), L.energy(n));
+            } else if (overlapsAtStart(f.U, uMin)) {
+                throwOverlap(s.sceneIndex(i), s.sceneIndex(j), f.U);
+            }
+            s.lists.setTerrace(i, j, n);
         });
 }
 

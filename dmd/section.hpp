@@ -196,6 +196,14 @@ inline nlohmann::json toJson(const DmdSection& s) {
 inline DmdSection resolveDmdSection(Scene& scene, const std::string& origin = "") {
     const DmdSection d = readDmdSection(scene.dmd, origin);
     const std::string prefix = origin.empty() ? "" : origin + ": ";
+    if (scene.potential.kind == "steps") { // the table's steps are the levels (dmd/settings.hpp)
+        if (!d.levels.empty() || !d.terraces.isDefault())
+            throw SceneError(prefix + (d.levels.empty() ? "dmd.terraces" : "dmd.levels") +
+                             ": potential.kind steps sets its own levels, one per step of its "
+                             "table: leave it out");
+        scene.dmd = toJson(d);
+        return d;
+    }
     if (scene.engine == "dmd" && d.levels.empty()) {
         const double uMin = sceneMinimumEnergy(scene);
         // The well's depth against ε is set by the anisotropy for Gay–Berne, by the sites'

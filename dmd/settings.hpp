@@ -6,6 +6,7 @@
 #include "core/heat_bath.hpp"
 #include "core/measure.hpp"
 #include "core/scene.hpp"
+#include "core/step_potential.hpp"
 #include "core/units.hpp"
 #include "dmd/section.hpp"
 #include "dmd/terrace_design.hpp"
@@ -49,7 +50,17 @@ struct DmdSettings {
 template <PairPotential P>
 DmdSettings readDmdSettings(const DmdSection& d, const P& potential, double kT, double boxLength) {
     DmdSettings s;
-    if (!d.levels.empty()) {
+    if constexpr (isSteppedModel<P>) {
+        // A step table brings its own levels, one per radius (core/step_potential.hpp).
+        if (!d.levels.empty())
+            throw SceneError("dmd.levels: potential.kind steps sets its own levels, one per "
+                             "step of its table: leave dmd.levels out");
+        if (!d.terraces.isDefault())
+            throw SceneError("dmd.terraces: potential.kind steps sets its own levels, one per "
+                             "step of its table: leave dmd.terraces out");
+        const StepPotential& steps = *stepPotentialOf(potential);
+        s.levels = TerraceLevels::stepped(steps.levels(), steps.values(), "potential.steps");
+    } else if (!d.levels.empty()) {
         s.levels = TerraceLevels::explicitLevels(d.levels, d.values);
         s.levels.checkMinimum(potential.minimumEnergy(), "dmd.levels");
     } else if (!d.terraces.isDefault()) {

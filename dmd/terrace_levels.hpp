@@ -93,6 +93,35 @@ public:
         return t;
     }
 
+    /// The levels of a step table (core/step_potential.hpp): increasing levels, all > 0, so that
+    /// terrace 0 lies below the first and carries 0, and their K + 1 terrace energies, the first
+    /// 0. One level is enough (bare hard spheres), and the last energy may be +∞: a hard core,
+    /// which every pair reaching it reflects from (dmd/collision_rule.hpp: a climb of +∞ is never
+    /// afforded). The key names the table in errors.
+    static TerraceLevels stepped(std::vector<double> levels, std::vector<double> values,
+                                 const std::string& key) {
+        const std::size_t K = levels.size();
+        if (K == 0 || values.size() != K + 1)
+            throw SceneError(key + ": " + std::to_string(K) + " steps need " +
+                             std::to_string(K + 1) + " terrace energies, got " +
+                             std::to_string(values.size()));
+        for (std::size_t k = 0; k < K; ++k)
+            if (!std::isfinite(levels[k]) || !(levels[k] > (k > 0 ? levels[k - 1] : 0.0)))
+                throw SceneError(key + ": step " + std::to_string(k) +
+                                 " does not lie strictly inside the one before it");
+        for (std::size_t s = 0; s < K; ++s)
+            if (!std::isfinite(values[s]))
+                throw SceneError(key + ": energy " + std::to_string(s) + " is not finite");
+        if (values[0] != 0.0 || std::isnan(values[K]) || values[K] == -HUGE_VAL)
+            throw SceneError(key + ": beyond the cutoff the energy is 0, and only the hard core "
+                                   "may be infinite");
+        TerraceLevels t;
+        t.levels_ = std::move(levels);
+        t.energy_ = std::move(values);
+        t.zeroSlot_ = 0;
+        return t;
+    }
+
     bool isUniform() const { return step_ > 0.0; }
     /// The explicit levels and terrace energies (empty for uniform levels), kJ/mol.
     const std::vector<double>& explicitLevelList() const { return levels_; }
@@ -101,7 +130,9 @@ public:
     /// The smallest distance between two levels (the height scale of grazing checks).
     double smallestStep() const {
         if (isUniform()) return step_;
-        double h = std::numeric_limits<double>::infinity();
+        // A single level (a stepped hard core) has only its height above terrace 0's floor.
+        double h =
+            levels_.size() == 1 ? std::abs(levels_[0]) : std::numeric_limits<double>::infinity();
         for (std::size_t k = 1; k < levels_.size(); ++k)
             h = std::min(h, levels_[k] - levels_[k - 1]);
         return h;

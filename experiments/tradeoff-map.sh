@@ -7,9 +7,12 @@
 # Each cell's tradeoff lands in OUT/tradeoff-map/<family>-<set>/rho<ρ*>-T<T*> (a killed map goes on
 # where it stopped: tradeoff reuses every finished run). Writes OUT/tradeoff-map/<family>-<set>.csv:
 #   rho,T,status,dmd,smd,ratio,lo,hi,level,why
-# status resolved (a verdict: ratio = DMD's cost over SMD's, with its interval) or the reason there
-# is none; and <family>-<set>.png, log10 of the ratio at each resolved cell (crosses: cells without a
-# verdict), the break-even contour drawn only through resolved cells.
+# status resolved (a verdict: ratio = DMD's cost over SMD's, with its interval), at_least (the
+# verdict of tradeoff's early stop: one engine is cheaper than any setting of the other could be, and
+# the ratio, DMD's over SMD's, is a bound on the true one: from below when SMD is the cheaper, from
+# above when DMD is) or the reason there is none; and <family>-<set>.png, log10 of the ratio at each
+# cell with a verdict (triangles: bounds; crosses: no verdict), the break-even contour drawn only
+# between resolved cells.
 source "$(dirname "$0")/common.sh"
 family=$1 set=$2
 read -r -a densities <<<"$3"
@@ -51,7 +54,8 @@ except OSError:
 c = t.get("cost")
 why = "; ".join(t.get("notes", [])).replace(",", ";")
 if status == "0" and c:
-    print(f"{rho},{T},resolved,{c['dmd']},{c['smd']},{c['ratio_dmd_over_smd']},"
+    kind = "at_least" if c.get("kind") == "at_least" else "resolved"
+    print(f"{rho},{T},{kind},{c['dmd']},{c['smd']},{c['ratio_dmd_over_smd']},"
           f"{c['ratio_lo']},{c['ratio_hi']},{c['ratio_level']},{why}")
 else:
     print(f"{rho},{T},unresolved,,,nan,nan,nan,nan,{t.get('verdict', '').replace(',', ';')} {why}")
@@ -100,7 +104,9 @@ set cbrange [-1:1]
 set grid
 plot '$table' skip 1 using 1:(strcol(3) eq "resolved" ? \$2 : NaN):(log10(\$6)) with points pt 7 ps 3 palette title 'resolved', \
      '' skip 1 using 1:(strcol(3) eq "resolved" ? \$2 : NaN):(sprintf("%.2g", \$6)) with labels offset 0,1.5 notitle, \
-     '' skip 1 using 1:(strcol(3) ne "resolved" ? \$2 : NaN) with points pt 2 ps 2 lc rgb '#888888' title 'no verdict', \
+     '' skip 1 using 1:(strcol(3) eq "at_least" ? \$2 : NaN):(log10(\$6)) with points pt 9 ps 3 palette title 'bound: the cheaper engine resolved, its advantage at least', \
+     '' skip 1 using 1:(strcol(3) eq "at_least" ? \$2 : NaN):(\$6 > 1 ? sprintf(">=%.2g", \$6) : sprintf("<=%.2g", \$6)) with labels offset 0,1.5 notitle, \
+     '' skip 1 using 1:(strcol(3) ne "resolved" && strcol(3) ne "at_least" ? \$2 : NaN) with points pt 2 ps 2 lc rgb '#888888' title 'no verdict', \
      '$dir/$name-breakeven.dat' using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'black' title 'break-even (between resolved cells)'
 GP
 log "tradeoff-map $name done"

@@ -1,8 +1,9 @@
 // Restart files as a continued run reads them before it rebuilds an engine: restart.bin's CBOR,
-// its format and the scene it records (cli/run_command.cpp continueRun), and the analysis' state
-// it carries (analysis/state_bytes.hpp).
+// its format and the scene it records (cli/run_command.cpp continueRun), and the analysis' and
+// the sample statistics' states it carries (analysis/state_bytes.hpp).
 #include "cli/restart.hpp"
 #include "analysis/run_analysis.hpp"
+#include "cli/sample_statistics.hpp"
 #include "cli/scene_check.hpp"
 #include "core/output_file.hpp"
 #include "core/scene.hpp"
@@ -12,6 +13,30 @@
 namespace terrace::fuzz {
 
 void restartInput(std::string_view bytes) {
+    if (bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0xfe) {
+        // The sample statistics' state, for a plan of 8 + (second byte & 15) samples, every third
+        // a g(r) frame; the kind of virial by bit 4, a heat bath by bit 5.
+        const long samples = 8 + (bytes[1] & 15);
+        const bool heatBath = (bytes[1] & 32) != 0;
+        cli::SampleStatistics stats(cli::SamplePlan{
+            samples, (samples + 2) / 3,
+            (bytes[1] & 16) != 0 ? VirialKind::Impulse : VirialKind::Instantaneous, 1000.0, 100,
+            2.5, heatBath});
+        const auto* state = reinterpret_cast<const std::uint8_t*>(bytes.data() + 2);
+        try {
+            stats.restore({state, bytes.size() - 2});
+            nlohmann::json summary; // what a continued run then reports from it
+            stats.summarise(summary, 3.0, 1.0);
+            (void)stats.collisionRateError(0.01);
+            if (heatBath && stats.count() > 0) { // what the heat bath's summary reads
+                (void)stats.effectiveEnergy();
+                (void)stats.bathEnergyRemoved();
+                (void)stats.canonicalKinetic();
+            }
+        } catch (const std::invalid_argument&) { // a state that does not fit (documented)
+        }
+        return;
+    }
     if (bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0xff) {
         analysis::StreamingOptions options;
         options.lagsPerLevel = 4;

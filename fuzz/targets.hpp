@@ -18,7 +18,9 @@ void sweepInput(std::string_view bytes);
 /// restart.bin as `terrace run --continue DIR` reads it: the CBOR document and the scene it
 /// records. An input whose first byte is 0xff is the analysis' state a restart file carries
 /// instead, restored into an analysis of 8 samples, 4 lags a level, whose bodies the second
-/// byte sets (low three bits, plus two) and whether it has a terracing profile (bit 3).
+/// byte sets (low three bits, plus two) and whether it has a terracing profile (bit 3). One whose
+/// first byte is 0xfe is the sample statistics' state, restored into statistics of 8 + (second
+/// byte & 15) samples (bit 4: DMD's impulse virial; bit 5: a heat bath) and summarised.
 void restartInput(std::string_view bytes);
 /// trajectory.xyz as `terrace analyse DIR` reads it (no scene.json beside it).
 void trajectoryInput(std::string_view bytes);

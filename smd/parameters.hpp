@@ -52,7 +52,8 @@ inline nlohmann::json toJson(const SmdSection& s) {
 }
 
 /// The section of `scene` read and checked against the run it belongs to, and written back
-/// resolved. SMD advances in whole steps: under SMD no interval may fall between two.
+/// resolved. SMD advances in whole steps: under SMD no interval or run length may fall between
+/// two.
 inline SmdSection resolveSmdSection(Scene& scene, const std::string& origin = "") {
     const SmdSection s = readSmdSection(scene.smd, origin);
     scene.smd = toJson(s);
@@ -71,6 +72,12 @@ inline SmdSection resolveSmdSection(Scene& scene, const std::string& origin = ""
                       " fs is shorter than smd.dt_fs = " + showNumber(s.dt_fs) +
                       " fs: the bath acts once a step, so it cannot relax the kinetic energy "
                       "faster; give tau_fs >= dt_fs (typically 100 dt or more)");
+    // The run's lengths need not be whole intervals (the last one is cut short), but SMD cannot
+    // stop between two steps.
+    requireOnGrid(at, "run.time_ps", run.time_ps, "ps", 1000.0, "smd.dt_fs", s.dt_fs);
+    if (run.equilibrate_ps > 0.0)
+        requireOnGrid(at, "run.equilibrate_ps", run.equilibrate_ps, "ps", 1000.0, "smd.dt_fs",
+                      s.dt_fs);
     return s;
 }
 

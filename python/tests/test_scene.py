@@ -61,7 +61,7 @@ def test_default_scene_and_default_output():
 @pytest.mark.parametrize("overrides, key", [
     ({"smd.bogus": 1}, "smd.bogus"),
     ({"dmd.dV": -1}, "dmd.dV"),
-    ({"run.time_ps": 10}, "run.time_ps"),
+    ({"engine": "smd", "run.time_ps": 2}, "run.time_ps"),  # between two SMD steps
     ({"state.temp": 2}, "state.temp"),
 ])
 def test_bad_values_raise_the_cli_message(tmp_path, executable, overrides, key):

@@ -28,12 +28,14 @@ wait_frames() {
     done
 }
 
-# sweep_file FILE: six short runs of 64 rods, DMD and SMD, and two that the run refuses.
+# sweep_file FILE: six short runs of 64 rods, DMD and SMD, and two that the run refuses (a
+# trajectory of 10^11 frames, some hundred PiB, for any disk).
 sweep_file() {
     cat >"$1" <<END
 {"scene": "$src/experiments/scenes/dense-rods.json",
  "set": {"state.n": 64, "state.density": 0.1, "run.equilibrate_ps": 0.018, "run.time_ps": 0.09},
- "axes": [{"cases": [{"engine": "dmd"}, {"engine": "smd"}, {"engine": "smd", "run.time_ps": 1e9}],
+ "axes": [{"cases": [{"engine": "dmd"}, {"engine": "smd"},
+                     {"engine": "smd", "run.time_ps": 1e9, "output.trajectory_every_fs": 9}],
            "labels": ["dmd", "smd", "too-long"]}],
  "seeds": [1, 2]}
 END
@@ -82,13 +84,11 @@ bad_value)
     expect_error "$src/experiments/scenes/dense-rods.json" "dmd.dV" --set dmd.dV=-1
     expect_error "$src/experiments/scenes/dense-rods.json" "smd.dt_fs" --set smd.dt_fs=0
     expect_error "$src/experiments/scenes/dense-rods.json" "state.density" --set state.density=5
-    # What is asked for is what is run: a run length off its interval's grid is refused, not cut.
+    # What is asked for is what is run: a run length off its interval's grid is run as typed
+    # under DMD; under SMD, a length between two steps is refused with the nearest valid ones.
     expect_error "$src/experiments/scenes/dense-rods.json" \
-        "run.time_ps: must be a whole multiple of run.sample_fs = 9 fs, got 10 ps; nearest valid: 9.999 or 10.008 ps" \
-        --set run.time_ps=10
-    expect_error "$src/experiments/scenes/dense-rods.json" \
-        "run.equilibrate_ps: must be a whole multiple of run.thermostat_fs = 9 fs, got 1 ps" \
-        --set run.equilibrate_ps=1
+        "run.time_ps: must be a whole multiple of smd.dt_fs = 1.8 fs, got 2 ps; nearest valid: 1.9998 or 2.0016 ps" \
+        --set engine=smd --set run.time_ps=2
     # No level in the well and none a thermal pair meets: U = 0 throughout, refused.
     expect_error "$src/experiments/scenes/dense-rods.json" \
         "dmd.dV: 1e+06 kT puts the first level at -2.1e+06 kJ/mol" --set dmd.dV=1e6
@@ -262,12 +262,30 @@ design)
         --set 'dmd.terraces={"levels":"log"}'
     expect_error "$src/experiments/scenes/dense-rods.json" "dmd.values" \
         --set 'dmd.levels=[-1,1]' --set 'dmd.values=[0,0]'
+    # A terracing that swallows the shallow Gay-Berne wells whole is said, with what resolves
+    # them; the shipped scene's own dV resolves them.
+    "$terrace" design "$src/experiments/scenes/gay-berne-liquid.json" --set dmd.dV=0.5 |
+        grep -q "^# warning: dmd: terrace 0 (V = 0) holds the whole well of [1-9][0-9]* of the" ||
+        fail "design: no warning of swallowed wells at dV = 0.5 kT"
+    "$terrace" design "$src/experiments/scenes/gay-berne-liquid.json" | grep -q "^# warning" &&
+        fail "design: the shipped Gay-Berne scene swallows a well"
     # A run on a design goes end to end.
     short_run dmd --set 'dmd.terraces={"levels":"volume","values":"virial","n":3}'
     ;;
 end_to_end_dmd)
     short_run dmd
     grep -q '"collisions_per_ps"' "$work/dmd/summary.json" || fail "DMD summary lacks collisions_per_ps"
+    ;;
+lengths_as_typed)
+    # Lengths that are no whole number of their intervals run as typed: equilibration's last
+    # rescale interval is cut short, production runs on past its last sample, unsampled.
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/typed" \
+        --set state.n=216 --set run.equilibrate_ps=0.05 --set run.time_ps=0.1 >/dev/null ||
+        fail "a run of 0.1 ps (11.1 samples of 9 fs) after 0.05 ps (5.6 rescales) failed"
+    got=$(python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); print(s["simulated_ps"], s["samples"])' \
+        "$work/typed/summary.json")
+    awk -v g="$got" 'BEGIN { split(g, x, " "); exit !(x[1] > 0.1 - 1e-12 && x[1] < 0.1 + 1e-12 && x[2] == 12) }' ||
+        fail "typed lengths: simulated_ps and samples $got, not 0.1 and 12"
     ;;
 end_to_end_smd)
     short_run smd --set smd.dt_fs=1.8
@@ -495,11 +513,13 @@ second_signal)
 kill_resume)
     # A run killed with SIGKILL and continued from its restart file ends with the same
     # trajectory, thermo.csv, correlation files and pressure, byte for byte, as the same run left
-    # alone: DMD and SMD killed in production, DMD killed during a long equilibration; and under
-    # each heat bath (its stream and energy carried by restart.bin), with its summary block too.
+    # alone: DMD and SMD killed in production, DMD killed during a long equilibration (with
+    # lengths that are no whole number of their intervals: its last rescale interval cut short,
+    # its production's last 5 fs unsampled); and under each heat bath (its stream and energy
+    # carried by restart.bin), with its summary block too.
     andersen='{"kind":"andersen","rate_per_ps":5}' csvr='{"kind":"csvr","tau_fs":90}'
-    for case in dmd:0.18:9 smd:0.18:9 dmd:9:0.9 dmd:0.18:9:andersen smd:0.18:9:andersen \
-        dmd:0.18:9:csvr smd:0.18:9:csvr dmd:9:0.9:andersen; do
+    for case in dmd:0.18:9 smd:0.18:9 dmd:9.005:0.905 dmd:0.18:9:andersen smd:0.18:9:andersen \
+        dmd:0.18:9:csvr smd:0.18:9:csvr dmd:9.005:0.905:andersen; do
         IFS=: read -r engine equilibrate ps bath <<<"$case"
         name=$engine-$equilibrate${bath:+-$bath}
         args=(--quiet --set engine=$engine --set state.n=216 --set run.equilibrate_ps=$equilibrate
@@ -520,7 +540,7 @@ kill_resume)
         wait $pid
         [ -e "$work/$name-b/restart.bin" ] || fail "$name: no restart file before the kill"
         [ ! -e "$work/$name-b/summary.json" ] || fail "$name: the run ended before the kill"
-        if [ "$equilibrate" = 9 ]; then
+        if [ "$equilibrate" = 9.005 ]; then
             grep -qa equilibration "$work/$name-b/restart.bin" || fail "$name: not killed in equilibration"
             [ ! -e "$work/$name-b/trajectory.xyz" ] || fail "$name: production had begun"
             [ ! -e "$work/$name-b/thermo.csv" ] || fail "$name: thermo.csv before production"
@@ -606,6 +626,12 @@ term_continue)
     "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/b" "${args[@]}" \
         >/dev/null 2>&1 &
     pid=$!
+    # The first restart file of production (its first sample), kept to compare with the last.
+    for _ in $(seq 1 6000); do
+        grep -qa production "$work/b/restart.bin" 2>/dev/null && break
+        sleep 0.01
+    done
+    cp "$work/b/restart.bin" "$work/first.bin" || fail "no restart file at production's start"
     wait_frames "$work/b/trajectory.xyz" 216 60
     kill -TERM $pid
     wait $pid
@@ -613,6 +639,12 @@ term_continue)
     [ $status -eq 143 ] || fail "exit status $status after SIGTERM"
     stopped=$(grep -c '^216$' "$work/b/trajectory.xyz")
     [ "$stopped" -lt 501 ] || fail "the run ended before the signal" # 1000 samples, every 2nd
+    # The restart file holds no series of samples: after 120 samples or more it is as large as
+    # after the first (3.1 MB), but for the integers that grew, the engine's counters among them
+    # (from 0 at production's start: up to 8 bytes more each in CBOR; 665 bytes measured).
+    first=$(stat -c %s "$work/first.bin") last=$(stat -c %s "$work/b/restart.bin")
+    [ $((last - first)) -le 1024 ] && [ $((first - last)) -le 1024 ] ||
+        fail "restart.bin grew from $first bytes at the first sample to $last at sample $((2 * stopped - 2))"
     "$terrace" run --continue "$work/b" --quiet >/dev/null || fail "--continue failed"
     [ "$(grep -c '^216$' "$work/b/trajectory.xyz")" -eq "$(grep -c '^216$' "$work/a/trajectory.xyz")" ] ||
         fail "the continued trajectory has another length"
@@ -693,10 +725,14 @@ partial_frame)
     [[ $out == *"warning"*"the last frame is cut short"* ]] || fail "no warning: $out"
     ;;
 memory)
-    # A run whose analysis cannot fit in memory is refused before it starts, with the estimate.
-    err=$("$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/big" \
+    # A run whose analysis cannot fit in memory is refused before it starts, with the estimate:
+    # 4096 of 8000 bodies followed with 4096 lags a level over 10^9 samples (~25 GiB, under ulimit -v
+    # 8 GiB). The samples are not kept (their statistics stream): 10^9 samples of the default
+    # analysis need some MiB, and are not refused.
+    err=$(ulimit -v 8388608; "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
+        --out "$work/big" --set state.n=8000 --set analysis.lags_per_level=4096 \
         --set run.sample_fs=0.01 --set run.time_ps=10000 2>&1 >/dev/null) && fail "exit status 0"
-    [[ $err == *"run.time_ps / run.sample_fs (1000000001 samples): the run needs about"*"of memory"*"available: use fewer analysis.follow_bodies or a longer run.sample_fs" ]] ||
+    [[ $err == "terrace: run: analysis.follow_bodies, analysis.lags_per_level (4096 bodies followed, 4096 lags a level): the run needs about"*"of memory"*"available: follow fewer bodies or use fewer lags a level" ]] ||
         fail "message: $err"
     [ ! -e "$work/big" ] || fail "output written for a run refused"
     # 10^8 bodies (~50 GiB; was stopped only by an allocation failing): refused at once, before
@@ -1094,15 +1130,15 @@ thermo)
         fail "smd: potential_continuous differs from potential"
     ;;
 sweep)
-    # Six small runs, two of which the run refuses (too many samples for any memory): four done,
-    # the two failures recorded, exit status 1; run again, nothing runs again.
+    # Six small runs, two of which the run refuses (a trajectory too large for any disk): four
+    # done, the two failures recorded, exit status 1; run again, nothing runs again.
     sweep_file "$work/s.json"
     "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err"
     status=$?
     [ $status -eq 1 ] || fail "exit status $status for a sweep with failed runs: $(cat "$work/err")"
     [ "$(wc -l <"$work/out/sweep.csv")" -eq 7 ] || fail "sweep.csv: not a header and 6 rows"
     [ "$(grep -c ',ok,' "$work/out/sweep.csv")" -eq 4 ] || fail "not 4 runs ok: $(cat "$work/out/sweep.csv")"
-    [ "$(grep -c ',failed,.*needs about .* of memory' "$work/out/sweep.csv")" -eq 2 ] ||
+    [ "$(grep -c ',failed,.*will write about .* PiB into' "$work/out/sweep.csv")" -eq 2 ] ||
         fail "the failures are not recorded: $(cat "$work/out/sweep.csv")"
     for run in dmd_seed-1 smd_seed-2; do
         for f in summary.json scene.json rdf.csv vacf.csv run.log; do

@@ -46,9 +46,9 @@ TEST(ResourceCheck, TheRefusalNamesTheLargerShare) {
               "and this machine has 22 GiB available: use fewer bodies");
     const cli::MemoryEstimate analysisHeavy{1.0 * (1 << 30), 40.0 * (1 << 30)};
     EXPECT_EQ(cli::memoryRefusal(s, analysisHeavy, {22.0 * (1 << 30)}),
-              "run.time_ps / run.sample_fs (1001 samples): the run needs about 41 GiB of memory "
-              "(engine 1 GiB, analysis 40 GiB) and this machine has 22 GiB available: use fewer "
-              "analysis.follow_bodies or a longer run.sample_fs");
+              "analysis.follow_bodies, analysis.lags_per_level (512 bodies followed, 16 lags a "
+              "level): the run needs about 41 GiB of memory (engine 1 GiB, analysis 40 GiB) and "
+              "this machine has 22 GiB available: follow fewer bodies or use fewer lags a level");
     EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, {40.0 * (1 << 30)}), "");
     EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, {0.0}), ""); // unknown: nothing said
     EXPECT_EQ(cli::memoryRefusal(s, engineHeavy, {3.0 * (1 << 30), "the process's cgroup leaves"}),

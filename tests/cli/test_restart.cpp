@@ -71,8 +71,8 @@ TEST(Restart, BodiesOfEveryKindComeBackBitForBit) {
                                    rodPotential(smallScene("asymmetric")));
 }
 
-// The samples' records come back bit for bit through CBOR, NaN (no g(r) frame) included; bytes
-// that are not whole records are refused.
+// Samples' records (thermo.csv's last row) come back bit for bit through CBOR, NaN (no g(r) frame)
+// included; bytes that are not whole records are refused.
 TEST(Restart, RecordsComeBackBitForBit) {
     std::vector<cli::SampleRecord> records(3);
     records[0] = {0.125, -3.5, -10.25, 6.75, 4.5, -31.25, 1234.0, 0.5};
@@ -263,13 +263,16 @@ TEST(Restart, ADmdEngineContinuesItsHorizonStream) {
 }
 
 // A restart file of another format (version 1's samples lack the pressure's terms, version 2's
-// DMD checkpoint holds its pairs as JSON arrays) is named as such, not read as damaged or misread.
+// DMD checkpoint holds its pairs as JSON arrays, version 6's the samples' records in place of
+// their statistics, version 7's samples no heat bath) is named as such, not read as damaged or
+// misread.
 TEST(Restart, ARestartFileOfAnotherFormatIsNamed) {
     const auto dir =
         std::filesystem::temp_directory_path() / ("terrace-format-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     // Version 2 held the DMD pair terraces as JSON arrays.
-    for (const std::string old : {"terrace restart 1", "terrace restart 2"}) {
+    for (const std::string old : {"terrace restart 1", "terrace restart 2", "terrace restart 6",
+                                  "terrace restart 7"}) {
         cli::writeRestart(dir, {{"format", old}, {"phase", "production"}});
         try {
             cli::readRestart(dir);
@@ -285,6 +288,23 @@ TEST(Restart, ARestartFileOfAnotherFormatIsNamed) {
     EXPECT_EQ(cli::readRestart(dir).at("format"), cli::restartFormat);
     std::filesystem::remove_all(dir);
 }
+
+namespace {
+
+const cli::SamplePlan plan11{11, 0, terrace::VirialKind::Impulse, 1000.0, 9};
+
+/// The state of sample statistics after `n` samples (of `plan`).
+std::vector<std::uint8_t> statisticsOf(int n, const cli::SamplePlan& plan = plan11) {
+    cli::SampleStatistics stats(plan);
+    for (int k = 0; k < n; ++k) {
+        cli::SampleRecord e;
+        e.tPs = 0.01 * k, e.time = 0.1 * (k + 1);
+        stats.add(e);
+    }
+    return stats.state();
+}
+
+} // namespace
 
 // A restart file without one of its keys is named as damaged, with the key, before anything is
 // cut back.
@@ -309,10 +329,12 @@ TEST(Restart, ADamagedRestartFileIsNamed) {
                                 {"thermo_bytes", 100},
                                 {"trajectory_tail_crc64", 0},
                                 {"thermo_tail_crc64", 0}}},
-                              {"records", cli::recordsToBinary(std::vector<cli::SampleRecord>(2))},
+                              {"sample_statistics", nlohmann::json::binary(statisticsOf(2))},
+                              {"thermo_row", cli::recordsToBinary({cli::SampleRecord()})},
                               {"analysis", nullptr}};
     restart.erase("tick");
     cli::RunRecord run;
+    run.samples = cli::SampleStatistics(plan11);
     cli::RunFiles files;
     cli::RunPlan plan = cli::planRun(defaultScene());
     plan.thermoEvery = 1;
@@ -324,19 +346,28 @@ TEST(Restart, ADamagedRestartFileIsNamed) {
                                              ": damaged, or written by another version of "
                                              "terrace (key 'tick' not found)");
     }
-    // Whole, but with records for fewer samples than its restart point: refused.
+    // Whole, but with statistics of fewer samples than its restart point: refused.
+    const auto resumeError = [&] {
+        try {
+            cli::resumeRun(restart, plan, dir, run, files);
+        } catch (const IoError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no IoError");
+    };
     restart["tick"] = 0;
-    try {
-        cli::resumeRun(restart, plan, dir, run, files);
-        FAIL() << "expected an IoError";
-    } catch (const IoError& e) {
-        EXPECT_EQ(std::string(e.what()),
-                  (dir / "restart.bin").string() +
-                      ": damaged: it holds 2 sample records, its restart point 4");
-    }
-    // Its records whole, but thermo.csv shorter than its restart point: refused, nothing created
-    // or cut.
-    restart["records"] = cli::recordsToBinary(std::vector<cli::SampleRecord>(4));
+    EXPECT_EQ(resumeError(), (dir / "restart.bin").string() +
+                                 ": damaged: its sample statistics hold 2 samples, its restart "
+                                 "point 4");
+    // Statistics of another plan (another run's): refused, naming them.
+    restart["sample_statistics"] = nlohmann::json::binary(
+        statisticsOf(4, cli::SamplePlan{12, 0, terrace::VirialKind::Impulse, 1000.0, 9}));
+    EXPECT_EQ(resumeError(), (dir / "restart.bin").string() +
+                                 ": analysis state: temperature blocks was planned for another "
+                                 "number of samples");
+    // Its statistics whole, but thermo.csv shorter than its restart point: refused, nothing
+    // created or cut.
+    restart["sample_statistics"] = nlohmann::json::binary(statisticsOf(4));
     EXPECT_THROW(cli::resumeRun(restart, plan, dir, run, files), IoError);
     EXPECT_FALSE(std::filesystem::exists(dir / "thermo.csv"));
     std::filesystem::remove_all(dir);
@@ -355,6 +386,7 @@ TEST(Restart, AWriteThatFailsInTheAnalysisIsRecorded) {
     cli::RunRecord run;
     run.bodies = sys.size();
     run.dof = degreesOfFreedom<LinearRotor>(sys.size());
+    run.samples = cli::SampleStatistics(cli::SamplePlan{8, 0, run.virialKind, 1000.0, run.dof});
     run.kT = scene.kT();
     run.analysis = std::make_unique<analysis::RunAnalysis>(run.bodies, sys.box.length, 0.001, 8,
                                                            cli::streamingOptions(scene));
@@ -510,11 +542,12 @@ TEST(Restart, ARebuildThatFailsEndsTheRunWithItsFilesKept) {
     std::filesystem::remove_all(failed);
 }
 
-// restart.bin holds the analysis' state, not the samples: stopped at sample 100 it is larger than
-// at sample 10 by the 90 records of the energies (88 bytes each) and by the integers that grew
-// (event counters, file lengths: 1 to 9 bytes each in CBOR, some hundred bytes in all), never by
-// the bodies of the samples (90 × 64 rods × 96 bytes, 553 kB); its analysis' state is the same
-// size at both.
+// restart.bin holds the analysis' state and the sample statistics, not the samples: stopped at
+// sample 100 it is as large as at sample 10 but for the integers that grew (event counters, file
+// lengths, the sample number: 1 to 9 bytes each in CBOR, a hundred bytes or so in all) and the
+// engine's checkpoint (a state of the configuration, whatever the samples taken), never by
+// the samples' energies (90 × 88 bytes, 7.9 kB) nor their bodies (90 × 64 rods × 96 bytes,
+// 553 kB); its analysis' state and its statistics are the same size at both.
 TEST(Restart, ARestartFileDoesNotGrowWithTheSamplesTaken) {
     Scene scene = watchedScene();
     scene.run.time_ps = 1.8;              // 200 samples planned, the same analysis for both
@@ -530,11 +563,16 @@ TEST(Restart, ARestartFileDoesNotGrowWithTheSamplesTaken) {
     ASSERT_EQ(b.at("sample"), 100);
     EXPECT_FALSE(std::filesystem::exists(early / "samples.bin"));
     EXPECT_EQ(a.at("analysis").get_binary().size(), b.at("analysis").get_binary().size());
-    const auto sizeA = std::int64_t(std::filesystem::file_size(early / "restart.bin"));
-    const auto sizeB = std::int64_t(std::filesystem::file_size(late / "restart.bin"));
-    const std::int64_t records = 90 * std::int64_t(sizeof(cli::SampleRecord));
-    EXPECT_GE(sizeB - sizeA, records) << sizeA << " then " << sizeB << " bytes";
-    EXPECT_LE(sizeB - sizeA, records + 1024) << sizeA << " then " << sizeB << " bytes";
+    EXPECT_EQ(a.at("sample_statistics").get_binary().size(),
+              b.at("sample_statistics").get_binary().size());
+    // Less the DMD checkpoint, whose pairs off terrace 0 (12 bytes each) come and go with the
+    // configuration, not with the samples taken.
+    const auto sizeOf = [](const std::filesystem::path& dir, const nlohmann::json& r) {
+        return std::int64_t(std::filesystem::file_size(dir / "restart.bin")) -
+               std::int64_t(nlohmann::json::to_cbor(r.at("engine")).size());
+    };
+    const std::int64_t sizeA = sizeOf(early, a), sizeB = sizeOf(late, b);
+    EXPECT_LE(std::abs(sizeB - sizeA), 256) << sizeA << " then " << sizeB << " bytes";
     std::filesystem::remove_all(early);
     std::filesystem::remove_all(late);
 }

@@ -63,6 +63,13 @@ TEST(SceneCheck, EveryShippedSceneIsReady) {
     for (const auto& entry :
          std::filesystem::directory_iterator(sourceDir() / "experiments/scenes"))
         for (const char* engine : {"dmd", "smd"}) {
+            // A step table runs under DMD only: SMD refuses the scene as it is read.
+            const bool steps = loadScene(entry.path().string()).potential.kind == "steps";
+            if (steps && std::string(engine) == "smd") {
+                EXPECT_THROW(loadScene(entry.path().string(), {"engine=smd"}), SceneError)
+                    << entry.path();
+                continue;
+            }
             Scene s = loadScene(entry.path().string(), {std::string("engine=") + engine});
             EXPECT_NO_THROW(cli::resolveEngineSections(s, entry.path().string()))
                 << entry.path() << " " << engine;
@@ -172,6 +179,15 @@ TEST(SceneCheck, SmdIntervalsLieOnItsGrid) {
               "test.json: smd.dt_fs: 20 fs is longer than run.time_ps = 0.009 ps: no step would "
               "be taken");
     EXPECT_EQ(errorOf({{"smd", {{"dt_fs", 4}}}}), ""); // DMD runs take no SMD steps
+    // Run lengths need not be whole intervals, but SMD cannot stop between two steps.
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"run", {{"time_ps", 2}}}}),
+              "test.json: run.time_ps: must be a whole multiple of smd.dt_fs = 1.8 fs, got 2 ps; "
+              "nearest valid: 1.9998 or 2.0016 ps");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"run", {{"equilibrate_ps", 0.5}}}}),
+              "test.json: run.equilibrate_ps: must be a whole multiple of smd.dt_fs = 1.8 fs, got "
+              "0.5 ps; nearest valid: 0.4986 or 0.5004 ps");
+    EXPECT_EQ(errorOf({{"engine", "smd"}, {"smd", {{"dt_fs", 1}}}, {"run", {{"time_ps", 2}}}}),
+              ""); // 2000 steps; its last 5 after the last sample at 1.998 ps
 }
 
 TEST(SceneCheck, HorizonAndTerraceCountARunCanRepresent) {

@@ -2,6 +2,7 @@
 // unit conversion and both virial forms on hand-made numbers, the rows of thermo.csv, and an ideal
 // gas run by both engines, whose pressure is its kinetic term alone, P = 2K_trans/(3V) = ρkT.
 #include "cli/run_command.hpp"
+#include "cli/sample_statistics.hpp"
 #include "cli/thermo.hpp"
 #include "core/initial_state.hpp"
 #include "core/pressure.hpp"
@@ -59,12 +60,12 @@ TEST(Pressure, OneKilojoulePerMolePerCubicAngstromInBarAndReducedUnits) {
 TEST(Pressure, SmdTakesTheVirialAtEachSample) {
     // (2·30 − 15) / (3·1000) = 0.015 kJ/mol/Å³ at each of the two samples
     const std::vector<SampleRecord> s{sample(2.0, 30.0, -15.0), sample(2.5, 15.0, 0.0)};
-    const auto p = cli::pressureSeries(s, VirialKind::Instantaneous, 1000.0);
-    ASSERT_EQ(p.kinetic.size(), 2u);
-    EXPECT_DOUBLE_EQ(p.kinetic[0], 0.02);
-    EXPECT_DOUBLE_EQ(p.virial[0], -0.005);
-    EXPECT_DOUBLE_EQ(p.total()[0], 0.015);
-    EXPECT_DOUBLE_EQ(p.total()[1], 0.01);
+    const auto p0 = cli::pressureTerms(s[0], s[0], VirialKind::Instantaneous, 1000.0);
+    const auto p1 = cli::pressureTerms(s[1], s[0], VirialKind::Instantaneous, 1000.0);
+    EXPECT_DOUBLE_EQ(p0.kinetic, 0.02);
+    EXPECT_DOUBLE_EQ(p0.virial, -0.005);
+    EXPECT_DOUBLE_EQ(p0.kinetic + p0.virial, 0.015);
+    EXPECT_DOUBLE_EQ(p1.kinetic + p1.virial, 0.01);
     EXPECT_DOUBLE_EQ(virialPressure(30.0, -15.0, 1000.0), 0.015);
 }
 
@@ -72,16 +73,22 @@ TEST(Pressure, DmdTakesTheImpulseVirialOverEachSampleInterval) {
     // W_imp 10 → 16 over 0.5 time units: 12 kJ/mol; then no collision: 0.
     const std::vector<SampleRecord> s{sample(2.0, 20.0, 10.0), sample(2.5, 30.0, 16.0),
                                       sample(3.5, 25.0, 16.0)};
-    const auto p = cli::pressureSeries(s, VirialKind::Impulse, 1000.0);
-    ASSERT_EQ(p.kinetic.size(), 2u); // production's first sample ends no interval
-    EXPECT_DOUBLE_EQ(p.total()[0], (60.0 + 12.0) / 3000.0);
-    EXPECT_DOUBLE_EQ(p.virial[1], 0.0);
-    EXPECT_DOUBLE_EQ(p.total()[1], 50.0 / 3000.0);
+    const auto p1 = cli::pressureTerms(s[1], s[0], VirialKind::Impulse, 1000.0);
+    const auto p2 = cli::pressureTerms(s[2], s[1], VirialKind::Impulse, 1000.0);
+    EXPECT_DOUBLE_EQ(p1.kinetic + p1.virial, (60.0 + 12.0) / 3000.0);
+    EXPECT_DOUBLE_EQ(p2.virial, 0.0);
+    EXPECT_DOUBLE_EQ(p2.kinetic + p2.virial, 50.0 / 3000.0);
     EXPECT_DOUBLE_EQ(impulseVirialOver(10.0, 16.0, 2.0, 2.5), 12.0);
 
-    // The summary: mean of the two, error from the two blocks that hold a sample, |P1 − P2|/2.
+    // The summary, from the samples one by one: mean of the two pressures (production's first
+    // sample ends no interval), error from the two blocks that hold one, |P1 − P2|/2.
     const double sigma = 3.035, epsilon = 3.0, mean = (0.024 + 50.0 / 3000.0) / 2.0;
-    const auto j = cli::pressureSummary(p, VirialKind::Impulse, sigma, epsilon);
+    cli::SampleStatistics stats(cli::SamplePlan{3, 0, VirialKind::Impulse, 1000.0, 9});
+    for (const auto& e : s)
+        stats.add(e);
+    nlohmann::json summary;
+    stats.summarise(summary, sigma, epsilon);
+    const auto& j = summary["pressure"];
     EXPECT_NEAR(j["mean_bar"].get<double>(), mean * units::barPerKjPerMolPerA3, 1e-12);
     EXPECT_NEAR(j["error_bar"].get<double>(),
                 (0.024 - 50.0 / 3000.0) / 2.0 * units::barPerKjPerMolPerA3, 1e-12);
@@ -89,10 +96,13 @@ TEST(Pressure, DmdTakesTheImpulseVirialOverEachSampleInterval) {
     EXPECT_NEAR(j["kinetic_term_reduced"].get<double>() + j["virial_term_reduced"].get<double>(),
                 j["mean_reduced"].get<double>(), 1e-15);
     EXPECT_EQ(j["samples"], 2);
-    // One sample: no error (null in summary.json).
-    const auto one =
-        cli::pressureSummary(cli::pressureSeries({s.data(), 2}, VirialKind::Impulse, 1000.0),
-                             VirialKind::Impulse, sigma, epsilon);
+    // One pressure: no error (null in summary.json).
+    cli::SampleStatistics two(cli::SamplePlan{3, 0, VirialKind::Impulse, 1000.0, 9});
+    two.add(s[0]), two.add(s[1]);
+    nlohmann::json short_;
+    two.summarise(short_, sigma, epsilon);
+    const auto& one = short_["pressure"];
+    EXPECT_EQ(one["samples"], 1);
     EXPECT_TRUE(std::isnan(one["error_bar"].get<double>()));
     EXPECT_EQ(one.dump().find("NaN"), std::string::npos);
 }

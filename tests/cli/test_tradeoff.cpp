@@ -2,6 +2,7 @@
 // tolerances as typed, the ladders on the sampling grid, the numbers read from a run directory,
 // and the bias of a curve with the noise of both sides taken out.
 #include "analysis/csv.hpp"
+#include "cli/tradeoff_dominance.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include "cli/tradeoff_plan.hpp"
 #include "core/output_file.hpp"
@@ -258,4 +259,91 @@ TEST(Tradeoff, ALadderOutsideEverywhereIsExtendedWithinReachOnly) {
     // Out of reach (a sixteenth of the front rung): not run.
     EXPECT_FALSE(extensionBelow(0.5, 0.5 * extrapolationReach).has_value());
     EXPECT_TRUE(extensionBelow(0.5, 0.5 * extrapolationReach / extrapolationMargin).has_value());
+}
+
+namespace {
+
+using analysis::Decision;
+
+ObservableBias biasOf(Observable o, double mean, double err, Decision d) {
+    ObservableBias b;
+    b.observable = o;
+    b.bias = {mean, err};
+    b.tolerance = 1.0;
+    b.decision = d;
+    return b;
+}
+
+/// A DMD-like ladder: x = 0.125 … 1 with cost halving per rung, D's bias −2, −3.7, −5.2
+/// tolerances on the three coarser rungs (all Outside), the finest unresolved.
+std::vector<RungView> growingLadder() {
+    std::vector<RungView> l(4);
+    const double x[] = {0.125, 0.25, 0.5, 1.0}, cost[] = {8.0, 4.0, 2.0, 1.0};
+    const double d[] = {-0.6, -2.0, -3.7, -5.2};
+    for (int i = 0; i < 4; ++i) {
+        l[i].x = x[i];
+        l[i].cost = cost[i];
+        l[i].decision = i == 0 ? Decision::Unresolved : Decision::Outside;
+        l[i].biases = {
+            biasOf(Observable::U, 0.1, 0.3, Decision::Unresolved),
+            biasOf(Observable::D, d[i], 0.25, i == 0 ? Decision::Unresolved : Decision::Outside)};
+    }
+    return l;
+}
+
+} // namespace
+
+TEST(TradeoffDominance, TheMostAccurateOutsideRungWhoseBiasGrowsIsTheFloor) {
+    const auto f = ladderCostFloor(growingLadder(), 3, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->ladder, 3);
+    EXPECT_EQ(f->rung, 1); // x = 0.25: every setting within has a smaller x, so costs more
+    EXPECT_DOUBLE_EQ(f->cost, 4.0);
+    EXPECT_FALSE(f->within);
+    EXPECT_EQ(f->ruling.observable, Observable::D);
+}
+
+TEST(TradeoffDominance, ABiasThatShrinksOrTurnsOnACoarserRungDoesNotBound) {
+    auto l = growingLadder();
+    l[2].biases[1].bias.mean = +3.7; // D turns at x = 0.5: neither 0.25 nor 0.5 bounds
+    auto f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->rung, 3); // the coarsest rung still bounds the settings more accurate than it
+    EXPECT_DOUBLE_EQ(f->cost, 1.0);
+    l = growingLadder();
+    l[3].decision = Decision::Unresolved; // resolved smaller at x = 1 than at 0.25 and 0.5
+    l[3].biases[1] = biasOf(Observable::D, -0.1, 0.1, Decision::Unresolved);
+    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0));
+    l = growingLadder();
+    l[3].biases[1].bias = {-1.9, 0.1}; // smaller, but not resolved smaller than at 0.25
+    f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->rung, 1);
+}
+
+TEST(TradeoffDominance, AWithinRungCheaperThanTheFloorIsTheFloor) {
+    auto l = growingLadder();
+    l[0].decision = Decision::Within; // the finest rung within, and (against the rule) cheap
+    l[0].cost = 3.0;
+    const auto f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_TRUE(f->within);
+    EXPECT_EQ(f->rung, 0);
+    EXPECT_DOUBLE_EQ(f->cost, 3.0);
+}
+
+TEST(TradeoffDominance, NoFloorWithoutAnOutsideRungAndFailuresBoundNothing) {
+    auto l = growingLadder();
+    for (auto& r : l)
+        if (r.decision == Decision::Outside) r.failed = true, r.cost = NAN, r.biases.clear();
+    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0));
+    // An engine's floor is the least of its ladders', and none when one ladder has none.
+    auto cheap = growingLadder();
+    for (auto& r : cheap)
+        r.cost /= 4.0;
+    const auto least = engineCostFloor({growingLadder(), cheap}, 2.0);
+    ASSERT_TRUE(least);
+    EXPECT_EQ(least->ladder, 1);
+    EXPECT_DOUBLE_EQ(least->cost, 1.0);
+    EXPECT_FALSE(engineCostFloor({growingLadder(), l}, 2.0));
 }

@@ -1,0 +1,68 @@
+#include "cli/tradeoff_dominance.hpp"
+#include <cmath>
+
+namespace terrace::cli {
+
+namespace {
+
+using analysis::Decision;
+
+const ObservableBias* biasOn(const RungView& r, Observable o) {
+    for (const auto& b : r.biases)
+        if (b.observable == o) return &b;
+    return nullptr;
+}
+
+/// Whether o's bias on every rung coarser than `at` keeps the sign it has at `at` and is never
+/// resolved smaller in magnitude: what "the bias grows with x" can be checked against.
+bool growsWithX(const std::vector<RungView>& ladder, int at, const ObservableBias& b, double z) {
+    for (int i = 0; i < int(ladder.size()); ++i) {
+        const RungView& r = ladder[i];
+        if (r.x <= ladder[at].x || r.failed) continue;
+        const ObservableBias* c = biasOn(r, b.observable);
+        if (!c) continue;
+        if (std::signbit(c->bias.mean) != std::signbit(b.bias.mean)) return false;
+        if (std::abs(c->bias.mean) + z * c->bias.err < std::abs(b.bias.mean) - z * b.bias.err)
+            return false;
+    }
+    return true;
+}
+
+} // namespace
+
+std::optional<CostFloor> ladderCostFloor(const std::vector<RungView>& ladder, int index, double z) {
+    std::optional<CostFloor> floor;
+    // The most accurate Outside rung whose ruling observable grows with x.
+    int order = -1;
+    for (int i = 0; i < int(ladder.size()); ++i) {
+        const RungView& r = ladder[i];
+        if (r.failed || r.decision != Decision::Outside || !std::isfinite(r.cost)) continue;
+        if (order >= 0 && ladder[order].x <= r.x) continue;
+        for (const auto& b : r.biases)
+            if (b.decision == Decision::Outside && growsWithX(ladder, i, b, z)) {
+                order = i;
+                floor = CostFloor{index, i, r.cost, false, b};
+                break;
+            }
+    }
+    if (!floor) return std::nullopt;
+    // A Within rung (of any x) is a setting within tolerance: the floor cannot lie above it.
+    for (int i = 0; i < int(ladder.size()); ++i)
+        if (ladder[i].decision == Decision::Within && std::isfinite(ladder[i].cost) &&
+            ladder[i].cost < floor->cost)
+            floor = CostFloor{index, i, ladder[i].cost, true, {}};
+    return floor;
+}
+
+std::optional<CostFloor> engineCostFloor(const std::vector<std::vector<RungView>>& ladders,
+                                         double z) {
+    std::optional<CostFloor> least;
+    for (int l = 0; l < int(ladders.size()); ++l) {
+        const auto f = ladderCostFloor(ladders[l], l, z);
+        if (!f) return std::nullopt;
+        if (!least || f->cost < least->cost) least = f;
+    }
+    return least;
+}
+
+} // namespace terrace::cli

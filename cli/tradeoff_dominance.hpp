@@ -1,0 +1,50 @@
+#pragma once
+// When one engine's answer makes the other's unnecessary: `terrace tradeoff` need not resolve
+// the cheapest DMD setting within tolerance once every DMD setting that could be within costs
+// more than an SMD setting already resolved within (or the other way round).
+//
+// Along a ladder (most accurate first, x = ΔV/kT or dt ascending) cost falls as x grows and so,
+// by the bias laws, does accuracy. A rung resolved Outside on an observable whose bias grows
+// with x on the coarser rungs (same sign, never resolved smaller) bounds the ladder: every
+// setting within tolerance has a smaller x, so costs at least that rung. The least such floor
+// over an engine's ladders (a ladder with a Within rung counts that rung's cost too; a ladder
+// with no Outside rung has no floor, so neither has the engine) bounds the engine's cost at the
+// tolerance from below. When it is above the other engine's chosen cost, the question "which is
+// cheaper" is answered with a ratio that is itself a lower bound: it says "at least".
+#include "cli/tradeoff_measure.hpp"
+#include <optional>
+#include <vector>
+
+namespace terrace::cli {
+
+/// What the floor needs to know of a rung.
+struct RungView {
+    double x = 0.0;
+    double cost = 0.0; // CPU s per simulated ps (NaN: not measured)
+    analysis::Decision decision = analysis::Decision::Unresolved;
+    bool failed = false; // its runs failed (the stability limit): no cost, no bias
+    std::vector<ObservableBias> biases;
+};
+
+/// The rung bounding a ladder's cost at the tolerance from below.
+struct CostFloor {
+    int ladder = -1, rung = -1; // indices into the ladders given
+    double cost = 0.0;
+    bool within = false;   // the floor is a Within rung's own cost (not an Outside rung's)
+    ObservableBias ruling; // the observable that rules the Outside rung out (within: unset)
+};
+
+/// A ladder's floor (ladder index `index` copied into the result), or nullopt when it has none.
+/// `z` is the tradeoff's normal deviate: a coarser rung's |bias| contradicts the growth when it
+/// is resolved below the floor rung's, |b| + z·σ_b < |b_o| − z·σ_o.
+std::optional<CostFloor> ladderCostFloor(const std::vector<RungView>& ladder, int index, double z);
+
+/// The least floor over an engine's ladders; nullopt when any of them has none.
+std::optional<CostFloor> engineCostFloor(const std::vector<std::vector<RungView>>& ladders,
+                                         double z);
+
+/// The early stop is tried when the other engine's floor is above the chosen cost, both as
+/// measured at the bias runs' N (by this factor); the cost window at the scene's N then decides.
+constexpr double dominanceMargin = 1.0;
+
+} // namespace terrace::cli
