@@ -441,12 +441,17 @@ unwritable)
     [[ $err == "terrace: cannot create the output directory $work/file/sub: Not a directory" ]] ||
         fail "message: $err"
     mkdir "$work/ro" && chmod 555 "$work/ro" && chmod 755 "$work"
-    as=()
+    as=() program=$terrace scene=$src/experiments/scenes/dense-rods.json
     if [ "$(id -u)" -eq 0 ]; then
         command -v setpriv >/dev/null || fail "running as root without setpriv"
         as=(setpriv --reuid=nobody --regid=nogroup --clear-groups)
+        # nobody may not reach a checkout under /root (mode 700): the program and the scene are
+        # copied where it can read them.
+        cp "$terrace" "$work/terrace" && cp "$scene" "$work/dense-rods.json" &&
+            chmod 755 "$work/terrace" && chmod 644 "$work/dense-rods.json" || fail "copy for nobody"
+        program=$work/terrace scene=$work/dense-rods.json
     fi
-    err=$("${as[@]}" "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet \
+    err=$("${as[@]}" "$program" run "$scene" --quiet \
         --out "$work/ro" --set state.n=216 --set run.time_ps=0.099 2>&1 >/dev/null) &&
         fail "exit status 0 into a read-only directory"
     [[ $err == *"$work/ro"*"Permission denied"* ]] || fail "message: $err"
