@@ -29,7 +29,9 @@ struct CanonicalKinetic {
 };
 
 /// The canonical values for f degrees of freedom at kT: the c that shiftedSquares subtracts.
-inline double canonicalKineticMean(int f, double kT) { return 0.5 * f * kT; }
+inline double canonicalKineticMean(int f, double kT) {
+    return 0.5 * f * kT;
+}
 
 /// ⟨K⟩ and Var K from blocks of K and of (K − canonicalKineticMean(f, kT))² laid over the same
 /// samples; std::invalid_argument when the two disagree on their blocks, or before a sample.

@@ -122,8 +122,8 @@ RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxL
             bodies, boxLength, units::toPs(plan.sampleInterval), planned, streamingOptions(scene));
     // The configurational estimators come on the analysis' g(r) frames.
     const long every = scene.analysis.rdf_every;
-    samples = SampleStatistics(
-        SamplePlan{planned, analysis ? (planned + every - 1) / every : 0, virialKind, volume, dof, kT, heatBath});
+    samples = SampleStatistics(SamplePlan{planned, analysis ? (planned + every - 1) / every : 0,
+                                          virialKind, volume, dof, kT, heatBath});
 }
 
 namespace {

@@ -41,7 +41,7 @@ struct SamplePlan {
     VirialKind virialKind = VirialKind::Instantaneous;
     double volume = 0.0;
     int dof = 0;
-    double kT = 0.0; // kJ/mol: the canonical kinetic energy's reference, (dof/2) kT
+    double kT = 0.0;       // kJ/mol: the canonical kinetic energy's reference, (dof/2) kT
     bool heatBath = false; // H is not conserved, so its wander is no warning (the effective
                            // energy's is, cli/heat_bath_summary.hpp)
 };
@@ -58,8 +58,8 @@ public:
 
     /// summary.json's entries from the samples so far: temperature_K and its error,
     /// potential_energy_* and energy (with a warning, also on stderr, when the total energy
-    /// wandered without a heat bath), pressure and configurational; nothing before the first sample. σ in Å, ε in
-    /// kJ/mol.
+    /// wandered without a heat bath), pressure and configurational; nothing before the first
+    /// sample. σ in Å, ε in kJ/mol.
     void summarise(nlohmann::json& summary, double sigma, double epsilon) const;
     /// One standard error of the collisions per ps (DMD), from the collisions of each sample
     /// interval; null below three samples or two blocks.
@@ -87,9 +87,9 @@ private:
     analysis::FixedBlocks kinetic_, potential_, pressure_, collisions_;
     analysis::FixedBlocks continuousU_, continuousP_;
     double pressureKinetic_ = 0.0, pressureVirial_ = 0.0; // Σ over the samples with a pressure
-    analysis::EnergyAccumulator effective_;    // H + bath
+    analysis::EnergyAccumulator effective_;               // H + bath
     analysis::FixedBlocks kineticShiftedSquares_; // (K − (dof/2) kT)², over kinetic_'s blocks
-    double firstBath_ = 0.0;                       // the bath's energy at the first sample
+    double firstBath_ = 0.0;                      // the bath's energy at the first sample
     SampleRecord previous_;
 };
 

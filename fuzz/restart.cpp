@@ -18,10 +18,10 @@ void restartInput(std::string_view bytes) {
         // a g(r) frame; the kind of virial by bit 4, a heat bath by bit 5.
         const long samples = 8 + (bytes[1] & 15);
         const bool heatBath = (bytes[1] & 32) != 0;
-        cli::SampleStatistics stats(cli::SamplePlan{
-            samples, (samples + 2) / 3,
-            (bytes[1] & 16) != 0 ? VirialKind::Impulse : VirialKind::Instantaneous, 1000.0, 100,
-            2.5, heatBath});
+        cli::SampleStatistics stats(
+            cli::SamplePlan{samples, (samples + 2) / 3,
+                            (bytes[1] & 16) != 0 ? VirialKind::Impulse : VirialKind::Instantaneous,
+                            1000.0, 100, 2.5, heatBath});
         const auto* state = reinterpret_cast<const std::uint8_t*>(bytes.data() + 2);
         try {
             stats.restore({state, bytes.size() - 2});

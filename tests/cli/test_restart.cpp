@@ -271,8 +271,8 @@ TEST(Restart, ARestartFileOfAnotherFormatIsNamed) {
         std::filesystem::temp_directory_path() / ("terrace-format-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     // Version 2 held the DMD pair terraces as JSON arrays.
-    for (const std::string old : {"terrace restart 1", "terrace restart 2", "terrace restart 6",
-                                  "terrace restart 7"}) {
+    for (const std::string old :
+         {"terrace restart 1", "terrace restart 2", "terrace restart 6", "terrace restart 7"}) {
         cli::writeRestart(dir, {{"format", old}, {"phase", "production"}});
         try {
             cli::readRestart(dir);

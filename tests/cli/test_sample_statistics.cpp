@@ -133,10 +133,10 @@ TEST(SampleStatistics, UnderAHeatBathTheEffectiveEnergyAndVarianceAreThoseOfTheW
     auto s = series(50, 4);
     for (std::size_t k = 0; k < s.size(); ++k)
         s[k].bath = 3.0 + 0.7 * double(k) + 0.1 * std::sin(double(k)); // removed since the start
-    const double kT = 16.0;                                           // (f/2) kT = 800 = ⟨K⟩
+    const double kT = 16.0;                                            // (f/2) kT = 800 = ⟨K⟩
     const cli::SamplePlan plan{50, 17, VirialKind::Impulse, volume, 100, kT, true};
-    cli::SampleStatistics stats(plan), nve(cli::SamplePlan{50, 17, VirialKind::Impulse, volume,
-                                                            100, kT, false});
+    cli::SampleStatistics stats(plan),
+        nve(cli::SamplePlan{50, 17, VirialKind::Impulse, volume, 100, kT, false});
     std::vector<double> t, effective, potential, kinetic;
     for (const auto& e : s) {
         stats.add(e), nve.add(e);

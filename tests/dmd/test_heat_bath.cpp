@@ -63,8 +63,20 @@ template <class E> Series sample(E& engine, double ps) {
     return s;
 }
 
+/// As a run's statistics take them (cli/sample_statistics.hpp): blocks of K and of
+/// (K − (f/2) kT)² laid over the series.
+analysis::CanonicalKinetic canonical(const std::vector<double>& kinetic, int f, double kT) {
+    const long n = long(kinetic.size());
+    analysis::FixedBlocks k(n, blocks), shiftedSquares(n, blocks);
+    for (const double x : kinetic) {
+        const double d = x - analysis::canonicalKineticMean(f, kT);
+        k.add(x), shiftedSquares.add(d * d);
+    }
+    return analysis::canonicalKinetic(k, shiftedSquares, f, kT);
+}
+
 void expectCanonical(const Series& s, int f, double kT, const char* what) {
-    const auto c = analysis::canonicalKinetic(s.kinetic, f, kT, blocks);
+    const auto c = canonical(s.kinetic, f, kT);
     std::printf("%s: f %d, <K> %.4f ± %.4f (canonical %.4f, %+.2f errors), Var(K) %.3f ± %.3f "
                 "(canonical %.3f, %+.2f errors), %zu samples\n",
                 what, f, c.mean.mean, c.mean.err, c.canonicalMean, c.meanDeviation(),
