@@ -93,7 +93,7 @@ Vec3 LatticeShape::site(long i) const {
     return r;
 }
 
-std::vector<long> LatticeShape::forwardNeighbours(long i) const {
+SiteList LatticeShape::forwardNeighbours(long i) const {
     const auto basis = basisOf(kind);
     const int b = basisSize();
     const long c = i / b;
@@ -101,7 +101,7 @@ std::vector<long> LatticeShape::forwardNeighbours(long i) const {
     const long cells[3] = {m, m, mz};
     const long h[3] = {2 * (c / (long(mz) * m)) + beta[0], 2 * ((c / mz) % m) + beta[1],
                        2 * (c % mz) + beta[2]};
-    std::vector<long> out;
+    SiteList out;
     for (const Half& d : forwardOf(kind)) {
         long cellOf[3];
         Half betaOf{};
@@ -114,7 +114,8 @@ std::vector<long> LatticeShape::forwardNeighbours(long i) const {
         const auto at = std::find(basis.begin(), basis.end(), betaOf);
         // Every offset joins a site to a site of the same lattice: its basis is there.
         const long bj = long(at - basis.begin());
-        out.push_back(((cellOf[0] * m + cellOf[1]) * mz + cellOf[2]) * b + bj);
+        out.index[std::size_t(out.count++)] =
+            ((cellOf[0] * m + cellOf[1]) * mz + cellOf[2]) * b + bj;
     }
     return out;
 }

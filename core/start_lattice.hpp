@@ -21,6 +21,14 @@ enum class LatticeKind { SimpleCubic, FaceCentred, BodyCentred };
 LatticeKind latticeKind(const std::string& name);
 const char* latticeName(LatticeKind kind);
 
+/// Up to six site indices, held in place (a start of 10⁸ bodies asks for each body's).
+struct SiteList {
+    std::array<long, 6> index{};
+    int count = 0;
+    const long* begin() const { return index.data(); }
+    const long* end() const { return index.data() + count; }
+};
+
 /// A lattice's geometry, without its sites (a melt check of 10⁸ bodies needs no list of them).
 struct LatticeShape {
     LatticeKind kind = LatticeKind::SimpleCubic;
@@ -37,7 +45,7 @@ struct LatticeShape {
     /// The nearest neighbours of site i on one side (the other half are those that have i on
     /// theirs): 3 for sc (along x, y, z), 6 for fcc, 4 for bcc; periodic, so in a lattice of one
     /// or two cells a neighbour may be i itself or repeat.
-    std::vector<long> forwardNeighbours(long i) const;
+    SiteList forwardNeighbours(long i) const;
     /// The first reciprocal-lattice vectors at which a perfect lattice's structure factor is N,
     /// one of each ± pair, 1/Å: sc (100), (010), (001) (per axis: the cell may be stretched);
     /// fcc the (111) family (4); bcc the (110) family (6). (A simple-cubic (100) vector is
