@@ -37,10 +37,15 @@ const Command commands[] = {
       are whole multiples of their intervals, or refused with the nearest valid values.
       A step table (potential.kind steps: square wells, Chapela's LJ, DynamO's tables) runs
       under dmd only: smd refuses it, a step's force being an impulse it cannot integrate.
-      Writes DIR/summary.json, scene.json, initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv
-      and, if asked for, thermo.csv and trajectory.xyz (extended XYZ, read by OVITO and ASE)
-      or, with output.trajectory_format=gsd, trajectory.gsd (HOOMD's GSD, read by OVITO,
-      freud and gsd, with orientations and the bodies' shapes).
+      Writes DIR/summary.json, scene.json, initial.xyz, rdf.csv, vacf.csv, oacf.csv, msd.csv,
+      thermo.csv (about 100 rows by default; output.thermo_every_fs=0 for none) and, if asked
+      for, trajectory.xyz (extended XYZ, read by OVITO and ASE) or, with
+      output.trajectory_format=gsd, trajectory.gsd (HOOMD's GSD, read by OVITO, freud and gsd,
+      with orientations and the bodies' shapes).
+      A lattice start fills the box on state.lattice = sc (default) | fcc | bcc, the first N
+      sites of the smallest lattice that holds them; state.lattice_aspect stretches sc only.
+      summary.json counts collisions (collisions_per_ps, collisions_per_cpu_second) apart from
+      all DMD events, cell, relist and virtual ones included (all_events_per_cpu_second).
       With output.restart_every_ps > 0 the run keeps DIR/restart.bin (the bodies and the
       analysis' and statistics' accumulators, no sample: its size does not grow with the run)
       until it ends, from which --continue goes on.

@@ -1,27 +1,28 @@
 #include "cli/melt_check.hpp"
-#include "core/initial_state.hpp"
+#include "core/start_lattice.hpp"
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 namespace terrace::cli {
 
 LatticeOrderSum::LatticeOrderSum(const Scene& scene) {
     const int n = scene.state.particles.empty() ? scene.state.n : int(scene.state.particles.size());
-    const double L = scene.boxLength();
-    const Vec3 spacing = detail::elongatedLattice(n, L, scene.state.lattice_aspect).spacing;
-    for (int d = 0; d < 3; ++d)
-        k_[d] = 2.0 * std::numbers::pi / spacing[d];
+    k_ = latticeShape(n, scene.boxLength(), latticeKind(scene.state.lattice),
+                      scene.state.lattice_aspect)
+             .firstReciprocal();
+    re_.assign(k_.size(), 0.0);
+    im_.assign(k_.size(), 0.0);
 }
 
 void LatticeOrderSum::add(const Snapshot& bodies, bool rotating) {
     rotating_ = rotating;
     for (int j = 0; j < bodies.size(); ++j) {
         const Vec3& r = bodies.position[j];
-        for (int d = 0; d < 3; ++d) {
-            re_[d] += std::cos(k_[d] * r[d]);
-            im_[d] += std::sin(k_[d] * r[d]);
+        for (std::size_t v = 0; v < k_.size(); ++v) {
+            const double phase = k_[v].dot(r);
+            re_[v] += std::cos(phase);
+            im_[v] += std::sin(phase);
         }
         if (rotating) {
             const Vec3& u = bodies.axis[j];
@@ -34,8 +35,9 @@ void LatticeOrderSum::add(const Snapshot& bodies, bool rotating) {
 LatticeOrder LatticeOrderSum::result() const {
     LatticeOrder o;
     if (n_ == 0) return o;
-    for (int d = 0; d < 3; ++d)
-        o.translational += (re_[d] * re_[d] + im_[d] * im_[d]) / (3.0 * double(n_) * n_);
+    const double vectors = double(k_.size());
+    for (std::size_t v = 0; v < k_.size(); ++v)
+        o.translational += (re_[v] * re_[v] + im_[v] * im_[v]) / (vectors * double(n_) * n_);
     if (rotating_) {
         Eigen::SelfAdjointEigenSolver<Mat3> eig(q_ / double(n_));
         o.s2 = eig.eigenvalues().maxCoeff();

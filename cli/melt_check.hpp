@@ -2,10 +2,11 @@
 // Whether a lattice start has melted by the end of equilibration. Two order parameters of the
 // bodies then, each warned about with its value when above its threshold, naming the key that
 // lengthens equilibration (run.equilibrate_ps):
-//   translational  S(k₁)/N = |(1/N) Σ_j e^{i k₁·r_j}|², averaged over the lattice's three first
-//                  reciprocal vectors k₁ = 2π m/L along x, y and z (m sites along each,
-//                  core/initial_state.hpp): 1 on the lattice; in a liquid S(k) is of order 1, so
-//                  S/N of order 1/N. Threshold max(0.1, 20/N).
+//   translational  S(k₁)/N = |(1/N) Σ_j e^{i k₁·r_j}|², averaged over the first reciprocal
+//                  vectors k₁ of the lattice the scene started on (state.lattice,
+//                  core/start_lattice.hpp): sc (100) along x, y and z, fcc the (111) family, bcc
+//                  the (110) family; 1 on the lattice; in a liquid S(k) is of order 1, so S/N of
+//                  order 1/N. Threshold max(0.1, 20/N).
 //   orientational  S2, the largest eigenvalue of Q = (1/N) Σ_j (3/2 u_j u_jᵀ − 1/2), u_j the
 //                  bodies' axes (rotating bodies only): 1 when aligned; isotropic axes give
 //                  0.82/√N on average and 1.75/√N at the 99.5th percentile (measured over 400
@@ -22,21 +23,21 @@
 namespace terrace::cli {
 
 struct LatticeOrder {
-    double translational = 0.0; // S(k₁)/N, averaged over x, y, z
+    double translational = 0.0; // S(k₁)/N, averaged over the first reciprocal vectors
     double s2 = 0.0;            // 0 for spheres
 };
 
 /// Accumulates the order parameters body by body (a large system's bodies in pieces).
 class LatticeOrderSum {
 public:
-    /// The lattice of the scene's start: its sites per side along x, y and z.
+    /// The lattice of the scene's start: its kind, cells and first reciprocal vectors.
     explicit LatticeOrderSum(const Scene& scene);
     void add(const Snapshot& bodies, bool rotating);
     LatticeOrder result() const;
 
 private:
-    Vec3 k_ = Vec3::Zero(); // 2π m/L per axis, 1/Å
-    double re_[3] = {}, im_[3] = {};
+    std::vector<Vec3> k_;         // the first reciprocal vectors, 1/Å
+    std::vector<double> re_, im_; // Σ cos, Σ sin of k·r, one per vector
     Mat3 q_ = Mat3::Zero();
     int n_ = 0;
     bool rotating_ = false;

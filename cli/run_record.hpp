@@ -92,8 +92,10 @@ void accumulateStatistics(nlohmann::json& production, const nlohmann::json& star
 /// Collisions (DMD's events up + down + reflect) in engine statistics; 0 for SMD's.
 double collisionCount(const nlohmann::json& statistics);
 
-/// Merges the production's engine statistics into the summary and adds collisions_per_ps
-/// (DMD: up + down + reflect) and steps_per_ps (SMD) where those counters exist.
+/// Merges the production's engine statistics into the summary and adds collisions_per_ps and
+/// collisions_per_cpu_second (DMD: up + down + reflect), all_events_per_ps and
+/// all_events_per_cpu_second (DMD: every event, the bookkeeping ones too) and steps_per_ps (SMD)
+/// where those counters exist.
 void addEngineStatistics(nlohmann::json& summary, const nlohmann::json& production,
                          double simulatedPs);
 

@@ -56,7 +56,9 @@ public:
     template <Engine E>
     void record(const E& engine, long sample, double tStart, double collisions) {
         const double u = engine.potentialEnergy(), kin = engine.kineticEnergy();
-        SampleRecord e{units::toPs(engine.time() - tStart), u + kin, u, kin};
+        // The time on the plan's grid, from the sample's index: exact up to one rounding, where
+        // the engine's clock less production's start carries the round-off of every interval.
+        SampleRecord e{units::toPs(double(sample) * plan_.sampleInterval), u + kin, u, kin};
         e.kineticTranslational = engine.translationalKineticEnergy();
         e.virial = engine.virial();
         e.collisions = collisions;

@@ -42,8 +42,10 @@ std::string realLines(const json& s) {
                    number(p, "error_bar"), number(p, "mean_reduced"), number(p, "error_reduced"));
     }
     if (s.contains("collisions_per_ps"))
-        text += format("  %.4g collisions/ps, %.4g events per CPU s\n",
-                       number(s, "collisions_per_ps"), s.value("events_per_cpu_second", 0.0));
+        text += format("  %.4g collisions/ps, %.4g collisions per CPU s (%.4g events per CPU s "
+                       "with cell, relist and virtual ones)\n",
+                       number(s, "collisions_per_ps"), s.value("collisions_per_cpu_second", 0.0),
+                       s.value("all_events_per_cpu_second", 0.0));
     return text;
 }
 
@@ -61,8 +63,10 @@ std::string reducedLines(const json& s) {
     if (r.contains("pressure"))
         text += format("  P* = %.4g ± %.2g\n", number(r, "pressure"), number(r, "pressure_err"));
     if (r.contains("collisions_per_tau"))
-        text += format("  %.4g collisions/τ, %.4g events per CPU s\n",
-                       number(r, "collisions_per_tau"), s.value("events_per_cpu_second", 0.0));
+        text += format("  %.4g collisions/τ, %.4g collisions per CPU s (%.4g events per CPU s "
+                       "with cell, relist and virtual ones)\n",
+                       number(r, "collisions_per_tau"), s.value("collisions_per_cpu_second", 0.0),
+                       s.value("all_events_per_cpu_second", 0.0));
     return text;
 }
 

@@ -91,7 +91,8 @@ constexpr Column summaryColumns[] = {
     // Costs last: the columns before them are the physics, the same wherever a run ran.
     {"cpu_seconds", "/cpu_seconds"},
     {"cpu_seconds_per_ps", "/cpu_seconds_per_ps"},
-    {"events_per_cpu_second", "/events_per_cpu_second"},
+    {"collisions_per_cpu_second", "/collisions_per_cpu_second"},
+    {"all_events_per_cpu_second", "/all_events_per_cpu_second"},
 };
 
 double at(const json& summary, const char* pointer) {

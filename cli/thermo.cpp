@@ -95,16 +95,20 @@ std::string thermoRow(const SampleRecord& now, const SampleRecord* before,
     // Under real every factor is 1, so the numbers are those written before units existed.
     const double perBody = u.reduced() ? 1.0 / layout.bodies : 1.0;
     auto energy = [&](double e) { return u.energy(e) * perBody; };
-    std::string row;
+    // The time to 15 significant digits, as trajectory.xyz's Time= (core/xyz.cpp): the grid's
+    // times are decimals (k · run.sample_fs), and their binary round-off (0.18000000000000002)
+    // is not part of them.
     char field[32];
-    for (const double x : {u.time(now.tPs), energy(now.kineticTranslational),
+    std::snprintf(field, sizeof field, "%.15g", u.time(now.tPs));
+    std::string row = field;
+    for (const double x : {energy(now.kineticTranslational),
                            energy(now.kinetic - now.kineticTranslational), energy(now.potential),
                            energy(potentialContinuous), energy(now.total), temperature, pressure}) {
         if (std::isfinite(x))
             std::snprintf(field, sizeof field, "%.17g", x);
         else
             std::snprintf(field, sizeof field, "nan");
-        row += (row.empty() ? "" : ",") + std::string(field);
+        row += "," + std::string(field);
     }
     if (dmd) {
         std::snprintf(field, sizeof field, ",%.0f",

@@ -29,7 +29,8 @@
 //                           the first
 //   effective_total         with run.heat_bath only: total + the kinetic energy the bath removed
 //                           since the run began, which the thermostatted dynamics conserves
-// Numbers are written with 17 significant digits (exact on reading back).
+// Numbers are written with 17 significant digits (exact on reading back), but for the time: 15,
+// which shows a time on the sample grid as the decimal it is (0.18, not 0.18000000000000002).
 //
 // Under the scene's units lj (core/unit_system.hpp) the columns are time_tau, the energies per
 // body in ε with the suffix _per_body (as LAMMPS normalises thermo energies under its lj units),

@@ -94,7 +94,10 @@ int runCases(const Tradeoff& t, const std::vector<CaseRun>& runs, const std::str
         labels.push_back(r.label);
     }
     if (cases.empty()) return 0;
-    nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}}};
+    // No thermo.csv (on by default): the ladder's costs are its measure, and a row off the g(r)
+    // frames adds a pass over the pairs; --set output.thermo_every_fs still asks for one.
+    nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}},
+                         {"set", {{"output.thermo_every_fs", 0}}}};
     if (!t.options.scenePath.empty())
         sweep["scene"] = std::filesystem::absolute(t.options.scenePath).string();
     std::vector<std::string> sets = t.options.sets;

@@ -17,42 +17,6 @@ std::mt19937_64 namedStream(std::uint64_t seed, const std::string& purpose) {
 
 namespace detail {
 
-std::vector<Vec3> cubicLattice(int n, double boxLength) {
-    int m = static_cast<int>(std::ceil(std::cbrt(double(n)) - 1e-9));
-    while (m * m * m < n)
-        ++m;
-    const double a = boxLength / m;
-    std::vector<Vec3> sites;
-    sites.reserve(n);
-    for (int x = 0; x < m && int(sites.size()) < n; ++x)
-        for (int y = 0; y < m && int(sites.size()) < n; ++y)
-            for (int z = 0; z < m && int(sites.size()) < n; ++z)
-                sites.emplace_back((x + 0.5) * a, (y + 0.5) * a, (z + 0.5) * a);
-    return sites;
-}
-
-Lattice elongatedLattice(int n, double boxLength, double aspect) {
-    Lattice l;
-    if (aspect == 1.0) {
-        l.sites = cubicLattice(n, boxLength);
-        l.m = l.mz = static_cast<int>(std::ceil(std::cbrt(double(n)) - 1e-9));
-        while (l.m * l.m * l.m < n)
-            l.m = ++l.mz;
-    } else {
-        // m² mz ≥ N with (L/mz) / (L/m) = m/mz ≈ aspect: m ≈ (N aspect)^(1/3)
-        l.m = std::max(1, static_cast<int>(std::ceil(std::cbrt(n * aspect) - 1e-9)));
-        l.mz = std::max(1, (n + l.m * l.m - 1) / (l.m * l.m));
-        const double a = boxLength / l.m, c = boxLength / l.mz;
-        l.sites.reserve(n);
-        for (int x = 0; x < l.m && int(l.sites.size()) < n; ++x)
-            for (int y = 0; y < l.m && int(l.sites.size()) < n; ++y)
-                for (int z = 0; z < l.mz && int(l.sites.size()) < n; ++z)
-                    l.sites.emplace_back((x + 0.5) * a, (y + 0.5) * a, (z + 0.5) * c);
-    }
-    l.spacing = Vec3(boxLength / l.m, boxLength / l.m, boxLength / l.mz);
-    return l;
-}
-
 Vec3 randomUnitVector(std::mt19937_64& rng) {
     std::normal_distribution<double> gauss(0.0, 1.0);
     while (true) { // a normalised Gaussian vector is uniform on the sphere

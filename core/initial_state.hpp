@@ -1,9 +1,10 @@
 #pragma once
-// Initial states for a scene: N bodies on a simple cubic lattice filling a cubic box at density
-// ρ* = Nσ³/L³, orientations uniform on the sphere (or all aligned), velocities and angular
-// velocities drawn from Maxwell–Boltzmann at kT, total momentum removed, then rescaled so that the
-// kinetic temperature is exactly kT. Deterministic from the scene seed (named random streams).
-// An explicit `state.particles` list is used as given instead (converted from ps to time units).
+// Initial states for a scene: N bodies on a lattice (state.lattice: simple cubic, fcc or bcc,
+// core/start_lattice.hpp) filling a cubic box at density ρ* = Nσ³/L³, orientations uniform on the
+// sphere (or all aligned), velocities and angular velocities drawn from Maxwell–Boltzmann at kT,
+// total momentum removed, then rescaled so that the kinetic temperature is exactly kT.
+// Deterministic from the scene seed (named random streams). An explicit `state.particles` list is
+// used as given instead (converted from ps to time units).
 #include "core/body_kind.hpp"
 #include "core/body_orientation.hpp"
 #include "core/gay_berne_potential.hpp"
@@ -12,6 +13,7 @@
 #include "core/scene.hpp"
 #include "core/site_potential.hpp"
 #include "core/smoothed_cutoff.hpp"
+#include "core/start_lattice.hpp"
 #include "core/step_potential.hpp"
 #include "core/system.hpp"
 #include "core/units.hpp"
@@ -39,17 +41,6 @@ std::mt19937_64 namedStream(std::uint64_t seed, const std::string& purpose);
 
 namespace detail {
 
-/// Lattice sites of a simple cubic lattice with m = ceil(N^(1/3)) sites per edge, first N used.
-std::vector<Vec3> cubicLattice(int n, double boxLength);
-/// A lattice filling the cubic box with m sites along x and y and mz along z, the cell about
-/// `aspect` times longer along z than across (aspect 1: the cubic lattice), the first N of its
-/// sites in the order z fastest, then y, then x.
-struct Lattice {
-    std::vector<Vec3> sites;
-    int m = 0, mz = 0;
-    Vec3 spacing = Vec3::Zero(); // Å, along x, y, z
-};
-Lattice elongatedLattice(int n, double boxLength, double aspect);
 Vec3 randomUnitVector(std::mt19937_64& rng);
 Mat3 randomRotation(std::mt19937_64& rng); // uniform on SO(3), lab -> body
 Vec3 anyPerpendicular(const Vec3& s);
@@ -76,22 +67,20 @@ void thermalise(typename K::State& b, const BodyParams& p, double kT, std::mt199
     }
 }
 
-/// The lattice start with its orientations: every body against its next lattice neighbours along
-/// x, y and z (periodic), each pair's U at most maxStartEnergyInKT kT, else a SceneError naming
-/// the remedy. What the worst-case probe of the rods cannot see: elongated bodies end to end, or
-/// a molecule's sites, at the start's own orientations. O(N), by the lattice's order.
+/// The lattice start with its orientations: every body against its nearest lattice neighbours
+/// (periodic; sc: along x, y and z, fcc: the 12 at a/√2, bcc: the 8 at a√3/2), each pair's U at
+/// most maxStartEnergyInKT kT, else a SceneError naming the remedy. What the worst-case probe of
+/// the rods cannot see: elongated bodies end to end, or a molecule's sites, at the start's own
+/// orientations. O(N): each pair once, from the site whose forward neighbour the other is.
 template <BodyKind K, PairPotential P>
-void refuseOverlappingNeighbours(const System<K, P>& sys, const Lattice& lattice,
+void refuseOverlappingNeighbours(const System<K, P>& sys, const LatticeShape& lattice,
                                  const Scene& scene) {
-    const int n = sys.size(), m = lattice.m, mz = lattice.mz;
+    const int n = sys.size();
     const double limit = maxStartEnergyInKT * sys.kT;
     for (int i = 0; i < n; ++i) {
-        const int z = i % mz, y = (i / mz) % m, x = i / (mz * m);
-        const std::array<int, 3> next{((x + 1) % m * m + y) * mz + z,
-                                      (x * m + (y + 1) % m) * mz + z,
-                                      (x * m + y) * mz + (z + 1) % mz};
-        for (const int j : next) {
-            if (j >= n || j == i) continue;
+        for (const long jl : lattice.forwardNeighbours(i)) {
+            if (jl >= n || jl == i) continue;
+            const int j = static_cast<int>(jl);
             const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
             const double U = startEnergy(sys.potential, rij, orientationOf<P, K>(sys.bodies[i]),
                                          orientationOf<P, K>(sys.bodies[j]));
@@ -102,8 +91,12 @@ void refuseOverlappingNeighbours(const System<K, P>& sys, const Lattice& lattice
                     " at U = " + std::to_string(U) + " kJ/mol (> " +
                     std::to_string(maxStartEnergyInKT) +
                     " kT) in their start orientations: lower the density, start them aligned "
-                    "(state.orientations) or lengthen the lattice cell along the bodies "
-                    "(state.lattice_aspect)");
+                    "(state.orientations) or " +
+                    (lattice.kind == LatticeKind::SimpleCubic
+                         ? std::string("lengthen the lattice cell along the bodies "
+                                       "(state.lattice_aspect)")
+                         : std::string("start on a simple-cubic cell lengthened along the bodies "
+                                       "(state.lattice sc, state.lattice_aspect)")));
         }
     }
 }
@@ -151,21 +144,21 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
         return sys;
     }
 
-    const detail::Lattice lattice =
-        detail::elongatedLattice(n, sys.box.length, scene.state.lattice_aspect);
-    const auto& sites = lattice.sites;
-    const Vec3& spacing = lattice.spacing;
-    // Worst case: r_e is smallest for aligned neighbours (rods) -- probe along and across. (A
-    // frame potential has no such worst pair; refuseOverlappingNeighbours checks its start.)
+    const LatticeShape lattice = latticeShape(n, sys.box.length, latticeKind(scene.state.lattice),
+                                              scene.state.lattice_aspect);
+    const std::vector<Vec3> sites = latticeSites(lattice, n);
+    // Worst case: r_e is smallest for aligned neighbours (rods) -- probe along and across, at
+    // the nearest-neighbour distance. (A frame potential has no such worst pair;
+    // refuseOverlappingNeighbours checks its start.)
     if constexpr (P::attitude != AttitudeUse::Frame)
         if (n > 1) {
-            const Vec3 d(spacing.x(), 0, 0);
+            const Vec3 d(lattice.nearest, 0, 0);
             const double uAligned = startEnergy(potential, d, Vec3::UnitY(), Vec3::UnitY());
             const double uCrossed = startEnergy(potential, d, Vec3::UnitY(), Vec3::UnitZ());
             if (std::max(uAligned, uCrossed) > detail::maxStartEnergyInKT * sys.kT)
                 throw SceneError(
                     "state.density: " + std::to_string(scene.state.density) +
-                    " puts lattice neighbours " + std::to_string(spacing.x()) +
+                    " puts lattice neighbours " + std::to_string(lattice.nearest) +
                     " Å apart, deep in the repulsive core (overlap); lower the density");
         }
     auto orientRng = namedStream(scene.seed, "orientations");

@@ -93,6 +93,8 @@ struct Scene {
         double density = 0.5;                // ρσ³
         double temperature = 1.4;            // T* = kT/ε
         std::string orientations = "random"; // random | aligned (lattice starts only)
+        // The start's lattice (core/start_lattice.hpp): sc | fcc | bcc (lattice starts only).
+        std::string lattice = "sc";
         // The lattice cell's length along z over its width: elongated bodies started aligned
         // along z sit end to end that much farther apart than side by side (lattice starts only).
         double lattice_aspect = 1.0;
@@ -144,7 +146,8 @@ struct Scene {
         // orientations and shapes a viewer draws.
         std::string trajectory_format = "xyz";
         double restart_every_ps = 0.0; // 0 = no restart files
-        // Rows of thermo.csv (energies, temperature, pressure; production only), 0 = none.
+        // Rows of thermo.csv (energies, temperature, pressure; production only), 0 = none. A
+        // scene file without the key gets about 100 rows (core/thermo_interval.hpp).
         double thermo_every_fs = 0.0;
     } output;
 
@@ -173,7 +176,8 @@ struct Scene {
 /// The lowest value the scene's pair potential can take, kJ/mol (a bound for site-site models).
 double sceneMinimumEnergy(const Scene& s);
 
-/// The built-in default scene: the paper's dense rods (N 512, ρ* 0.5, T* 1.4).
+/// The built-in default scene: the paper's dense rods (N 512, ρ* 0.5, T* 1.4), as a scene file
+/// without keys resolves (thermo.csv at its default interval, where Scene{} writes none).
 Scene defaultScene();
 
 /// Parse and validate; `origin` names the source in error messages (a file path or "<default>").

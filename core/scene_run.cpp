@@ -2,6 +2,7 @@
 // the analysis accumulated as the run goes. Each interval fits in the run and lies on its grid
 // (core/scene.hpp Scene::Run); SMD's own grid, smd.dt_fs, is checked by smd/parameters.hpp.
 #include "core/scene_sections.hpp"
+#include "core/thermo_interval.hpp"
 #include "core/whole_intervals.hpp"
 #include <cmath>
 
@@ -105,7 +106,9 @@ void readOutput(const JsonSection& out, Scene& s) {
     o.trajectory_format = out.choice("trajectory_format", o.trajectory_format, {"xyz", "gsd"});
     o.trajectory_every_fs = out.number("trajectory_every_fs", o.trajectory_every_fs, 0, 1e9);
     o.restart_every_ps = out.number("restart_every_ps", o.restart_every_ps, 0, 1e9);
-    o.thermo_every_fs = out.number("thermo_every_fs", o.thermo_every_fs, 0, 1e9);
+    o.thermo_every_fs = out.has("thermo_every_fs")
+                            ? out.number("thermo_every_fs", 0.0, 0, 1e9)
+                            : defaultThermoEveryFs(s.run.time_ps, s.run.sample_fs);
     // Output is written at samples: its intervals are whole numbers of them within the run.
     requireOutputInterval(out, "trajectory_every_fs", o.trajectory_every_fs, "fs", 1.0, "frame", s);
     requireOutputInterval(out, "thermo_every_fs", o.thermo_every_fs, "fs", 1.0, "thermo row", s);

@@ -88,9 +88,18 @@ void requireResolvedMotion(const JsonSection& top, const std::string& key, const
 } // namespace
 
 void readState(const JsonSection& st, Scene& s) {
-    st.onlyKeys({"n", "density", "temperature", "orientations", "lattice_aspect", "particles"});
+    st.onlyKeys(
+        {"n", "density", "temperature", "orientations", "lattice", "lattice_aspect", "particles"});
     auto& state = s.state;
+    state.lattice = st.choice("lattice", state.lattice, {"sc", "fcc", "bcc"});
     state.lattice_aspect = st.number("lattice_aspect", state.lattice_aspect, 1.0, 100.0);
+    // A stretched fcc or bcc cell is neither: its neighbour shells and reciprocal vectors (the
+    // overlap check's, the melt check's) would be another lattice's.
+    if (state.lattice != "sc" && state.lattice_aspect != 1.0)
+        st.fail("lattice_aspect", showNumber(state.lattice_aspect) +
+                                      " stretches the simple-cubic cell only; with "
+                                      "state.lattice \"" +
+                                      state.lattice + "\" give 1, or use state.lattice \"sc\"");
     state.n = static_cast<int>(st.integer("n", state.n, 2, 100000000));
     state.density = st.number("density", state.density, 0.0, 10.0, true);
     state.temperature = st.number("temperature", state.temperature, 0,
@@ -105,9 +114,9 @@ void readState(const JsonSection& st, Scene& s) {
     if (st.has("orientations"))
         st.fail("orientations",
                 "applies to lattice starts only: state.particles gives each orientation");
-    if (st.has("lattice_aspect"))
-        st.fail("lattice_aspect",
-                "applies to lattice starts only: state.particles gives each position");
+    for (const char* key : {"lattice", "lattice_aspect"})
+        if (st.has(key))
+            st.fail(key, "applies to lattice starts only: state.particles gives each position");
     for (std::size_t i = 0; i < list.size(); ++i) {
         const JsonSection p(list[i], st.name("particles[" + std::to_string(i) + "]"), st.origin());
         state.particles.push_back(readParticle(p, s.body.kind));

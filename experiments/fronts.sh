@@ -119,7 +119,7 @@ echo "set,design,param,collisions_per_ps,collisions_per_ps_err,events_per_ps,eve
 awk -F, 'NR > 1 && $2 == "dmd" && $NF == "ok" { print $1, $3, $4, $7, $5 }' "$table" |
     while read -r s design param eg cost; do
         read -r c ce < <(replica_stats "$RUNS/$state/$s" collisions_per_ps 0)
-        read -r e ee < <(replica_stats "$RUNS/$state/$s" events_per_ps 0)
+        read -r e ee < <(replica_stats "$RUNS/$state/$s" all_events_per_ps 0)
         echo "$s,$design,$param,$c,$ce,$e,$ee,$eg,$cost" >>"$events"
     done
 # The target: the paper's SMD at 1.8 fs, or its largest stable dt below where 1.8 fs is not.

@@ -29,8 +29,8 @@ class Result:
     oacf    t_ps, c1, c1_err, c2, c2_err   orientational autocorrelations of the long axis,
             first and second Legendre order (None for spheres)
     msd     t_ps, msd_angstrom2, err
-    thermo  time_ps, kinetic_translational, ..., pressure_bar (None unless
-            output.thermo_every_fs was set)
+    thermo  time_ps, kinetic_translational, ..., pressure_bar (None when
+            output.thermo_every_fs was 0)
 
     These are the columns under units "real". A run under units "lj" names them in reduced
     units (r_sigma, t_tau, msd_sigma2, time_tau, temperature_reduced, ...; docs/UNITS.md).

@@ -394,8 +394,8 @@ existing_results)
     [[ $err == *"earlier run"*"--overwrite"* ]] || fail "error does not say what to do: $err"
     [[ $err != *"--continue"* ]] || fail "--continue offered for a finished run: $err"
     "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/dmd" --overwrite \
-        --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=0.099 >/dev/null ||
-        fail "--overwrite refused"
+        --set state.n=216 --set run.equilibrate_ps=0 --set run.time_ps=0.099 \
+        --set output.thermo_every_fs=0 >/dev/null || fail "--overwrite refused"
     [ ! -e "$work/dmd/trajectory.xyz" ] || fail "a stale trajectory.xyz survived --overwrite"
     [ ! -e "$work/dmd/thermo.csv" ] || fail "a stale thermo.csv survived --overwrite"
     grep -q '"simulated_ps": 0.09' "$work/dmd/summary.json" || fail "summary is not the new run's"
@@ -900,7 +900,8 @@ lammps_energy)
     export OMP_NUM_THREADS=1
     for case in lj gb gb-random dumbbell dumbbell-band triatomic; do
         case $case in
-        lj) scene=lj-liquid sets=(--set state.n=256) ;;
+        lj) # thermo every sample (9 fs, 45 steps), in the deck as in the run
+            scene=lj-liquid sets=(--set state.n=256 --set output.thermo_every_fs=9) ;;
         gb) scene=gay-berne-liquid sets=() ;;
         gb-random) # random axes on a lattice whose shells (8.33, 11.78, 14.4 Å) leave the switch
             # band [12, 13.5] Å empty: there LAMMPS's cut and terrace's switch give one U
@@ -954,7 +955,7 @@ lammps_energy)
     (cd "$work/lj" && "$lmp" -in in.terrace -var steps 45 -var equilibrate 0 -log none \
         -screen steps.out >/dev/null 2>&1) || fail "lj: LAMMPS failed over 45 steps"
     pe=$(awk '/^ *Step / { getline; getline; print $1, $3; exit }' "$work/lj/steps.out")
-    ut=$(awk -F, '$1 ~ /^0.00899999/ { print $5; exit }' "$work/lj-run/thermo.csv")
+    ut=$(awk -F, '$1 == "0.009" { print $5; exit }' "$work/lj-run/thermo.csv")
     awk -v pe="${pe#* }" -v step="${pe% *}" -v ut="$ut" 'BEGIN {
         ul = pe * 4.184; d = (ul - ut) / ut
         printf "lj after 45 steps: U LAMMPS %.12g kJ/mol, terrace %.12g: relative %.2g\n", ul, ut, d
@@ -970,7 +971,7 @@ lammps_energy)
         fail "lj: the equilibrated terrace run failed"
     awk -F, 'FNR == 1 { file++ }
         file == 1 && split($0, w, " ") == 6 && w[1] ~ /^[0-9]+$/ { if (w[1] == 90) l0 = w[3]; if (w[1] == 135) l1 = w[3] }
-        file == 2 && $1 == "0" { t0 = $5 } file == 2 && $1 ~ /^0.00900000/ { t1 = $5 }
+        file == 2 && $1 == "0" { t0 = $5 } file == 2 && $1 == "0.009" { t1 = $5 }
         END { d0 = (l0 * 4.184 - t0) / t0; d1 = (l1 * 4.184 - t1) / t1
               printf "lj equilibrated: U LAMMPS %.12g and %.12g kJ/mol, terrace %.12g and %.12g: relative %.2g and %.2g\n", l0 * 4.184, l1 * 4.184, t0, t1, d0, d1
               exit !(l0 != "" && l1 != "" && t0 != "" && t1 != "" && d0 > -1e-6 && d0 < 1e-6 && d1 > -1e-6 && d1 < 1e-6) }' \
@@ -1107,8 +1108,10 @@ thermo)
         [ "$(sed -n 2p "$f" | cut -c1)" = "#" ] || fail "$engine: no units line"
         rows=$(grep -vc '^#' "$f")
         [ $((rows - 1)) -eq 16 ] || fail "$engine: $((rows - 1)) rows, expected 16"
-        tail -n 1 "$f" | awk -F, '{ exit !($1 > 0.54 - 1e-9 && $1 < 0.54 + 1e-9) }' ||
-            fail "$engine: the last row is not at 0.54 ps"
+        # Times from the sample index on the run's grid, shown as the decimals they are.
+        [ "$(tail -n 1 "$f" | cut -d, -f1)" = 0.54 ] || fail "$engine: the last row is not at 0.54 ps"
+        [ "$(sed -n 9p "$f" | cut -d, -f1)" = 0.18 ] ||
+            fail "$engine: the sixth row's time is $(sed -n 9p "$f" | cut -d, -f1), not 0.18"
         # Total energy: DMD's (terraced U + K) within 1e-9 of K of the first row's, SMD's within
         # 1e-2 of K (summary.json's own warning threshold).
         tol=1e-2
@@ -1133,6 +1136,20 @@ thermo)
         fail "dmd: thermo.csv counts $sum collisions, summary.json $rate per ps over 0.54 ps"
     awk -F, '/^#/ || NR == 1 { next } $4 != $5 { exit 1 }' "$work/smd/thermo.csv" ||
         fail "smd: potential_continuous differs from potential"
+    # On by default: 0.54 ps of 9 fs is 60 samples, fewer than 150, so a row at each (61 rows),
+    # every time a short decimal (k · 0.009 ps, no binary round-off); off with an explicit 0.
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/default" \
+        --set state.n=216 --set run.equilibrate_ps=0.09 --set run.time_ps=0.54 >/dev/null ||
+        fail "default run failed"
+    [ "$(grep -vc '^#' "$work/default/thermo.csv")" -eq 62 ] ||
+        fail "default thermo.csv: $(grep -vc '^#' "$work/default/thermo.csv") lines, not a header and 61 rows"
+    grep -q '"thermo_every_fs": 9.0' "$work/default/scene.json" || fail "scene.json lacks the interval used"
+    awk -F, '/^#/ || NR == 1 { next } { if ($1 "" != sprintf("%.6g", (NR - 4) * 0.009)) exit 1 }' \
+        "$work/default/thermo.csv" || fail "default thermo.csv: a time off the grid's decimals"
+    "$terrace" run "$src/experiments/scenes/dense-rods.json" --quiet --out "$work/off" \
+        --set state.n=216 --set run.equilibrate_ps=0.09 --set run.time_ps=0.54 \
+        --set output.thermo_every_fs=0 >/dev/null || fail "run without thermo failed"
+    [ ! -e "$work/off/thermo.csv" ] || fail "output.thermo_every_fs=0 wrote thermo.csv"
     ;;
 sweep)
     # Six small runs, two of which the run refuses (a trajectory too large for any disk): four

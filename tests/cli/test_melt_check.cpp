@@ -24,7 +24,9 @@ Snapshot bodies(const Scene& s, bool aligned, double jiggle, std::uint64_t seed)
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(-0.5, 0.5);
     Snapshot snap;
-    for (const Vec3& r : detail::elongatedLattice(n, L, s.state.lattice_aspect).sites) {
+    const LatticeShape shape =
+        latticeShape(n, L, latticeKind(s.state.lattice), s.state.lattice_aspect);
+    for (const Vec3& r : latticeSites(shape, n)) {
         snap.position.push_back(r + jiggle * L * Vec3(u(rng), u(rng), u(rng)));
         snap.axis.push_back(aligned ? Vec3::UnitZ() : detail::randomUnitVector(rng));
     }
@@ -65,4 +67,22 @@ TEST(MeltCheck, AnOrderedStartIsWarnedWithItsNumbersAndTheKey) {
     Scene explicitStart = s;
     explicitStart.state.particles.resize(2);
     EXPECT_FALSE(cli::meltWarning(explicitStart, {1.0, 1.0}, 2, true));
+}
+
+// fcc and bcc starts are judged at their own first reciprocal vectors ((111), (110)): 1 on the
+// perfect lattice, where the simple-cubic vectors see nothing (the conventional cell's (100) is
+// extinct on both), and a liquid's ~1/N once the sites are scattered.
+TEST(MeltCheck, FccAndBccAreJudgedOnTheirOwnLattice) {
+    for (const auto& [lattice, n] : {std::pair<const char*, int>{"fcc", 500}, {"bcc", 432}}) {
+        Scene s = latticeScene(n, 1.0);
+        s.state.lattice = lattice;
+        const auto ordered = orderOf(s, bodies(s, true, 0.0, 1));
+        EXPECT_NEAR(ordered.translational, 1.0, 1e-9) << lattice;
+        const auto w = cli::meltWarning(s, ordered, n, false);
+        ASSERT_TRUE(w) << lattice;
+        EXPECT_NE(w->find("S(k1)/N = 1 >"), std::string::npos) << *w;
+        const auto gas = orderOf(s, bodies(s, false, 1.0, 2));
+        EXPECT_LT(gas.translational, 20.0 / n) << lattice;
+        EXPECT_FALSE(cli::meltWarning(s, gas, n, false)) << lattice;
+    }
 }

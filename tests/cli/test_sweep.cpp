@@ -235,8 +235,8 @@ TEST(SweepTable, RowsInSweepOrderWithStatusNumbersAndQuotedCells) {
     std::getline(in, header), std::getline(in, first), std::getline(in, second);
     EXPECT_FALSE(std::getline(in, extra));
     EXPECT_EQ(header.rfind("run,dmd.terraces,engine,status,n_bodies,simulated_ps,", 0), 0u);
-    EXPECT_NE(header.find(",cpu_seconds,cpu_seconds_per_ps,events_per_cpu_second,wall_seconds,"
-                          "message"),
+    EXPECT_NE(header.find(",cpu_seconds,cpu_seconds_per_ps,collisions_per_cpu_second,"
+                          "all_events_per_cpu_second,wall_seconds,message"),
               std::string::npos)
         << "the costs come last, after the physics";
     EXPECT_EQ(

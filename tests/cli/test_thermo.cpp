@@ -149,6 +149,20 @@ TEST(Thermo, RowsTakeTheirPressureAndCollisionsOverTheThermoInterval) {
     EXPECT_DOUBLE_EQ(smd[7], units::bar((60.0 + 16.0) / 3000.0));
 }
 
+// The time column shows a time on the sample grid as the decimal it is (as trajectory.xyz's
+// Time=): 20 samples of 9 fs summed carry binary round-off, the row reads 0.18.
+TEST(Thermo, TheTimeIsTheGridsDecimal) {
+    double t = 0.0;
+    for (int k = 0; k < 20; ++k)
+        t += units::fromFs(9.0);
+    ASSERT_NE(units::toPs(t), 0.18);
+    const SampleRecord s = sample(t, 20.0, 10.0);
+    const std::string row = cli::thermoRow(s, nullptr, -61.0, {VirialKind::Impulse, 1000.0, 9, 4});
+    EXPECT_EQ(row.substr(0, row.find(',')), "0.18") << row;
+    // From the sample index on the plan's grid (20 · 0.09 time units) it is 0.18 here exactly.
+    EXPECT_EQ(units::toPs(20.0 * units::fromFs(9.0)), 0.18);
+}
+
 namespace {
 
 /// 27 LJ spheres 20 σ apart (ρ* = 1/8000) with the cutoff at 3 σ: in 0.45 ps at T* = 1.4 a sphere

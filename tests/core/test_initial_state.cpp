@@ -140,3 +140,55 @@ TEST(InitialState, ExplicitOrientationsAreHonoured) {
     EXPECT_NEAR((SymmetricTop::axis(tops.bodies[0]) - Vec3(0, -1, 0)).norm(), 0.0, axisTol);
     EXPECT_NEAR((SymmetricTop::axis(tops.bodies[1]) - Vec3(1, 0, 0)).norm(), 0.0, axisTol);
 }
+
+// fcc and bcc starts: N bodies on a full lattice at the scene's density, each at the lattice's
+// nearest-neighbour distance from its closest (a/√2, a√3/2 with a = L/m), thermal as any start.
+TEST(InitialState, FccAndBccStartsFillTheBoxAtTheDensity) {
+    struct Case {
+        const char* lattice;
+        int n, m;
+        double nearestInCells;
+    };
+    for (const Case c :
+         {Case{"fcc", 500, 5, 1.0 / std::sqrt(2.0)}, Case{"bcc", 432, 6, std::sqrt(3.0) / 2.0}}) {
+        Scene scene = defaultScene();
+        scene.potential.kind = "lj";
+        scene.body.kind = "sphere";
+        scene.state.lattice = c.lattice;
+        scene.state.n = c.n;
+        const auto sys = buildInitialState<Sphere>(scene, ljPotential(scene));
+        ASSERT_EQ(sys.size(), c.n);
+        EXPECT_NEAR(sys.size() * std::pow(scene.potential.sigma, 3) / sys.box.volume(), 0.5,
+                    densityTol);
+        checkThermal(sys);
+        double minDistance = 1e300;
+        for (int i = 0; i < sys.size(); ++i)
+            for (int j = i + 1; j < sys.size(); ++j)
+                minDistance = std::min(
+                    minDistance, sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r).norm());
+        EXPECT_NEAR(minDistance, c.nearestInCells * sys.box.length / c.m, latticeTol) << c.lattice;
+    }
+}
+
+// The overlap refusal looks at the new lattices' own nearest neighbours, closer than the cell
+// edge a (a/√2 fcc, a√3/2 bcc): at ρ* 3.4 a full fcc lattice of 500 LJ spheres has a = 1.056 σ,
+// where U < 0, and neighbours at 0.746 σ, where U = 111 ε > 50 kT = 70 ε: refused, naming the
+// remedies that apply to fcc. At ρ* 2.3 they are 0.85 σ apart (U = 17 ε) and build.
+TEST(InitialState, OverlapIsJudgedAtTheLatticesOwnNeighbours) {
+    Scene scene = defaultScene();
+    scene.potential.kind = "lj";
+    scene.body.kind = "sphere";
+    scene.state.n = 500;
+    scene.state.lattice = "fcc";
+    scene.state.density = 3.4;
+    try {
+        buildInitialState<Sphere>(scene, ljPotential(scene));
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("state.density: 3.4"), std::string::npos) << what;
+        EXPECT_NE(what.find("lower the density"), std::string::npos) << what;
+    }
+    scene.state.density = 2.3;
+    EXPECT_NO_THROW(buildInitialState<Sphere>(scene, ljPotential(scene)));
+}

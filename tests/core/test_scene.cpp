@@ -394,9 +394,9 @@ TEST(Scene, ThermostatAndRestartKeys) {
               "test.json: run.thermostat_fs: must be > 0, got 0");
     EXPECT_EQ(errorOf({{"output", {{"restart_every_ps", -1}}}}),
               "test.json: output.restart_every_ps: must be >= 0, got -1");
-    EXPECT_DOUBLE_EQ(d.output.thermo_every_fs, 0.0); // no thermo.csv unless asked for
-    const Scene t = sceneFromJson(json::object(), "t", {"output.thermo_every_fs=90"});
-    EXPECT_EQ(toJson(t)["output"]["thermo_every_fs"], 90.0);
+    EXPECT_DOUBLE_EQ(d.output.thermo_every_fs, 90.0); // about 100 rows unless told otherwise
+    const Scene t = sceneFromJson(json::object(), "t", {"output.thermo_every_fs=45"});
+    EXPECT_EQ(toJson(t)["output"]["thermo_every_fs"], 45.0);
     EXPECT_EQ(toJson(sceneFromJson(toJson(t), "again")), toJson(t));
     EXPECT_EQ(errorOf({{"output", {{"thermo_every_fs", -9}}}}),
               "test.json: output.thermo_every_fs: must be >= 0, got -9");
@@ -672,4 +672,54 @@ TEST(Scene, AnalysisKeysAreReadCheckedAndWrittenOut) {
     // The default box (N 512, ρ* 0.5) is 30.6 Å wide: a 20 Å bin leaves g(r) no bin.
     EXPECT_NE(errorOf({{"analysis", {{"rdf_bin_angstrom", 20.0}}}}).find("wider than half the box"),
               std::string::npos);
+}
+
+// output.thermo_every_fs: about 100 rows over production when absent (whole samples, at least
+// one), off with an explicit 0, written out resolved so that scene.json says what was done.
+TEST(Scene, ThermoIsOnByDefaultOnTheSampleGrid) {
+    EXPECT_DOUBLE_EQ(sceneFromJson(json::object(), "t").output.thermo_every_fs, 90.0); // 1000/100
+    EXPECT_DOUBLE_EQ(
+        sceneFromJson({{"output", {{"thermo_every_fs", 0}}}}, "t").output.thermo_every_fs, 0.0);
+    // 0.54 ps of 9 fs: 60 samples, fewer than 150: a row at every sample.
+    EXPECT_DOUBLE_EQ(
+        sceneFromJson(json::object(), "t", {"run.time_ps=0.54"}).output.thermo_every_fs, 9.0);
+    // 2 ps (a partial last interval): 222 whole samples, a row every 2.
+    EXPECT_DOUBLE_EQ(sceneFromJson(json::object(), "t", {"run.time_ps=2"}).output.thermo_every_fs,
+                     18.0);
+    // 250 samples of 4 fs: 2.5 rounds to 3 (round half away from zero), 84 rows.
+    EXPECT_DOUBLE_EQ(sceneFromJson(json::object(), "t", {"run.time_ps=1", "run.sample_fs=4"})
+                         .output.thermo_every_fs,
+                     12.0);
+    const Scene s = sceneFromJson(json::object(), "t", {"run.time_ps=90"});
+    EXPECT_DOUBLE_EQ(s.output.thermo_every_fs, 900.0);
+    EXPECT_EQ(toJson(s)["output"]["thermo_every_fs"], 900.0);
+    EXPECT_EQ(toJson(sceneFromJson(toJson(s), "t")), toJson(s));
+    // Under lj units the twin key turns it off as well.
+    EXPECT_DOUBLE_EQ(sceneFromJson({{"units", "lj"}, {"output", {{"thermo_every", 0}}}}, "t")
+                         .output.thermo_every_fs,
+                     0.0);
+}
+
+// state.lattice: sc (default, not written out), fcc, bcc; lattice starts only; aspect 1 only off
+// sc.
+TEST(Scene, LatticeIsReadCheckedAndWrittenOut) {
+    EXPECT_EQ(sceneFromJson(json::object(), "t").state.lattice, "sc");
+    EXPECT_FALSE(toJson(sceneFromJson(json::object(), "t"))["state"].contains("lattice"));
+    for (const char* kind : {"fcc", "bcc"}) {
+        const Scene s = sceneFromJson({{"state", {{"lattice", kind}}}}, "t");
+        EXPECT_EQ(s.state.lattice, kind);
+        EXPECT_EQ(toJson(s)["state"]["lattice"], kind);
+        EXPECT_EQ(toJson(sceneFromJson(toJson(s), "t")), toJson(s));
+    }
+    EXPECT_EQ(errorOf({{"state", {{"lattice", "fcc"}, {"lattice_aspect", 2}}}}),
+              "test.json: state.lattice_aspect: 2 stretches the simple-cubic cell only; with "
+              "state.lattice \"fcc\" give 1, or use state.lattice \"sc\"");
+    EXPECT_EQ(errorOf({{"state", {{"lattice", "bcc"}, {"lattice_aspect", 1}}}}), "");
+    EXPECT_NE(errorOf({{"state", {{"lattice", "hcp"}}}}).find("state.lattice"), std::string::npos);
+    const json twoBodies = json::array({{{"r", {0, 0, 0}}}, {{"r", {5, 0, 0}}}});
+    EXPECT_EQ(errorOf({{"body", {{"kind", "sphere"}}},
+                       {"potential", {{"kind", "lj"}}},
+                       {"state", {{"lattice", "fcc"}, {"particles", twoBodies}}}}),
+              "test.json: state.lattice: applies to lattice starts only: state.particles gives "
+              "each position");
 }
