@@ -11,19 +11,19 @@
 //                                    and (f/2)(kT)² (analysis/canonical_kinetic.hpp), and each
 //                                    deviation in errors
 // An effective energy that wanders by more than 1 % of ⟨K⟩ is a warning, as the total energy's is
-// under NVE. In DMD it is conserved to round-off; in SMD it carries the integrator's error, which
-// the bath's draws turn from a bounded fluctuation of H into a drift (Sivak, Chodera & Crooks,
-// Phys. Rev. X 3, 011007 (2013)): for the rods at 1.8 fs, 0.002 kJ/mol/ps under CSVR (τ 50 fs) but
-// 0.44 kJ/mol/ps under Andersen at 20/ps, which resamples every body every 50 fs.
+// under NVE (cli/sample_statistics.cpp). In DMD it is conserved to round-off; in SMD it carries the
+// integrator's error, which the bath's draws turn from a bounded fluctuation of H into a drift
+// (Sivak, Chodera & Crooks, Phys. Rev. X 3, 011007 (2013)): for the rods at 1.8 fs, 0.002 kJ/mol/ps
+// under CSVR (τ 50 fs) but 0.44 kJ/mol/ps under Andersen at 20/ps, which resamples every body every
+// 50 fs.
 #include "cli/sample_statistics.hpp"
 #include "core/scene.hpp"
 #include <nlohmann/json.hpp>
 
 namespace terrace::cli {
 
-/// The block, from the production samples' statistics; warnings are appended to `warnings` (an
-/// array) and printed.
-nlohmann::json heatBathSummary(const Scene& scene, const SampleStatistics& samples, int dof,
-                               nlohmann::json& warnings);
+/// The block, from the production samples' statistics (the effective energy's wander is warned
+/// about with the total energy's, SampleStatistics::summarise).
+nlohmann::json heatBathSummary(const Scene& scene, const SampleStatistics& samples, int dof);
 
 } // namespace terrace::cli

@@ -285,8 +285,7 @@ nlohmann::json summaryOf(const Scene& scene, const RunRecord& run) {
     // Of the whole process, at the end of the engine that held most (core/huge_pages.hpp).
     summary["memory_in_huge_pages_bytes"] = run.hugePageBytes;
     run.samples.summarise(summary, scene.potential.sigma, scene.potential.epsilon);
-    if (run.heatBath)
-        summary["heat_bath"] = heatBathSummary(scene, run.samples, run.dof, summary["warnings"]);
+    if (run.heatBath) summary["heat_bath"] = heatBathSummary(scene, run.samples, run.dof);
     summary["momentum"] = {{"initial", vec3Json(run.momentumInitial / units::psPerTimeUnit)},
                            {"final", vec3Json(run.momentumFinal / units::psPerTimeUnit)},
                            {"units", "g/mol A/ps"}};

@@ -128,15 +128,23 @@ TEST(SampleStatistics, ItsStateGoesOnToTheSameSummary) {
 // Under a heat bath: the effective energy H + bath is the whole series' (the same accumulator),
 // the bath's energy removed is its last value less its first, and ⟨K⟩, Var K with their errors are
 // those of 8 contiguous blocks of K and of (K − K̄)² over the whole series, though K̄ is known only
-// at the end; H's wander is no warning. Without the bath the same series warns of it.
+// at the end. The wander warned about is the conserved energy's: not H's under the bath, which
+// takes up H's fluctuation here, but H's without it, and the effective energy's when it drifts.
 TEST(SampleStatistics, UnderAHeatBathTheEffectiveEnergyAndVarianceAreThoseOfTheWholeSeries) {
     auto s = series(50, 4);
-    for (std::size_t k = 0; k < s.size(); ++k)
-        s[k].bath = 3.0 + 0.7 * double(k) + 0.1 * std::sin(double(k)); // removed since the start
-    const double kT = 16.0;                                            // (f/2) kT = 800 = ⟨K⟩
+    // The bath takes up H's fluctuation (effective energy within 0.1 kJ/mol of its start); the
+    // drifting copy adds 0.7 kJ/mol a sample, 34 kJ/mol in all against 1 % of ⟨K⟩, 8 kJ/mol.
+    auto drifting = s;
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        s[k].bath = 3.0 - (s[k].total - s[0].total) + 0.1 * std::sin(double(k));
+        drifting[k].bath = s[k].bath + 0.7 * double(k);
+    }
+    const double kT = 16.0; // (f/2) kT = 800 = ⟨K⟩
     const cli::SamplePlan plan{50, 17, VirialKind::Impulse, volume, 100, kT, true};
-    cli::SampleStatistics stats(plan),
+    cli::SampleStatistics stats(plan), drift(plan),
         nve(cli::SamplePlan{50, 17, VirialKind::Impulse, volume, 100, kT, false});
+    for (const auto& e : drifting)
+        drift.add(e);
     std::vector<double> t, effective, potential, kinetic;
     for (const auto& e : s) {
         stats.add(e), nve.add(e);
@@ -165,11 +173,16 @@ TEST(SampleStatistics, UnderAHeatBathTheEffectiveEnergyAndVarianceAreThoseOfTheW
     EXPECT_DOUBLE_EQ(c.canonicalMean, 800.0);
     EXPECT_DOUBLE_EQ(c.canonicalVariance, 50.0 * kT * kT);
 
-    nlohmann::json bath, plain;
+    nlohmann::json bath, plain, drifted;
     stats.summarise(bath, sigma, epsilon), nve.summarise(plain, sigma, epsilon);
+    drift.summarise(drifted, sigma, epsilon);
     EXPECT_FALSE(bath.contains("warnings")) << bath["warnings"].dump();
     ASSERT_TRUE(plain.contains("warnings"));
     EXPECT_NE(plain["warnings"][0].get<std::string>().find("total energy wandered"),
+              std::string::npos);
+    ASSERT_TRUE(drifted.contains("warnings"));
+    EXPECT_NE(drifted["warnings"][0].get<std::string>().find("effective energy (H + the energy "
+                                                             "the heat bath removed) wandered"),
               std::string::npos);
 }
 
