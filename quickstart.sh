@@ -102,10 +102,12 @@ step_table() {
 # A compiler cache where one is installed (Debian's ccache; `test` installs it): a second build of
 # the same sources, in this checkout or a clone elsewhere (CCACHE_BASEDIR: paths below the
 # checkout count relative to it), takes the objects from the cache. CCACHE_DISABLE=1 builds
-# without it.
+# without it. The sloppiness lets it cache what reads a precompiled header (TERRACE_PCH): the
+# header's own hash stands for its contents, and no source reads __DATE__ or __TIME__.
 if [ -z "${CMAKE_CXX_COMPILER_LAUNCHER:-}" ] && command -v ccache >/dev/null; then
     export CMAKE_CXX_COMPILER_LAUNCHER=ccache CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
     export CCACHE_NOHASHDIR=1
+    export CCACHE_SLOPPINESS="${CCACHE_SLOPPINESS:+$CCACHE_SLOPPINESS,}pch_defines,time_macros,include_file_mtime,include_file_ctime"
 fi
 build() {
     local dir=$1 options=() targets=()
