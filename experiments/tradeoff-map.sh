@@ -87,6 +87,30 @@ for rho in rhos:
 PY
 
 title="$family, $set tolerances: DMD cost / SMD cost at equal accuracy (resolved cells)"
+# One plot clause per kind of cell that the table holds: gnuplot fails on a clause whose every
+# point is undefined, and a label clause of that sort beside another crashes it.
+has() { awk -F, -v s="$1" 'NR > 1 && ($3 == s || (s == "none" && $3 != "resolved" && $3 != "at_least")) { n++ } END { exit !n }' "$table"; }
+clauses=()
+if has resolved; then
+    clauses+=("'$table' skip 1 using 1:(strcol(3) eq \"resolved\" ? \$2 : NaN):(log10(\$6)) with points pt 7 ps 3 palette title 'resolved'"
+              "'' skip 1 using 1:(strcol(3) eq \"resolved\" ? \$2 : NaN):(sprintf(\"%.2g\", \$6)) with labels offset 0,1.5 notitle")
+fi
+if has at_least; then
+    clauses+=("'$table' skip 1 using 1:(strcol(3) eq \"at_least\" ? \$2 : NaN):(log10(\$6)) with points pt 9 ps 3 palette title 'bound: the cheaper engine resolved, its advantage at least'"
+              "'' skip 1 using 1:(strcol(3) eq \"at_least\" ? \$2 : NaN):(\$6 > 1 ? sprintf(\">=%.2g\", \$6) : sprintf(\"<=%.2g\", \$6)) with labels offset 0,1.5 notitle")
+fi
+if has none; then
+    clauses+=("'$table' skip 1 using 1:(strcol(3) ne \"resolved\" && strcol(3) ne \"at_least\" ? \$2 : NaN) with points pt 2 ps 2 lc rgb '#888888' title 'no verdict'")
+fi
+if [ -s "$dir/$name-breakeven.dat" ]; then
+    clauses+=("'$dir/$name-breakeven.dat' using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'black' title 'break-even (between resolved cells)'")
+fi
+plot=""
+for clause in "${clauses[@]}"; do plot="${plot:+$plot, }$clause"; done
+if [ -z "$plot" ]; then
+    log "tradeoff-map $name: no cell in $table, no picture"
+    exit 0
+fi
 gnuplot <<GP
 set terminal $(png_terminal)
 set output '$dir/$name.png'
@@ -102,11 +126,6 @@ set cblabel 'log_{10}(DMD cost / SMD cost)'
 set palette defined (-1 '#1f77b4', 0 '#ffffff', 1 '#d62728')
 set cbrange [-1:1]
 set grid
-plot '$table' skip 1 using 1:(strcol(3) eq "resolved" ? \$2 : NaN):(log10(\$6)) with points pt 7 ps 3 palette title 'resolved', \
-     '' skip 1 using 1:(strcol(3) eq "resolved" ? \$2 : NaN):(sprintf("%.2g", \$6)) with labels offset 0,1.5 notitle, \
-     '' skip 1 using 1:(strcol(3) eq "at_least" ? \$2 : NaN):(log10(\$6)) with points pt 9 ps 3 palette title 'bound: the cheaper engine resolved, its advantage at least', \
-     '' skip 1 using 1:(strcol(3) eq "at_least" ? \$2 : NaN):(\$6 > 1 ? sprintf(">=%.2g", \$6) : sprintf("<=%.2g", \$6)) with labels offset 0,1.5 notitle, \
-     '' skip 1 using 1:(strcol(3) ne "resolved" && strcol(3) ne "at_least" ? \$2 : NaN) with points pt 2 ps 2 lc rgb '#888888' title 'no verdict', \
-     '$dir/$name-breakeven.dat' using 1:2 with points pt 6 ps 2 lw 2 lc rgb 'black' title 'break-even (between resolved cells)'
+plot $plot
 GP
 log "tradeoff-map $name done"
