@@ -7,6 +7,7 @@
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/smoothed_potential.hpp"
+#include "core/species_sphere.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "dmd/section.hpp"
@@ -17,6 +18,8 @@ namespace terrace::cli {
 
 /// Calls fn.template operator()<Kind>(potential) for the scene's body kind and potential.
 template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
+    if (scene.potential.kind == "lj" && !scene.species.empty())
+        return fn.template operator()<SpeciesSphere>(ljMixture(scene));
     if (scene.potential.kind == "lj") return fn.template operator()<Sphere>(ljPotential(scene));
     if (scene.potential.kind == "steps")
         return fn.template operator()<Sphere>(stepPotential(scene));

@@ -52,9 +52,8 @@ public:
     }
 
     /// Production sample `sample` of the engine as it is now; `collisions` since production
-    /// began, `tStart` production's start (time units).
-    template <Engine E>
-    void record(const E& engine, long sample, double tStart, double collisions) {
+    /// began.
+    template <Engine E> void record(const E& engine, long sample, double collisions) {
         const double u = engine.potentialEnergy(), kin = engine.kineticEnergy();
         // The time on the plan's grid, from the sample's index: exact up to one rounding, where
         // the engine's clock less production's start carries the round-off of every interval.

@@ -6,6 +6,7 @@
 // a free orbit (core/free_orbit.hpp), which the DMD search samples.
 #include "core/body_kind.hpp"
 #include "core/pair_potential.hpp"
+#include "core/species_sphere.hpp"
 
 namespace terrace {
 
@@ -15,6 +16,10 @@ typename P::Orientation orientationOf(const typename K::State& b) {
         static_assert(
             requires { K::frame(b); }, "a frame potential needs a body kind with a frame");
         return K::frame(b);
+    } else if constexpr (P::attitude == AttitudeUse::Species) {
+        static_assert(
+            requires { b.species; }, "a species potential needs a body kind with a species");
+        return b.species;
     } else {
         return K::axis(b);
     }
@@ -27,6 +32,10 @@ const typename P::Orientation& orientationOf(const Attitude& a) {
         static_assert(
             requires { a.frame; }, "a frame potential needs a body kind with a frame");
         return a.frame;
+    } else if constexpr (P::attitude == AttitudeUse::Species) {
+        static_assert(
+            requires { a.species; }, "a species potential needs a body kind with a species");
+        return a.species;
     } else {
         return a.axis;
     }
@@ -36,6 +45,8 @@ const typename P::Orientation& orientationOf(const Attitude& a) {
 template <PairPotential P> typename P::Orientation unusedOrientation() {
     if constexpr (P::attitude == AttitudeUse::Frame)
         return Mat3::Identity();
+    else if constexpr (P::attitude == AttitudeUse::Species)
+        return 0; // the first species: what a design or a coverage check samples of a mixture
     else
         return Vec3::UnitZ();
 }

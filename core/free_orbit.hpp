@@ -16,6 +16,7 @@
 #include "core/body_kind.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/small_angle.hpp"
+#include "core/species_sphere.hpp"
 #include "core/sphere.hpp"
 #include <array>
 #include <cassert>
@@ -185,6 +186,24 @@ public:
     Attitude at(double) const { return {Vec3::UnitZ(), Vec3::Zero()}; }
     FreeOrbit from(double) const { return *this; }
     Attitude startOf(double) const { return at(0.0); }
+};
+
+/// A sphere of a species: nothing turns; the attitude carries the species, which is all that a
+/// species potential reads of a body (core/lj_mixture.hpp).
+template <> class FreeOrbit<SpeciesSphere> {
+public:
+    FreeOrbit(const SpeciesSphere::State& b, const BodyParams&) : species_(b.species) {}
+    struct Attitude {
+        Vec3 axis;
+        Vec3 w;
+        int species;
+    };
+    Attitude at(double) const { return {Vec3::UnitZ(), Vec3::Zero(), species_}; }
+    FreeOrbit from(double) const { return *this; }
+    Attitude startOf(double) const { return at(0.0); }
+
+private:
+    int species_;
 };
 
 } // namespace terrace

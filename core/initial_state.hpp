@@ -8,6 +8,7 @@
 #include "core/body_kind.hpp"
 #include "core/body_orientation.hpp"
 #include "core/gay_berne_potential.hpp"
+#include "core/lj_mixture.hpp"
 #include "core/lj_potential.hpp"
 #include "core/rod_potential.hpp"
 #include "core/scene.hpp"
@@ -17,6 +18,7 @@
 #include "core/step_potential.hpp"
 #include "core/system.hpp"
 #include "core/units.hpp"
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -26,6 +28,8 @@ namespace terrace {
 
 RodPotential rodPotential(const Scene& scene);
 LJPotential ljPotential(const Scene& scene);
+/// The species' Lennard-Jones pairs (Scene::species, potential.pairs) in kJ/mol and Å.
+LJMixture ljMixture(const Scene& scene);
 GayBernePotential gayBernePotential(const Scene& scene);
 /// potential.kind steps: the scene's table in σ and ε, scaled by potential.sigma and epsilon.
 StepPotential stepPotential(const Scene& scene);
@@ -101,6 +105,20 @@ void refuseOverlappingNeighbours(const System<K, P>& sys, const LatticeShape& la
     }
 }
 
+/// Deals the species out over the bodies: counts[a] bodies of species a, in an order shuffled by
+/// `rng`, so that a lattice start mixes them.
+template <class Bodies>
+void assignSpecies(Bodies& bodies, const std::vector<int>& counts, std::mt19937_64 rng) {
+    std::vector<std::int32_t> deck;
+    for (std::size_t a = 0; a < counts.size(); ++a)
+        deck.insert(deck.end(), static_cast<std::size_t>(counts[a]), static_cast<std::int32_t>(a));
+    if (deck.size() != bodies.size())
+        throw SceneError("species: the counts do not add up to the number of bodies");
+    std::shuffle(deck.begin(), deck.end(), rng);
+    for (std::size_t i = 0; i < deck.size(); ++i)
+        bodies[i].species = deck[i];
+}
+
 template <BodyKind K> void setOrientation(typename K::State& b, const Vec3& axis, const Mat3& A) {
     if constexpr (requires { b.s; }) b.s = axis;
     if constexpr (requires { b.A; }) b.A = A;
@@ -150,7 +168,7 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
     // Worst case: r_e is smallest for aligned neighbours (rods) -- probe along and across, at
     // the nearest-neighbour distance. (A frame potential has no such worst pair;
     // refuseOverlappingNeighbours checks its start.)
-    if constexpr (P::attitude != AttitudeUse::Frame)
+    if constexpr (P::attitude == AttitudeUse::None || P::attitude == AttitudeUse::Axis)
         if (n > 1) {
             const Vec3 d(lattice.nearest, 0, 0);
             const double uAligned = startEnergy(potential, d, Vec3::UnitY(), Vec3::UnitY());
@@ -174,6 +192,9 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
         }
         detail::thermalise<K>(b, sys.body, sys.kT, velocityRng);
     }
+    if constexpr (requires { sys.bodies[0].species; })
+        detail::assignSpecies(sys.bodies, speciesCounts(scene, n),
+                              namedStream(scene.seed, "species"));
     if (n > 1) detail::refuseOverlappingNeighbours(sys, lattice, scene);
     const Vec3 pMean = totalMomentum(sys) / (sys.body.mass * n);
     for (auto& b : sys.bodies)

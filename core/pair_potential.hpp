@@ -22,11 +22,16 @@ enum class AttitudeUse {
     None,  // central forces: the attitude is never read
     Axis,  // the unit symmetry axis s (lab frame)
     Frame, // the rotation Q = Aᵀ, body -> lab: its columns are the body's principal axes
+    // central forces between spheres of several species (core/lj_mixture.hpp): the body's
+    // species index, which picks the pair's parameters; no attitude, no torque
+    Species,
 };
 
 /// What a potential with the given use is handed of each body.
 template <AttitudeUse use>
-using OrientationFor = std::conditional_t<use == AttitudeUse::Frame, Mat3, Vec3>;
+using OrientationFor =
+    std::conditional_t<use == AttitudeUse::Frame, Mat3,
+                       std::conditional_t<use == AttitudeUse::Species, int, Vec3>>;
 
 /// Everything a pair evaluation returns (kJ/mol, kJ/mol/Å, kJ/mol per radian).
 struct PairForce {
@@ -66,7 +71,13 @@ concept RangeBounded = requires(const P p, Vec3 r, typename P::Orientation o, do
 };
 
 /// Whether P reads the attitude at all (torques, rotation in the search).
-template <class P> inline constexpr bool isOrientational = P::attitude != AttitudeUse::None;
+template <class P>
+inline constexpr bool isOrientational =
+    P::attitude == AttitudeUse::Axis || P::attitude == AttitudeUse::Frame;
+
+/// Whether P is handed anything of each body (an attitude, or a species): whether the engines
+/// keep each body's Orientation beside its position.
+template <class P> inline constexpr bool readsBodies = P::attitude != AttitudeUse::None;
 
 /// dU/dt along free motion, paper eq. (13): -F_ij·v_ij - τ_ij·ω_i - τ_ji·ω_j, with v_ij = v_i -
 /// v_j.

@@ -51,8 +51,8 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         applyOverride(j, o, origin);
         if (const auto parsed = parseOverride(o)) overridden.push_back(parsed->first);
     }
-    top.onlyKeys({"name", "seed", "units", "body", "potential", "state", "engine", "dmd", "smd",
-                  "run", "output", "analysis"});
+    top.onlyKeys({"name", "seed", "units", "body", "potential", "species", "state", "engine",
+                  "dmd", "smd", "run", "output", "analysis"});
     Scene s;
     detail::readIdentity(top, s);
     s.units = top.choice("units", s.units, {"real", "lj"});
@@ -65,6 +65,7 @@ Scene sceneFromJson(const json& input, const std::string& origin,
     else if (body.has("sites"))
         body.fail("sites", "only meaningful for potential.kind sites");
     detail::checkInertia(body, s);
+    detail::readSpecies(top, s);
     // The model now gives the scale: every later key is converted to real units before its
     // reader sees it, so readers and engines never meet reduced numbers.
     const UnitSystem u = unitSystem(s);
@@ -147,6 +148,22 @@ json toJson(const Scene& s) {
         j["potential"]["hard_core"] = s.potential.hard_core;
     } else {
         j["potential"]["cutoff"] = json::array({s.potential.r_l, s.potential.r_u});
+    }
+    // Written only for a mixture: any other scene resolves to the same bytes as before.
+    if (!s.species.empty()) {
+        json list = json::array();
+        for (const auto& x : s.species)
+            list.push_back({{"name", x.name},
+                            {"fraction", x.fraction},
+                            {"epsilon", x.epsilon},
+                            {"sigma", x.sigma}});
+        j["species"] = list;
+        json pairs = json::array();
+        for (const auto& x : s.potential.pairs)
+            pairs.push_back({{"between", json::array({x.first, x.second})},
+                             {"epsilon", x.epsilon},
+                             {"sigma", x.sigma}});
+        j["potential"]["pairs"] = pairs;
     }
     j["state"] = {
         {"n", s.state.n}, {"density", s.state.density}, {"temperature", s.state.temperature}};
@@ -238,7 +255,8 @@ StepPotential stepPotential(const Scene& s) {
 double sceneMinimumEnergy(const Scene& s) {
     if (s.potential.kind == "steps")
         return stepPotential(s).table.minimumEnergy() * s.potential.epsilon;
-    if (s.potential.kind == "lj") return ljPotential(s).minimumEnergy();
+    if (s.potential.kind == "lj")
+        return s.species.empty() ? ljPotential(s).minimumEnergy() : ljMixture(s).minimumEnergy();
     if (s.potential.kind == "gay-berne") return gayBernePotential(s).minimumEnergy();
     if (s.potential.kind == "sites")
         return SitePotential<AttitudeUse::Frame>::fromSites(sceneSites(s)).minimumEnergy();

@@ -46,6 +46,24 @@ struct SiteSpec {
     double sigma = 0.0;
 };
 
+/// One species of a mixture of spheres (Scene::species): its share of the bodies and its own
+/// Lennard-Jones ε and σ in the scene's units (potential.epsilon, potential.sigma), so that a
+/// mixture given in ε_AA and σ_AA, as the literature gives them, is typed as printed.
+struct SpeciesSpec {
+    std::string name;
+    double fraction = 0.0; // of state.n; the fractions add up to 1
+    double epsilon = 1.0;  // ε
+    double sigma = 1.0;    // σ
+};
+
+/// The parameters of one unlike pair (potential.pairs), in place of Lorentz–Berthelot's mixing
+/// of its species' own (ε, σ as for SpeciesSpec).
+struct SpeciesPairSpec {
+    std::string first, second;
+    double epsilon = 1.0;
+    double sigma = 1.0;
+};
+
 struct Scene {
     std::string name = "dense-rods";
     std::uint64_t seed = 1;
@@ -86,7 +104,14 @@ struct Scene {
         std::vector<double> step_radii;
         std::vector<double> step_energies;
         double hard_core = 0.0;
+        // lj with species only: unlike pairs' own parameters (core/lj_mixture.hpp).
+        std::vector<SpeciesPairSpec> pairs;
     } potential;
+
+    // A mixture of spheres under lj (core/species_sphere.hpp): two to LJMixture::maxSpecies
+    // species, empty for one kind of body. Bodies take their species at random, by the scene's
+    // seed, in the numbers speciesCounts gives.
+    std::vector<SpeciesSpec> species;
 
     struct State {
         int n = 512;
@@ -175,6 +200,10 @@ struct Scene {
 
 /// The lowest value the scene's pair potential can take, kJ/mol (a bound for site-site models).
 double sceneMinimumEnergy(const Scene& s);
+
+/// How many bodies of each species (Scene::species, in its order) among `n`: the fractions'
+/// shares rounded by largest remainder, so that they add up to n. Empty without species.
+std::vector<int> speciesCounts(const Scene& s, int n);
 
 /// The built-in default scene: the paper's dense rods (N 512, ρ* 0.5, T* 1.4), as a scene file
 /// without keys resolves (thermo.csv at its default interval, where Scene{} writes none).

@@ -134,7 +134,7 @@ void readStepTable(const JsonSection& pot, Scene& s) {
 void readPotential(const JsonSection& pot, Scene& s) {
     pot.onlyKeys({"kind", "epsilon", "sigma", "zeta", "cutoff", "kappa", "kappa_prime", "mu", "nu",
                   "steps", "hard_core", "lambda", "depth", "attractive_steps", "range",
-                  "energy_rule", "core_energy"});
+                  "energy_rule", "core_energy", "pairs"});
     auto& p = s.potential;
     p.kind = pot.choice("kind", p.kind, {"gay-berne", "lj", "rod-lj", "sites", "steps"});
     if (p.kind == "steps") readStepTable(pot, s);

@@ -12,6 +12,7 @@ void readIdentity(const JsonSection& top, Scene& s);  // name, seed
 void readBody(const JsonSection& body, Scene& s);     // body (sites wait for the potential)
 void readPotential(const JsonSection& pot, Scene& s); // potential, and what it asks of the body
 void readSites(const JsonSection& body, Scene& s);    // body.sites for potential.kind sites
+void readSpecies(const JsonSection& top, Scene& s);   // species and potential.pairs (after both)
 void checkInertia(const JsonSection& body, const Scene& s);
 void readState(const JsonSection& state, Scene& s);
 /// kT and thermal motion the time grid resolves; explicit bodies a double can carry.

@@ -105,6 +105,15 @@ void readState(const JsonSection& st, Scene& s) {
     state.temperature = st.number("temperature", state.temperature, 0,
                                   std::numeric_limits<double>::infinity(), true);
     state.orientations = st.choice("orientations", state.orientations, {"aligned", "random"});
+    const std::vector<int> counts = speciesCounts(s, state.n);
+    for (std::size_t a = 0; a < counts.size(); ++a)
+        if (counts[a] < 1)
+            st.fail("n", std::to_string(state.n) + " bodies leave species " + s.species[a].name +
+                             " (fraction " + showNumber(s.species[a].fraction) +
+                             ") none: raise state.n");
+    if (!s.species.empty() && st.has("particles"))
+        st.fail("particles", "an explicit start cannot name species yet: start a mixture on a "
+                             "lattice");
     if (!st.has("particles")) return;
     const auto& list = st.at("particles");
     if (!list.is_array()) st.fail("particles", "must be an array");

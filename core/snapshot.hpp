@@ -3,6 +3,7 @@
 // output see. Both engines produce the same Snapshot, so g(r) and the correlation functions
 // cannot treat DMD and SMD differently.
 #include "core/system.hpp"
+#include <cstdint>
 #include <vector>
 
 namespace terrace {
@@ -15,6 +16,7 @@ struct Snapshot {
     std::vector<Vec3> axis;        // unit long axes (body axis 3)
     std::vector<Vec3> omega;       // lab angular velocities, rad per time unit
     std::vector<Quat> orientation; // body -> lab rotation; filled for tops only
+    std::vector<std::int32_t> species; // index into Scene::species; filled for mixtures only
 
     int size() const { return static_cast<int>(position.size()); }
 };
@@ -32,6 +34,7 @@ template <BodyKind K> Snapshot emptySnapshot(double t, double boxLength, std::si
     s.axis.reserve(n);
     s.omega.reserve(n);
     if (withOrientation) s.orientation.reserve(n);
+    if constexpr (requires(const typename K::State& b) { b.species; }) s.species.reserve(n);
     return s;
 }
 
@@ -43,6 +46,7 @@ void appendBody(Snapshot& s, const typename K::State& b, const BodyParams& param
     s.axis.push_back(K::axis(b));
     s.omega.push_back(K::angularVelocity(b, params));
     if constexpr (requires { b.A; }) s.orientation.emplace_back(Mat3(b.A.transpose()));
+    if constexpr (requires { b.species; }) s.species.push_back(b.species);
 }
 
 /// Only the positions of every body (the other fields empty): what a g(r) frame needs.

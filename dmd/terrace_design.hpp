@@ -79,12 +79,14 @@ inline constexpr double optimalWallInKT = 5.0;
 inline constexpr long maxOptimalLevels = 2500;
 
 /// The potential along one fixed alignment, s_i·s_j = 1/√2 with the separation along x (a frame
-/// potential: body j turned by 45° about x from body i).
+/// potential: body j turned by 45° about x from body i; a mixture: its first species' pair).
 template <PairPotential P> double profileEnergy(const P& p, double r) {
     if constexpr (P::attitude == AttitudeUse::Frame) {
         const Mat3 qi = Mat3::Identity();
         const Mat3 qj = rotationMatrix(Vec3::UnitX(), -0.25 * std::numbers::pi);
         return p.energy(Vec3(r, 0.0, 0.0), qi, qj);
+    } else if constexpr (P::attitude == AttitudeUse::Species) {
+        return p.energy(Vec3(r, 0.0, 0.0), 0, 0); // a mixture's first like pair
     } else {
         const Vec3 si = Vec3::UnitZ();
         const Vec3 sj = (Vec3::UnitZ() + Vec3::UnitY()).normalized();

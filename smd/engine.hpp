@@ -87,7 +87,7 @@ private:
         const std::size_t n = sys_.bodies.size();
         position_.resize(n);
         local_.resize(n);
-        if (isOrientational<P>) orientation_.resize(n);
+        if (readsBodies<P>) orientation_.resize(n);
         if (sortBodies_) {
             sceneOf_.resize(n);
             std::iota(sceneOf_.begin(), sceneOf_.end(), 0);
@@ -353,8 +353,8 @@ private:
                     local_[a] - local_[b] + list_.imageShift[e & NeighbourList::imageMask];
                 if (!(rij.squaredNorm() < outer2)) continue;
                 const double U =
-                    sys_.potential.energy(rij, isOrientational<P> ? orientation_[a] : none,
-                                          isOrientational<P> ? orientation_[b] : none);
+                    sys_.potential.energy(rij, readsBodies<P> ? orientation_[a] : none,
+                                          readsBodies<P> ? orientation_[b] : none);
                 if (overlapsAtStart(U, uMin))
                     throwOverlap(sceneIndex(list_.order[a]), sceneIndex(list_.order[b]), U);
             }
@@ -421,7 +421,7 @@ private:
         for (std::size_t a = 0; a < n; ++a) {
             const int i = list_.order[a];
             local_[a] = position_[i] - list_.offset[a];
-            if constexpr (isOrientational<P>) orientation_[a] = orientationOf<P, K>(sys_.bodies[i]);
+            if constexpr (readsBodies<P>) orientation_[a] = orientationOf<P, K>(sys_.bodies[i]);
         }
         forces_.reset(n);
         accumulateListedPairs<typename P::Bare>(forces_, sys_.potential, list_, local_,
@@ -441,7 +441,7 @@ private:
     Forces forces_;              // per list slot (list_.order maps slots to bodies)
     std::vector<Vec3> position_; // per body, unwrapped
     std::vector<Vec3> local_;    // per list slot: r - offset
-    std::vector<typename P::Orientation> orientation_; // per list slot, orientational P only
+    std::vector<typename P::Orientation> orientation_; // per list slot, for a P that reads bodies
     long steps_ = 0;
     long evaluations_ = 0;
     PhaseSeconds seconds_;

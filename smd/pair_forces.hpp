@@ -39,7 +39,7 @@ struct Forces {
 
 /// Accumulates every listed pair within r_u into out, per list slot. x[a] = r - list.offset[a]
 /// for the body in slot a; orientation[a] its orientation (core/body_orientation.hpp), read only
-/// for orientational potentials. The portable loop, one pair at a time.
+/// for potentials that read bodies. The portable loop, one pair at a time.
 template <PairPotential P>
 [[gnu::flatten]] void
 accumulateListedPairsScalar(Forces& out, const Smoothed<P>& potentialIn, const NeighbourList& list,
@@ -69,7 +69,7 @@ accumulateListedPairsScalar(Forces& out, const Smoothed<P>& potentialIn, const N
     constexpr std::size_t prefetchAhead = 8;
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3 xi = xs[i];
-        const Orientation& si = isOrientational<P> ? orientations[i] : none;
+        const Orientation& si = readsBodies<P> ? orientations[i] : none;
         Vec3 fi(0.0, 0.0, 0.0), ti(0.0, 0.0, 0.0); // not Vec3::Zero(): an out-of-line call at -O2
         const std::size_t end = start[i + 1];
         for (std::size_t k = start[i]; k < end; ++k) {
@@ -77,10 +77,8 @@ accumulateListedPairsScalar(Forces& out, const Smoothed<P>& potentialIn, const N
                 const std::size_t p = entry[k + prefetchAhead] >> NeighbourList::imageBits;
                 __builtin_prefetch(xs + p);
                 __builtin_prefetch(force + p, 1);
-                if constexpr (isOrientational<P>) {
-                    __builtin_prefetch(orientations + p);
-                    __builtin_prefetch(torque + p, 1);
-                }
+                if constexpr (readsBodies<P>) __builtin_prefetch(orientations + p);
+                if constexpr (isOrientational<P>) __builtin_prefetch(torque + p, 1);
             }
             const std::uint32_t e = entry[k];
             const std::size_t j = e >> NeighbourList::imageBits;
@@ -92,7 +90,7 @@ accumulateListedPairsScalar(Forces& out, const Smoothed<P>& potentialIn, const N
                 if (r2 >= outer2) continue;
                 ++evaluations;
             }
-            const Orientation& sj = isOrientational<P> ? orientations[j] : none;
+            const Orientation& sj = readsBodies<P> ? orientations[j] : none;
             const auto f = Kernel::evaluate(potential, rij, r2, si, sj);
             u += f.U;
             w += rij.dot(f.F);

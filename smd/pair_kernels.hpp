@@ -8,6 +8,7 @@
 // the formulas of core/lj_potential.hpp rearranged (test_pair_kernels.cpp checks that both agree
 // to round-off), with the switch g(r) and the -U g'(r) r̂ term of smoothed().
 // Units: Å, kJ/mol, kJ/mol/Å.
+#include "core/lj_mixture.hpp"
 #include "core/lj_potential.hpp"
 #include "core/smoothed_potential.hpp"
 #include <cmath>
@@ -50,6 +51,29 @@ template <> struct PairKernel<Smoothed<LJPotential>> {
         // A branch, not a clamped t in [0, 1] for every pair: the faster of the two in the scalar
         // pair loop (docs/PERFORMANCE.md).
         if (r2 > cut.inner() * cut.inner()) { // in the switch: g U, g F - U g' r̂
+            const double r = std::sqrt(r2), g = cut.switching(r);
+            forceOverR = g * forceOverR - u * cut.switchingSlope(r) * (r * inv2);
+            u *= g;
+        }
+        return {u, forceOverR * rij};
+    }
+};
+
+/// A Lennard-Jones mixture: the same form, with the pair's ε and σ picked by the two species.
+template <> struct PairKernel<Smoothed<LJMixture>> {
+    static constexpr bool evaluatesBeyondCutoff = false;
+
+    static CentralForce evaluate(const Smoothed<LJMixture>& model, const Vec3& rij, double r2,
+                                 int a, int b) {
+        const LJMixture& lj = model.bare;
+        const SmoothedCutoff& cut = model.cut;
+        const double epsilon = lj.pairEpsilon(a, b), sigma = lj.pairSigma(a, b);
+        const double inv2 = 1.0 / r2;
+        const double s2 = sigma * sigma * inv2;
+        const double s6 = s2 * s2 * s2;
+        double u = 4.0 * epsilon * s6 * (s6 - 1.0);
+        double forceOverR = 24.0 * epsilon * s6 * (2.0 * s6 - 1.0) * inv2;
+        if (r2 > cut.inner() * cut.inner()) {
             const double r = std::sqrt(r2), g = cut.switching(r);
             forceOverR = g * forceOverR - u * cut.switchingSlope(r) * (r * inv2);
             u *= g;
