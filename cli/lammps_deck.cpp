@@ -547,6 +547,10 @@ template <BodyKind K, AttitudeUse use> LammpsDeck sitesDeck(const Scene& scene) 
 
 LammpsDeck lammpsDeck(const Scene& scene) {
     const std::string& kind = scene.potential.kind;
+    if (!scene.species.empty())
+        throw LammpsRefusal("species: the deck of a mixture is not written yet (one atom type "
+                            "and one pair_coeff per species pair, each with the scene's one "
+                            "smoothed cutoff); export a single species");
     if (kind == "lj") return sphereDeck(scene);
     if (kind == "gay-berne") return gayBerneDeck(scene);
     if (kind == "steps")

@@ -54,6 +54,10 @@ GsdBodyType gsdBodyType(const Scene& scene) {
              : k == "sites"     ? "molecule"
                                 : "rod";
     t.shape = gsdTypeShape(scene);
+    for (const auto& x : scene.species) {
+        t.species.push_back(x.name);
+        t.speciesDiameters.push_back(x.sigma * scene.potential.sigma);
+    }
     t.mass = scene.body.mass;
     t.inertia = scene.body.kind == "sphere" ? Vec3::Zero() : scene.body.inertia;
     return t;
@@ -84,9 +88,13 @@ void writeConstantChunks(GsdWriter& f, std::uint32_t n, double boxLength, const 
     chunk(f, "configuration/box", GsdType::Float, 6, 1, std::vector<float>{L, L, L, 0, 0, 0});
     chunk(f, "particles/N", GsdType::UInt32, 1, 1, std::vector<std::uint32_t>{n});
     std::uint32_t width = 0;
-    const auto names = stringRows({type.name}, width);
-    chunk(f, "particles/types", GsdType::Int8, 1, width, names);
-    chunk(f, "particles/typeid", GsdType::UInt32, n, 1, std::vector<std::uint32_t>(n, 0));
+    const std::vector<std::string> typeNames =
+        type.species.empty() ? std::vector<std::string>{type.name} : type.species;
+    const auto names = stringRows(typeNames, width);
+    chunk(f, "particles/types", GsdType::Int8, typeNames.size(), width, names);
+    // A mixture's typeid is its bodies' species, written with the first frame's bodies.
+    if (type.species.empty())
+        chunk(f, "particles/typeid", GsdType::UInt32, n, 1, std::vector<std::uint32_t>(n, 0));
     chunk(f, "particles/mass", GsdType::Float, n, 1, std::vector<float>(n, float(type.mass)));
     std::vector<float> inertia;
     inertia.reserve(3 * std::size_t(n));
@@ -94,8 +102,14 @@ void writeConstantChunks(GsdWriter& f, std::uint32_t n, double boxLength, const 
         for (int c = 0; c < 3; ++c)
             inertia.push_back(float(type.inertia[c]));
     chunk(f, "particles/moment_inertia", GsdType::Float, n, 3, inertia);
-    const auto shapes = stringRows({type.shape.dump()}, width);
-    chunk(f, "particles/type_shapes", GsdType::Int8, 1, width, shapes);
+    std::vector<std::string> shapeRows{type.shape.dump()};
+    if (!type.species.empty()) {
+        shapeRows.clear();
+        for (double d : type.speciesDiameters)
+            shapeRows.push_back(nlohmann::json{{"type", "Sphere"}, {"diameter", d}}.dump());
+    }
+    const auto shapes = stringRows(shapeRows, width);
+    chunk(f, "particles/type_shapes", GsdType::Int8, shapeRows.size(), width, shapes);
 }
 
 /// Body i's orientation as HOOMD reads it (s x y z): a top's own; a linear rotor's rotation of
@@ -136,7 +150,18 @@ void writeHoomdFrame(GsdWriter& f, int bodies, double time, double boxLength,
                      const std::function<Snapshot(int, int)>& bodiesOf, const GsdBodyType& type,
                      std::uint64_t sample, int perPiece) {
     if (perPiece < 1) throw std::invalid_argument("writeHoomdFrame: no bodies per piece");
-    if (f.frames() == 0) writeConstantChunks(f, std::uint32_t(bodies), boxLength, type);
+    if (f.frames() == 0) {
+        writeConstantChunks(f, std::uint32_t(bodies), boxLength, type);
+        if (!type.species.empty())
+            bodyChunk<std::uint32_t>(
+                f, "particles/typeid", GsdType::UInt32, 1, bodies, bodiesOf, perPiece,
+                [](const Snapshot& s, int i, std::vector<std::uint32_t>& out) {
+                    if (s.species.empty())
+                        throw std::logic_error(
+                            "writeHoomdFrame: a mixture's bodies without species");
+                    out.push_back(static_cast<std::uint32_t>(s.species[i]));
+                });
+    }
     chunk(f, "configuration/step", GsdType::UInt64, 1, 1, std::vector<std::uint64_t>{sample});
     const double L = boxLength, perPs = 1.0 / units::psPerTimeUnit;
     // HOOMD's box spans [-L/2, L/2): our unwrapped positions are taken into it, and the images
@@ -203,6 +228,7 @@ void writeHoomdFrame(GsdWriter& f, const Snapshot& s, const GsdBodyType& type,
         take(s.axis, piece.axis);
         take(s.omega, piece.omega);
         take(s.orientation, piece.orientation);
+        take(s.species, piece.species);
         return piece;
     };
     writeHoomdFrame(f, s.size(), s.time, s.boxLength, bodiesOf, type, sample);

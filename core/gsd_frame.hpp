@@ -34,6 +34,10 @@ struct GsdBodyType {
     nlohmann::json shape;  // gsdTypeShape
     double mass = 0.0;     // g/mol
     Vec3 inertia{0, 0, 0}; // principal moments, g/mol Å²
+    // A mixture's species (Scene::species), each a type of its own named as the species, a
+    // sphere of its own σ; the bodies' typeid then comes from each frame's Snapshot::species.
+    std::vector<std::string> species;
+    std::vector<double> speciesDiameters; // Å
 };
 GsdBodyType gsdBodyType(const Scene& scene);
 

@@ -6,7 +6,8 @@
 // end-to-end one of a Gay–Berne pair, which is κ'^{1/μ} times shallower than the side-by-side
 // one) is swallowed whole: DMD then samples a different fluid, with no error bar that shows it.
 //
-// The check runs over a fixed set of random relative orientations (one for spheres), the same
+// The check runs over a fixed set of random relative orientations (one for spheres, each species
+// pair for a mixture), the same
 // kind of sample a terrace design weighs (dmd/pair_energy_density.hpp), each profile scanned on
 // a radial grid from inside the wall out to the model's range. Wells shallower than
 // `significant` are not counted: a well of a few hundredths of kT moves nothing measurable.
@@ -18,6 +19,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace terrace::dmd {
 
@@ -38,12 +42,26 @@ WellCoverage wellCoverage(const P& p, const TerraceLevels& levels, double signif
         if (std::isfinite(p.range())) rOut = std::min(rOut, p.range());
     const double rIn = 0.5 * p.reachDistance(wall);
     WellCoverage c;
-    c.orientations = isOrientational<P> ? orientations : 1;
+    // A mixture's "orientations" are its species pairs, each checked once.
+    std::vector<std::pair<int, int>> speciesPairs;
+    if constexpr (P::attitude == AttitudeUse::Species) {
+        int species = 1;
+        if constexpr (requires { p.bare.species; })
+            species = p.bare.species;
+        else
+            species = p.species;
+        for (int a = 0; a < species; ++a)
+            for (int b = a; b < species; ++b)
+                speciesPairs.emplace_back(a, b);
+        orientations = static_cast<int>(speciesPairs.size());
+    }
+    c.orientations = readsBodies<P> ? orientations : 1;
     if (!(rOut > rIn)) return c;     // no well deeper than `significant` anywhere
     std::mt19937_64 rng(0x3e11c0de); // fixed: the check is a pure function of its inputs
     const int zero = levels.terraceOf(0.0);
     for (int k = 0; k < c.orientations; ++k) {
         auto si = unusedOrientation<P>(), sj = unusedOrientation<P>();
+        if constexpr (P::attitude == AttitudeUse::Species) std::tie(si, sj) = speciesPairs[k];
         if constexpr (isOrientational<P>) {
             if constexpr (P::attitude == AttitudeUse::Frame)
                 si = terrace::detail::randomRotation(rng),

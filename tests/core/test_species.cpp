@@ -1,0 +1,257 @@
+// Mixtures of Lennard-Jones spheres (Scene::species, potential.pairs): the scene's reading and
+// refusals, the bodies' counts, Lorentz–Berthelot and explicit unlike pairs in the potential, the
+// potential's bounds over its pairs, a lattice start that deals the species out, and a GSD
+// trajectory with one type per species.
+#include "core/gsd_file.hpp"
+#include "core/gsd_frame.hpp"
+#include "core/initial_state.hpp"
+#include "core/lj_mixture.hpp"
+#include "core/scene.hpp"
+#include "core/smoothed_potential.hpp"
+#include "core/species_sphere.hpp"
+#include "tests/core/scene_errors.hpp"
+#include <cstring>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+using namespace terrace;
+using nlohmann::json;
+using terrace::scene_tests::errorOf;
+
+namespace {
+
+/// Kob–Andersen's binary mixture (Phys. Rev. E 51, 4626 (1995)) in units of ε_AA and σ_AA.
+json kobAndersen() {
+    return {{"body", {{"kind", "sphere"}, {"mass", 1.0}}},
+            {"potential",
+             {{"kind", "lj"},
+              {"epsilon", 2.0},
+              {"sigma", 3.0},
+              {"pairs", {{{"between", {"A", "B"}}, {"epsilon", 1.5}, {"sigma", 0.8}}}}}},
+            {"species",
+             {{{"name", "A"}, {"fraction", 0.8}, {"epsilon", 1.0}, {"sigma", 1.0}},
+              {{"name", "B"}, {"fraction", 0.2}, {"epsilon", 0.5}, {"sigma", 0.88}}}},
+            {"state", {{"n", 500}, {"density", 1.2}, {"temperature", 2.0}}}};
+}
+
+} // namespace
+
+TEST(Species, KobAndersenPairsInTheScenesUnits) {
+    const Scene s = sceneFromJson(kobAndersen(), "test.json");
+    ASSERT_EQ(s.species.size(), 2u);
+    const LJMixture m = ljMixture(s);
+    EXPECT_EQ(m.species, 2);
+    // Like pairs: the species' own ε, σ times potential.epsilon = 2, sigma = 3.
+    EXPECT_DOUBLE_EQ(m.pairEpsilon(0, 0), 2.0);
+    EXPECT_DOUBLE_EQ(m.pairSigma(0, 0), 3.0);
+    EXPECT_DOUBLE_EQ(m.pairEpsilon(1, 1), 1.0);
+    EXPECT_DOUBLE_EQ(m.pairSigma(1, 1), 0.88 * 3.0);
+    // The unlike pair as given, not mixed, and symmetric.
+    EXPECT_DOUBLE_EQ(m.pairEpsilon(0, 1), 3.0);
+    EXPECT_DOUBLE_EQ(m.pairEpsilon(1, 0), 3.0);
+    EXPECT_DOUBLE_EQ(m.pairSigma(1, 0), 0.8 * 3.0);
+    EXPECT_DOUBLE_EQ(m.minimumEnergy(), -3.0);
+    EXPECT_EQ(speciesCounts(s, 500), (std::vector<int>{400, 100}));
+}
+
+TEST(Species, LorentzBerthelotWhereNoPairIsGiven) {
+    json j = kobAndersen();
+    j["potential"].erase("pairs");
+    const LJMixture m = ljMixture(sceneFromJson(j, "test.json"));
+    EXPECT_DOUBLE_EQ(m.pairSigma(0, 1), 0.5 * (1.0 + 0.88) * 3.0);
+    EXPECT_DOUBLE_EQ(m.pairEpsilon(0, 1), std::sqrt(1.0 * 0.5) * 2.0);
+}
+
+TEST(Species, TheResolvedSceneReadsBackTheSame) {
+    const Scene s = sceneFromJson(kobAndersen(), "test.json");
+    const Scene again = sceneFromJson(toJson(s), "scene.json");
+    EXPECT_EQ(toJson(again), toJson(s));
+    const LJMixture a = ljMixture(s), b = ljMixture(again);
+    EXPECT_EQ(a.epsilon, b.epsilon);
+    EXPECT_EQ(a.sigma, b.sigma);
+}
+
+TEST(Species, CountsByLargestRemainderAddUpToN) {
+    json j = kobAndersen();
+    j["species"][0]["fraction"] = 1.0 / 3.0;
+    j["species"][1]["fraction"] = 2.0 / 3.0;
+    const Scene s = sceneFromJson(j, "test.json");
+    EXPECT_EQ(speciesCounts(s, 10), (std::vector<int>{3, 7})); // 3.33 | 6.67: the 7th to B
+    EXPECT_EQ(speciesCounts(s, 11), (std::vector<int>{4, 7})); // 3.67 | 7.33: the 4th to A
+    EXPECT_EQ(speciesCounts(s, 12), (std::vector<int>{4, 8}));
+    EXPECT_TRUE(speciesCounts(Scene{}, 12).empty());
+}
+
+TEST(Species, RefusalsNameTheKeyAndTheCause) {
+    json j = kobAndersen();
+    j["species"][1]["fraction"] = 0.3;
+    EXPECT_NE(errorOf(j).find("species: the fractions add up to 1.1, not 1"), std::string::npos)
+        << errorOf(j);
+    j = kobAndersen();
+    j["species"][1]["name"] = "A";
+    EXPECT_NE(errorOf(j).find("species[1].name: \"A\" is named twice"), std::string::npos)
+        << errorOf(j);
+    j = kobAndersen();
+    j["potential"]["pairs"][0]["between"] = {"A", "C"};
+    EXPECT_NE(errorOf(j).find("no species \"C\" (the species are A, B)"), std::string::npos)
+        << errorOf(j);
+    j = kobAndersen();
+    j["potential"]["pairs"][0]["between"] = {"B", "B"};
+    EXPECT_NE(errorOf(j).find("a like pair takes its species' own"), std::string::npos)
+        << errorOf(j);
+    j = kobAndersen();
+    j["potential"]["pairs"].push_back(j["potential"]["pairs"][0]);
+    j["potential"]["pairs"][1]["between"] = {"B", "A"};
+    EXPECT_NE(errorOf(j).find("is given twice"), std::string::npos) << errorOf(j);
+    j = kobAndersen();
+    j["species"].erase(1);
+    EXPECT_NE(errorOf(j).find("species: must be an array of 2 to 4 species"), std::string::npos)
+        << errorOf(j);
+    j = kobAndersen();
+    j["potential"]["kind"] = "steps";
+    j["potential"]["steps"] = "square_well";
+    j["potential"].erase("pairs");
+    EXPECT_NE(errorOf(j).find("a mixture is of Lennard-Jones spheres"), std::string::npos)
+        << errorOf(j);
+    j = kobAndersen();
+    j["species"].erase(0);
+    j["species"].erase(0);
+    j.erase("species");
+    EXPECT_NE(errorOf(j).find("potential.pairs: only meaningful with species"), std::string::npos)
+        << errorOf(j);
+    j = kobAndersen();
+    j["state"]["n"] = 4;
+    j["species"][0]["fraction"] = 0.9;
+    j["species"][1]["fraction"] = 0.1;
+    EXPECT_NE(errorOf(j).find("state.n: 4 bodies leave species B (fraction 0.1) none"),
+              std::string::npos)
+        << errorOf(j);
+    j = kobAndersen();
+    j["speceis"] = j["species"];
+    j.erase("species");
+    j["potential"].erase("pairs");
+    EXPECT_NE(errorOf(j).find("did you mean species?"), std::string::npos) << errorOf(j);
+}
+
+TEST(Species, ThePotentialsBoundsCoverEveryPair) {
+    LJMixture m;
+    m.species = 2;
+    m.setPair(0, 0, 1.0, 1.0);
+    m.setPair(1, 1, 0.5, 0.88);
+    m.setPair(0, 1, 1.5, 0.8);
+    const Vec3 r(1.1, 0.0, 0.0);
+    EXPECT_DOUBLE_EQ(m.energy(r, 0, 1),
+                     4.0 * 1.5 * (std::pow(0.8 / 1.1, 12) - std::pow(0.8 / 1.1, 6)));
+    EXPECT_DOUBLE_EQ(m.energy(r, 0, 1), m.energy(r, 1, 0));
+    // reachDistance: the farthest pair's root; lowestEnergyAt: the lowest pair's value.
+    for (double u : {-0.2, -0.4, 0.5})
+        EXPECT_DOUBLE_EQ(m.reachDistance(u), std::max({detail::lennardJonesRoot(u, 1.0, 1.0),
+                                                       detail::lennardJonesRoot(u, 0.5, 0.88),
+                                                       detail::lennardJonesRoot(u, 1.5, 0.8)}));
+    for (double x : {0.85, 1.0, 1.3, 2.0})
+        EXPECT_DOUBLE_EQ(m.lowestEnergyAt(x),
+                         std::min({m.energy(Vec3(x, 0, 0), 0, 0), m.energy(Vec3(x, 0, 0), 1, 1),
+                                   m.energy(Vec3(x, 0, 0), 0, 1)}));
+    // energyRange holds U over every distance within the shift, and is reached.
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+            for (double r0 : {0.8, 0.95, 1.2, 2.0}) {
+                const EnergyRange range = m.energyRange(Vec3(r0, 0, 0), a, b, 0.1, 0.0, 0.0);
+                double lo = 1e300, hi = -1e300;
+                for (int k = 0; k <= 1000; ++k) {
+                    const double u = m.energy(Vec3(r0 - 0.1 + 0.2 * k / 1000, 0, 0), a, b);
+                    lo = std::min(lo, u), hi = std::max(hi, u);
+                }
+                EXPECT_LE(range.lo, lo + 1e-12) << a << b << r0;
+                EXPECT_GE(range.hi, hi - 1e-12) << a << b << r0;
+                EXPECT_NEAR(range.lo, lo, 1e-4 * std::abs(lo) + 1e-9) << a << b << r0;
+                EXPECT_NEAR(range.hi, hi, 1e-12 * std::abs(hi)) << a << b << r0;
+            }
+    // The force is minus the gradient of U (central difference).
+    const Vec3 rij(0.7, -0.5, 0.6);
+    const PairForce f = m.evaluate(rij, 1, 0);
+    for (int c = 0; c < 3; ++c) {
+        Vec3 d = Vec3::Zero();
+        d[c] = 1e-6;
+        EXPECT_NEAR(f.F[c], -(m.energy(rij + d, 1, 0) - m.energy(rij - d, 1, 0)) / 2e-6, 1e-6);
+    }
+}
+
+TEST(Species, TheLatticeStartDealsOutTheCountsAtRandom) {
+    Scene s = sceneFromJson(kobAndersen(), "test.json");
+    const auto model = Smoothed<LJMixture>{ljMixture(s), sceneCutoff(s)};
+    const auto sys = buildInitialState<SpeciesSphere>(s, model);
+    std::vector<int> seen(2, 0);
+    int firstHundredB = 0;
+    for (int i = 0; i < sys.size(); ++i) {
+        ++seen[sys.bodies[i].species];
+        firstHundredB += i < 100 && sys.bodies[i].species == 1;
+    }
+    EXPECT_EQ(seen, (std::vector<int>{400, 100}));
+    // Shuffled, not in blocks: ~20 of the first hundred are B (binomial σ 4).
+    EXPECT_GT(firstHundredB, 5);
+    EXPECT_LT(firstHundredB, 40);
+    // Deterministic from the seed; another seed deals another order.
+    const auto again = buildInitialState<SpeciesSphere>(s, model);
+    s.seed = 2;
+    const auto other = buildInitialState<SpeciesSphere>(s, model);
+    int same = 0, differ = 0;
+    for (int i = 0; i < sys.size(); ++i) {
+        same += sys.bodies[i].species == again.bodies[i].species;
+        differ += sys.bodies[i].species != other.bodies[i].species;
+    }
+    EXPECT_EQ(same, sys.size());
+    EXPECT_GT(differ, 0);
+}
+
+TEST(Species, AGsdFrameHasOneTypePerSpeciesAndTheBodiesTypeid) {
+    const Scene s = sceneFromJson(kobAndersen(), "test.json");
+    const auto model = Smoothed<LJMixture>{ljMixture(s), sceneCutoff(s)};
+    const auto sys = buildInitialState<SpeciesSphere>(s, model);
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("terrace-species-" + std::to_string(::getpid()) + ".gsd");
+    {
+        GsdWriter w(path, "test", "hoomd", 1, 4, hoomdChunkNames());
+        // In pieces smaller than N: the typeid is gathered piece by piece as the positions are.
+        const Snapshot all = makeSnapshot(sys, 0.0);
+        writeHoomdFrame(
+            w, all.size(), 0.0, all.boxLength,
+            [&](int begin, int end) {
+                Snapshot piece = positionsOnly(0.0, all.boxLength, end - begin);
+                for (int i = begin; i < end; ++i) {
+                    piece.position.push_back(all.position[i]);
+                    piece.velocity.push_back(all.velocity[i]);
+                    piece.axis.push_back(all.axis[i]);
+                    piece.omega.push_back(all.omega[i]);
+                    piece.species.push_back(all.species[i]);
+                }
+                return piece;
+            },
+            gsdBodyType(s), 0, 64);
+    }
+    const GsdContents c = readGsdContents(path);
+    const auto entry = [&](const std::string& name) {
+        for (const auto& e : c.index)
+            if (c.names.at(e.id) == name) return e;
+        throw std::runtime_error("no chunk " + name);
+    };
+    const GsdIndexEntry types = entry("particles/types");
+    EXPECT_EQ(types.n, 2u);
+    const std::string typeBytes = readGsdChunk(path, types);
+    EXPECT_STREQ(typeBytes.data(), "A");
+    EXPECT_STREQ(typeBytes.data() + types.m, "B");
+    const GsdIndexEntry typeid_ = entry("particles/typeid");
+    ASSERT_EQ(typeid_.n, 500u);
+    const std::string ids = readGsdChunk(path, typeid_);
+    for (int i = 0; i < 500; ++i) {
+        std::uint32_t id = 0;
+        std::memcpy(&id, ids.data() + 4 * i, 4);
+        ASSERT_EQ(id, static_cast<std::uint32_t>(sys.bodies[i].species)) << i;
+    }
+    const std::string shapes = readGsdChunk(path, entry("particles/type_shapes"));
+    EXPECT_EQ(nlohmann::json::parse(std::string(shapes.data() + entry("particles/type_shapes").m))
+                  .at("diameter"),
+              0.88 * 3.0);
+    std::filesystem::remove(path);
+}

@@ -1,0 +1,111 @@
+// A binary Lennard-Jones mixture in both engines (validation tier): with small terraces
+// (ΔV = kT/8) DMD's configurational U per body and virial pressure, on its own configurations,
+// agree with SMD's within their error bars, and the error bars resolve U/N to 1 %.
+#include "analysis/block_average.hpp"
+#include "core/initial_state.hpp"
+#include "core/lj_mixture.hpp"
+#include "core/smoothed_potential.hpp"
+#include "core/species_sphere.hpp"
+#include "dmd/scene_engine.hpp"
+#include "smd/scene_engine.hpp"
+#include <cstdio>
+#include <gtest/gtest.h>
+#include <vector>
+
+using namespace terrace;
+
+namespace {
+
+using Model = Smoothed<LJMixture>;
+using MixtureSystem = System<SpeciesSphere, Model>;
+using DmdMixture = dmd::SceneEngine<SpeciesSphere, Model>;
+using SmdMixture = smd::SceneEngine<SpeciesSphere, Model>;
+
+/// A Kob–Andersen-like binary mixture (Phys. Rev. E 51, 4626 (1995): ε_AB 1.5, σ_AB 0.8,
+/// ε_BB 0.5, σ_BB 0.88) in units where ε = 1 kJ/mol, σ = 1 Å and m = 1 g/mol (τ = 100 fs), here
+/// at a liquid state point well above its glass transition.
+Scene mixtureScene(int n, double density, double temperature, double dVInKT) {
+    const nlohmann::json j = {
+        {"body", {{"kind", "sphere"}, {"mass", 1.0}}},
+        {"potential",
+         {{"kind", "lj"},
+          {"epsilon", 1.0},
+          {"sigma", 1.0},
+          {"cutoff", {2.5, 3.0}},
+          {"pairs", {{{"between", {"A", "B"}}, {"epsilon", 1.5}, {"sigma", 0.8}}}}}},
+        {"species",
+         {{{"name", "A"}, {"fraction", 0.8}, {"epsilon", 1.0}, {"sigma", 1.0}},
+          {{"name", "B"}, {"fraction", 0.2}, {"epsilon", 0.5}, {"sigma", 0.88}}}},
+        {"state",
+         {{"n", n}, {"density", density}, {"temperature", temperature}, {"lattice", "fcc"}}},
+        {"dmd", {{"model", "smoothed"}, {"dV", dVInKT}}},
+        {"smd", {{"dt_fs", 0.2}}}};
+    return sceneFromJson(j, "mixture");
+}
+
+MixtureSystem mixtureSystem(const Scene& s) {
+    return buildInitialState<SpeciesSphere>(s, Model{ljMixture(s), sceneCutoff(s)});
+}
+
+struct Means {
+    analysis::Estimate u, p; // continuous U per body (kJ/mol), pressure (kJ/mol/Å³)
+};
+
+/// Samples every `sampleFs` of `productionPs` after `equilibratePs` with rescaling, in `blocks`
+/// blocks: the continuous U per body and the virial pressure on the engine's configurations.
+template <class E> Means sampleMeans(E& e, double kT, double volume, int n) {
+    constexpr double equilibratePs = 1.0, productionPs = 6.0, sampleFs = 10.0;
+    constexpr int blocks = 12;
+    double t = 0.0;
+    while (t < units::fromPs(equilibratePs) - 1e-9) {
+        t += units::fromFs(50.0);
+        e.advanceTo(t);
+        e.rescaleTemperature(kT);
+    }
+    const int samples = static_cast<int>(std::lround(productionPs * 1000.0 / sampleFs));
+    std::vector<double> u(blocks, 0.0), p(blocks, 0.0), w(blocks, 0.0);
+    for (int k = 0; k < samples; ++k) {
+        t += units::fromFs(sampleFs);
+        e.advanceTo(t);
+        const ContinuousSums c = e.continuousSums(nullptr);
+        const int b = k * blocks / samples;
+        u[b] += c.potential / n;
+        p[b] += (2.0 * e.translationalKineticEnergy() + c.virial) / (3.0 * volume);
+        w[b] += 1.0;
+    }
+    for (int b = 0; b < blocks; ++b)
+        u[b] /= w[b], p[b] /= w[b];
+    auto estimate = [&](const std::vector<double>& v) {
+        double mean = 0.0;
+        for (double x : v)
+            mean += x / blocks;
+        return analysis::Estimate{mean, analysis::blockError(v, w, mean), double(blocks - 1),
+                                  blocks};
+    };
+    return {estimate(u), estimate(p)};
+}
+
+} // namespace
+
+TEST(Mixture, DmdWithSmallTerracesAgreesWithSmdOnUAndPressure) {
+    const Scene s = mixtureScene(256, 0.8, 2.0, 0.125);
+    const MixtureSystem start = mixtureSystem(s);
+    const double volume = start.box.volume();
+    DmdMixture dmdEngine(start, s);
+    SmdMixture smdEngine(start, s);
+    const Means d = sampleMeans(dmdEngine, s.kT(), volume, start.size());
+    const Means m = sampleMeans(smdEngine, s.kT(), volume, start.size());
+    // Four combined standard errors: a true difference of that size fails; the terracing's own
+    // bias of the configurational estimators at ΔV = kT/8 is far below the error bars here
+    // (results/README.md measures it at kT/2 on the LJ liquid: −0.03 ε per body).
+    const double uErr = std::hypot(d.u.err, m.u.err), pErr = std::hypot(d.p.err, m.p.err);
+    EXPECT_LT(std::abs(d.u.mean - m.u.mean), 4.0 * uErr)
+        << "U/N: DMD " << d.u.mean << " ± " << d.u.err << ", SMD " << m.u.mean << " ± " << m.u.err;
+    EXPECT_LT(std::abs(d.p.mean - m.p.mean), 4.0 * pErr)
+        << "P: DMD " << d.p.mean << " ± " << d.p.err << ", SMD " << m.p.mean << " ± " << m.p.err;
+    // The error bars resolve the mixture: U/N to better than 1 %.
+    EXPECT_LT(uErr, 0.01 * std::abs(m.u.mean));
+    std::printf("U/N: DMD %.5f ± %.5f, SMD %.5f ± %.5f kJ/mol; P: DMD %.6f ± %.6f, SMD %.6f ± "
+                "%.6f kJ/mol/Å³\n",
+                d.u.mean, d.u.err, m.u.mean, m.u.err, d.p.mean, d.p.err, m.p.mean, m.p.err);
+}
