@@ -97,9 +97,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
                               run.outputUnits);
     CpuClock cpu;
     InterruptGuard interrupt;
-    auto record = [&] {
-        sink.record(*engine, at.sample, restarts.productionCollisions(*engine));
-    };
+    auto record = [&] { sink.record(*engine, at.sample, restarts.productionCollisions(*engine)); };
     auto guarded = [&](auto&& work) { // the first error ends the run; its output is still written
         try {
             work();

@@ -52,8 +52,7 @@ struct LJMixture {
 
     /// U over the centre distances [r − shift, r + shift] (no attitude turns): each LJ curve
     /// falls to its minimum at 2^(1/6)σ_ab and rises after it.
-    EnergyRange energyRange(const Vec3& rij, int a, int b, double shift, double,
-                            double) const {
+    EnergyRange energyRange(const Vec3& rij, int a, int b, double shift, double, double) const {
         const double eps = pairEpsilon(a, b), sig = pairSigma(a, b);
         const double r = rij.norm();
         const double lo = std::max(0.0, r - shift), hi = r + shift;

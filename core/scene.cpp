@@ -51,8 +51,8 @@ Scene sceneFromJson(const json& input, const std::string& origin,
         applyOverride(j, o, origin);
         if (const auto parsed = parseOverride(o)) overridden.push_back(parsed->first);
     }
-    top.onlyKeys({"name", "seed", "units", "body", "potential", "species", "state", "engine",
-                  "dmd", "smd", "run", "output", "analysis"});
+    top.onlyKeys({"name", "seed", "units", "body", "potential", "species", "state", "engine", "dmd",
+                  "smd", "run", "output", "analysis"});
     Scene s;
     detail::readIdentity(top, s);
     s.units = top.choice("units", s.units, {"real", "lj"});

@@ -46,8 +46,7 @@ void readSpecies(const JsonSection& top, Scene& s) {
                             "potential.kind lj");
     double total = 0.0;
     for (std::size_t a = 0; a < list.size(); ++a) {
-        const JsonSection e(list[a], top.name("species[" + std::to_string(a) + "]"),
-                            top.origin());
+        const JsonSection e(list[a], top.name("species[" + std::to_string(a) + "]"), top.origin());
         e.onlyKeys({"name", "fraction", "epsilon", "sigma"});
         SpeciesSpec x;
         if (!e.has("name") || !e.at("name").is_string() || e.at("name").get<std::string>().empty())
@@ -55,7 +54,8 @@ void readSpecies(const JsonSection& top, Scene& s) {
         x.name = e.at("name").get<std::string>();
         if (x.name.find_first_of(" ,\t\n\"") != std::string::npos)
             e.fail("name", "must not hold spaces, commas or quotes (it names columns and atom "
-                           "types), got \"" + x.name + "\"");
+                           "types), got \"" +
+                               x.name + "\"");
         if (speciesIndex(s, x.name) >= 0) e.fail("name", "\"" + x.name + "\" is named twice");
         if (!e.has("fraction")) e.fail("fraction", "missing: the species' share of state.n");
         x.fraction = e.number("fraction", 0.0, 0.0, 1.0, true);
@@ -88,8 +88,8 @@ void readSpecies(const JsonSection& top, Scene& s) {
             const int a = speciesIndex(s, p.first), b = speciesIndex(s, p.second);
             for (const auto& [name, index] : {std::pair{p.first, a}, std::pair{p.second, b}})
                 if (index < 0)
-                    e.fail("between", "no species \"" + name + "\" (the species are " +
-                                          speciesNames(s) + ")");
+                    e.fail("between",
+                           "no species \"" + name + "\" (the species are " + speciesNames(s) + ")");
             if (a == b)
                 e.fail("between", "a like pair takes its species' own epsilon and sigma; give "
                                   "them there");
@@ -133,7 +133,8 @@ LJMixture ljMixture(const Scene& s) {
         for (int b = a; b < m.species; ++b) {
             const auto &x = s.species[a], &y = s.species[b];
             // Lorentz–Berthelot: the arithmetic mean of the diameters, the geometric of the wells.
-            m.setPair(a, b, std::sqrt(x.epsilon * y.epsilon) * eps, 0.5 * (x.sigma + y.sigma) * sig);
+            m.setPair(a, b, std::sqrt(x.epsilon * y.epsilon) * eps,
+                      0.5 * (x.sigma + y.sigma) * sig);
         }
     for (const auto& p : s.potential.pairs)
         m.setPair(speciesIndex(s, p.first), speciesIndex(s, p.second), p.epsilon * eps,

@@ -9,13 +9,13 @@
 namespace terrace {
 
 struct Snapshot {
-    double time = 0.0;             // internal time units (100 fs)
-    double boxLength = 0.0;        // Å
-    std::vector<Vec3> position;    // unwrapped centres of mass, Å
-    std::vector<Vec3> velocity;    // Å per time unit
-    std::vector<Vec3> axis;        // unit long axes (body axis 3)
-    std::vector<Vec3> omega;       // lab angular velocities, rad per time unit
-    std::vector<Quat> orientation; // body -> lab rotation; filled for tops only
+    double time = 0.0;                 // internal time units (100 fs)
+    double boxLength = 0.0;            // Å
+    std::vector<Vec3> position;        // unwrapped centres of mass, Å
+    std::vector<Vec3> velocity;        // Å per time unit
+    std::vector<Vec3> axis;            // unit long axes (body axis 3)
+    std::vector<Vec3> omega;           // lab angular velocities, rad per time unit
+    std::vector<Quat> orientation;     // body -> lab rotation; filled for tops only
     std::vector<std::int32_t> species; // index into Scene::species; filled for mixtures only
 
     int size() const { return static_cast<int>(position.size()); }

@@ -352,9 +352,8 @@ private:
                 const Vec3 rij =
                     local_[a] - local_[b] + list_.imageShift[e & NeighbourList::imageMask];
                 if (!(rij.squaredNorm() < outer2)) continue;
-                const double U =
-                    sys_.potential.energy(rij, readsBodies<P> ? orientation_[a] : none,
-                                          readsBodies<P> ? orientation_[b] : none);
+                const double U = sys_.potential.energy(rij, readsBodies<P> ? orientation_[a] : none,
+                                                       readsBodies<P> ? orientation_[b] : none);
                 if (overlapsAtStart(U, uMin))
                     throwOverlap(sceneIndex(list_.order[a]), sceneIndex(list_.order[b]), U);
             }
