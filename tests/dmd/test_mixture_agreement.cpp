@@ -1,6 +1,7 @@
-// A binary Lennard-Jones mixture in both engines (validation tier): with small terraces
-// (ΔV = kT/8) DMD's configurational U per body and virial pressure, on its own configurations,
-// agree with SMD's within their error bars, and the error bars resolve U/N to 1 %.
+// A binary Lennard-Jones mixture in both engines (validation tier), both under the same CSVR
+// heat bath: with small terraces (ΔV = kT/8) DMD's configurational U per body and virial
+// pressure, on its own configurations, agree with SMD's within their error bars, and the error
+// bars resolve U/N to 1 %.
 #include "analysis/block_average.hpp"
 #include "core/initial_state.hpp"
 #include "core/lj_mixture.hpp"
@@ -39,7 +40,11 @@ Scene mixtureScene(int n, double density, double temperature, double dVInKT) {
         {"state",
          {{"n", n}, {"density", density}, {"temperature", temperature}, {"lattice", "fcc"}}},
         {"dmd", {{"model", "smoothed"}, {"dV", dVInKT}}},
-        {"smd", {{"dt_fs", 0.2}}}};
+        {"smd", {{"dt_fs", 0.2}}},
+        // Both engines at the one temperature: after rescaled equilibration alone, NVE
+        // production settles a few per cent apart in T (the terraced and the continuous energy
+        // relax differently from the lattice), which moves U and P by more than their errors.
+        {"run", {{"heat_bath", {{"kind", "csvr"}, {"tau_fs", 100.0}}}}}};
     return sceneFromJson(j, "mixture");
 }
 
@@ -60,7 +65,7 @@ template <class E> Means sampleMeans(E& e, double kT, double volume, int n) {
     while (t < units::fromPs(equilibratePs) - 1e-9) {
         t += units::fromFs(50.0);
         e.advanceTo(t);
-        e.rescaleTemperature(kT);
+        if (t < 0.5 * units::fromPs(equilibratePs)) e.rescaleTemperature(kT); // the lattice's heat
     }
     const int samples = static_cast<int>(std::lround(productionPs * 1000.0 / sampleFs));
     std::vector<double> u(blocks, 0.0), p(blocks, 0.0), w(blocks, 0.0);
