@@ -30,7 +30,7 @@ long forEachFrame(const std::filesystem::path& path, const std::function<void(Sn
 /// by core's own initial state from the scene (species are dealt once, from the seed, and never
 /// change; the frames are in the scene's numbering).
 analysis::SpeciesLabels frameSpecies(const Scene& scene, const std::vector<std::int32_t>& first,
-                                     int bodies) {
+                                     int bodies, const std::filesystem::path& path) {
     analysis::SpeciesLabels labels;
     if (scene.species.empty()) return labels;
     for (const auto& s : scene.species)
@@ -40,8 +40,8 @@ analysis::SpeciesLabels frameSpecies(const Scene& scene, const std::vector<std::
     } else {
         const auto start = buildInitialState<SpeciesSphere>(scene, ljMixture(scene));
         if (start.size() != bodies)
-            throw TrajectoryError("the trajectory holds " + std::to_string(bodies) +
-                                  " bodies where its scene.json makes " +
+            throw TrajectoryError(path.string() + ": the trajectory holds " +
+                                  std::to_string(bodies) + " bodies where its scene.json makes " +
                                   std::to_string(start.size()));
         for (const auto& b : start.bodies)
             labels.ofBody.push_back(b.species);
@@ -85,7 +85,7 @@ int analyseRun(const std::filesystem::path& dir) {
     if (std::filesystem::exists(dir / "scene.json")) {
         const Scene scene = loadScene((dir / "scene.json").string());
         options = streamingOptions(scene);
-        species = frameSpecies(scene, firstSpecies, bodies);
+        species = frameSpecies(scene, firstSpecies, bodies, path);
         csvUnits = unitSystem(scene);
         // g(r) frames as far apart in time as in the run (trajectory frames are sparser).
         const double frameFs = units::toFs(secondTime - firstTime);

@@ -1,9 +1,11 @@
 // A mixture's labels as a run gives them to its analysis (cli/body_species.hpp): read from the
 // engine, they are the species the initial state dealt, body for body in the scene's numbering,
 // from DMD (which numbers its bodies in Morton order inside) and SMD alike, and still after the
-// engine has run; a scene without species has none.
+// engine has run; a scene without species has none. Each species' D in summary.json's
+// "reduced" entry, converted as the total's.
 #include "cli/body_species.hpp"
 #include "cli/dispatch.hpp"
+#include "cli/reduced_summary.hpp"
 #include "core/initial_state.hpp"
 #include "core/smoothed_potential.hpp"
 #include "core/species_sphere.hpp"
@@ -76,4 +78,24 @@ TEST(BodySpecies, ASceneWithoutSpeciesHasNoLabels) {
     const auto sys = buildInitialState<Sphere>(scene, ljPotential(scene));
     const dmd::SceneEngine<Sphere, LJPotential> e(sys, scene);
     EXPECT_TRUE(cli::bodySpecies(e, scene, sys.size()).empty());
+}
+
+TEST(BodySpecies, EachSpeciesDiffusionIsReducedAsTheTotals) {
+    const UnitSystem u = UnitSystem::lj(3.405, 0.996, 39.948);
+    const nlohmann::json d = {{"einstein_angstrom2_per_ps", 0.5},
+                              {"einstein_err", 0.01},
+                              {"green_kubo_angstrom2_per_ps", 0.6},
+                              {"green_kubo_err", nullptr}};
+    nlohmann::json summary = {{"analysis", {{"diffusion", d}}}};
+    summary["analysis"]["diffusion"]["species"] = {{"A", d}, {"B", d}};
+    const nlohmann::json r = cli::reducedSummary(summary, u)["diffusion"];
+    for (const char* name : {"A", "B"}) {
+        EXPECT_EQ(r["species"][name]["einstein"], r["einstein"]) << name;
+        EXPECT_EQ(r["species"][name]["einstein_err"], r["einstein_err"]) << name;
+        EXPECT_EQ(r["species"][name]["green_kubo"], r["green_kubo"]) << name;
+        EXPECT_TRUE(r["species"][name]["green_kubo_err"].is_null()) << name;
+    }
+    EXPECT_EQ(r["einstein"].get<double>(), u.diffusion(0.5));
+    summary["analysis"]["diffusion"].erase("species");
+    EXPECT_FALSE(cli::reducedSummary(summary, u)["diffusion"].contains("species"));
 }
