@@ -29,8 +29,10 @@
 //
 // and the summary gives each species' D (diffusion.species) and each pair's g at large r
 // (rdf.partials). The species' curves follow their own share of the followed bodies
-// (followedPerSpecies: at least one body of every species); a scene of one kind of body writes
-// exactly the columns and numbers it wrote before mixtures.
+// (followedPerSpecies: at least one body of every species), each species in correlators of its
+// own: a mixture's time correlations hold and cost about twice a plain scene's (the followed
+// bodies once for the total, once for their species). A scene of one kind of body writes exactly
+// the columns and numbers it wrote before mixtures.
 //
 // Under the scene's units lj (core/unit_system.hpp) the columns are r_sigma, t_tau and
 // msd_sigma2, in σ, τ and σ²; the summary entries stay in real units (the run's summary.json
