@@ -28,5 +28,10 @@ struct RadialDistribution {
 RadialDistribution distributionFromHistograms(const std::vector<std::vector<double>>& histogram,
                                               const std::vector<double>& framesInBlock, int bodies,
                                               double length, double binWidth);
+/// The same for histograms of `pairs` pairs a frame (a partial g(r): rdf_accumulator.hpp); NaN
+/// throughout when pairs is 0.
+RadialDistribution distributionOfPairs(const std::vector<std::vector<double>>& histogram,
+                                       const std::vector<double>& framesInBlock, double pairs,
+                                       double length, double binWidth);
 
 } // namespace terrace::analysis

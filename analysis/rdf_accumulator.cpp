@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace terrace::analysis {
 
@@ -17,7 +18,7 @@ long blockBegin(long b, long planned, int blocks) {
 } // namespace
 
 RdfAccumulator::RdfAccumulator(int bodies, double boxLength, double binWidth, double rMax,
-                               long plannedFrames, int blocks)
+                               long plannedFrames, int blocks, const SpeciesLabels& species)
     : bodies_(bodies), blocks_(blocks), length_(boxLength), binWidth_(binWidth),
       plannedFrames_(plannedFrames) {
     if (bodies < 2 || !(boxLength > 0.0))
@@ -35,6 +36,19 @@ RdfAccumulator::RdfAccumulator(int bodies, double boxLength, double binWidth, do
     // Cells beyond ~N per side would be mostly empty: no gain, only memory.
     cellsPerSide_ = std::min(cellsPerSide_, std::max(1, static_cast<int>(std::cbrt(bodies))));
     x_.resize(bodies), y_.resize(bodies), z_.resize(bodies);
+    species.check(bodies);
+    if (!species.empty()) {
+        species_ = species.count();
+        speciesOf_ = species.ofBody;
+        perSpecies_ = species.bodiesPerSpecies();
+        kind_.resize(bodies);
+        pairOf_.resize(std::size_t(species_) * species_);
+        for (int a = 0; a < species_; ++a)
+            for (int b = 0; b < species_; ++b)
+                pairOf_[std::size_t(a) * species_ + b] = speciesPairIndex(a, b, species_);
+        const std::size_t pairs = std::size_t(species_) * (species_ + 1) / 2;
+        partial_.assign(blocks, std::vector<double>(pairs * bins_, 0.0));
+    }
     if (cellsPerSide_ >= 3) {
         cellOf_.resize(bodies);
         cellStart_.resize(std::size_t(cellsPerSide_) * cellsPerSide_ * cellsPerSide_ + 1);
@@ -51,12 +65,19 @@ void RdfAccumulator::add(const PositionOf& positionOf, int bodies, double boxLen
     while (block_ + 1 < blocks_ && frames_ >= blockBegin(block_ + 1, plannedFrames_, blocks_))
         ++block_;
     const PeriodicBox box{length_};
+    const bool mixed = species_ > 0;
+    double* partial = mixed ? partial_[block_].data() : nullptr;
     if (cellsPerSide_ < 3) {
         for (int i = 0; i < bodies_; ++i) {
             const Vec3 r = box.wrap(positionOf(i));
             x_[i] = r.x(), y_[i] = r.y(), z_[i] = r.z();
         }
-        countAllPairs(histogram_[block_]);
+        if (mixed) {
+            std::copy(speciesOf_.begin(), speciesOf_.end(), kind_.begin());
+            countAllPairs<true>(histogram_[block_], partial);
+        } else {
+            countAllPairs<false>(histogram_[block_], nullptr);
+        }
     } else {
         // Counting sort of the wrapped positions by cell: each cell's bodies contiguous.
         const int m = cellsPerSide_;
@@ -76,14 +97,21 @@ void RdfAccumulator::add(const PositionOf& positionOf, int bodies, double boxLen
             const Vec3 r = box.wrap(positionOf(i));
             const int k = fill_[cellOf_[i]]++;
             x_[k] = r.x(), y_[k] = r.y(), z_[k] = r.z();
+            if (mixed) kind_[k] = speciesOf_[i];
         }
-        countByCells(histogram_[block_]);
+        if (mixed)
+            countByCells<true>(histogram_[block_], partial);
+        else
+            countByCells<false>(histogram_[block_], nullptr);
     }
     framesInBlock_[block_] += 1.0;
     ++frames_;
 }
 
-void RdfAccumulator::countAllPairs(std::vector<double>& histogram) {
+template <bool Mixed>
+void RdfAccumulator::countAllPairs(std::vector<double>& histogram, double* partial) {
+    const int bins = bins_;
+    [[maybe_unused]] const int species = species_;
     const double length = length_, half = 0.5 * length;
     const double rMax2 = rMax() * rMax(), inverseWidth = 1.0 / binWidth_;
     const auto image = [length, half](double d) { // branch-free: random signs mispredict
@@ -97,13 +125,17 @@ void RdfAccumulator::countAllPairs(std::vector<double>& histogram) {
             const double r2 = dx * dx + dy * dy + dz * dz;
             if (r2 >= rMax2) continue;
             const int bin = static_cast<int>(std::sqrt(r2) * inverseWidth);
-            if (bin < bins_) ++histogram[bin]; // sqrt may round r just onto the last edge
+            if (bin >= bins) continue; // sqrt may round r just onto the last edge
+            ++histogram[bin];
+            if constexpr (Mixed) ++partial[pairOf_[kind_[i] * species + kind_[j]] * bins + bin];
         }
     }
 }
 
-void RdfAccumulator::countByCells(std::vector<double>& histogram) {
-    const int m = cellsPerSide_;
+template <bool Mixed>
+void RdfAccumulator::countByCells(std::vector<double>& histogram, double* partial) {
+    const int m = cellsPerSide_, bins = bins_;
+    [[maybe_unused]] const int species = species_;
     const double length = length_, half = 0.5 * length;
     const double rMax2 = rMax() * rMax(), inverseWidth = 1.0 / binWidth_;
     const auto image = [length, half](double d) {
@@ -111,12 +143,16 @@ void RdfAccumulator::countByCells(std::vector<double>& histogram) {
     };
     auto pairs = [&](int i, int jBegin, int jEnd) {
         const double xi = x_[i], yi = y_[i], zi = z_[i];
+        // Species i's row of the pair table: one look-up a pair for its partial histogram.
+        const int* row = Mixed ? pairOf_.data() + std::size_t(kind_[i]) * species : nullptr;
         for (int j = jBegin; j < jEnd; ++j) {
             const double dx = image(xi - x_[j]), dy = image(yi - y_[j]), dz = image(zi - z_[j]);
             const double r2 = dx * dx + dy * dy + dz * dz;
             if (r2 >= rMax2) continue;
             const int bin = static_cast<int>(std::sqrt(r2) * inverseWidth);
-            if (bin < bins_) ++histogram[bin];
+            if (bin >= bins) continue;
+            ++histogram[bin];
+            if constexpr (Mixed) ++partial[row[kind_[j]] * bins + bin];
         }
     };
     auto wrap = [m](int c) { return c < 0 ? c + m : (c >= m ? c - m : c); };
@@ -145,14 +181,37 @@ RadialDistribution RdfAccumulator::result() const {
     return distributionFromHistograms(histogram_, framesInBlock_, bodies_, length_, binWidth_);
 }
 
+double RdfAccumulator::pairs(int a, int b) const {
+    if (a < 0 || b < 0 || a >= species_ || b >= species_)
+        throw std::invalid_argument("g(r): no species " + std::to_string(std::max(a, b)));
+    const double na = double(perSpecies_[a]), nb = double(perSpecies_[b]);
+    return a == b ? 0.5 * na * (na - 1.0) : na * nb;
+}
+
+RadialDistribution RdfAccumulator::partial(int a, int b) const {
+    if (frames_ < 1) throw std::invalid_argument("g(r): no frames");
+    const double count = pairs(a, b); // and the species checked
+    const std::size_t first = std::size_t(speciesPairIndex(a, b, species_)) * bins_;
+    std::vector<std::vector<double>> histogram(blocks_);
+    for (int k = 0; k < blocks_; ++k)
+        histogram[k].assign(partial_[k].begin() + first, partial_[k].begin() + first + bins_);
+    return distributionOfPairs(histogram, framesInBlock_, count, length_, binWidth_);
+}
+
 std::size_t RdfAccumulator::bytes() const {
-    return sizeof(double) * (std::size_t(blocks_) * bins_ + 3 * x_.size()) +
-           sizeof(int) * (cellOf_.size() + cellStart_.size() + fill_.capacity());
+    std::size_t partials = 0;
+    for (const auto& h : partial_)
+        partials += h.size();
+    return sizeof(double) * (std::size_t(blocks_) * bins_ + partials + 3 * x_.size()) +
+           sizeof(int) * (cellOf_.size() + cellStart_.size() + fill_.capacity() + pairOf_.size()) +
+           sizeof(std::int32_t) * (speciesOf_.size() + kind_.size()) +
+           sizeof(long) * perSpecies_.size();
 }
 
 void RdfAccumulator::save(StateWriter& out) const {
     out.value(std::int64_t(frames_)), out.value(std::int32_t(block_));
     out.nested(histogram_), out.doubles(framesInBlock_);
+    if (species_ > 0) out.nested(partial_);
 }
 
 void RdfAccumulator::restore(StateReader& in) {
@@ -163,6 +222,7 @@ void RdfAccumulator::restore(StateReader& in) {
     frames_ = long(frames), block_ = block;
     in.nested(histogram_, "g(r) histograms");
     in.doubles(framesInBlock_, "g(r) frames per block");
+    if (species_ > 0) in.nested(partial_, "partial g(r) histograms");
 }
 
 } // namespace terrace::analysis

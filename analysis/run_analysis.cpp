@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace terrace::analysis {
 
@@ -41,12 +42,28 @@ template <class F> std::vector<double> mapped(const std::vector<double>& x, cons
     return y;
 }
 
+/// What the CSVs hold: the total curves and, for a mixture, the species' and pairs' own.
+struct Curves {
+    RadialDistribution rdf;
+    SampledCurve vacf, msd;
+    const OrientationalCorrelation* oacf = nullptr; // null: the bodies do not rotate
+    std::vector<std::string> pairNames;             // "A_B", in speciesPairIndex order
+    std::vector<RadialDistribution> partial;        // g_ab, in the same order
+    std::vector<std::string> speciesNames;
+    std::vector<SampledCurve> speciesVacf, speciesMsd;
+};
+
+/// Appends the column `name` of values `v`.
+void addColumn(CsvTable& t, const std::string& name, std::vector<double> v) {
+    t.header.push_back(name);
+    t.columns.push_back(std::move(v));
+}
+
 /// Writes rdf.csv, vacf.csv, msd.csv and, for rotating bodies, oacf.csv (else removes a stale
-/// one) into dir, created if needed; r, t and the MSD in `units` (under real as computed).
-void writeCurveFiles(const std::filesystem::path& dir, const RadialDistribution& rdf,
-                     const TerracingProfile& terracing, const SampledCurve& vacf,
-                     const OrientationalCorrelation* oacf, const SampledCurve& msd,
-                     const UnitSystem& units) {
+/// one) into dir, created if needed; r, t and the MSD in `units` (under real as computed). A
+/// mixture's columns come after the total's, so that a reader of the first columns reads on.
+void writeCurveFiles(const std::filesystem::path& dir, const Curves& c,
+                     const TerracingProfile& terracing, const UnitSystem& units) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throwIoError("create the directory", dir, ec.value());
@@ -56,42 +73,70 @@ void writeCurveFiles(const std::filesystem::path& dir, const RadialDistribution&
     const std::string msdName = std::string("msd_") + units.lengthSuffix() + "2";
     auto time = [&](double ps) { return units.time(ps); };
     auto length2 = [&](double a2) { return units.length(units.length(a2)); };
+    auto inLength2 = [&](const std::vector<double>& a2) {
+        return reduced ? mapped(a2, length2) : a2;
+    };
+    const RadialDistribution& rdf = c.rdf;
     const std::vector<double> r =
         reduced ? mapped(rdf.r, [&](double a) { return units.length(a); }) : rdf.r;
-    if (terracing.empty()) {
-        writeCsv(dir / "rdf.csv", {{rName, "g", "err"}, {r, rdf.g, rdf.err}});
-    } else {
+    CsvTable rdfTable{{rName, "g", "err"}, {r, rdf.g, rdf.err}};
+    if (!terracing.empty()) {
         std::vector<double> gc(rdf.g.size()), errc(rdf.g.size());
         for (std::size_t k = 0; k < rdf.g.size(); ++k) {
             const double w = terracing.meanWeight(k);
             gc[k] = rdf.g[k] * w, errc[k] = rdf.err[k] * w;
         }
-        writeCsv(dir / "rdf.csv", {{rName, "g", "err", "g_continuous", "err_continuous"},
-                                   {r, rdf.g, rdf.err, gc, errc}});
+        addColumn(rdfTable, "g_continuous", std::move(gc));
+        addColumn(rdfTable, "err_continuous", std::move(errc));
     }
-    writeCsv(
-        dir / "vacf.csv",
-        {{tName, "c", "err"}, {reduced ? mapped(vacf.tPs, time) : vacf.tPs, vacf.value, vacf.err}});
-    if (oacf)
-        writeCsv(dir / "oacf.csv", {{tName, "c1", "c1_err", "c2", "c2_err"},
-                                    {reduced ? mapped(oacf->c1.tPs, time) : oacf->c1.tPs,
-                                     oacf->c1.value, oacf->c1.err, oacf->c2.value, oacf->c2.err}});
+    for (std::size_t p = 0; p < c.partial.size(); ++p) {
+        addColumn(rdfTable, "g_" + c.pairNames[p], c.partial[p].g);
+        addColumn(rdfTable, "err_" + c.pairNames[p], c.partial[p].err);
+    }
+    writeCsv(dir / "rdf.csv", rdfTable);
+
+    const std::vector<double> t = reduced ? mapped(c.vacf.tPs, time) : c.vacf.tPs;
+    CsvTable vacfTable{{tName, "c", "err"}, {t, c.vacf.value, c.vacf.err}};
+    CsvTable msdTable{{tName, msdName, "err"},
+                      {reduced ? mapped(c.msd.tPs, time) : c.msd.tPs, inLength2(c.msd.value),
+                       inLength2(c.msd.err)}};
+    for (std::size_t a = 0; a < c.speciesNames.size(); ++a) {
+        const std::string& name = c.speciesNames[a];
+        addColumn(vacfTable, "vacf_" + name, c.speciesVacf[a].value);
+        addColumn(vacfTable, "err_" + name, c.speciesVacf[a].err);
+        addColumn(msdTable, "msd_" + name, inLength2(c.speciesMsd[a].value));
+        addColumn(msdTable, "err_" + name, inLength2(c.speciesMsd[a].err));
+    }
+    writeCsv(dir / "vacf.csv", vacfTable);
+    if (c.oacf)
+        writeCsv(dir / "oacf.csv",
+                 {{tName, "c1", "c1_err", "c2", "c2_err"},
+                  {reduced ? mapped(c.oacf->c1.tPs, time) : c.oacf->c1.tPs, c.oacf->c1.value,
+                   c.oacf->c1.err, c.oacf->c2.value, c.oacf->c2.err}});
     else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
         throwIoError("remove", dir / "oacf.csv", ec.value());
-    if (reduced)
-        writeCsv(dir / "msd.csv",
-                 {{tName, msdName, "err"},
-                  {mapped(msd.tPs, time), mapped(msd.value, length2), mapped(msd.err, length2)}});
-    else
-        writeCsv(dir / "msd.csv", {{tName, msdName, "err"}, {msd.tPs, msd.value, msd.err}});
+    writeCsv(dir / "msd.csv", msdTable);
+}
+
+/// The summary's entry for a diffusion coefficient by Einstein and Green–Kubo.
+nlohmann::json diffusionEntry(const Diffusion& d, const Diffusion& gk) {
+    const auto orNull = [](double x) {
+        return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
+    };
+    return {{"einstein_angstrom2_per_ps", orNull(d.coefficient)},
+            {"einstein_err", orNull(d.err)},
+            {"fit_from_ps", d.fromPs},
+            {"fit_to_ps", d.toPs},
+            {"green_kubo_angstrom2_per_ps", orNull(gk.coefficient)},
+            {"green_kubo_err", orNull(gk.err)}};
 }
 
 } // namespace
 
 RunAnalysis::RunAnalysis(int bodies, double boxLength, double sampleIntervalPs, long plannedSamples,
-                         const StreamingOptions& options)
+                         const StreamingOptions& options, const SpeciesLabels& species)
     : options_(options), bodies_(bodies), planned_(plannedSamples), dtPs_(sampleIntervalPs),
-      boxLength_(boxLength) {
+      boxLength_(boxLength), species_(species) {
     if (plannedSamples < 4) throw std::invalid_argument("analysis: need at least 4 samples");
     if (bodies < 2) throw std::invalid_argument("analysis: need at least 2 bodies");
     if (options.blocks < 2)
@@ -107,13 +152,32 @@ RunAnalysis::RunAnalysis(int bodies, double boxLength, double sampleIntervalPs, 
     plan.maxLag = lagFor(options.maxLagPs, sampleIntervalPs, plannedSamples, blocks_);
     plan.lagsPerLevel = options.lagsPerLevel;
     plan.followBodies = options.followBodies;
+    species.check(bodies);
+    if (!species.empty())
+        plan.follow = followedPerSpecies(species.ofBody, species.count(), options.followBodies);
     correlations_ = std::make_unique<StreamingCorrelations>(bodies, sampleIntervalPs, plan);
+    if (!species.empty()) {
+        const std::vector<int>& followed = correlations_->followedBodies();
+        speciesEntries_.assign(species.names.size(), {});
+        for (int k = 0; k < static_cast<int>(followed.size()); ++k)
+            speciesEntries_[species.ofBody[followed[k]]].push_back(k);
+        StreamingCorrelationPlan own = plan; // the same samples, blocks and lags: the same rows
+        own.follow.clear(), own.followBodies = 0;
+        for (std::size_t a = 0; a < speciesEntries_.size(); ++a) {
+            if (speciesEntries_[a].empty())
+                throw std::invalid_argument("analysis: species " + species.names[a] +
+                                            " has no bodies");
+            speciesCurves_.push_back(std::make_unique<StreamingCorrelations>(
+                static_cast<int>(speciesEntries_[a].size()), sampleIntervalPs, own));
+        }
+    }
     const double rMax = options.rdfMaxAngstrom > 0.0
                             ? std::min(options.rdfMaxAngstrom, 0.5 * boxLength)
                             : 0.5 * boxLength;
     const long frames = (plannedSamples + options.rdfEvery - 1) / options.rdfEvery;
     rdf_ = std::make_unique<RdfAccumulator>(bodies, boxLength, options.rdfBinAngstrom, rMax, frames,
-                                            static_cast<int>(std::min<long>(blocks_, frames)));
+                                            static_cast<int>(std::min<long>(blocks_, frames)),
+                                            species);
     if (options.beta > 0.0)
         terracing_ =
             TerracingProfile(static_cast<int>(std::lround(rdf_->rMax() / options.rdfBinAngstrom)),
@@ -126,6 +190,7 @@ void RunAnalysis::add(const Snapshot& sample) {
     if (sample.boxLength != boxLength_)
         throw std::invalid_argument("analysis: the box length must not change");
     correlations_->add(sample);
+    addSpecies(sample, correlations_->followedBodies().data());
     if (samples_ % options_.rdfEvery == 0) rdf_->add(sample);
     ++samples_;
 }
@@ -136,8 +201,24 @@ void RunAnalysis::add(const Snapshot& followed, const PositionOf& positionOf) {
     if (wantsPositions() && !positionOf)
         throw std::invalid_argument("analysis: a g(r) frame needs every body's position");
     correlations_->addFollowed(followed);
+    addSpecies(followed, nullptr);
     if (wantsPositions()) rdf_->add(positionOf, bodies_, boxLength_);
     ++samples_;
+}
+
+void RunAnalysis::addSpecies(const Snapshot& frame, const int* index) {
+    Snapshot& part = speciesPart_; // reused: no allocation per sample once grown
+    part.time = frame.time, part.boxLength = frame.boxLength;
+    for (std::size_t a = 0; a < speciesCurves_.size(); ++a) {
+        part.position.clear(), part.velocity.clear(), part.axis.clear();
+        for (const int k : speciesEntries_[a]) {
+            const int i = index ? index[k] : k;
+            part.position.push_back(frame.position[i]);
+            part.velocity.push_back(frame.velocity[i]);
+            part.axis.push_back(frame.axis[i]);
+        }
+        speciesCurves_[a]->addFollowed(part);
+    }
 }
 
 const std::vector<int>& RunAnalysis::followedBodies() const {
@@ -146,17 +227,47 @@ const std::vector<int>& RunAnalysis::followedBodies() const {
 
 nlohmann::json RunAnalysis::write(const std::filesystem::path& dir, const UnitSystem& units) const {
     if (samples_ < 4) throw std::invalid_argument("analysis: need at least 4 samples");
-    const RadialDistribution rdf = rdf_->result();
+    Curves c;
+    c.rdf = rdf_->result();
     double v2 = 0.0;
-    const SampledCurve vacf = correlations_->velocity(&v2);
+    c.vacf = correlations_->velocity(&v2);
     const bool rotating = correlations_->rotating();
     OrientationalCorrelation oacf;
-    if (rotating) oacf = correlations_->orientation();
-    const SampledCurve msd = correlations_->displacement();
-    const Diffusion d = diffusionFromMsd(msd);
-    const Diffusion gk = greenKuboDiffusion(vacf, v2);
+    if (rotating) oacf = correlations_->orientation(), c.oacf = &oacf;
+    c.msd = correlations_->displacement();
+    const Diffusion d = diffusionFromMsd(c.msd);
+    const Diffusion gk = greenKuboDiffusion(c.vacf, v2);
+    const RadialDistribution& rdf = c.rdf;
+    const SampledCurve &vacf = c.vacf, &msd = c.msd;
 
-    writeCurveFiles(dir, rdf, terracing_, vacf, rotating ? &oacf : nullptr, msd, units);
+    // A mixture's curves, and each species' D, before anything is written.
+    const int species = species_.count();
+    nlohmann::json speciesDiffusion, partialsEntry;
+    for (int a = 0; a < species; ++a)
+        for (int b = a; b < species; ++b) {
+            c.pairNames.push_back(species_.names[a] + "_" + species_.names[b]);
+            c.partial.push_back(rdf_->partial(a, b));
+            const nlohmann::json e = rdfSummary(c.partial.back(), largeRFraction * rdf_->rMax());
+            partialsEntry[c.pairNames.back()] = {
+                {"pairs", rdf_->pairs(a, b)},
+                {"g_large_r", e.value("g_large_r", nlohmann::json())},
+                {"g_large_r_err", e.value("g_large_r_err", nlohmann::json())}};
+        }
+    for (int a = 0; a < species; ++a) {
+        double v2a = 0.0;
+        c.speciesNames.push_back(species_.names[a]);
+        c.speciesVacf.push_back(speciesCurves_[a]->velocity(&v2a));
+        c.speciesMsd.push_back(speciesCurves_[a]->displacement());
+        // The same samples and lags as the total's: the rows of the CSVs line up.
+        if (c.speciesVacf.back().tPs != vacf.tPs || c.speciesMsd.back().tPs != msd.tPs)
+            throw std::logic_error("analysis: species " + species_.names[a] +
+                                   "'s lags are not the total's");
+        speciesDiffusion[species_.names[a]] = diffusionEntry(
+            diffusionFromMsd(c.speciesMsd.back()), greenKuboDiffusion(c.speciesVacf.back(), v2a));
+        speciesDiffusion[species_.names[a]]["followed_bodies"] = speciesCurves_[a]->followed();
+    }
+
+    writeCurveFiles(dir, c, terracing_, units);
 
     const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
     nlohmann::json rdfEntry = rdfSummary(rdf, largeRFraction * rdf_->rMax());
@@ -183,20 +294,19 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir, const UnitSy
         summary["oacf"] = {{"c1_0", oacf.c1.value.front()}, {"c2_0", oacf.c2.value.front()}};
     else
         summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
-    const auto orNull = [](double x) {
-        return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
-    };
-    summary["diffusion"] = {{"einstein_angstrom2_per_ps", orNull(d.coefficient)},
-                            {"einstein_err", orNull(d.err)},
-                            {"fit_from_ps", d.fromPs},
-                            {"fit_to_ps", d.toPs},
-                            {"green_kubo_angstrom2_per_ps", orNull(gk.coefficient)},
-                            {"green_kubo_err", orNull(gk.err)}};
+    summary["diffusion"] = diffusionEntry(d, gk);
+    if (species > 0) {
+        summary["diffusion"]["species"] = speciesDiffusion;
+        summary["rdf"]["partials"] = partialsEntry;
+    }
     return summary;
 }
 
 std::size_t RunAnalysis::bytes() const {
-    return rdf_->bytes() + correlations_->bytes() +
+    std::size_t species = sizeof(std::int32_t) * species_.ofBody.size();
+    for (std::size_t a = 0; a < speciesCurves_.size(); ++a)
+        species += speciesCurves_[a]->bytes() + sizeof(int) * speciesEntries_[a].size();
+    return rdf_->bytes() + correlations_->bytes() + species +
            2 * sizeof(double) * static_cast<std::size_t>(terracing_.bins());
 }
 
@@ -206,6 +316,9 @@ std::vector<std::uint8_t> RunAnalysis::state() const {
     rdf_->save(out);
     correlations_->save(out);
     out.doubles(terracing_.weights()), out.doubles(terracing_.counts());
+    // A mixture's species curves last: a plain scene's state is what it was before mixtures.
+    for (const auto& curves : speciesCurves_)
+        curves->save(out);
     return out.take();
 }
 
@@ -225,6 +338,12 @@ void RunAnalysis::restore(std::span<const std::uint8_t> state) {
     in.doubles(weight, "terracing profile's weights");
     in.doubles(count, "terracing profile's counts");
     terracing_.restore(std::move(weight), std::move(count));
+    for (const auto& curves : speciesCurves_) {
+        curves->restore(in);
+        if (curves->samples() != samples_)
+            throw std::invalid_argument("analysis state: a species' time correlations' samples "
+                                        "are not the analysis'");
+    }
     in.finish();
 }
 

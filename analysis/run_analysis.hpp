@@ -18,6 +18,22 @@
 //   oacf.csv  t_ps,c1,c1_err,c2,c2_err         ⟨s(0)·s(t)⟩ and ⟨P₂(s(0)·s(t))⟩
 //   msd.csv   t_ps,msd_angstrom2,err           ⟨|r(t) − r(0)|²⟩
 //
+// A mixture (SpeciesLabels given) adds columns after these, for species A, B, … (named by the
+// scene) and each unordered pair of them:
+//
+//   rdf.csv   g_A_A,err_A_A,g_A_B,err_A_B,…    partial g_ab(r), each by its own pair count
+//                                              (rdf_accumulator.hpp): Σ_{a≤b} (P_ab/P) g_ab = g
+//   vacf.csv  vacf_A,err_A,…                   each species' ⟨v(0)·v(t)⟩/⟨v²⟩ over its own bodies
+//   msd.csv   msd_A,err_A,…                    each species' ⟨|r(t) − r(0)|²⟩, in the unit of the
+//                                              msd column
+//
+// and the summary gives each species' D (diffusion.species) and each pair's g at large r
+// (rdf.partials). The species' curves follow their own share of the followed bodies
+// (followedPerSpecies: at least one body of every species), each species in correlators of its
+// own: a mixture's time correlations hold and cost about twice a plain scene's (the followed
+// bodies once for the total, once for their species). A scene of one kind of body writes exactly
+// the columns and numbers it wrote before mixtures.
+//
 // Under the scene's units lj (core/unit_system.hpp) the columns are r_sigma, t_tau and
 // msd_sigma2, in σ, τ and σ²; the summary entries stay in real units (the run's summary.json
 // converts them in its "reduced" entry).
@@ -31,6 +47,7 @@
 // it is given: a run that reaches its planned length gets the same blocks. A run stopped early is
 // analysed over the samples it has, its last blocks short or empty.
 #include "analysis/rdf_accumulator.hpp" // and PositionOf
+#include "analysis/species_labels.hpp"
 #include "core/continuous_sums.hpp"
 #include "core/snapshot.hpp"
 #include "core/unit_system.hpp"
@@ -59,9 +76,10 @@ struct StreamingOptions {
 
 class RunAnalysis {
 public:
-    /// plannedSamples ≥ 4 (fewer: nothing to analyse, do not build one).
+    /// plannedSamples ≥ 4 (fewer: nothing to analyse, do not build one). `species`: a
+    /// mixture's labels (body i's species, i in the order of the samples), empty for one kind.
     RunAnalysis(int bodies, double boxLength, double sampleIntervalPs, long plannedSamples,
-                const StreamingOptions& options);
+                const StreamingOptions& options, const SpeciesLabels& species = {});
     ~RunAnalysis();
     RunAnalysis(const RunAnalysis&) = delete;
     RunAnalysis& operator=(const RunAnalysis&) = delete;
@@ -105,6 +123,15 @@ private:
     std::unique_ptr<RdfAccumulator> rdf_;
     std::unique_ptr<StreamingCorrelations> correlations_;
     TerracingProfile terracing_;
+    // A mixture's: labels, and per species its time correlations over its followed bodies,
+    // which are entries speciesEntries_[a][k] of followedBodies(); a sample's part for them.
+    SpeciesLabels species_;
+    std::vector<std::unique_ptr<StreamingCorrelations>> speciesCurves_;
+    std::vector<std::vector<int>> speciesEntries_;
+    Snapshot speciesPart_;
+    /// Each species' curves take their followed bodies' entries of `frame`, whose entry for
+    /// followed body k is index[k] (k itself when index is null).
+    void addSpecies(const Snapshot& frame, const int* index);
 };
 
 } // namespace terrace::analysis

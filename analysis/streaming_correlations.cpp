@@ -19,6 +19,26 @@ constexpr double spacingTolerance = 1e-9;
 
 } // namespace
 
+std::vector<int> followedPerSpecies(const std::vector<std::int32_t>& speciesOf, int species,
+                                    int followBodies) {
+    const long n = static_cast<long>(speciesOf.size());
+    const long wanted = followBodies > 0 ? std::min<long>(followBodies, n) : n;
+    std::vector<std::vector<int>> members(static_cast<std::size_t>(species));
+    for (long i = 0; i < n; ++i)
+        members.at(static_cast<std::size_t>(speciesOf[i])).push_back(static_cast<int>(i));
+    std::vector<int> follow;
+    for (const auto& bodies : members) {
+        const long na = static_cast<long>(bodies.size());
+        if (na == 0) continue;
+        // The species' share of the followed bodies, rounded down, but never none.
+        const long ma = std::clamp((wanted * na) / n, 1L, na);
+        for (long k = 0; k < ma; ++k)
+            follow.push_back(bodies[static_cast<std::size_t>((k * na) / ma)]);
+    }
+    std::sort(follow.begin(), follow.end());
+    return follow;
+}
+
 StreamingCorrelations::StreamingCorrelations(int bodies, double sampleIntervalPs,
                                              const StreamingCorrelationPlan& plan)
     : bodies_(bodies), p_(plan.lagsPerLevel), blocks_(plan.blocks), planned_(plan.samples),
@@ -36,9 +56,18 @@ StreamingCorrelations::StreamingCorrelations(int bodies, double sampleIntervalPs
     dtUnits_ = units::fromPs(sampleIntervalPs);
     fine_ = fineBlockCount(planned_, blocks_);
 
-    const int m = plan.followBodies > 0 ? std::min(plan.followBodies, bodies) : bodies;
-    for (int k = 0; k < m; ++k)
-        follow_.push_back(static_cast<int>((long(k) * bodies) / m));
+    if (!plan.follow.empty()) {
+        follow_ = plan.follow;
+        for (std::size_t k = 0; k < follow_.size(); ++k)
+            if (follow_[k] < 0 || follow_[k] >= bodies || (k > 0 && follow_[k] <= follow_[k - 1]))
+                throw std::invalid_argument("time correlations: the followed bodies must be "
+                                            "ascending, distinct and among the bodies");
+    } else {
+        const int all = plan.followBodies > 0 ? std::min(plan.followBodies, bodies) : bodies;
+        for (int k = 0; k < all; ++k)
+            follow_.push_back(static_cast<int>((long(k) * bodies) / all));
+    }
+    const int m = static_cast<int>(follow_.size());
     groups_ = std::min(blocks_, m);
 
     // The grid: level 0 lags 0 … p−1, level l lags j·2^l for j = p/2 … p−1, up to maxLag.

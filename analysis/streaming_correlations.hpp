@@ -32,6 +32,7 @@
 #include "analysis/windowed_correlation.hpp"
 #include "core/snapshot.hpp"
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -43,7 +44,17 @@ struct StreamingCorrelationPlan {
     int blocks = 8;        // B
     int lagsPerLevel = 16; // p, even, ≥ 4
     int followBodies = 0;  // 0: all
+    // The bodies to follow, ascending and distinct, in place of followBodies' even spread (a
+    // mixture's, spread over each species: followedPerSpecies); empty: followBodies decides.
+    std::vector<int> follow;
 };
+
+/// For a mixture (speciesOf[i]: body i's species, S species): the bodies the time correlations
+/// follow when at most `followBodies` are (0: all), in ascending order. Each species gets its
+/// share, at least one body, evenly spread over its own bodies in index order, so that every
+/// species has curves of its own however few its bodies. With followBodies ≥ N: every body.
+std::vector<int> followedPerSpecies(const std::vector<std::int32_t>& speciesOf, int species,
+                                    int followBodies);
 
 class StreamingCorrelations {
 public:

@@ -3,8 +3,10 @@
 #include "cli/output_dir.hpp"
 #include "cli/run_driver.hpp"
 #include "core/gsd_frame.hpp"
+#include "core/initial_state.hpp"
 #include "core/scene.hpp"
 #include "core/scene_units.hpp"
+#include "core/species_sphere.hpp"
 #include "core/units.hpp"
 #include "core/xyz.hpp"
 #include <algorithm>
@@ -23,6 +25,31 @@ long forEachFrame(const std::filesystem::path& path, const std::function<void(Sn
     return forEachTrajectoryFrame(path.string(), each, partial);
 }
 
+/// A mixture's labels for the run's frames (empty without species): the names from its scene,
+/// each body's species from the first frame where the trajectory carries them, else dealt again
+/// by core's own initial state from the scene (species are dealt once, from the seed, and never
+/// change; the frames are in the scene's numbering).
+analysis::SpeciesLabels frameSpecies(const Scene& scene, const std::vector<std::int32_t>& first,
+                                     int bodies, const std::filesystem::path& path) {
+    analysis::SpeciesLabels labels;
+    if (scene.species.empty()) return labels;
+    for (const auto& s : scene.species)
+        labels.names.push_back(s.name);
+    if (static_cast<int>(first.size()) == bodies) {
+        labels.ofBody = first;
+    } else {
+        const auto start = buildInitialState<SpeciesSphere>(scene, ljMixture(scene));
+        if (start.size() != bodies)
+            throw TrajectoryError(path.string() + ": the trajectory holds " +
+                                  std::to_string(bodies) + " bodies where its scene.json makes " +
+                                  std::to_string(start.size()));
+        for (const auto& b : start.bodies)
+            labels.ofBody.push_back(b.species);
+    }
+    labels.check(bodies);
+    return labels;
+}
+
 } // namespace
 
 int analyseRun(const std::filesystem::path& dir) {
@@ -36,10 +63,12 @@ int analyseRun(const std::filesystem::path& dir) {
     std::string partial;
     int bodies = 0;
     double boxLength = 0.0, firstTime = 0.0, secondTime = 0.0;
+    std::vector<std::int32_t> firstSpecies;
     const long frames = forEachFrame(
         path,
         [&, k = 0L](Snapshot&& f) mutable {
             if (k == 0) bodies = f.size(), boxLength = f.boxLength, firstTime = f.time;
+            if (k == 0) firstSpecies = std::move(f.species);
             if (k == 1) secondTime = f.time;
             ++k;
         },
@@ -52,9 +81,11 @@ int analyseRun(const std::filesystem::path& dir) {
     analysis::StreamingOptions options;
     options.rdfMaxAngstrom = 0.0; // without a scene: out to L/2
     UnitSystem csvUnits;          // the run's units, so that its CSVs keep their columns
+    analysis::SpeciesLabels species;
     if (std::filesystem::exists(dir / "scene.json")) {
         const Scene scene = loadScene((dir / "scene.json").string());
         options = streamingOptions(scene);
+        species = frameSpecies(scene, firstSpecies, bodies, path);
         csvUnits = unitSystem(scene);
         // g(r) frames as far apart in time as in the run (trajectory frames are sparser).
         const double frameFs = units::toFs(secondTime - firstTime);
@@ -63,7 +94,7 @@ int analyseRun(const std::filesystem::path& dir) {
                             std::lround(scene.analysis.rdf_every * scene.run.sample_fs / frameFs)));
     }
     analysis::RunAnalysis accumulated(bodies, boxLength, units::toPs(secondTime - firstTime),
-                                      frames, options);
+                                      frames, options, species);
     long fed = 0;
     std::string cutShort; // the same frame as in the first pass, already reported
     forEachFrame(

@@ -1,6 +1,7 @@
 #include "cli/reduced_summary.hpp"
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace terrace::cli {
 
@@ -86,6 +87,19 @@ json reducedSummary(const json& summary, const UnitSystem& u) {
         put(d, "green_kubo", summary, {"analysis", "diffusion", "green_kubo_angstrom2_per_ps"},
             diffusion);
         put(d, "green_kubo_err", summary, {"analysis", "diffusion", "green_kubo_err"}, diffusion);
+        // A mixture's species, each as the total (run_analysis.hpp).
+        if (summary["analysis"]["diffusion"].contains("species"))
+            for (const auto& [name, entry] : summary["analysis"]["diffusion"]["species"].items()) {
+                json e;
+                constexpr std::pair<const char*, const char*> keys[] = {
+                    {"einstein", "einstein_angstrom2_per_ps"},
+                    {"einstein_err", "einstein_err"},
+                    {"green_kubo", "green_kubo_angstrom2_per_ps"},
+                    {"green_kubo_err", "green_kubo_err"}};
+                for (const auto& [to, from] : keys)
+                    put(e, to, entry, {from}, diffusion);
+                d["species"][name] = e;
+            }
         d["units"] = "sigma^2/tau";
         r["diffusion"] = d;
     }

@@ -12,6 +12,7 @@
 //   pressure, pressure_err                                                  P* = Pσ³/ε
 //   configurational: potential_energy_per_body, _err, pressure, pressure_err
 //   diffusion: einstein, einstein_err, green_kubo, green_kubo_err           σ²/τ
+//     and for a mixture species: {A: {the same four}, …}
 //   collisions_per_tau, collisions_per_tau_err                              DMD
 // A quantity the summary lacks, or holds as null, is left out or null.
 #include "core/unit_system.hpp"

@@ -107,11 +107,15 @@ double analysisBytes(const Scene& scene) {
     const double levels = 1.0 + std::max(0.0, std::ceil(std::log2(std::max(1.0, lag / (p - 1)))));
     const double perFollowed = (levels - 1.0) * p * 9.0 * sizeof(double) +
                                double(analysis::WindowedCorrelation::bytesPerBody(int(p)));
-    return followed * perFollowed + n * (3.0 * sizeof(double) + 2.0 * sizeof(int));
+    // A mixture follows its bodies twice (the total's curves and their species'), and keeps
+    // each body's species twice for g(r) (given and sorted by cell).
+    const double times = scene.species.empty() ? 1.0 : 2.0;
+    const double labels = scene.species.empty() ? 0.0 : 2.0 * sizeof(std::int32_t);
+    return times * followed * perFollowed + n * (3.0 * sizeof(double) + 2.0 * sizeof(int) + labels);
 }
 
 RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxLength,
-                     int rotationalDof, VirialKind virial)
+                     int rotationalDof, VirialKind virial, const analysis::SpeciesLabels& species)
     : sampleInterval(plan.sampleInterval), kT(scene.kT()), volume(std::pow(boxLength, 3)),
       virialKind(virial), bodies(n), dof(heatBathDof(heatBathOf(scene).kind, rotationalDof, n)),
       heatBath(heatBathOf(scene).on()), restartEveryPs(scene.output.restart_every_ps),
@@ -119,7 +123,8 @@ RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxL
     const long planned = plan.productionSamples + 1;
     if (planned >= 4)
         analysis = std::make_unique<analysis::RunAnalysis>(
-            bodies, boxLength, units::toPs(plan.sampleInterval), planned, streamingOptions(scene));
+            bodies, boxLength, units::toPs(plan.sampleInterval), planned, streamingOptions(scene),
+            species);
     // The configurational estimators come on the analysis' g(r) frames.
     const long every = scene.analysis.rdf_every;
     samples = SampleStatistics(SamplePlan{planned, analysis ? (planned + every - 1) / every : 0,

@@ -16,6 +16,7 @@
 // (cli/interrupt.hpp) ends the run at the next sample with restart.bin, summary.json (saying
 // "interrupted" and by which signal) and the analysis written; an engine failure or a failed
 // write ends it with what was gathered until then written and the first error raised again.
+#include "cli/body_species.hpp"
 #include "cli/cpu_clock.hpp"
 #include "cli/interrupt.hpp"
 #include "cli/melt_check.hpp"
@@ -81,7 +82,8 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
                  const Scene& scene, const RunTarget& target, int rotationalDof) {
     const RunPlan plan = planRun(scene);
     const Snapshot where = engine->positions(); // its size and box, without a whole sample
-    RunRecord run(scene, plan, int(where.size()), where.boxLength, rotationalDof, E::virialKind);
+    RunRecord run(scene, plan, int(where.size()), where.boxLength, rotationalDof, E::virialKind,
+                  bodySpecies(*engine, scene, int(where.size())));
     for (const auto& w : run.warnings)
         std::fprintf(stderr, "terrace: warning: %s\n", w.c_str());
     RunFiles files;

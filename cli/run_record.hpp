@@ -126,9 +126,11 @@ struct RunRecord {
     UnitSystem outputUnits;            // of thermo.csv, the CSVs and summary.json's "reduced"
 
     /// A record for a run of `bodies` bodies in a box of side boxLength (Å) under `plan`, with
-    /// the analysis the scene asks for (none with fewer than 4 samples planned).
+    /// the analysis the scene asks for (none with fewer than 4 samples planned); `species`: a
+    /// mixture's labels (cli/body_species.hpp), empty for one kind of body.
     RunRecord(const Scene& scene, const RunPlan& plan, int bodies, double boxLength,
-              int rotationalDof, VirialKind virialKind);
+              int rotationalDof, VirialKind virialKind,
+              const analysis::SpeciesLabels& species = {});
     RunRecord() = default;
 
     void add(const SampleRecord& e, const Snapshot& s) {
