@@ -71,7 +71,7 @@ TEST(Scene, UnknownKeyIsNamed) {
     // With no known key near it, the section's keys are listed.
     EXPECT_EQ(errorOf({{"bogus", 1}}),
               "test.json: bogus: unknown key (a scene has name, seed, units, body, potential, "
-              "state, engine, dmd, smd, run, output, analysis)");
+              "species, state, engine, dmd, smd, run, output, analysis)");
     EXPECT_EQ(errorOf({{"state",
                         {{"particles",
                           json::array({{{"r", {0, 0, 0}}, {"x", 1}}, {{"r", {1, 0, 0}}}})}}}}),
