@@ -26,7 +26,7 @@ std::vector<FrontPoint> paretoFront(std::vector<FrontPoint> points) {
 
 CostAtError costAtError(const std::vector<FrontPoint>& front, double e) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    if (front.empty() || !(e > 0.0)) return {nan, false};
+    if (front.empty() || !(e > 0.0)) return {nan, false, ""};
     if (e >= front.front().error)
         return {front.front().cost, e > front.front().error, front.front().label};
     for (std::size_t k = 1; k < front.size(); ++k) {

@@ -193,7 +193,7 @@ TEST(StreamingCorrelations, GreenKuboDiffusionHasAnErrorBarThatCoversTheKnownVal
 
 TEST(StreamingCorrelations, MemoryDoesNotGrowWithTheSamplesAddedAndFollowsTheCap) {
     const auto samples = synthetic::freeRotors(300, 500, 0.05, 25.0, 4.2, 18.0, 1.154, 2);
-    StreamingCorrelationPlan plan{300, 100, 4, 16, 64};
+    StreamingCorrelationPlan plan{300, 100, 4, 16, 64, {}};
     StreamingCorrelations c(500, sampleIntervalPs(samples), plan);
     const std::size_t before = c.bytes();
     for (const auto& s : samples)
@@ -202,22 +202,22 @@ TEST(StreamingCorrelations, MemoryDoesNotGrowWithTheSamplesAddedAndFollowsTheCap
     EXPECT_EQ(c.followed(), 64);
     // Memory grows with the followed bodies (7.9 times as many beyond the first: 500 against
     // 64), above a fixed FFT scratch.
-    StreamingCorrelationPlan all{300, 100, 4, 16, 0}, one{300, 100, 4, 16, 1};
+    StreamingCorrelationPlan all{300, 100, 4, 16, 0, {}}, one{300, 100, 4, 16, 1, {}};
     const std::size_t fixed = StreamingCorrelations(500, 0.005, one).bytes();
     EXPECT_GT(StreamingCorrelations(500, 0.005, all).bytes() - fixed, 7 * (before - fixed));
 }
 
 TEST(StreamingCorrelations, RefusesUnequalSpacingAndBadPlans) {
     auto samples = synthetic::freeRotors(20, 10, 0.05, 25.0, 4.2, 18.0, 1.154, 2);
-    StreamingCorrelationPlan plan{20, 5, 2, 16, 0};
+    StreamingCorrelationPlan plan{20, 5, 2, 16, 0, {}};
     StreamingCorrelations c(10, sampleIntervalPs(samples), plan);
     c.add(samples[0]);
     EXPECT_THROW(c.add(samples[2]), std::invalid_argument);
-    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 5, 2, 7, 0}),
+    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 5, 2, 7, 0, {}}),
                  std::invalid_argument);
-    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 5, 11, 16, 0}),
+    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 5, 11, 16, 0, {}}),
                  std::invalid_argument);
-    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 20, 2, 16, 0}),
+    EXPECT_THROW(StreamingCorrelations(10, 0.005, StreamingCorrelationPlan{20, 20, 2, 16, 0, {}}),
                  std::invalid_argument);
 }
 

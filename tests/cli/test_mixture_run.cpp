@@ -49,9 +49,10 @@ TEST(MixtureScene, KobAndersenRunsInBothEngines) {
                              : r["potential_energy_per_body"].get<double>();
         EXPECT_GT(u, -6.0) << engine;
         EXPECT_LT(u, -4.8) << engine;
-        if (engine == "dmd")
+        if (engine == "dmd") {
             EXPECT_LT(std::abs(s["energy"]["max_abs_dev"].get<double>()),
                       1e-9 * std::abs(s["energy"]["mean"].get<double>()));
+        }
     }
 }
 

@@ -769,7 +769,9 @@ TEST(Restart, ARebuiltDmdEngineUndergoesTheCollisionsOfOneThatGoesOn) {
         for (int m = 0; m < 3; ++m)
             sum[m] += before[m];
         ASSERT_EQ(sum, collisions(Probe::counts(goesOn))) << 50 + 2 * k << " fs";
-        if (k == 5) EXPECT_LT(largestDifference(), 1e-11) << "10 fs after the rebuild";
+        if (k == 5) {
+            EXPECT_LT(largestDifference(), 1e-11) << "10 fs after the rebuild";
+        }
     }
     EXPECT_GT(Probe::counts(goesOn).up + Probe::counts(goesOn).down, 1000u);
     EXPECT_EQ(rebuilt->potentialEnergy(), goesOn.potentialEnergy());

@@ -109,7 +109,7 @@ TEST(Pressure, DmdTakesTheImpulseVirialOverEachSampleInterval) {
 
 TEST(Thermo, HeaderNamesEveryColumnAndItsUnit) {
     for (const auto kind : {VirialKind::Instantaneous, VirialKind::Impulse}) {
-        const auto lines = split(cli::thermoHeader({kind, 1000.0, 9, 4}), '\n');
+        const auto lines = split(cli::thermoHeader({kind, 1000.0, 9, 4, {}, false}), '\n');
         ASSERT_EQ(lines.size(), 3u);
         const auto names = split(lines[0], ',');
         EXPECT_EQ(names.front(), "time_ps");
@@ -123,7 +123,7 @@ TEST(Thermo, HeaderNamesEveryColumnAndItsUnit) {
 }
 
 TEST(Thermo, RowsTakeTheirPressureAndCollisionsOverTheThermoInterval) {
-    const cli::ThermoLayout dmd{VirialKind::Impulse, 1000.0, 9, 4};
+    const cli::ThermoLayout dmd{VirialKind::Impulse, 1000.0, 9, 4, {}, false};
     SampleRecord a = sample(2.0, 20.0, 10.0, 100.0), b = sample(2.5, 30.0, 16.0, 130.0);
     b.kinetic = 45.0, b.potential = -60.0, b.total = -15.0;
     const auto first = numbers(cli::thermoRow(a, nullptr, -61.0, dmd));
@@ -144,7 +144,7 @@ TEST(Thermo, RowsTakeTheirPressureAndCollisionsOverTheThermoInterval) {
     EXPECT_EQ(row[8], 30.0);
     // SMD: the virial at the row's instant, no collisions column.
     const auto smd =
-        numbers(cli::thermoRow(b, &a, -60.0, {VirialKind::Instantaneous, 1000.0, 9, 4}));
+        numbers(cli::thermoRow(b, &a, -60.0, {VirialKind::Instantaneous, 1000.0, 9, 4, {}, false}));
     ASSERT_EQ(smd.size(), 8u);
     EXPECT_DOUBLE_EQ(smd[7], units::bar((60.0 + 16.0) / 3000.0));
 }
@@ -157,7 +157,8 @@ TEST(Thermo, TheTimeIsTheGridsDecimal) {
         t += units::fromFs(9.0);
     ASSERT_NE(units::toPs(t), 0.18);
     const SampleRecord s = sample(t, 20.0, 10.0);
-    const std::string row = cli::thermoRow(s, nullptr, -61.0, {VirialKind::Impulse, 1000.0, 9, 4});
+    const std::string row =
+        cli::thermoRow(s, nullptr, -61.0, {VirialKind::Impulse, 1000.0, 9, 4, {}, false});
     EXPECT_EQ(row.substr(0, row.find(',')), "0.18") << row;
     // From the sample index on the plan's grid (20 · 0.09 time units) it is 0.18 here exactly.
     EXPECT_EQ(units::toPs(20.0 * units::fromFs(9.0)), 0.18);

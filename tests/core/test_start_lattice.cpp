@@ -115,10 +115,11 @@ TEST(StartLattice, StructureFactorIsNAtTheFirstReciprocalVectors) {
             EXPECT_NEAR(amplitude(k), 1.0, phaseTol) << latticeName(c.kind);
         // The simple-cubic (100) vector of the conventional cell is extinct on fcc and bcc: the
         // vector a simple-cubic melt check would have used sees them as disordered.
-        if (c.kind != LatticeKind::SimpleCubic)
+        if (c.kind != LatticeKind::SimpleCubic) {
             EXPECT_NEAR(amplitude(Vec3(2.0 * std::numbers::pi / shape.cell.x(), 0, 0)), 0.0,
                         phaseTol)
                 << latticeName(c.kind);
+        }
     }
 }
 
