@@ -11,31 +11,21 @@
 #include "core/species_sphere.hpp"
 #include "dmd/scene_engine.hpp"
 #include "smd/scene_engine.hpp"
+#include "tests/mixture_scene.hpp"
 #include <gtest/gtest.h>
 
 using namespace terrace;
 
 namespace {
 
-/// 2000 Lennard-Jones spheres (cells enough for DMD to renumber them inside), 80 % A and 20 % B
-/// with Kob–Andersen's unlike pair.
+/// 2000 spheres of Kob–Andersen's mixture (tests/mixture_scene.hpp): cells enough for DMD to
+/// renumber them inside.
 Scene mixtureScene(const std::string& engine) {
-    const nlohmann::json j = {
-        {"name", "binary"},
-        {"units", "lj"},
-        {"body", {{"kind", "sphere"}, {"mass", 1.0}}},
-        {"potential",
-         {{"kind", "lj"},
-          {"epsilon", 1.0},
-          {"sigma", 1.0},
-          {"cutoff", {2.5, 3.0}},
-          {"pairs", {{{"between", {"A", "B"}}, {"epsilon", 1.5}, {"sigma", 0.8}}}}}},
-        {"species",
-         {{{"name", "A"}, {"fraction", 0.8}, {"epsilon", 1.0}, {"sigma", 1.0}},
-          {{"name", "B"}, {"fraction", 0.2}, {"epsilon", 0.5}, {"sigma", 0.88}}}},
-        {"state", {{"n", 2000}, {"density", 0.8}, {"temperature", 1.0}}},
-        {"engine", engine},
-        {"run", {{"equilibrate_ps", 0}, {"time_ps", 0.09}, {"sample_fs", 9}}}};
+    nlohmann::json j = mixture_tests::kobAndersen(2000, 0.8, 1.0);
+    j["name"] = "binary";
+    j["units"] = "lj";
+    j["engine"] = engine;
+    j["run"] = {{"equilibrate_ps", 0}, {"time_ps", 0.09}, {"sample_fs", 9}};
     return sceneFromJson(j, "test");
 }
 

@@ -13,6 +13,7 @@
 #include "dmd/testing.hpp"
 #include "smd/pair_forces.hpp"
 #include "smd/scene_engine.hpp"
+#include "tests/mixture_scene.hpp"
 #include <cstdio>
 #include <gtest/gtest.h>
 #include <vector>
@@ -27,25 +28,13 @@ using MixtureSystem = System<SpeciesSphere, Model>;
 using DmdMixture = dmd::SceneEngine<SpeciesSphere, Model>;
 using SmdMixture = smd::SceneEngine<SpeciesSphere, Model>;
 
-/// A Kob–Andersen-like binary mixture (Phys. Rev. E 51, 4626 (1995): ε_AB 1.5, σ_AB 0.8,
-/// ε_BB 0.5, σ_BB 0.88) in units where ε = 1 kJ/mol, σ = 1 Å and m = 1 g/mol (τ = 100 fs), here
-/// at a liquid state point well above its glass transition.
+/// Kob–Andersen's mixture (tests/mixture_scene.hpp) on an fcc lattice, at a liquid state point
+/// well above its glass transition.
 Scene mixtureScene(int n, double density, double temperature, double dVInKT) {
-    const nlohmann::json j = {
-        {"body", {{"kind", "sphere"}, {"mass", 1.0}}},
-        {"potential",
-         {{"kind", "lj"},
-          {"epsilon", 1.0},
-          {"sigma", 1.0},
-          {"cutoff", {2.5, 3.0}},
-          {"pairs", {{{"between", {"A", "B"}}, {"epsilon", 1.5}, {"sigma", 0.8}}}}}},
-        {"species",
-         {{{"name", "A"}, {"fraction", 0.8}, {"epsilon", 1.0}, {"sigma", 1.0}},
-          {{"name", "B"}, {"fraction", 0.2}, {"epsilon", 0.5}, {"sigma", 0.88}}}},
-        {"state",
-         {{"n", n}, {"density", density}, {"temperature", temperature}, {"lattice", "fcc"}}},
-        {"dmd", {{"model", "smoothed"}, {"dV", dVInKT}}},
-        {"smd", {{"dt_fs", 0.2}}}};
+    nlohmann::json j = mixture_tests::kobAndersen(n, density, temperature);
+    j["state"]["lattice"] = "fcc";
+    j["dmd"] = {{"model", "smoothed"}, {"dV", dVInKT}};
+    j["smd"] = {{"dt_fs", 0.2}};
     return sceneFromJson(j, "mixture");
 }
 
