@@ -1,7 +1,10 @@
 #include "cli/lammps_deck.hpp"
 #include "cli/dispatch.hpp"
+#include "core/body_orientation.hpp"
 #include "core/initial_state.hpp"
+#include "core/lj_mixture.hpp"
 #include "core/smoothed_potential.hpp"
+#include "core/species_sphere.hpp"
 #include "core/units.hpp"
 #include "dmd/section.hpp"
 #include "smd/parameters.hpp"
@@ -251,60 +254,136 @@ void refuseSmallBox(double L, double reach, const char* what) {
                             "nearest");
 }
 
-// ---- Lennard-Jones spheres ----------------------------------------------------------------------
+// ---- Lennard-Jones spheres: one kind, or a mixture
+// ------------------------------------------------
 
-LammpsDeck sphereDeck(const Scene& scene) {
+/// The atom types of a sphere deck, each with its mass: one for a single kind, one per species of
+/// a mixture; and one table per unordered pair of types.
+struct SphereTypes {
+    std::vector<std::string> names; // the species (empty for a single kind)
+    std::vector<double> masses;     // g/mol, per type
+    std::vector<TableJob> jobs;
+    std::vector<std::vector<int>> jobOf; // [a][b]: the table of types a and b
+};
+
+/// The table of one pair of types: terrace's smoothed LJ with the pair's ε and σ.
+TableJob ljTableJob(const std::string& key, const std::string& pair, const LJPotential& lj,
+                    const SmoothedCutoff& cut) {
+    TableJob j;
+    j.key = key;
+    j.comment = "terrace's smoothed Lennard-Jones g(r)·U_LJ(r)" + pair +
+                ", eps = " + number(lj.epsilon) + " kJ/mol, sigma = " + number(lj.sigma) +
+                " Å, switched on [" + number(cut.inner()) + ", " + number(cut.outer()) +
+                "] Å (core/smoothed_cutoff.hpp); r (Å), U (kcal/mol), F = -dU/dr";
+    j.model = Smoothed<LJPotential>{lj, cut};
+    j.sigma = lj.sigma;
+    return j;
+}
+
+SphereTypes sphereTypes(const Scene& scene) {
+    SphereTypes t;
+    const SmoothedCutoff cut = sceneCutoff(scene);
+    if (scene.species.empty()) {
+        t.masses = {scene.body.mass};
+        t.jobs = {ljTableJob("TERRACE_LJ", "", ljPotential(scene), cut)};
+        t.jobOf = {{0}};
+        return t;
+    }
+    const LJMixture mixture = ljMixture(scene);
+    const BodyParams params = bodyParams(scene);
+    const int ns = mixture.species;
+    t.jobOf.assign(ns, std::vector<int>(ns, 0));
+    for (int a = 0; a < ns; ++a) {
+        t.names.push_back(scene.species[a].name);
+        t.masses.push_back(params.speciesMass[a]);
+        for (int b = a; b < ns; ++b) {
+            const std::string pair = scene.species[a].name + "_" + scene.species[b].name;
+            t.jobOf[a][b] = t.jobOf[b][a] = static_cast<int>(t.jobs.size());
+            t.jobs.push_back(ljTableJob("TERRACE_LJ_" + pair, " of " + pair,
+                                        {mixture.pairEpsilon(a, b), mixture.pairSigma(a, b)}, cut));
+        }
+    }
+    return t;
+}
+
+/// The deck of Lennard-Jones spheres of kind K under `model`: Sphere and the scene's one LJ, or
+/// SpeciesSphere and a mixture's, each species an atom type with its mass and each pair of
+/// species a table of its own ε and σ on the one smoothed cutoff.
+template <BodyKind K, class Model> LammpsDeck sphereDeck(const Scene& scene, const Model& model) {
     LammpsDeck deck;
-    const Smoothed<LJPotential> model{ljPotential(scene), sceneCutoff(scene)};
-    const auto sys = buildInitialState<Sphere>(scene, model);
+    const auto sys = buildInitialState<K>(scene, model);
     const double L = sys.box.length;
     refuseSmallBox(L, model.range(), "the cutoff r_u");
     const Timing t = timing(scene, deck.notes);
     const int n = sys.size();
     deck.atoms = n;
     const bool measure = measured(n);
+    SphereTypes types = sphereTypes(scene);
+    const int nt = static_cast<int>(types.masses.size());
+    const auto typeOf = [](const typename K::State& b) -> int {
+        if constexpr (requires { b.species; })
+            return b.species;
+        else
+            return 0;
+    };
 
-    std::vector<TableJob> jobs(1);
-    jobs[0].key = "TERRACE_LJ";
-    jobs[0].comment =
-        "terrace's smoothed Lennard-Jones g(r)·U_LJ(r), eps = " + number(model.bare.epsilon) +
-        " kJ/mol, sigma = " + number(model.bare.sigma) + " Å, switched on [" +
-        number(model.cut.inner()) + ", " + number(model.cut.outer()) +
-        "] Å (core/smoothed_cutoff.hpp); r (Å), U (kcal/mol), F = -dU/dr";
-    jobs[0].model = model;
-    jobs[0].sigma = model.bare.sigma;
     deck.energyTerrace = std::numeric_limits<double>::quiet_NaN();
     if (measure) {
         const double cut2 = model.range() * model.range();
         for (int i = 0; i < n; ++i)
             for (int j = i + 1; j < n; ++j) {
-                const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
+                const auto &bi = sys.bodies[i], &bj = sys.bodies[j];
+                const Vec3 rij = sys.box.minimumImage(bi.r - bj.r);
                 if (rij.squaredNorm() >= cut2) continue;
-                jobs[0].pairs.rsq.push_back(rij.squaredNorm());
-                jobs[0].pairs.exact.push_back(model.energy(rij, Vec3(), Vec3()));
+                TablePairs& pairs = types.jobs[types.jobOf[typeOf(bi)][typeOf(bj)]].pairs;
+                pairs.rsq.push_back(rij.squaredNorm());
+                pairs.exact.push_back(
+                    model.energy(rij, orientationOf<Model, K>(bi), orientationOf<Model, K>(bj)));
             }
         deck.energyTerrace = potentialEnergyAllPairs(sys);
     }
     double deckEnergy = std::numeric_limits<double>::quiet_NaN();
-    deck.tablePoints = refineTables(jobs, measure, deckEnergy, deck.notes);
+    deck.tablePoints = refineTables(types.jobs, measure, deckEnergy, deck.notes);
     deck.energyDeck = measure ? deckEnergy : std::numeric_limits<double>::quiet_NaN();
-    deck.mapping.push_back(
-        "g(r)·U_LJ(r) as pair_style table linear: " + std::to_string(deck.tablePoints) +
-        " nodes uniform in r² on [" + shortNumber(jobs[0].table.rLow) + ", " +
-        shortNumber(model.range()) + "] Å, terrace's U and F at each, in kcal/mol");
+    if (types.names.empty()) {
+        deck.mapping.push_back(
+            "g(r)·U_LJ(r) as pair_style table linear: " + std::to_string(deck.tablePoints) +
+            " nodes uniform in r² on [" + shortNumber(types.jobs[0].table.rLow) + ", " +
+            shortNumber(model.range()) + "] Å, terrace's U and F at each, in kcal/mol");
+    } else {
+        std::string list;
+        for (int a = 0; a < nt; ++a)
+            list += (a ? ", " : "") + types.names[a] + " as type " + std::to_string(a + 1) + " (" +
+                    shortNumber(types.masses[a]) + " g/mol)";
+        deck.mapping.push_back("species " + list);
+        deck.mapping.push_back(
+            "each pair of species' g(r)·U_LJ(r) with its own eps and sigma as pair_style table "
+            "linear: " +
+            std::to_string(deck.tablePoints) + " nodes uniform in r² up to " +
+            shortNumber(model.range()) + " Å (tables TERRACE_LJ_<a>_<b>), terrace's U and F");
+    }
     deck.mapping.push_back("equilibration: fix temp/rescale to " +
                            shortNumber(units::kelvin(scene.kT())) + " K every " +
                            std::to_string(t.thermostatEvery) + " steps for " +
                            std::to_string(t.equilibrate) + " steps, then NVE (fix nve) for " +
                            std::to_string(t.production) + " steps");
-    deck.table = "# Pair table written by `terrace export lammps`\n\n" +
-                 tableSection(jobs[0].table, jobs[0].comment);
+    if (types.names.empty()) {
+        deck.table = "# Pair table written by `terrace export lammps`\n\n" +
+                     tableSection(types.jobs[0].table, types.jobs[0].comment);
+    } else {
+        deck.table = "# Pair tables written by `terrace export lammps`\n\n";
+        for (const TableJob& j : types.jobs)
+            deck.table += tableSection(j.table, j.comment);
+    }
 
     std::ostringstream data;
-    data << dataHeader(scene, n, 1, L, "") << "Masses\n\n1 " << number(sys.body.mass)
-         << "\n\nAtoms # atomic\n\n";
+    data << dataHeader(scene, n, nt, L, "") << "Masses\n\n";
+    for (int a = 0; a < nt; ++a)
+        data << a + 1 << " " << number(types.masses[a]) << "\n";
+    data << "\nAtoms # atomic\n\n";
     for (int i = 0; i < n; ++i)
-        data << i + 1 << " 1 " << placed(sys.bodies[i].r, L) << "\n";
+        data << i + 1 << " " << typeOf(sys.bodies[i]) + 1 << " " << placed(sys.bodies[i].r, L)
+             << "\n";
     data << "\nVelocities\n\n";
     for (int i = 0; i < n; ++i)
         data << i + 1 << " " << vec(sys.bodies[i].v * perFs) << "\n";
@@ -312,9 +391,12 @@ LammpsDeck sphereDeck(const Scene& scene) {
 
     std::ostringstream in;
     in << deckHeader(scene, deck, t) << "atom_style      atomic\nread_data       data.lammps\n"
-       << "pair_style      table linear " << deck.tablePoints << "\n"
-       << "pair_coeff      1 1 pair.table TERRACE_LJ " << number(model.range()) << "\n"
-       << "neighbor        " << number(t.skinAngstrom) << " bin\n"
+       << "pair_style      table linear " << deck.tablePoints << "\n";
+    for (int a = 0; a < nt; ++a)
+        for (int b = a; b < nt; ++b)
+            in << "pair_coeff      " << a + 1 << " " << b + 1 << " pair.table "
+               << types.jobs[types.jobOf[a][b]].key << " " << number(model.range()) << "\n";
+    in << "neighbor        " << number(t.skinAngstrom) << " bin\n"
        << deckRun(t, "fix             nve all nve\n", true, units::kelvin(scene.kT()));
     deck.input = in.str();
     return deck;
@@ -547,11 +629,12 @@ template <BodyKind K, AttitudeUse use> LammpsDeck sitesDeck(const Scene& scene) 
 
 LammpsDeck lammpsDeck(const Scene& scene) {
     const std::string& kind = scene.potential.kind;
-    if (!scene.species.empty())
-        throw LammpsRefusal("species: the deck of a mixture is not written yet (one atom type "
-                            "and one pair_coeff per species pair, each with the scene's one "
-                            "smoothed cutoff); export a single species");
-    if (kind == "lj") return sphereDeck(scene);
+    if (kind == "lj" && !scene.species.empty())
+        return sphereDeck<SpeciesSphere>(scene,
+                                         Smoothed<LJMixture>{ljMixture(scene), sceneCutoff(scene)});
+    if (kind == "lj")
+        return sphereDeck<Sphere>(scene,
+                                  Smoothed<LJPotential>{ljPotential(scene), sceneCutoff(scene)});
     if (kind == "gay-berne") return gayBerneDeck(scene);
     if (kind == "steps")
         throw LammpsRefusal("potential.kind: steps (a step table) has no LAMMPS equivalent: its "

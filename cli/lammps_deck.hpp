@@ -5,7 +5,9 @@
 // come close, written with a note naming every difference:
 //   lj        spheres, atom_style atomic; the smoothed g(r)·U_LJ that SMD integrates as a
 //             pair_style table linear of its exact U and F, fine enough that the table's
-//             interpolation moves the first frame's U by at most tableTolerance (measured here).
+//             interpolation moves the first frame's U by at most tableTolerance (measured here);
+//             a mixture's species each an atom type with its mass, each pair of species a table
+//             of its own ε and σ on the one smoothed cutoff.
 //   gay-berne ellipsoids, atom_style ellipsoid, pair_style gayberne with γ = 1, υ = ν, μ, shape
 //             (σ0, σ0, κσ0) and relative well depths (1, 1, 1/κ'): LAMMPS's form is then terrace's
 //             U term for term; its cutoff is a plain cut at r_u (no switch), fix nve/asphere.

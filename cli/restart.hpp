@@ -11,7 +11,8 @@
 //                       format, scene (resolved), the run's identity (the CRC-64 of DIR/scene.json
 //                       as the run wrote it, N, the engine), phase (equilibration | production),
 //                       the number of thermostat ticks or samples done, the bodies (every number of
-//                       their states as raw bytes: exact, and compact), the engine's checkpoint
+//                       their states as raw bytes: exact, and compact; a mixture's species too, as
+//                       32-bit integers, under species), the engine's checkpoint
 //                       (DMD: clock, pair terraces as raw bytes, horizon stream; SMD: step count;
 //                       both: the heat bath's stream, energy and clock when run.heat_bath is set),
 //                       the run's accumulators (production start, initial momentum, production
@@ -148,6 +149,40 @@ template <class State> BodyArray<State> bodiesFromBinary(const nlohmann::json& j
         throw std::runtime_error("restart: more body records than " + std::to_string(n) +
                                  " bodies of this kind");
     return bodies;
+}
+
+/// A mixture's species of every body (a kind whose state has one), as raw 32-bit integers.
+template <class State, class A>
+nlohmann::json speciesToBinary(const std::vector<State, A>& bodies) {
+    std::vector<std::uint8_t> bytes(bodies.size() * sizeof(std::int32_t));
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        std::memcpy(bytes.data() + i * sizeof(std::int32_t), &bodies[i].species,
+                    sizeof(std::int32_t));
+    return nlohmann::json::binary(std::move(bytes));
+}
+
+/// Gives each body its species from `restart`'s species record, each index below `species` (the
+/// scene's number of species); a file without one, or with one of another length or an index out
+/// of range, is refused.
+template <class Bodies>
+void speciesFromBinary(const nlohmann::json& restart, Bodies& bodies, int species) {
+    if (!restart.contains("species") || !restart.at("species").is_binary())
+        throw std::runtime_error("restart: the file holds no species of the bodies, which a "
+                                 "mixture needs (it was written before they were kept)");
+    const auto& bytes = restart.at("species").get_binary();
+    if (bytes.size() != bodies.size() * sizeof(std::int32_t))
+        throw std::runtime_error("restart: the species record does not hold one species for each "
+                                 "of the " +
+                                 std::to_string(bodies.size()) + " bodies");
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+        std::int32_t a = 0;
+        std::memcpy(&a, bytes.data() + i * sizeof(std::int32_t), sizeof a);
+        if (a < 0 || a >= species)
+            throw std::runtime_error("restart: body " + std::to_string(i) + " has species " +
+                                     std::to_string(a) + ", where the scene has " +
+                                     std::to_string(species));
+        bodies[i].species = a;
+    }
 }
 
 } // namespace terrace::cli

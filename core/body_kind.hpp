@@ -7,15 +7,21 @@
 // lab-frame vectors to the body frame; body-frame quantities carry no suffix in the formulas of the
 // top headers. All vectors in a State are in the lab frame unless named otherwise.
 #include "core/vec.hpp"
+#include <array>
 #include <concepts>
 #include <string_view>
 
 namespace terrace {
 
-/// Mass (g/mol) and principal moments of inertia (g/mol Å²) shared by every body of a scene.
+/// The most species a mixture may have (Scene::species).
+inline constexpr int maxSpecies = 4;
+
+/// Mass (g/mol) and principal moments of inertia (g/mol Å²) shared by every body of a scene; in a
+/// mixture, each species' own mass, which its kind reads by the body's species (bodyMass).
 struct BodyParams {
     double mass = 0.0;
     Vec3 inertia = Vec3::Zero(); // I1, I2, I3 in the body frame; unused entries are ignored
+    std::array<double, maxSpecies> speciesMass{}; // g/mol, by species; unused without species
 };
 
 template <class K>
@@ -35,6 +41,22 @@ concept BodyKind = requires(typename K::State s, const typename K::State cs, con
     K::scaleAngularVelocity(s, p, t); // ω *= factor (thermostat)
 };
 
+/// A kind whose bodies have masses of their own (a mixture's species), where every other kind's
+/// bodies share the scene's one mass.
+template <class K>
+concept MassPerBody = requires(const typename K::State s, const BodyParams p) {
+    { K::mass(s, p) } -> std::convertible_to<double>;
+};
+
+/// The mass of one body, g/mol. Kinds without masses of their own read the scene's, so that their
+/// sums keep the operations, and so the round-off, of a scene where mass was one number.
+template <BodyKind K> double bodyMass(const typename K::State& s, const BodyParams& p) {
+    if constexpr (MassPerBody<K>)
+        return K::mass(s, p);
+    else
+        return p.mass;
+}
+
 /// Exact free motion over time t: straight-line translation and the kind's exact rotation.
 template <BodyKind K> void freeMove(typename K::State& s, const BodyParams& p, double t) {
     s.r += s.v * t;
@@ -42,7 +64,7 @@ template <BodyKind K> void freeMove(typename K::State& s, const BodyParams& p, d
 }
 
 template <BodyKind K> double kineticEnergy(const typename K::State& s, const BodyParams& p) {
-    return 0.5 * p.mass * s.v.squaredNorm() + K::rotationalKinetic(s, p);
+    return 0.5 * bodyMass<K>(s, p) * s.v.squaredNorm() + K::rotationalKinetic(s, p);
 }
 
 /// Rodrigues' rotation matrix: rotates vectors by angle theta (rad) about the unit axis u.

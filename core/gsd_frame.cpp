@@ -57,6 +57,7 @@ GsdBodyType gsdBodyType(const Scene& scene) {
     for (const auto& x : scene.species) {
         t.species.push_back(x.name);
         t.speciesDiameters.push_back(x.sigma * scene.potential.sigma);
+        t.speciesMasses.push_back(x.mass * scene.body.mass);
     }
     t.mass = scene.body.mass;
     t.inertia = scene.body.kind == "sphere" ? Vec3::Zero() : scene.body.inertia;
@@ -92,10 +93,12 @@ void writeConstantChunks(GsdWriter& f, std::uint32_t n, double boxLength, const 
         type.species.empty() ? std::vector<std::string>{type.name} : type.species;
     const auto names = stringRows(typeNames, width);
     chunk(f, "particles/types", GsdType::Int8, typeNames.size(), width, names);
-    // A mixture's typeid is its bodies' species, written with the first frame's bodies.
-    if (type.species.empty())
+    // A mixture's typeid and mass follow its bodies' species, written with the first frame's
+    // bodies.
+    if (type.species.empty()) {
         chunk(f, "particles/typeid", GsdType::UInt32, n, 1, std::vector<std::uint32_t>(n, 0));
-    chunk(f, "particles/mass", GsdType::Float, n, 1, std::vector<float>(n, float(type.mass)));
+        chunk(f, "particles/mass", GsdType::Float, n, 1, std::vector<float>(n, float(type.mass)));
+    }
     std::vector<float> inertia;
     inertia.reserve(3 * std::size_t(n));
     for (std::uint32_t i = 0; i < n; ++i)
@@ -161,6 +164,11 @@ void writeHoomdFrame(GsdWriter& f, int bodies, double time, double boxLength,
                             "writeHoomdFrame: a mixture's bodies without species");
                     out.push_back(static_cast<std::uint32_t>(s.species[i]));
                 });
+        if (!type.species.empty())
+            bodyChunk<float>(f, "particles/mass", GsdType::Float, 1, bodies, bodiesOf, perPiece,
+                             [&](const Snapshot& s, int i, std::vector<float>& out) {
+                                 out.push_back(float(type.speciesMasses.at(s.species.at(i))));
+                             });
     }
     chunk(f, "configuration/step", GsdType::UInt64, 1, 1, std::vector<std::uint64_t>{sample});
     const double L = boxLength, perPs = 1.0 / units::psPerTimeUnit;

@@ -35,9 +35,11 @@ struct GsdBodyType {
     double mass = 0.0;     // g/mol
     Vec3 inertia{0, 0, 0}; // principal moments, g/mol Å²
     // A mixture's species (Scene::species), each a type of its own named as the species, a
-    // sphere of its own σ; the bodies' typeid then comes from each frame's Snapshot::species.
+    // sphere of its own σ and mass; the bodies' typeid and mass then come from the first frame's
+    // Snapshot::species.
     std::vector<std::string> species;
     std::vector<double> speciesDiameters; // Å
+    std::vector<double> speciesMasses;    // g/mol
 };
 GsdBodyType gsdBodyType(const Scene& scene);
 

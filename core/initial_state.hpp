@@ -57,7 +57,7 @@ inline constexpr double maxStartEnergyInKT = 50.0;
 template <BodyKind K>
 void thermalise(typename K::State& b, const BodyParams& p, double kT, std::mt19937_64& rng) {
     std::normal_distribution<double> gauss(0.0, 1.0);
-    const double sv = std::sqrt(kT / p.mass);
+    const double sv = std::sqrt(kT / bodyMass<K>(b, p));
     b.v = Vec3(gauss(rng), gauss(rng), gauss(rng)) * sv;
     if constexpr (K::rotationalDof == 2) { // linear rotor: ω ⟂ s, two components
         const Vec3 e1 = anyPerpendicular(b.s), e2 = b.s.cross(e1);
@@ -179,6 +179,10 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
                     " puts lattice neighbours " + std::to_string(lattice.nearest) +
                     " Å apart, deep in the repulsive core (overlap); lower the density");
         }
+    // The species before the velocities: each body's are drawn at its species' mass.
+    if constexpr (requires { sys.bodies[0].species; })
+        detail::assignSpecies(sys.bodies, speciesCounts(scene, n),
+                              namedStream(scene.seed, "species"));
     auto orientRng = namedStream(scene.seed, "orientations");
     auto velocityRng = namedStream(scene.seed, "velocities");
     for (int i = 0; i < n; ++i) {
@@ -192,11 +196,15 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
         }
         detail::thermalise<K>(b, sys.body, sys.kT, velocityRng);
     }
-    if constexpr (requires { sys.bodies[0].species; })
-        detail::assignSpecies(sys.bodies, speciesCounts(scene, n),
-                              namedStream(scene.seed, "species"));
     if (n > 1) detail::refuseOverlappingNeighbours(sys, lattice, scene);
-    const Vec3 pMean = totalMomentum(sys) / (sys.body.mass * n);
+    // The centre of mass at rest.
+    double totalMass = sys.body.mass * n;
+    if constexpr (MassPerBody<K>) {
+        totalMass = 0.0;
+        for (const auto& b : sys.bodies)
+            totalMass += bodyMass<K>(b, sys.body);
+    }
+    const Vec3 pMean = totalMomentum(sys) / totalMass;
     for (auto& b : sys.bodies)
         b.v -= pMean;
     rescaleToTemperature(sys, sys.kT);

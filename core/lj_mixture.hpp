@@ -5,6 +5,7 @@
 // take their own ε and σ, unlike ones Lorentz–Berthelot's (σ_ab = (σ_a + σ_b)/2,
 // ε_ab = √(ε_a ε_b)) unless the scene gives the pair's own, as the Kob–Andersen mixture does
 // (W. Kob and H. C. Andersen, Phys. Rev. E 51, 4626 (1995)). Units: kJ/mol, Å.
+#include "core/body_kind.hpp"
 #include "core/pair_potential.hpp"
 #include <algorithm>
 #include <array>
@@ -17,7 +18,8 @@ struct LJMixture {
     static constexpr std::string_view name = "lj";
     static constexpr AttitudeUse attitude = AttitudeUse::Species;
     using Orientation = int;
-    static constexpr int maxSpecies = 4;
+    static constexpr int maxSpecies = terrace::maxSpecies;
+    static constexpr double minimumOverSigma = 1.122462048309373; // 2^(1/6): where U is least
 
     int species = 1;
     // Symmetric tables indexed [a · maxSpecies + b]: ε_ab (kJ/mol) and σ_ab (Å).
@@ -56,7 +58,7 @@ struct LJMixture {
         const double eps = pairEpsilon(a, b), sig = pairSigma(a, b);
         const double r = rij.norm();
         const double lo = std::max(0.0, r - shift), hi = r + shift;
-        const double bottom = sig * std::pow(2.0, 1.0 / 6.0);
+        const double bottom = sig * minimumOverSigma;
         const auto at = [&](double x) {
             return x > 0.0 ? detail::lennardJones(x, eps, sig).U
                            : std::numeric_limits<double>::infinity();

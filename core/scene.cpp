@@ -156,7 +156,8 @@ json toJson(const Scene& s) {
             list.push_back({{"name", x.name},
                             {"fraction", x.fraction},
                             {"epsilon", x.epsilon},
-                            {"sigma", x.sigma}});
+                            {"sigma", x.sigma},
+                            {"mass", x.mass}});
         j["species"] = list;
         json pairs = json::array();
         for (const auto& x : s.potential.pairs)
@@ -266,7 +267,10 @@ SmoothedCutoff sceneCutoff(const Scene& s) {
     return {s.potential.r_l * s.potential.sigma, s.potential.r_u * s.potential.sigma};
 }
 BodyParams bodyParams(const Scene& s) {
-    return BodyParams{s.body.mass, s.body.inertia};
+    BodyParams p{s.body.mass, s.body.inertia};
+    for (std::size_t a = 0; a < s.species.size() && a < p.speciesMass.size(); ++a)
+        p.speciesMass[a] = s.species[a].mass * s.body.mass;
+    return p;
 }
 
 } // namespace terrace

@@ -47,13 +47,15 @@ struct SiteSpec {
 };
 
 /// One species of a mixture of spheres (Scene::species): its share of the bodies and its own
-/// Lennard-Jones ε and σ in the scene's units (potential.epsilon, potential.sigma), so that a
-/// mixture given in ε_AA and σ_AA, as the literature gives them, is typed as printed.
+/// Lennard-Jones ε, σ and mass in the scene's units (potential.epsilon, potential.sigma,
+/// body.mass), so that a mixture given in ε_AA, σ_AA and m_A, as the literature gives them, is
+/// typed as printed.
 struct SpeciesSpec {
     std::string name;
     double fraction = 0.0; // of state.n; the fractions add up to 1
     double epsilon = 1.0;  // ε
     double sigma = 1.0;    // σ
+    double mass = 1.0;     // body.mass
 };
 
 /// The parameters of one unlike pair (potential.pairs), in place of Lorentz–Berthelot's mixing

@@ -47,7 +47,7 @@ void readSpecies(const JsonSection& top, Scene& s) {
     double total = 0.0;
     for (std::size_t a = 0; a < list.size(); ++a) {
         const JsonSection e(list[a], top.name("species[" + std::to_string(a) + "]"), top.origin());
-        e.onlyKeys({"name", "fraction", "epsilon", "sigma"});
+        e.onlyKeys({"name", "fraction", "epsilon", "sigma", "mass"});
         SpeciesSpec x;
         if (!e.has("name") || !e.at("name").is_string() || e.at("name").get<std::string>().empty())
             e.fail("name", "each species needs a name, a non-empty string (\"A\")");
@@ -61,6 +61,7 @@ void readSpecies(const JsonSection& top, Scene& s) {
         x.fraction = e.number("fraction", 0.0, 0.0, 1.0, true);
         x.epsilon = e.number("epsilon", 1.0, 0.0, 1e6, true);
         x.sigma = e.number("sigma", 1.0, 0.0, 1e3, true);
+        x.mass = e.number("mass", 1.0, 0.0, 1e6, true);
         total += x.fraction;
         s.species.push_back(x);
     }

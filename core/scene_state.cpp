@@ -157,6 +157,13 @@ void checkRepresentable(const JsonSection& top, const Scene& s) {
                        " fs the time grid resolves");
     requireResolvedMotion(top, "body.mass", "cross σ", s.body.mass, crossingTime,
                           crossing(s.body.mass, kTDefault), s.state.temperature);
+    // A mixture's lighter species cross faster than body.mass says.
+    for (std::size_t a = 0; a < s.species.size(); ++a) {
+        const double m = s.species[a].mass * s.body.mass;
+        requireResolvedMotion(top, "species[" + std::to_string(a) + "].mass", "cross σ",
+                              s.species[a].mass, crossing(m, kT), crossing(m, kTDefault),
+                              s.state.temperature);
+    }
     const Vec3& I = s.body.inertia;
     auto turning = [](double i, double e) { return units::toFs(std::sqrt(i / e)); };
     for (int a = 0; a < 3; ++a) {

@@ -41,6 +41,11 @@ template <BodyKind K, PairPotential P> double totalKinetic(const System<K, P>& s
 /// ½ m Σ v², kJ/mol: the kinetic energy of the centres, which alone enters the pressure.
 template <BodyKind K, PairPotential P> double translationalKinetic(const System<K, P>& sys) {
     double e = 0.0;
+    if constexpr (MassPerBody<K>) {
+        for (const auto& b : sys.bodies)
+            e += bodyMass<K>(b, sys.body) * b.v.squaredNorm();
+        return 0.5 * e;
+    }
     for (const auto& b : sys.bodies)
         e += b.v.squaredNorm();
     return 0.5 * sys.body.mass * e;
@@ -49,7 +54,7 @@ template <BodyKind K, PairPotential P> double translationalKinetic(const System<
 template <BodyKind K, PairPotential P> Vec3 totalMomentum(const System<K, P>& sys) {
     Vec3 p = Vec3::Zero();
     for (const auto& b : sys.bodies)
-        p += sys.body.mass * b.v;
+        p += bodyMass<K>(b, sys.body) * b.v;
     return p;
 }
 
@@ -70,7 +75,7 @@ template <BodyKind K, PairPotential P> void rescaleToTemperature(System<K, P>& s
 template <BodyKind K, PairPotential P> Vec3 totalAngularMomentum(const System<K, P>& sys) {
     Vec3 l = Vec3::Zero();
     for (const auto& b : sys.bodies)
-        l += b.r.cross(sys.body.mass * b.v) + K::angularMomentum(b, sys.body);
+        l += b.r.cross(bodyMass<K>(b, sys.body) * b.v) + K::angularMomentum(b, sys.body);
     return l;
 }
 

@@ -40,8 +40,9 @@ template <BodyKind K>
 ImpulseCoefficients impulseCoefficients(const PairForce& f, const typename K::State& bi,
                                         const typename K::State& bj, const BodyParams& p) {
     ImpulseCoefficients c;
-    c.a = 0.5 * f.F.squaredNorm() * (2.0 / p.mass) +
-          0.5 * K::inverseInertia(bi, p, f.tauI, f.tauI) +
+    double inverseMasses = 2.0 / p.mass; // 1/m_i + 1/m_j
+    if constexpr (MassPerBody<K>) inverseMasses = 1.0 / K::mass(bi, p) + 1.0 / K::mass(bj, p);
+    c.a = 0.5 * f.F.squaredNorm() * inverseMasses + 0.5 * K::inverseInertia(bi, p, f.tauI, f.tauI) +
           0.5 * K::inverseInertia(bj, p, f.tauJ, f.tauJ);
     c.b = (bi.v - bj.v).dot(f.F) + f.tauI.dot(K::angularVelocity(bi, p)) +
           f.tauJ.dot(K::angularVelocity(bj, p));
@@ -81,9 +82,14 @@ inline Impulse solveImpulse(const ImpulseCoefficients& c, double dE) {
 template <BodyKind K>
 void applyImpulse(typename K::State& bi, typename K::State& bj, const PairForce& f, double S,
                   const BodyParams& p) {
-    const Vec3 dv = (S / p.mass) * f.F;
-    bi.v += dv;
-    bj.v -= dv;
+    if constexpr (MassPerBody<K>) {
+        bi.v += (S / K::mass(bi, p)) * f.F;
+        bj.v -= (S / K::mass(bj, p)) * f.F;
+    } else {
+        const Vec3 dv = (S / p.mass) * f.F;
+        bi.v += dv;
+        bj.v -= dv;
+    }
     K::addAngularMomentum(bi, p, S * f.tauI);
     K::addAngularMomentum(bj, p, S * f.tauJ);
 }

@@ -125,6 +125,10 @@ template <BodyKind K, PairPotential P> void checkBodies(const System<K, P>& sys)
             throw SceneError("state: body " + std::to_string(i) + " has a non-finite value");
     }
     if (!(sys.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
+    if constexpr (MassPerBody<K>)
+        for (const auto& b : sys.bodies)
+            if (!(bodyMass<K>(b, sys.body) > 0.0))
+                throw SceneError("species: every species' mass must be > 0");
 }
 
 /// Terrace of every pair from U at the start; a pair on a level (within the search's level

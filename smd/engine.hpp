@@ -82,6 +82,10 @@ private:
                 throw SceneError("state: a body has a non-finite position, velocity, orientation "
                                  "or angular velocity");
         if (!(sys_.body.mass > 0.0)) throw SceneError("body.mass: must be > 0");
+        if constexpr (MassPerBody<K>)
+            for (const auto& b : sys_.bodies)
+                if (!(bodyMass<K>(b, sys_.body) > 0.0))
+                    throw SceneError("species: every species' mass must be > 0");
         list_.reach = sys_.potential.range() + par_.skin;
         list_.skin = par_.skin;
         const std::size_t n = sys_.bodies.size();
@@ -242,6 +246,11 @@ public:
     double translationalKineticEnergy() const {
         if (!sortBodies_) return translationalKinetic(sys_);
         double e = 0.0;
+        if constexpr (MassPerBody<K>) {
+            for (const int i : engineOf_)
+                e += K::mass(sys_.bodies[i], sys_.body) * sys_.bodies[i].v.squaredNorm();
+            return 0.5 * e;
+        }
         for (const int i : engineOf_)
             e += sys_.bodies[i].v.squaredNorm();
         return 0.5 * sys_.body.mass * e;
@@ -250,7 +259,7 @@ public:
         if (!sortBodies_) return terrace::totalMomentum(sys_);
         Vec3 p = Vec3::Zero();
         for (const int i : engineOf_)
-            p += sys_.body.mass * sys_.bodies[i].v;
+            p += bodyMass<K>(sys_.bodies[i], sys_.body) * sys_.bodies[i].v;
         return p;
     }
 
@@ -404,7 +413,10 @@ private:
         const double hm = h / sys_.body.mass;
         for (std::size_t a = 0; a < sys_.bodies.size(); ++a) { // forces are kept per list slot
             auto& b = sys_.bodies[list_.order[a]];
-            b.v += hm * forces_.force[a];
+            if constexpr (MassPerBody<K>)
+                b.v += (h / K::mass(b, sys_.body)) * forces_.force[a];
+            else
+                b.v += hm * forces_.force[a];
             if constexpr (K::rotationalDof > 0)
                 K::addAngularMomentum(b, sys_.body, h * forces_.torque[a]);
         }

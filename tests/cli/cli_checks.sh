@@ -521,19 +521,27 @@ kill_resume)
     # alone: DMD and SMD killed in production, DMD killed during a long equilibration (with
     # lengths that are no whole number of their intervals: its last rescale interval cut short,
     # its production's last 5 fs unsampled); and under each heat bath (its stream and energy
-    # carried by restart.bin), with its summary block too.
+    # carried by restart.bin), with its summary block too; and a mixture of two masses in both
+    # engines (its bodies' species carried by restart.bin).
     andersen='{"kind":"andersen","rate_per_ps":5}' csvr='{"kind":"csvr","tau_fs":90}'
-    for case in dmd:0.18:9 smd:0.18:9 dmd:9.005:0.905 dmd:0.18:9:andersen smd:0.18:9:andersen \
-        dmd:0.18:9:csvr smd:0.18:9:csvr dmd:9.005:0.905:andersen; do
-        IFS=: read -r engine equilibrate ps bath <<<"$case"
-        name=$engine-$equilibrate${bath:+-$bath}
-        args=(--quiet --set engine=$engine --set state.n=216 --set run.equilibrate_ps=$equilibrate
-            --set run.time_ps=$ps --set output.trajectory_every_fs=18
-            --set output.thermo_every_fs=36 --set output.restart_every_ps=0.9)
+    heavy_b='species=[{"name":"A","fraction":0.8},{"name":"B","fraction":0.2,"epsilon":0.5,"sigma":0.88,"mass":3}]'
+    for case in dmd:0.2:0.9::mixture smd:0.2:0.9::mixture dmd:0.18:9 smd:0.18:9 dmd:9.005:0.905 \
+        dmd:0.18:9:andersen smd:0.18:9:andersen dmd:0.18:9:csvr smd:0.18:9:csvr \
+        dmd:9.005:0.905:andersen; do
+        IFS=: read -r engine equilibrate ps bath mixture <<<"$case"
+        name=$engine-$equilibrate${bath:+-$bath}${mixture:+-$mixture}
+        scene=$src/experiments/scenes/dense-rods.json n=216 restart_ps=0.9 frame_fs=18
+        if [ -n "$mixture" ]; then # its samples every 5 fs
+            scene=$src/experiments/scenes/kob-andersen.json n=256 restart_ps=0.3 frame_fs=20
+        fi
+        args=(--quiet --set engine=$engine --set state.n=$n --set run.equilibrate_ps=$equilibrate
+            --set run.time_ps=$ps --set output.trajectory_every_fs=$frame_fs
+            --set output.thermo_every_fs=$((2 * frame_fs)) --set output.restart_every_ps=$restart_ps)
         [ -z "$bath" ] || args+=(--set "run.heat_bath=${!bath}")
-        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$name-a" \
+        [ -z "$mixture" ] || args+=(--set "$heavy_b" --set state.density=0.85) # SMD's box: ≥ 2(r_u + skin)
+        "$terrace" run "$scene" --out "$work/$name-a" \
             "${args[@]}" >/dev/null || fail "$name: the uninterrupted run failed"
-        "$terrace" run "$src/experiments/scenes/dense-rods.json" --out "$work/$name-b" \
+        "$terrace" run "$scene" --out "$work/$name-b" \
             "${args[@]}" >/dev/null 2>&1 &
         pid=$!
         for _ in $(seq 1 1000); do
@@ -552,7 +560,9 @@ kill_resume)
         fi
         "$terrace" run --continue "$work/$name-b" --quiet >/dev/null ||
             fail "$name: --continue failed"
-        for f in trajectory.xyz thermo.csv rdf.csv vacf.csv oacf.csv msd.csv; do
+        files=(trajectory.xyz thermo.csv rdf.csv vacf.csv msd.csv)
+        [ -n "$mixture" ] || files+=(oacf.csv) # spheres do not turn
+        for f in "${files[@]}"; do
             cmp -s "$work/$name-a/$f" "$work/$name-b/$f" ||
                 fail "$name: $f of the continued run differs from the uninterrupted run's"
         done

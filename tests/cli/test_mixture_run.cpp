@@ -1,12 +1,17 @@
 // The shipped Kob–Andersen scene (experiments/scenes/kob-andersen.json) run end to end, in-process,
 // by each engine as `terrace run` runs it: both finish with their documented files, DMD with its
 // energy constant to round-off, both at the scene's temperature with the mixture's U per body;
-// and `terrace export` refuses a mixture before writing anything.
+// and `terrace export lammps` writes its deck.
 #include "cli/lammps_deck.hpp"
 #include "cli/run_command.hpp"
 #include "cli/scene_check.hpp"
+#include "core/initial_state.hpp"
+#include "core/lj_mixture.hpp"
+#include "core/smoothed_potential.hpp"
+#include "core/species_sphere.hpp"
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <sstream>
 #include <unistd.h>
 
 using namespace terrace;
@@ -56,14 +61,38 @@ TEST(MixtureScene, KobAndersenRunsInBothEngines) {
     }
 }
 
-TEST(MixtureScene, ExportRefusesAMixture) {
-    const Scene s = loadScene(sceneFile);
-    try {
-        (void)cli::lammpsDeck(s);
-        FAIL() << "a mixture's deck was written";
-    } catch (const cli::LammpsRefusal& e) {
-        EXPECT_NE(std::string(e.what()).find("species: the deck of a mixture is not written yet"),
-                  std::string::npos)
-            << e.what();
+// The deck of a mixture: each species an atom type with its mass (B three times as heavy here),
+// the bodies' types as terrace dealt them, each pair of species a table of its own ε and σ, and
+// the first frame's U under the deck's tables within the tables' tolerance of terrace's.
+TEST(MixtureScene, ExportWritesEachSpeciesATypeAndEachPairATable) {
+    Scene s = loadScene(sceneFile, {"state.n=256", "state.density=0.85"});
+    s.species[1].mass = 3.0;
+    const cli::LammpsDeck deck = cli::lammpsDeck(s);
+    EXPECT_EQ(deck.atoms, 256);
+    EXPECT_NE(deck.data.find("\n256 atoms\n2 atom types\n"), std::string::npos);
+    EXPECT_NE(deck.data.find("Masses\n\n1 1\n2 3\n\nAtoms # atomic"), std::string::npos)
+        << deck.data.substr(0, 400);
+    // The types as the lattice start deals the species.
+    const auto sys =
+        buildInitialState<SpeciesSphere>(s, Smoothed<LJMixture>{ljMixture(s), sceneCutoff(s)});
+    std::istringstream atoms(deck.data.substr(deck.data.find("Atoms # atomic\n\n") + 16));
+    for (int i = 0; i < 256; ++i) {
+        int id = 0, type = 0;
+        atoms >> id >> type;
+        std::string rest;
+        std::getline(atoms, rest);
+        ASSERT_EQ(id, i + 1);
+        ASSERT_EQ(type, sys.bodies[i].species + 1) << i;
     }
+    for (const char* line : {"pair_coeff      1 1 pair.table TERRACE_LJ_A_A ",
+                             "pair_coeff      1 2 pair.table TERRACE_LJ_A_B ",
+                             "pair_coeff      2 2 pair.table TERRACE_LJ_B_B "})
+        EXPECT_NE(deck.input.find(line), std::string::npos) << line;
+    // Each table's parameters: ε_AB 1.5, σ_AB 0.8 as Kob and Andersen give them.
+    EXPECT_NE(deck.table.find("\nTERRACE_LJ_A_B\n"), std::string::npos);
+    EXPECT_NE(deck.table.find("of A_B, eps = 1.5 kJ/mol, sigma = 0.80000000000000004 Å"),
+              std::string::npos);
+    ASSERT_TRUE(std::isfinite(deck.energyTerrace));
+    EXPECT_NEAR(deck.energyDeck, deck.energyTerrace, 2.5e-7 * std::abs(deck.energyTerrace));
+    EXPECT_NE(deck.energyDeck, deck.energyTerrace); // a table is not the formula
 }

@@ -8,6 +8,7 @@
 #include "core/linear_rotor.hpp"
 #include "core/output_file.hpp"
 #include "core/smoothed_potential.hpp"
+#include "core/species_sphere.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "dmd/scene_engine.hpp"
@@ -873,4 +874,35 @@ TEST(Restart, ADmdEngineThatShedItsEventsGivesTheSameCheckpointAndBodies) {
     const auto released = Probe::releaseSystem(std::move(engine));
     for (int b = 0; b < copy.size(); ++b)
         ASSERT_TRUE(sameBits(released.bodies[b], copy.bodies[b])) << "body " << b;
+}
+
+// A mixture's bodies carry their species through a restart file (a continued Kob–Andersen run
+// once came back all of species A, and its analysis stopped: "species B has no bodies"); a
+// record that is missing, short, or names a species the scene lacks is refused.
+TEST(Restart, AMixturesSpeciesComeBackAndABadRecordIsRefused) {
+    std::vector<SpeciesSphere::State> bodies(5);
+    for (int i = 0; i < 5; ++i)
+        bodies[i].species = i % 3;
+    const auto cbor =
+        nlohmann::json::to_cbor(nlohmann::json{{"species", cli::speciesToBinary(bodies)}});
+    const nlohmann::json restart = nlohmann::json::from_cbor(cbor);
+    std::vector<SpeciesSphere::State> back(5);
+    cli::speciesFromBinary(restart, back, 3);
+    for (int i = 0; i < 5; ++i)
+        EXPECT_EQ(back[i].species, i % 3) << i;
+    const auto messageOf = [&](const nlohmann::json& r, int species, std::size_t n) {
+        std::vector<SpeciesSphere::State> into(n);
+        try {
+            cli::speciesFromBinary(r, into, species);
+        } catch (const std::runtime_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_EQ(messageOf(nlohmann::json::object(), 3, 5),
+              "restart: the file holds no species of the bodies, which a mixture needs (it was "
+              "written before they were kept)");
+    EXPECT_EQ(messageOf(restart, 3, 4),
+              "restart: the species record does not hold one species for each of the 4 bodies");
+    EXPECT_EQ(messageOf(restart, 2, 5), "restart: body 2 has species 2, where the scene has 2");
 }

@@ -1,7 +1,7 @@
 // Mixtures of Lennard-Jones spheres (Scene::species, potential.pairs): the scene's reading and
 // refusals, the bodies' counts, Lorentz–Berthelot and explicit unlike pairs in the potential, the
-// potential's bounds over its pairs, a lattice start that deals the species out, and a GSD
-// trajectory with one type per species.
+// potential's bounds over its pairs, a lattice start that deals the species out with velocities
+// at each species' mass, and a GSD trajectory with one type per species.
 #include "core/gsd_file.hpp"
 #include "core/gsd_frame.hpp"
 #include "core/initial_state.hpp"
@@ -206,7 +206,9 @@ TEST(Species, TheLatticeStartDealsOutTheCountsAtRandom) {
 }
 
 TEST(Species, AGsdFrameHasOneTypePerSpeciesAndTheBodiesTypeid) {
-    const Scene s = sceneFromJson(kobAndersen(), "test.json");
+    json j = kobAndersen();
+    j["species"][1]["mass"] = 3.0;
+    const Scene s = sceneFromJson(j, "test.json");
     const auto model = Smoothed<LJMixture>{ljMixture(s), sceneCutoff(s)};
     const auto sys = buildInitialState<SpeciesSphere>(s, model);
     const auto path = std::filesystem::temp_directory_path() /
@@ -249,9 +251,85 @@ TEST(Species, AGsdFrameHasOneTypePerSpeciesAndTheBodiesTypeid) {
         std::memcpy(&id, ids.data() + 4 * i, 4);
         ASSERT_EQ(id, static_cast<std::uint32_t>(sys.bodies[i].species)) << i;
     }
+    // Each body's mass is its species': B given three times A's below.
+    const GsdIndexEntry masses = entry("particles/mass");
+    ASSERT_EQ(masses.n, 500u);
+    const std::string massBytes = readGsdChunk(path, masses);
+    for (int i = 0; i < 500; ++i) {
+        float m = 0;
+        std::memcpy(&m, massBytes.data() + 4 * i, 4);
+        ASSERT_EQ(m, sys.bodies[i].species == 1 ? 3.0f : 1.0f) << i;
+    }
     const std::string shapes = readGsdChunk(path, entry("particles/type_shapes"));
     EXPECT_EQ(nlohmann::json::parse(std::string(shapes.data() + entry("particles/type_shapes").m))
                   .at("diameter"),
               0.88 * 3.0);
     std::filesystem::remove(path);
+}
+
+TEST(Species, MassesInUnitsOfBodyMassDefaultOneAndReadBack) {
+    json j = kobAndersen();
+    j["body"]["mass"] = 20.0;
+    j["species"][1]["mass"] = 2.5;
+    const Scene s = sceneFromJson(j, "test.json");
+    EXPECT_DOUBLE_EQ(s.species[0].mass, 1.0);
+    EXPECT_DOUBLE_EQ(s.species[1].mass, 2.5);
+    const BodyParams p = bodyParams(s);
+    EXPECT_DOUBLE_EQ(p.speciesMass[0], 20.0);
+    EXPECT_DOUBLE_EQ(p.speciesMass[1], 50.0);
+    SpeciesSphere::State b;
+    b.species = 1;
+    EXPECT_DOUBLE_EQ(bodyMass<SpeciesSphere>(b, p), 50.0);
+    b.v = Vec3(1, 2, 2);
+    EXPECT_DOUBLE_EQ(kineticEnergy<SpeciesSphere>(b, p), 0.5 * 50.0 * 9.0);
+    const Scene again = sceneFromJson(toJson(s), "scene.json");
+    EXPECT_DOUBLE_EQ(again.species[1].mass, 2.5);
+    EXPECT_EQ(toJson(again), toJson(s));
+}
+
+TEST(Species, AMassThatIsNotPositiveOrTooLightIsRefusedByItsKey) {
+    json j = kobAndersen();
+    j["species"][1]["mass"] = 0.0;
+    EXPECT_NE(errorOf(j).find("species[1].mass"), std::string::npos) << errorOf(j);
+    j["species"][1]["mass"] = -1.0;
+    EXPECT_NE(errorOf(j).find("species[1].mass"), std::string::npos) << errorOf(j);
+    // body.mass 1 g/mol, σ 3 Å, kT 4 kJ/mol cross σ in 150 fs: a species 10⁻⁸ as heavy in
+    // 0.015 fs, below the time grid's 0.1 fs.
+    j["species"][1]["mass"] = 1e-8;
+    EXPECT_NE(errorOf(j).find("species[1].mass"), std::string::npos) << errorOf(j);
+    EXPECT_NE(errorOf(j).find("faster than the"), std::string::npos) << errorOf(j);
+}
+
+// Each species' velocities are drawn at its own mass: ⟨m v²⟩ = 3kT for both (equipartition from
+// the first step), and the centre of mass is at rest.
+TEST(Species, TheLatticeStartGivesEachSpeciesItsTemperatureAtItsMass) {
+    json j = kobAndersen();
+    j["species"][1]["mass"] = 4.0;
+    j["state"]["n"] = 4000;
+    j["state"]["lattice"] = "fcc";
+    const Scene s = sceneFromJson(j, "test.json");
+    const auto sys =
+        buildInitialState<SpeciesSphere>(s, Smoothed<LJMixture>{ljMixture(s), sceneCutoff(s)});
+    double mv2[2] = {0, 0}, v2[2] = {0, 0};
+    int count[2] = {0, 0};
+    Vec3 momentum = Vec3::Zero();
+    for (const auto& b : sys.bodies) {
+        const double m = bodyMass<SpeciesSphere>(b, sys.body);
+        mv2[b.species] += m * b.v.squaredNorm();
+        v2[b.species] += b.v.squaredNorm();
+        ++count[b.species];
+        momentum += m * b.v;
+    }
+    ASSERT_EQ(count[0], 3200);
+    ASSERT_EQ(count[1], 800);
+    // The rescale to the target temperature is shared, so the two means are compared with each
+    // other: each is 3kT with a relative spread of √(2/(3n)), 1.4 % and 2.9 % here.
+    const double a = mv2[0] / count[0], b = mv2[1] / count[1];
+    EXPECT_NEAR(a / b, 1.0, 4.0 * std::sqrt(2.0 / (3.0 * 3200) + 2.0 / (3.0 * 800)));
+    // The whole at the target exactly: 3N − 3 degrees of freedom (the momentum is fixed).
+    EXPECT_NEAR(mv2[0] + mv2[1], (3.0 * 4000 - 3.0) * sys.kT, 1e-9 * 3.0 * 4000 * sys.kT);
+    // The heavy species moves at half the speed: ⟨v²⟩ 4 times smaller (a start that ignored the
+    // masses gives 1).
+    EXPECT_NEAR((v2[0] / count[0]) / (v2[1] / count[1]), 4.0, 0.4);
+    EXPECT_LT(momentum.norm(), 1e-9 * std::sqrt(mv2[0] + mv2[1]));
 }

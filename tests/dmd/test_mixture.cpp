@@ -2,7 +2,10 @@
 // energy and momentum to round-off, no missed event (the terraced energy equals the one recomputed
 // from each pair's U at every sample), the same events with and without the hold screen (which
 // bounds each pair's U by its own species' ε and σ), and bodies that keep their species. SMD: the
-// pair loop's mixture kernel against the all-pairs sum. With small terraces, DMD's
+// pair loop's mixture kernel against the all-pairs sum. With a species three times as heavy as
+// the other: DMD's energy and momentum Σ m v to round-off, and heat shared out to equipartition
+// from a start where the heavy species is twice as hot; SMD's energy error ∝ dt² and its momentum
+// to round-off. With small terraces, DMD's
 // configurational U and pressure agree with SMD's within their error bars
 // (test_mixture_agreement.cpp).
 #include "core/initial_state.hpp"
@@ -14,6 +17,7 @@
 #include "smd/pair_forces.hpp"
 #include "smd/scene_engine.hpp"
 #include "tests/mixture_scene.hpp"
+#include <array>
 #include <cstdio>
 #include <gtest/gtest.h>
 #include <vector>
@@ -30,12 +34,23 @@ using SmdMixture = smd::SceneEngine<SpeciesSphere, Model>;
 
 /// Kob–Andersen's mixture (tests/mixture_scene.hpp) on an fcc lattice, at a liquid state point
 /// well above its glass transition.
-Scene mixtureScene(int n, double density, double temperature, double dVInKT) {
+/// massB: species B's mass in A's; dtFs: SMD's step.
+Scene mixtureScene(int n, double density, double temperature, double dVInKT, double massB = 1.0,
+                   double dtFs = 0.2) {
     nlohmann::json j = mixture_tests::kobAndersen(n, density, temperature);
     j["state"]["lattice"] = "fcc";
+    j["species"][1]["mass"] = massB;
     j["dmd"] = {{"model", "smoothed"}, {"dV", dVInKT}};
-    j["smd"] = {{"dt_fs", 0.2}};
+    j["smd"] = {{"dt_fs", dtFs}};
     return sceneFromJson(j, "mixture");
+}
+
+/// Σ m v² over the bodies of each species (kJ/mol): 3 n_a kT_a.
+std::array<double, 2> twiceKinetic(const MixtureSystem& sys) {
+    std::array<double, 2> k{0.0, 0.0};
+    for (const auto& b : sys.bodies)
+        k[b.species] += bodyMass<SpeciesSphere>(b, sys.body) * b.v.squaredNorm();
+    return k;
 }
 
 MixtureSystem mixtureSystem(const Scene& s) {
@@ -109,4 +124,80 @@ TEST(Mixture, SmdForcesAreTheAllPairsSum) {
         b.species = 0;
     EXPECT_GT(std::abs(smd::allPairsForces(allA).potential - all.potential),
               0.01 * std::abs(all.potential));
+}
+
+// Species B three times as heavy, and started twice as hot as A: every collision's impulse divides
+// by each body's own mass, so the energy and Σ m v stay to round-off, and collisions share the
+// heat out until both species have the one temperature (equipartition).
+TEST(Mixture, UnequalMassesDmdKeepsEnergyAndMomentumAndSharesTheHeat) {
+    const Scene s = mixtureScene(256, 0.8, 2.0, 0.375, 3.0);
+    MixtureSystem start = mixtureSystem(s);
+    double massTotal = 0.0;
+    Vec3 p = Vec3::Zero();
+    for (auto& b : start.bodies) {
+        if (b.species == 1) b.v *= std::sqrt(2.0);
+        massTotal += bodyMass<SpeciesSphere>(b, start.body);
+        p += bodyMass<SpeciesSphere>(b, start.body) * b.v;
+    }
+    for (auto& b : start.bodies)
+        b.v -= p / massTotal;
+    int countB = 0;
+    for (const auto& b : start.bodies)
+        countB += b.species;
+    const int countA = start.size() - countB;
+    const auto ratio = [&](const MixtureSystem& sys) { // T_B / T_A
+        const auto k = twiceKinetic(sys);
+        return (k[1] / countB) / (k[0] / countA);
+    };
+    ASSERT_GT(ratio(start), 1.6);
+    DmdMixture e(start, s);
+    const double e0 = totalEnergy(e);
+    const Vec3 p0 = e.totalMomentum();
+    EXPECT_LT(p0.norm(), 1e-9);
+    // 0.5 ps to share the heat, then 1.5 ps of samples every 25 fs in 6 blocks.
+    e.advanceTo(units::fromFs(500.0));
+    const int blocks = 6, perBlock = 10;
+    std::vector<double> blockMean;
+    for (int k = 0; k < blocks; ++k) {
+        double sum = 0.0;
+        for (int m = 1; m <= perBlock; ++m) {
+            e.advanceTo(units::fromFs(500.0 + 25.0 * (k * perBlock + m)));
+            sum += ratio(e.system());
+        }
+        blockMean.push_back(sum / perBlock);
+    }
+    double mean = 0.0, var = 0.0;
+    for (const double x : blockMean)
+        mean += x / blocks;
+    for (const double x : blockMean)
+        var += (x - mean) * (x - mean) / (blocks - 1);
+    const double err = std::sqrt(var / blocks);
+    std::printf("T_B/T_A: start %.3f, after 0.5 ps %.4f +- %.4f\n", ratio(start), mean, err);
+    EXPECT_LT(err, 0.05);
+    EXPECT_LT(std::abs(mean - 1.0), 4.0 * err + 0.01) << mean << " +- " << err;
+    EXPECT_NEAR(totalEnergy(e), e0, 1e-10 * std::abs(e0) + 1e-9);
+    EXPECT_LT((e.totalMomentum() - p0).norm(), 1e-9);
+    EXPECT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e), 1e-9 * std::abs(e0));
+}
+
+// SMD with the heavy species: velocity Verlet's energy error falls as dt² only if every kick
+// divides each body's force by its own mass; Σ m v is kept to round-off.
+TEST(Mixture, UnequalMassesSmdEnergyErrorFallsAsDtSquared) {
+    const auto energyError = [](double dtFs) {
+        const Scene s = mixtureScene(256, 0.8, 2.0, 0.375, 3.0, dtFs);
+        SmdMixture e(mixtureSystem(s), s);
+        const double e0 = e.kineticEnergy() + e.potentialEnergy();
+        const Vec3 p0 = e.totalMomentum();
+        double worst = 0.0;
+        for (int k = 1; k <= 40; ++k) {
+            e.advanceTo(units::fromFs(2.0 * k));
+            worst = std::max(worst, std::abs(e.kineticEnergy() + e.potentialEnergy() - e0));
+        }
+        EXPECT_LT((e.totalMomentum() - p0).norm(), 1e-9) << dtFs << " fs";
+        return worst;
+    };
+    const double coarse = energyError(0.4), fine = energyError(0.2);
+    std::printf("max |E - E0| over 80 fs: %.3g kJ/mol at 0.4 fs, %.3g at 0.2 fs\n", coarse, fine);
+    EXPECT_GT(coarse / fine, 3.0);
+    EXPECT_LT(coarse / fine, 5.5);
 }
