@@ -141,6 +141,7 @@ System<K, P> buildInitialState(const Scene& scene, const P& potential) {
         for (int i = 0; i < n; ++i) {
             const auto& spec = scene.state.particles[i];
             auto& b = sys.bodies[i];
+            if constexpr (requires { b.species; }) b.species = spec.species;
             b.r = spec.r;
             b.v = spec.v * units::psPerTimeUnit; // Å/ps -> Å per time unit
             const Vec3 omega = spec.omega * units::psPerTimeUnit;

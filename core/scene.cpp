@@ -187,6 +187,7 @@ json toJson(const Scene& s) {
                 const auto& q = *p.orientation;
                 e["orientation"] = json::array({q.w(), q.x(), q.y(), q.z()});
             }
+            if (p.species >= 0) e["species"] = s.species[p.species].name;
             list.push_back(e);
         }
         j["state"]["particles"] = list;

@@ -34,6 +34,7 @@ struct ParticleSpec {
     Vec3 axis = Vec3::UnitZ();       // unit long axis
     std::optional<Quat> orientation; // body -> lab ([w, x, y, z])
     Vec3 omega = Vec3::Zero();       // lab angular velocity, rad/ps
+    int species = -1;                // index into Scene::species (a mixture's); -1 without
 };
 
 /// One interaction site of a rigid site-site molecule (body.sites): its position in the body's

@@ -5,6 +5,7 @@
 #include "core/scene_sections.hpp"
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 
@@ -44,6 +45,8 @@ void readSpecies(const JsonSection& top, Scene& s) {
     if (s.potential.kind != "lj" || s.body.kind != "sphere")
         top.fail("species", "a mixture is of Lennard-Jones spheres: set body.kind sphere and "
                             "potential.kind lj");
+    const bool explicitStart =
+        top.has("state") && top.at("state").is_object() && top.at("state").contains("particles");
     double total = 0.0;
     for (std::size_t a = 0; a < list.size(); ++a) {
         const JsonSection e(list[a], top.name("species[" + std::to_string(a) + "]"), top.origin());
@@ -57,15 +60,18 @@ void readSpecies(const JsonSection& top, Scene& s) {
                            "types), got \"" +
                                x.name + "\"");
         if (speciesIndex(s, x.name) >= 0) e.fail("name", "\"" + x.name + "\" is named twice");
-        if (!e.has("fraction")) e.fail("fraction", "missing: the species' share of state.n");
-        x.fraction = e.number("fraction", 0.0, 0.0, 1.0, true);
+        // An explicit start gives each body's species: the shares follow from it (readState).
+        if (!e.has("fraction") && !explicitStart)
+            e.fail("fraction", "missing: the species' share of state.n");
+        x.fraction = e.has("fraction") ? e.number("fraction", 0.0, 0.0, 1.0, true)
+                                       : std::numeric_limits<double>::quiet_NaN();
         x.epsilon = e.number("epsilon", 1.0, 0.0, 1e6, true);
         x.sigma = e.number("sigma", 1.0, 0.0, 1e3, true);
         x.mass = e.number("mass", 1.0, 0.0, 1e6, true);
         total += x.fraction;
         s.species.push_back(x);
     }
-    if (std::abs(total - 1.0) > 1e-9)
+    if (!explicitStart && std::abs(total - 1.0) > 1e-9)
         top.fail("species", "the fractions add up to " + showNumber(total) + ", not 1");
     if (pot.has("pairs")) {
         const auto& pairs = pot.at("pairs");

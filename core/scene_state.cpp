@@ -29,13 +29,29 @@ std::optional<Quat> readOrientation(const JsonSection& p) {
 }
 
 /// One body of state.particles; axis and orientation made to agree (core/scene.hpp ParticleSpec).
-ParticleSpec readParticle(const JsonSection& p, const std::string& kind) {
-    p.onlyKeys({"r", "v", "axis", "orientation", "omega"});
+ParticleSpec readParticle(const JsonSection& p, const Scene& scene) {
+    const std::string& kind = scene.body.kind;
+    p.onlyKeys({"r", "v", "axis", "orientation", "omega", "species"});
     if (kind == "sphere")
         for (const char* key : {"axis", "orientation", "omega"})
             if (p.has(key))
                 p.fail(key, "a sphere has no orientation or rotation (body.kind is sphere)");
     ParticleSpec s;
+    if (scene.species.empty() && p.has("species"))
+        p.fail("species", "only meaningful in a mixture (the top-level species)");
+    if (!scene.species.empty()) {
+        if (!p.has("species") || !p.at("species").is_string())
+            p.fail("species",
+                   "each body of a mixture names its species (\"" + scene.species[0].name + "\")");
+        const std::string name = p.at("species").get<std::string>();
+        std::string names;
+        for (std::size_t a = 0; a < scene.species.size(); ++a) {
+            if (scene.species[a].name == name) s.species = static_cast<int>(a);
+            names += (a ? ", " : "") + scene.species[a].name;
+        }
+        if (s.species < 0)
+            p.fail("species", "no species \"" + name + "\" (the species are " + names + ")");
+    }
     if (!p.has("r")) p.fail("r", "missing");
     s.r = p.vec3("r");
     if (p.has("v")) s.v = p.vec3("v");
@@ -68,6 +84,29 @@ ParticleSpec readParticle(const JsonSection& p, const std::string& kind) {
         if (kind == "symmetric") s.orientation = Quat::FromTwoVectors(Vec3::UnitZ(), s.axis);
     }
     return s;
+}
+
+/// A mixture started from state.particles: each species' share is its bodies' (count / N), which
+/// a fraction given beside them must agree with to half a body; every species needs a body.
+void takeSharesFromParticles(const JsonSection& st, Scene& s) {
+    const int n = static_cast<int>(s.state.particles.size());
+    std::vector<int> counts(s.species.size(), 0);
+    for (const auto& p : s.state.particles)
+        ++counts[p.species];
+    for (std::size_t a = 0; a < counts.size(); ++a) {
+        auto& x = s.species[a];
+        const double share = static_cast<double>(counts[a]) / n;
+        const std::string given = std::to_string(counts[a]) + " of " + std::to_string(n);
+        if (counts[a] == 0)
+            st.fail("particles", "no body is of species " + x.name +
+                                     ": give it one, or leave it out of species");
+        if (!std::isnan(x.fraction) && std::abs(x.fraction - share) > 0.5 / n)
+            st.fail("particles", "give species " + x.name + " a share of " + showNumber(share) +
+                                     " (" + given + "), where species[" + std::to_string(a) +
+                                     "].fraction says " + showNumber(x.fraction) +
+                                     "; leave the fraction out, or make them agree");
+        x.fraction = share;
+    }
 }
 
 /// Refuse a body whose thermal motion is faster than the time grid resolves: `time` is the time
@@ -105,16 +144,15 @@ void readState(const JsonSection& st, Scene& s) {
     state.temperature = st.number("temperature", state.temperature, 0,
                                   std::numeric_limits<double>::infinity(), true);
     state.orientations = st.choice("orientations", state.orientations, {"aligned", "random"});
-    const std::vector<int> counts = speciesCounts(s, state.n);
-    for (std::size_t a = 0; a < counts.size(); ++a)
-        if (counts[a] < 1)
-            st.fail("n", std::to_string(state.n) + " bodies leave species " + s.species[a].name +
-                             " (fraction " + showNumber(s.species[a].fraction) +
-                             ") none: raise state.n");
-    if (!s.species.empty() && st.has("particles"))
-        st.fail("particles", "an explicit start cannot name species yet: start a mixture on a "
-                             "lattice");
-    if (!st.has("particles")) return;
+    if (!st.has("particles")) {
+        const std::vector<int> counts = speciesCounts(s, state.n);
+        for (std::size_t a = 0; a < counts.size(); ++a)
+            if (counts[a] < 1)
+                st.fail("n", std::to_string(state.n) + " bodies leave species " +
+                                 s.species[a].name + " (fraction " +
+                                 showNumber(s.species[a].fraction) + ") none: raise state.n");
+        return;
+    }
     const auto& list = st.at("particles");
     if (!list.is_array()) st.fail("particles", "must be an array");
     if (list.size() < 2) st.fail("particles", "needs at least 2 bodies");
@@ -128,9 +166,10 @@ void readState(const JsonSection& st, Scene& s) {
             st.fail(key, "applies to lattice starts only: state.particles gives each position");
     for (std::size_t i = 0; i < list.size(); ++i) {
         const JsonSection p(list[i], st.name("particles[" + std::to_string(i) + "]"), st.origin());
-        state.particles.push_back(readParticle(p, s.body.kind));
+        state.particles.push_back(readParticle(p, s));
     }
     state.n = static_cast<int>(list.size());
+    if (!s.species.empty()) takeSharesFromParticles(st, s);
 }
 
 void checkRepresentable(const JsonSection& top, const Scene& s) {
@@ -196,7 +235,8 @@ void checkRepresentable(const JsonSection& top, const Scene& s) {
                        "lies " + showNumber(p.r.norm()) + " Å from the origin, beyond " +
                            showNumber(limits::maxPositionInBoxLengths) +
                            " box lengths: the wrap into the box would lose its digits");
-        const double kinetic = 0.5 * s.body.mass * (p.v * units::psPerTimeUnit).squaredNorm();
+        const double mass = s.body.mass * (p.species >= 0 ? s.species[p.species].mass : 1.0);
+        const double kinetic = 0.5 * mass * (p.v * units::psPerTimeUnit).squaredNorm();
         if (!std::isfinite(kinetic))
             top.refuse(name + ".v", "its kinetic energy ½mv² overflows a double");
         const double spin = 0.5 * I.maxCoeff() * (p.omega * units::psPerTimeUnit).squaredNorm();

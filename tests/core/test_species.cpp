@@ -333,3 +333,76 @@ TEST(Species, TheLatticeStartGivesEachSpeciesItsTemperatureAtItsMass) {
     EXPECT_NEAR((v2[0] / count[0]) / (v2[1] / count[1]), 4.0, 0.4);
     EXPECT_LT(momentum.norm(), 1e-9 * std::sqrt(mv2[0] + mv2[1]));
 }
+
+namespace {
+
+/// Kob–Andersen with an explicit start of four bodies: three A, one B.
+json explicitMixture() {
+    json j = kobAndersen();
+    j["state"].erase("n");
+    for (auto& x : j["species"])
+        x.erase("fraction");
+    j["state"]["particles"] = json::array();
+    const char* names[] = {"A", "B", "A", "A"};
+    for (int i = 0; i < 4; ++i)
+        j["state"]["particles"].push_back(
+            {{"r", {3.5 * i, 0.0, 0.0}}, {"v", {0.1 * i, 0.0, 0.0}}, {"species", names[i]}});
+    return j;
+}
+
+} // namespace
+
+// An explicit start names each body's species; the shares follow from the bodies and the
+// resolved scene reads back the same.
+TEST(Species, AnExplicitStartNamesEachBodysSpecies) {
+    json j = explicitMixture();
+    j["state"]["density"] = 0.01;
+    j["species"][1]["mass"] = 2.0;
+    const Scene s = sceneFromJson(j, "test.json");
+    EXPECT_DOUBLE_EQ(s.species[0].fraction, 0.75);
+    EXPECT_DOUBLE_EQ(s.species[1].fraction, 0.25);
+    const auto sys =
+        buildInitialState<SpeciesSphere>(s, Smoothed<LJMixture>{ljMixture(s), sceneCutoff(s)});
+    ASSERT_EQ(sys.size(), 4);
+    EXPECT_EQ(sys.bodies[0].species, 0);
+    EXPECT_EQ(sys.bodies[1].species, 1);
+    EXPECT_EQ(sys.bodies[3].species, 0);
+    EXPECT_DOUBLE_EQ(bodyMass<SpeciesSphere>(sys.bodies[1], sys.body), 2.0);
+    const Scene again = sceneFromJson(toJson(s), "scene.json");
+    EXPECT_EQ(toJson(again), toJson(s));
+    EXPECT_EQ(toJson(s)["state"]["particles"][1]["species"], "B");
+    // A fraction given beside the bodies that agrees with them is taken.
+    j["species"][0]["fraction"] = 0.75;
+    EXPECT_DOUBLE_EQ(sceneFromJson(j, "test.json").species[0].fraction, 0.75);
+}
+
+TEST(Species, AnExplicitStartsSpeciesAreRefusedByTheirKeys) {
+    json j = explicitMixture();
+    j["state"]["particles"][2]["species"] = "C";
+    EXPECT_NE(errorOf(j).find("state.particles[2].species: no species \"C\" (the species are A, "
+                              "B)"),
+              std::string::npos)
+        << errorOf(j);
+    j = explicitMixture();
+    j["state"]["particles"][0].erase("species");
+    EXPECT_NE(errorOf(j).find("state.particles[0].species: each body of a mixture names its "
+                              "species"),
+              std::string::npos)
+        << errorOf(j);
+    j = explicitMixture();
+    j["state"]["particles"][1]["species"] = "A";
+    EXPECT_NE(errorOf(j).find("no body is of species B"), std::string::npos) << errorOf(j);
+    j = explicitMixture();
+    j["species"][0]["fraction"] = 0.5; // two bodies, where the start gives three
+    EXPECT_NE(errorOf(j).find("give species A a share of 0.75 (3 of 4), where "
+                              "species[0].fraction says 0.5"),
+              std::string::npos)
+        << errorOf(j);
+    // Without species, a body has none to name.
+    json plain = explicitMixture();
+    plain.erase("species");
+    plain["potential"].erase("pairs");
+    EXPECT_NE(errorOf(plain).find("state.particles[0].species: only meaningful in a mixture"),
+              std::string::npos)
+        << errorOf(plain);
+}
