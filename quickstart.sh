@@ -103,7 +103,9 @@ step_table() {
 # the same sources, in this checkout or a clone elsewhere (CCACHE_BASEDIR: paths below the
 # checkout count relative to it), takes the objects from the cache. CCACHE_DISABLE=1 builds
 # without it. The sloppiness lets it cache what reads a precompiled header (TERRACE_PCH): the
-# header's own hash stands for its contents, and no source reads __DATE__ or __TIME__.
+# header's own hash stands for its contents, and no source reads __DATE__ or __TIME__. Under clang
+# (the sanitised build) a clone elsewhere misses those: CMake passes the header's path behind
+# -Xclang, which the base directory does not reach (docs/PERFORMANCE.md, precompiled headers).
 if [ -z "${CMAKE_CXX_COMPILER_LAUNCHER:-}" ] && command -v ccache >/dev/null; then
     export CMAKE_CXX_COMPILER_LAUNCHER=ccache CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
     export CCACHE_NOHASHDIR=1
