@@ -31,14 +31,18 @@ std::optional<Quat> readOrientation(const JsonSection& p) {
 /// One body of state.particles; axis and orientation made to agree (core/scene.hpp ParticleSpec).
 ParticleSpec readParticle(const JsonSection& p, const Scene& scene) {
     const std::string& kind = scene.body.kind;
-    p.onlyKeys({"r", "v", "axis", "orientation", "omega", "species"});
+    // Named before the other keys: a body of a scene without species is told where they go.
+    if (scene.species.empty() && p.has("species"))
+        p.fail("species", "only meaningful in a mixture (the top-level species)");
+    if (scene.species.empty())
+        p.onlyKeys({"r", "v", "axis", "orientation", "omega"});
+    else
+        p.onlyKeys({"r", "v", "axis", "orientation", "omega", "species"});
     if (kind == "sphere")
         for (const char* key : {"axis", "orientation", "omega"})
             if (p.has(key))
                 p.fail(key, "a sphere has no orientation or rotation (body.kind is sphere)");
     ParticleSpec s;
-    if (scene.species.empty() && p.has("species"))
-        p.fail("species", "only meaningful in a mixture (the top-level species)");
     if (!scene.species.empty()) {
         if (!p.has("species") || !p.at("species").is_string())
             p.fail("species",
