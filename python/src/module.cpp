@@ -141,6 +141,11 @@ py::dict state(const Snapshot& s) {
     d["velocities"] = vectors(s.velocity, 1.0 / units::psPerTimeUnit);
     d["orientations"] = quaternions(s);
     d["angular_velocities"] = vectors(s.omega, 1.0 / units::psPerTimeUnit);
+    // A mixture's species of each body (an index into the scene's species); None without.
+    if (s.species.empty())
+        d["species"] = py::none();
+    else
+        d["species"] = py::array_t<std::int32_t>(py::ssize_t(s.species.size()), s.species.data());
     return d;
 }
 

@@ -7,12 +7,13 @@ from . import _terrace
 from .scene import Scene
 
 State = namedtuple("State", "time_ps box_angstrom positions velocities orientations "
-                            "angular_velocities")
+                            "angular_velocities species")
 State.__doc__ = """The bodies at one instant, in the scene's numbering (NumPy float64 arrays):
 positions (N, 3) unwrapped centres of mass, Å; velocities (N, 3) Å/ps; orientations (N, 4) unit
 quaternions (w, x, y, z), body to lab (a linear rotor's: the least rotation taking z to its
 axis; a sphere's: the identity); angular_velocities (N, 3) in the lab frame, rad/ps;
-box_angstrom the periodic cube's edge; time_ps the engine's time."""
+box_angstrom the periodic cube's edge; time_ps the engine's time; species, for a mixture, (N,)
+int32 indices into the scene's species (scene.resolved()["species"]), else None."""
 
 
 class Simulation:

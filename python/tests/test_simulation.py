@@ -21,7 +21,8 @@ def test_state_shapes_and_units(scene):
     n = 144
     assert s.positions.shape == (n, 3) and s.velocities.shape == (n, 3)
     assert s.orientations.shape == (n, 4) and s.angular_velocities.shape == (n, 3)
-    assert all(a.dtype == np.float64 for a in s[2:])
+    assert all(a.dtype == np.float64 for a in s[2:6])
+    assert s.species is None  # one kind of body
     assert np.allclose(np.linalg.norm(s.orientations, axis=1), 1.0)
     assert s.time_ps == 0.0 and sim.time == 0.0
     # ρ* = Nσ³/L³ fixes the box; the positions start inside it.
@@ -177,3 +178,22 @@ def test_every_body_kind(name, engine):
         assert not np.any(s.angular_velocities)
     else:
         assert np.any(s.angular_velocities)
+
+
+def test_a_mixtures_species_and_masses():
+    """A mixture's state names each body's species, and each body moves with its species' mass:
+    ½ Σ m_s v² over the bodies is the engine's translational kinetic energy."""
+    from conftest import SOURCE
+    for engine in ("dmd", "smd"):
+        scene = terrace.Scene(SOURCE / "experiments" / "scenes" / "kob-andersen.json",
+                              {"state.n": 256, "state.density": 0.85}, engine=engine)
+        resolved = scene.resolved()
+        resolved["species"][1]["mass"] = 3.0
+        sim = terrace.Simulation(terrace.Scene(resolved))
+        sim.advance(0.02)
+        s = sim.state()
+        assert s.species.dtype == np.int32 and s.species.shape == (256,)
+        assert np.bincount(s.species).tolist() == [205, 51]  # 80 %, 20 % by largest remainder
+        mass = resolved["body"]["mass"] * np.where(s.species == 1, 3.0, 1.0)
+        kinetic = 0.5 * np.sum(mass[:, None] * s.velocities ** 2) / 100.0
+        assert kinetic == pytest.approx(sim.energies()["kinetic_translational"], rel=1e-12)
