@@ -60,7 +60,7 @@ System<K, P> startingSystem(const Scene& scene, const P& potential, const RunTar
     sys.bodies = bodiesFromBinary<typename K::State>(target.resume->at("bodies"),
                                                      target.resume->at("n_bodies").get<int>());
     if constexpr (requires { sys.bodies[0].species; })
-        speciesFromBinary(*target.resume, sys.bodies, static_cast<int>(scene.species.size()));
+        checkSpecies(sys.bodies, static_cast<int>(scene.species.size()));
     return sys;
 }
 

@@ -11,8 +11,8 @@
 //                       format, scene (resolved), the run's identity (the CRC-64 of DIR/scene.json
 //                       as the run wrote it, N, the engine), phase (equilibration | production),
 //                       the number of thermostat ticks or samples done, the bodies (every number of
-//                       their states as raw bytes: exact, and compact; a mixture's species too, as
-//                       32-bit integers, under species), the engine's checkpoint
+//                       their states as raw bytes: exact, and compact; a mixture's species among
+//                       them, as a 32-bit integer), the engine's checkpoint
 //                       (DMD: clock, pair terraces as raw bytes, horizon stream; SMD: step count;
 //                       both: the heat bath's stream, energy and clock when run.heat_bath is set),
 //                       the run's accumulators (production start, initial momentum, production
@@ -45,6 +45,7 @@
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -108,13 +109,15 @@ nlohmann::json runIdentity(std::uint64_t sceneChecksum, int bodies, const std::s
 /// name DIR/scene.json's checksum, and its N and engine those of its scene.
 void checkRunIdentity(const std::filesystem::path& dir, const nlohmann::json& restart);
 
-/// Calls f on every vector and matrix of a body's state (all kinds: r, v; s, w; A, L).
+/// Calls f on every vector and matrix of a body's state (all kinds: r, v; s, w; A, L), and on a
+/// mixture's species as a one-element span: each has size() and data().
 template <class State, class F> void forEachField(State& b, F&& f) {
     f(b.r), f(b.v);
     if constexpr (requires { b.s; }) f(b.s);
     if constexpr (requires { b.w; }) f(b.w);
     if constexpr (requires { b.A; }) f(b.A);
     if constexpr (requires { b.L; }) f(b.L);
+    if constexpr (requires { b.species; }) f(std::span(&b.species, std::size_t{1}));
 }
 
 /// Every number of every body's state, in order, as raw bytes: exact, and compact in CBOR.
@@ -122,12 +125,12 @@ template <class State, class A> nlohmann::json bodiesToBinary(const std::vector<
     std::vector<std::uint8_t> bytes;
     std::size_t perBody = 0; // reserved whole: grown, it could hold twice the bytes
     const State probe{};
-    forEachField(probe, [&](const auto& m) { perBody += m.size() * sizeof(double); });
+    forEachField(probe, [&](const auto& m) { perBody += m.size() * sizeof(*m.data()); });
     bytes.reserve(bodies.size() * perBody);
     for (const auto& b : bodies)
         forEachField(b, [&](const auto& m) {
             const auto* p = reinterpret_cast<const std::uint8_t*>(m.data());
-            bytes.insert(bytes.end(), p, p + m.size() * sizeof(double));
+            bytes.insert(bytes.end(), p, p + m.size() * sizeof(*m.data()));
         });
     return nlohmann::json::binary(std::move(bytes));
 }
@@ -137,8 +140,8 @@ template <class State> BodyArray<State> bodiesFromBinary(const nlohmann::json& j
     BodyArray<State> bodies(n);
     std::size_t at = 0;
     for (auto& b : bodies)
-        forEachField(b, [&](auto& m) {
-            const std::size_t size = m.size() * sizeof(double);
+        forEachField(b, [&](auto&& m) {
+            const std::size_t size = m.size() * sizeof(*m.data());
             if (at + size > bytes.size())
                 throw std::runtime_error("restart: too few body records for " + std::to_string(n) +
                                          " bodies of this kind");
@@ -151,38 +154,14 @@ template <class State> BodyArray<State> bodiesFromBinary(const nlohmann::json& j
     return bodies;
 }
 
-/// A mixture's species of every body (a kind whose state has one), as raw 32-bit integers.
-template <class State, class A>
-nlohmann::json speciesToBinary(const std::vector<State, A>& bodies) {
-    std::vector<std::uint8_t> bytes(bodies.size() * sizeof(std::int32_t));
+/// Refuses a mixture's body whose species (read back from a restart file) is not one of the
+/// scene's `species`: the engines index their tables by it.
+template <class Bodies> void checkSpecies(const Bodies& bodies, int species) {
     for (std::size_t i = 0; i < bodies.size(); ++i)
-        std::memcpy(bytes.data() + i * sizeof(std::int32_t), &bodies[i].species,
-                    sizeof(std::int32_t));
-    return nlohmann::json::binary(std::move(bytes));
-}
-
-/// Gives each body its species from `restart`'s species record, each index below `species` (the
-/// scene's number of species); a file without one, or with one of another length or an index out
-/// of range, is refused.
-template <class Bodies>
-void speciesFromBinary(const nlohmann::json& restart, Bodies& bodies, int species) {
-    if (!restart.contains("species") || !restart.at("species").is_binary())
-        throw std::runtime_error("restart: the file holds no species of the bodies, which a "
-                                 "mixture needs (it was written before they were kept)");
-    const auto& bytes = restart.at("species").get_binary();
-    if (bytes.size() != bodies.size() * sizeof(std::int32_t))
-        throw std::runtime_error("restart: the species record does not hold one species for each "
-                                 "of the " +
-                                 std::to_string(bodies.size()) + " bodies");
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-        std::int32_t a = 0;
-        std::memcpy(&a, bytes.data() + i * sizeof(std::int32_t), sizeof a);
-        if (a < 0 || a >= species)
+        if (bodies[i].species < 0 || bodies[i].species >= species)
             throw std::runtime_error("restart: body " + std::to_string(i) + " has species " +
-                                     std::to_string(a) + ", where the scene has " +
+                                     std::to_string(bodies[i].species) + ", where the scene has " +
                                      std::to_string(species));
-        bodies[i].species = a;
-    }
 }
 
 } // namespace terrace::cli

@@ -124,34 +124,30 @@ private:
         // from: a size fixed by the settings, whatever the run's length (cli/restart.hpp).
         nlohmann::json analysis;
         if (production && run_.analysis) analysis = nlohmann::json::binary(run_.analysis->state());
-        nlohmann::json file = {
-            {"format", restartFormat},
-            {"reason", reason},
-            {"scene", scene_},
-            {"identity",
-             runIdentity(run_.sceneChecksum, run_.bodies, scene_.value("engine", std::string()))},
-            {"phase", production ? "production" : "equilibration"},
-            {"tick", at_.tick},
-            {"sample", at_.sample},
-            {"t_start", at_.tStart},
-            {"time_fs", units::toFs(last_.time)},
-            {"n_bodies", run_.bodies},
-            {"bodies", bodiesToBinary(r.system.bodies)},
-            {"engine", r.checkpoint},
-            {"production_statistics", run_.production},
-            {"momentum_initial", vec3Json(run_.momentumInitial)},
-            {"cpu_seconds", at_.cpuProduction + (production ? phaseCpu : 0.0)},
-            {"cpu_seconds_equilibration", at_.cpuEquilibration + (production ? 0.0 : phaseCpu)},
-            {"restarts_written", run_.restartsWritten + 1},
-            {"continuations", run_.continuations},
-            {"melt_warning", run_.meltWarning},
-            {"files", files_.sizes()},
-            {"sample_statistics", nlohmann::json::binary(run_.samples.state())},
-            {"thermo_row", recordsToBinary({run_.thermoRow})},
-            {"analysis", std::move(analysis)}};
-        if constexpr (requires { r.system.bodies[0].species; })
-            file["species"] = speciesToBinary(r.system.bodies);
-        return file;
+        return {{"format", restartFormat},
+                {"reason", reason},
+                {"scene", scene_},
+                {"identity", runIdentity(run_.sceneChecksum, run_.bodies,
+                                         scene_.value("engine", std::string()))},
+                {"phase", production ? "production" : "equilibration"},
+                {"tick", at_.tick},
+                {"sample", at_.sample},
+                {"t_start", at_.tStart},
+                {"time_fs", units::toFs(last_.time)},
+                {"n_bodies", run_.bodies},
+                {"bodies", bodiesToBinary(r.system.bodies)},
+                {"engine", r.checkpoint},
+                {"production_statistics", run_.production},
+                {"momentum_initial", vec3Json(run_.momentumInitial)},
+                {"cpu_seconds", at_.cpuProduction + (production ? phaseCpu : 0.0)},
+                {"cpu_seconds_equilibration", at_.cpuEquilibration + (production ? 0.0 : phaseCpu)},
+                {"restarts_written", run_.restartsWritten + 1},
+                {"continuations", run_.continuations},
+                {"melt_warning", run_.meltWarning},
+                {"files", files_.sizes()},
+                {"sample_statistics", nlohmann::json::binary(run_.samples.state())},
+                {"thermo_row", recordsToBinary({run_.thermoRow})},
+                {"analysis", std::move(analysis)}};
     }
 
     const RunPlan& plan_;

@@ -155,7 +155,7 @@ void writeHoomdFrame(GsdWriter& f, int bodies, double time, double boxLength,
     if (perPiece < 1) throw std::invalid_argument("writeHoomdFrame: no bodies per piece");
     if (f.frames() == 0) {
         writeConstantChunks(f, std::uint32_t(bodies), boxLength, type);
-        if (!type.species.empty())
+        if (!type.species.empty()) {
             bodyChunk<std::uint32_t>(
                 f, "particles/typeid", GsdType::UInt32, 1, bodies, bodiesOf, perPiece,
                 [](const Snapshot& s, int i, std::vector<std::uint32_t>& out) {
@@ -164,11 +164,11 @@ void writeHoomdFrame(GsdWriter& f, int bodies, double time, double boxLength,
                             "writeHoomdFrame: a mixture's bodies without species");
                     out.push_back(static_cast<std::uint32_t>(s.species[i]));
                 });
-        if (!type.species.empty())
             bodyChunk<float>(f, "particles/mass", GsdType::Float, 1, bodies, bodiesOf, perPiece,
                              [&](const Snapshot& s, int i, std::vector<float>& out) {
-                                 out.push_back(float(type.speciesMasses.at(s.species.at(i))));
+                                 out.push_back(float(type.speciesMasses.at(s.species[i])));
                              });
+        }
     }
     chunk(f, "configuration/step", GsdType::UInt64, 1, 1, std::vector<std::uint64_t>{sample});
     const double L = boxLength, perPs = 1.0 / units::psPerTimeUnit;

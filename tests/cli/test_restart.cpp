@@ -876,33 +876,38 @@ TEST(Restart, ADmdEngineThatShedItsEventsGivesTheSameCheckpointAndBodies) {
         ASSERT_TRUE(sameBits(released.bodies[b], copy.bodies[b])) << "body " << b;
 }
 
-// A mixture's bodies carry their species through a restart file (a continued Kob–Andersen run
-// once came back all of species A, and its analysis stopped: "species B has no bodies"); a
-// record that is missing, short, or names a species the scene lacks is refused.
+// A mixture's bodies carry their species through a restart file, in each body's record (a
+// continued Kob–Andersen run once came back all of species A, and its analysis stopped: "species
+// B has no bodies"); the record of a body without species is too short for one with, and a
+// species the scene lacks is refused.
 TEST(Restart, AMixturesSpeciesComeBackAndABadRecordIsRefused) {
     std::vector<SpeciesSphere::State> bodies(5);
-    for (int i = 0; i < 5; ++i)
+    for (int i = 0; i < 5; ++i) {
         bodies[i].species = i % 3;
-    const auto cbor =
-        nlohmann::json::to_cbor(nlohmann::json{{"species", cli::speciesToBinary(bodies)}});
-    const nlohmann::json restart = nlohmann::json::from_cbor(cbor);
-    std::vector<SpeciesSphere::State> back(5);
-    cli::speciesFromBinary(restart, back, 3);
-    for (int i = 0; i < 5; ++i)
+        bodies[i].r = Vec3(0.1 * i, 1.0 / 3.0, -2.0);
+        bodies[i].v = Vec3(1e-300, -0.7, i);
+    }
+    const auto cbor = nlohmann::json::to_cbor(cli::bodiesToBinary(bodies));
+    const auto back =
+        cli::bodiesFromBinary<SpeciesSphere::State>(nlohmann::json::from_cbor(cbor), 5);
+    for (int i = 0; i < 5; ++i) {
         EXPECT_EQ(back[i].species, i % 3) << i;
-    const auto messageOf = [&](const nlohmann::json& r, int species, std::size_t n) {
-        std::vector<SpeciesSphere::State> into(n);
+        EXPECT_TRUE(sameBits(back[i], bodies[i])) << i;
+    }
+    EXPECT_NO_THROW(cli::checkSpecies(back, 3));
+    const auto messageOf = [](const auto& read) {
         try {
-            cli::speciesFromBinary(r, into, species);
+            read();
         } catch (const std::runtime_error& e) {
             return std::string(e.what());
         }
         return std::string("accepted");
     };
-    EXPECT_EQ(messageOf(nlohmann::json::object(), 3, 5),
-              "restart: the file holds no species of the bodies, which a mixture needs (it was "
-              "written before they were kept)");
-    EXPECT_EQ(messageOf(restart, 3, 4),
-              "restart: the species record does not hold one species for each of the 4 bodies");
-    EXPECT_EQ(messageOf(restart, 2, 5), "restart: body 2 has species 2, where the scene has 2");
+    EXPECT_EQ(messageOf([&] { cli::checkSpecies(back, 2); }),
+              "restart: body 2 has species 2, where the scene has 2");
+    // Plain spheres' records (r, v) hold no species: read as a mixture's they run short.
+    std::vector<Sphere::State> plain(5);
+    const auto plainBytes = cli::bodiesToBinary(plain);
+    EXPECT_EQ(messageOf([&] { cli::bodiesFromBinary<SpeciesSphere::State>(plainBytes, 5); }),
+              "restart: too few body records for 5 bodies of this kind");
 }

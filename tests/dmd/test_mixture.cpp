@@ -8,15 +8,9 @@
 // to round-off. With small terraces, DMD's
 // configurational U and pressure agree with SMD's within their error bars
 // (test_mixture_agreement.cpp).
-#include "core/initial_state.hpp"
-#include "core/lj_mixture.hpp"
-#include "core/smoothed_potential.hpp"
-#include "core/species_sphere.hpp"
-#include "dmd/scene_engine.hpp"
 #include "dmd/testing.hpp"
 #include "smd/pair_forces.hpp"
-#include "smd/scene_engine.hpp"
-#include "tests/mixture_scene.hpp"
+#include "tests/dmd/mixture_engines.hpp"
 #include <array>
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -27,21 +21,14 @@ using namespace terrace;
 
 namespace {
 
-using Model = Smoothed<LJMixture>;
-using MixtureSystem = System<SpeciesSphere, Model>;
-using DmdMixture = dmd::SceneEngine<SpeciesSphere, Model>;
-using SmdMixture = smd::SceneEngine<SpeciesSphere, Model>;
+using namespace terrace::mixture_tests;
 
-/// Kob–Andersen's mixture (tests/mixture_scene.hpp) on an fcc lattice, at a liquid state point
-/// well above its glass transition.
-/// massB: species B's mass in A's; dtFs: SMD's step.
+/// The mixture with species B of mass massB (in A's) and SMD's step dtFs.
 Scene mixtureScene(int n, double density, double temperature, double dVInKT, double massB = 1.0,
                    double dtFs = 0.2) {
-    nlohmann::json j = mixture_tests::kobAndersen(n, density, temperature);
-    j["state"]["lattice"] = "fcc";
+    nlohmann::json j = mixtureDocument(n, density, temperature, dVInKT);
     j["species"][1]["mass"] = massB;
-    j["dmd"] = {{"model", "smoothed"}, {"dV", dVInKT}};
-    j["smd"] = {{"dt_fs", dtFs}};
+    j["smd"]["dt_fs"] = dtFs;
     return sceneFromJson(j, "mixture");
 }
 
@@ -51,10 +38,6 @@ std::array<double, 2> twiceKinetic(const MixtureSystem& sys) {
     for (const auto& b : sys.bodies)
         k[b.species] += bodyMass<SpeciesSphere>(b, sys.body) * b.v.squaredNorm();
     return k;
-}
-
-MixtureSystem mixtureSystem(const Scene& s) {
-    return buildInitialState<SpeciesSphere>(s, Model{ljMixture(s), sceneCutoff(s)});
 }
 
 double totalEnergy(const DmdMixture& e) {

@@ -3,13 +3,7 @@
 // pressure, on its own configurations, agree with SMD's within their error bars, and the error
 // bars resolve U/N to 1 %.
 #include "analysis/block_average.hpp"
-#include "core/initial_state.hpp"
-#include "core/lj_mixture.hpp"
-#include "core/smoothed_potential.hpp"
-#include "core/species_sphere.hpp"
-#include "dmd/scene_engine.hpp"
-#include "smd/scene_engine.hpp"
-#include "tests/mixture_scene.hpp"
+#include "tests/dmd/mixture_engines.hpp"
 #include <cstdio>
 #include <gtest/gtest.h>
 #include <vector>
@@ -18,27 +12,15 @@ using namespace terrace;
 
 namespace {
 
-using Model = Smoothed<LJMixture>;
-using MixtureSystem = System<SpeciesSphere, Model>;
-using DmdMixture = dmd::SceneEngine<SpeciesSphere, Model>;
-using SmdMixture = smd::SceneEngine<SpeciesSphere, Model>;
+using namespace terrace::mixture_tests;
 
-/// Kob–Andersen's mixture (tests/mixture_scene.hpp) on an fcc lattice, at a liquid state point
-/// well above its glass transition.
 Scene mixtureScene(int n, double density, double temperature, double dVInKT) {
-    nlohmann::json j = mixture_tests::kobAndersen(n, density, temperature);
-    j["state"]["lattice"] = "fcc";
-    j["dmd"] = {{"model", "smoothed"}, {"dV", dVInKT}};
-    j["smd"] = {{"dt_fs", 0.2}};
+    nlohmann::json j = mixtureDocument(n, density, temperature, dVInKT);
     // Both engines at the one temperature: after rescaled equilibration alone, NVE production
     // settles a few per cent apart in T (the terraced and the continuous energy relax
     // differently from the lattice), which moves U and P by more than their errors.
     j["run"] = {{"heat_bath", {{"kind", "csvr"}, {"tau_fs", 100.0}}}};
     return sceneFromJson(j, "mixture");
-}
-
-MixtureSystem mixtureSystem(const Scene& s) {
-    return buildInitialState<SpeciesSphere>(s, Model{ljMixture(s), sceneCutoff(s)});
 }
 
 struct Means {
