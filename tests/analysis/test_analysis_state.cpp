@@ -12,6 +12,8 @@
 #include <string>
 #include <unistd.h>
 
+namespace test_analysis_state {
+
 using namespace terrace;
 using namespace terrace::analysis;
 namespace fs = std::filesystem;
@@ -142,3 +144,5 @@ TEST(AnalysisState, AStateThatDoesNotFitIsRefused) {
         EXPECT_EQ(std::string(e.what()).rfind("analysis state: ", 0), 0u) << e.what();
     }
 }
+
+} // namespace test_analysis_state

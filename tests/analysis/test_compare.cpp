@@ -11,6 +11,8 @@
 #include <random>
 #include <unistd.h>
 
+namespace test_compare {
+
 using namespace terrace;
 using namespace terrace::analysis;
 namespace fs = std::filesystem;
@@ -242,3 +244,5 @@ TEST(Csv, CommentLinesAreSkipped) {
     ASSERT_EQ(t.rows(), 2);
     EXPECT_EQ(t.columns[1][1], 2.0);
 }
+
+} // namespace test_compare

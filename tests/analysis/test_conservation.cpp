@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <random>
 
+namespace test_conservation {
+
 using namespace terrace::analysis;
 
 namespace {
@@ -145,3 +147,5 @@ TEST(EnergyStats, TheAccumulatorsStateGoesOnToTheSameBits) {
     EXPECT_EQ(one.take().size(), x.size());
     EXPECT_THROW(EnergyAccumulator().stats(), std::invalid_argument);
 }
+
+} // namespace test_conservation

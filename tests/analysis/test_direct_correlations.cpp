@@ -8,6 +8,8 @@
 #include <cmath>
 #include <gtest/gtest.h>
 
+namespace test_direct_correlations {
+
 using namespace terrace;
 using namespace terrace::analysis;
 using namespace terrace::analysis::reference;
@@ -199,3 +201,5 @@ TEST(DirectCorrelations, RejectsUnequalSpacingAndTooLongLags) {
     samples[7].time += 0.01;
     EXPECT_THROW(sampleIntervalPs(samples), std::invalid_argument);
 }
+
+} // namespace test_direct_correlations

@@ -8,6 +8,8 @@
 #include <random>
 #include <vector>
 
+namespace test_fixed_blocks {
+
 using namespace terrace::analysis;
 
 namespace {
@@ -100,3 +102,5 @@ TEST(FixedBlocks, ItsStateGoesOnToTheSameBits) {
     StateReader once_more(bytes);
     EXPECT_THROW(fewer.read(once_more, "blocks"), std::invalid_argument);
 }
+
+} // namespace test_fixed_blocks

@@ -21,6 +21,8 @@
 #include <string>
 #include <unistd.h>
 
+namespace test_mixture_analysis {
+
 using namespace terrace;
 using namespace terrace::analysis;
 namespace fs = std::filesystem;
@@ -404,3 +406,5 @@ TEST(MixtureFiles, LabelsThatDoNotFitAreRefused) {
     SpeciesLabels one = labels({32});
     EXPECT_THROW(RunAnalysis(32, 12.0, intervalPs, 16, o, one), std::invalid_argument);
 }
+
+} // namespace test_mixture_analysis

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <random>
 
+namespace test_rdf {
+
 using namespace terrace;
 using namespace terrace::analysis;
 
@@ -132,3 +134,5 @@ TEST(RadialDistribution, RejectsChangingBoxesAndBadBins) {
     samples[1].boxLength = 11.0;
     EXPECT_THROW(acc.add(samples[1]), std::invalid_argument);
 }
+
+} // namespace test_rdf

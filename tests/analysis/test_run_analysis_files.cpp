@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+namespace test_run_analysis_files {
+
 using namespace terrace;
 using namespace terrace::analysis;
 namespace fs = std::filesystem;
@@ -116,3 +118,5 @@ TEST(RunAnalysisFiles, RejectsUnusableSamplesBeforeWritingAnything) {
     EXPECT_THROW(written(samples, dir), std::invalid_argument);
     EXPECT_FALSE(fs::exists(dir));
 }
+
+} // namespace test_run_analysis_files

@@ -15,6 +15,8 @@
 #include <map>
 #include <unistd.h>
 
+namespace test_streaming_analysis {
+
 using namespace terrace;
 using namespace terrace::analysis;
 using namespace terrace::analysis::reference;
@@ -326,3 +328,5 @@ TEST(RunAnalysis, ASampleInPartsGivesTheNumbersOfTheWholeSample) {
     EXPECT_THROW(parts.add(notFollowed, [&](int b) { return notFollowed.position[b]; }),
                  std::invalid_argument); // 200 bodies, not 50
 }
+
+} // namespace test_streaming_analysis

@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+namespace test_tradeoff_montecarlo {
+
 using namespace terrace::analysis;
 
 namespace {
@@ -171,3 +173,5 @@ TEST(TradeoffMonteCarlo, PowerLawErrorsCoverTheTruth) {
         EXPECT_GE(r.x3, threeSigma - 3.0 * mcError(threeSigma, trials) - 0.005);
     }
 }
+
+} // namespace test_tradeoff_montecarlo

@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+namespace test_tradeoff_stats {
+
 using namespace terrace::analysis;
 
 namespace {
@@ -311,3 +313,5 @@ TEST(TradeoffStats, PooledEstimateCoversTheTruthAtItsLevel) {
     const double rate = double(covered) / trials;
     EXPECT_NEAR(rate, 0.95, 3.0 * std::sqrt(0.05 * 0.95 / trials) + 0.01);
 }
+
+} // namespace test_tradeoff_stats

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <random>
 
+namespace test_windowed_correlation {
+
 using namespace terrace;
 using namespace terrace::analysis;
 
@@ -143,3 +145,5 @@ TEST(BlockAverage, ATimeSeriesIsCutIntoContiguousBlocks) {
     EXPECT_TRUE(std::isnan(blockMean(std::vector<double>{2.0}, 8).err));
     EXPECT_THROW(blockMean(std::vector<double>{}, 8), std::invalid_argument);
 }
+
+} // namespace test_windowed_correlation

@@ -14,6 +14,8 @@
 #include "tests/mixture_scene.hpp"
 #include <gtest/gtest.h>
 
+namespace test_body_species {
+
 using namespace terrace;
 
 namespace {
@@ -89,3 +91,5 @@ TEST(BodySpecies, EachSpeciesDiffusionIsReducedAsTheTotals) {
     summary["analysis"]["diffusion"].erase("species");
     EXPECT_FALSE(cli::reducedSummary(summary, u)["diffusion"].contains("species"));
 }
+
+} // namespace test_body_species

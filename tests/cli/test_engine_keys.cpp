@@ -4,6 +4,8 @@
 #include "core/scene.hpp"
 #include <gtest/gtest.h>
 
+namespace test_engine_keys {
+
 using namespace terrace;
 using namespace terrace::cli;
 
@@ -42,3 +44,5 @@ TEST(EngineKeys, StrictRefusesTheFirst) {
                                "section, so the setting has no effect (refused under --strict)");
     }
 }
+
+} // namespace test_engine_keys

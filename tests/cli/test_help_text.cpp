@@ -3,6 +3,8 @@
 #include "cli/help_text.hpp"
 #include <gtest/gtest.h>
 
+namespace test_help_text {
+
 using namespace terrace::cli;
 
 TEST(HelpText, EveryCommandHasItsOwnHelp) {
@@ -48,3 +50,5 @@ TEST(HelpText, RunNamesTheHeatBath) {
     for (const char* needle : {"run.heat_bath", "andersen", "csvr", "NVE"})
         EXPECT_NE(help.find(needle), std::string::npos) << needle;
 }
+
+} // namespace test_help_text

@@ -12,6 +12,8 @@
 #include <random>
 #include <sstream>
 
+namespace test_lammps_deck {
+
 using namespace terrace;
 using nlohmann::json;
 
@@ -388,3 +390,5 @@ TEST(LammpsDeck, SiteMoleculesAreRigidBodiesOfSiteAtoms) {
     EXPECT_EQ(deck.notes.front().rfind("cutoff:", 0), 0u);
     EXPECT_TRUE(std::isfinite(deck.energyDeck));
 }
+
+} // namespace test_lammps_deck

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <random>
 
+namespace test_melt_check {
+
 using namespace terrace;
 
 namespace {
@@ -86,3 +88,5 @@ TEST(MeltCheck, FccAndBccAreJudgedOnTheirOwnLattice) {
         EXPECT_FALSE(cli::meltWarning(s, gas, n, false)) << lattice;
     }
 }
+
+} // namespace test_melt_check

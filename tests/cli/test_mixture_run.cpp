@@ -14,6 +14,8 @@
 #include <sstream>
 #include <unistd.h>
 
+namespace test_mixture_run {
+
 using namespace terrace;
 using nlohmann::json;
 
@@ -96,3 +98,5 @@ TEST(MixtureScene, ExportWritesEachSpeciesATypeAndEachPairATable) {
     EXPECT_NEAR(deck.energyDeck, deck.energyTerrace, 2.5e-7 * std::abs(deck.energyTerrace));
     EXPECT_NE(deck.energyDeck, deck.energyTerrace); // a table is not the formula
 }
+
+} // namespace test_mixture_run

@@ -3,6 +3,8 @@
 #include "cli/output_dir.hpp"
 #include <gtest/gtest.h>
 
+namespace test_output_name {
+
 using namespace terrace::cli;
 
 TEST(OutputName, OverridesAreSortedByKeyAndNamedByTheirLastComponent) {
@@ -53,3 +55,5 @@ TEST(OutputName, TheBaseNameComesFirst) {
     EXPECT_EQ(nameWithOverrides("lj-liquid-smd", {"smd.dt_fs=0.7"}), "lj-liquid-smd-dt_fs=0.7");
     EXPECT_EQ(nameWithOverrides("lj-liquid-smd", {"engine=smd"}), "lj-liquid-smd");
 }
+
+} // namespace test_output_name

@@ -3,6 +3,8 @@
 #include "core/scene.hpp"
 #include <gtest/gtest.h>
 
+namespace test_provenance {
+
 using namespace terrace;
 using json = nlohmann::json;
 
@@ -41,3 +43,5 @@ TEST(Provenance, ManyAreNamedByCountChecksumAndFile) {
               p.at("crc64_of_json"));
     EXPECT_LT(cli::provenance(a).dump().size(), 4000u);
 }
+
+} // namespace test_provenance

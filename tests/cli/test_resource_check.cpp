@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 
+namespace test_resource_check {
+
 using namespace terrace;
 using namespace terrace::resource_tests;
 
@@ -145,3 +147,5 @@ TEST(ResourceCheck, FreeDiskIsFoundFromTheNearestExistingDirectory) {
     EXPECT_GT(below, 0.0);
     EXPECT_NEAR(below, tmp, 0.01 * tmp); // the same file system, give or take other writers
 }
+
+} // namespace test_resource_check

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 
+namespace test_resource_memory {
+
 using namespace terrace;
 using namespace terrace::resource_tests;
 
@@ -102,3 +104,5 @@ TEST(ResourceCheck, AnAddressSpaceLimitIsRoomTooAndNamed) {
     EXPECT_GT(room.bytes, 0.0);
     EXPECT_LT(room.bytes, 1.0 * (1 << 30)); // less what is mapped already
 }
+
+} // namespace test_resource_memory

@@ -20,6 +20,8 @@
 #include <set>
 #include <unistd.h>
 
+namespace test_restart {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -911,3 +913,5 @@ TEST(Restart, AMixturesSpeciesComeBackAndABadRecordIsRefused) {
     EXPECT_EQ(messageOf([&] { cli::bodiesFromBinary<SpeciesSphere::State>(plainBytes, 5); }),
               "restart: too few body records for 5 bodies of this kind");
 }
+
+} // namespace test_restart

@@ -11,6 +11,8 @@
 #include <unistd.h>
 #include <vector>
 
+namespace test_restart_points {
+
 using namespace terrace;
 
 namespace {
@@ -216,3 +218,5 @@ TEST(RestartPoints, AFailedRebuildKeepsTheFileAndTheEnd) {
     EXPECT_EQ(p.end(nullptr).time, 0.3);
     EXPECT_EQ(f.run.production.at("steps"), 1);
 }
+
+} // namespace test_restart_points

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+namespace test_sample_statistics {
+
 using namespace terrace;
 using cli::SampleRecord;
 using cli::VirialKind;
@@ -250,3 +252,5 @@ TEST(SampleStatistics, NoSampleReportsNothing) {
     EXPECT_EQ(j.dump(), R"({"configurational":{"frames":0}})");
     EXPECT_TRUE(stats.collisionRateError(0.1).is_null());
 }
+
+} // namespace test_sample_statistics

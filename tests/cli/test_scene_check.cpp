@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+namespace test_scene_check {
+
 using namespace terrace;
 using nlohmann::json;
 
@@ -274,3 +276,5 @@ TEST(SceneCheck, ARestartFileNamingTheQueueAutoGoesOnWithTheTree) {
     EXPECT_EQ(continued.dmd["queue"], "tree");
     std::filesystem::remove_all(dir);
 }
+
+} // namespace test_scene_check

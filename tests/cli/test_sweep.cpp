@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+namespace test_sweep {
+
 using namespace terrace;
 using namespace terrace::cli;
 using nlohmann::json;
@@ -338,3 +340,5 @@ TEST(SweepTable, FinishedRunsAreClassifiedFromWhatTheyLeft) {
     e = finishedEntry(dir, run, {false, 0});
     EXPECT_EQ(e.status, RunStatus::Ok);
 }
+
+} // namespace test_sweep

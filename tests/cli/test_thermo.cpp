@@ -16,6 +16,8 @@
 #include <sstream>
 #include <unistd.h>
 
+namespace test_thermo {
+
 using namespace terrace;
 using cli::SampleRecord;
 using cli::VirialKind;
@@ -223,3 +225,5 @@ TEST(Pressure, AnIdealGasHasTheKineticPressureAlone) {
     }
     std::filesystem::remove_all(dir);
 }
+
+} // namespace test_thermo

@@ -12,6 +12,8 @@
 #include <random>
 #include <unistd.h>
 
+namespace test_tradeoff {
+
 using namespace terrace;
 using namespace terrace::cli;
 
@@ -347,3 +349,5 @@ TEST(TradeoffDominance, NoFloorWithoutAnOutsideRungAndFailuresBoundNothing) {
     EXPECT_DOUBLE_EQ(least->cost, 1.0);
     EXPECT_FALSE(engineCostFloor({growingLadder(), l}, 2.0));
 }
+
+} // namespace test_tradeoff

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <unistd.h>
 
+namespace test_units {
+
 using namespace terrace;
 using nlohmann::json;
 
@@ -208,3 +210,5 @@ TEST(Units, RealAndLjGiveTheSameTrajectoryAndConvertedResults) {
         std::filesystem::remove_all(lj.dir);
     }
 }
+
+} // namespace test_units

@@ -11,8 +11,7 @@
 #include <limits>
 #include <random>
 
-namespace terrace {
-namespace {
+namespace terrace::test_box {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 // An input d is itself known only to ~ulp(d); the image cannot be sharper than a few such ulps.
@@ -158,5 +157,4 @@ TEST(PeriodicBox, WrapOfFarUnwrappedPositions) {
     }
 }
 
-} // namespace
-} // namespace terrace
+} // namespace terrace::test_box

@@ -8,6 +8,8 @@
 #include <limits>
 #include <random>
 
+namespace test_branch_free {
+
 namespace {
 
 using namespace terrace;
@@ -36,3 +38,5 @@ TEST(BranchFree, LesserAndGreaterAreMinAndMax) {
 }
 
 } // namespace
+
+} // namespace test_branch_free

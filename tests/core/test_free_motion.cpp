@@ -16,6 +16,8 @@
 #include <limits>
 #include <random>
 
+namespace test_free_motion {
+
 namespace {
 
 using namespace terrace;
@@ -532,3 +534,5 @@ TEST(AsymmetricTop, ConservationOverHundredsOfPeriods) {
 }
 
 } // namespace
+
+} // namespace test_free_motion

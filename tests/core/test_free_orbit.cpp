@@ -10,6 +10,8 @@
 #include <limits>
 #include <random>
 
+namespace test_free_orbit {
+
 namespace {
 
 using namespace terrace;
@@ -265,3 +267,5 @@ TEST(FreeOrbit, ARotorFlownFromItsStateAtEveryFlightStaysOnItsExactRotation) {
 }
 
 } // namespace
+
+} // namespace test_free_orbit

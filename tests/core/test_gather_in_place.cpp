@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+namespace test_gather_in_place {
+
 using namespace terrace;
 
 TEST(GatherInPlace, EqualsAGatherIntoACopy) {
@@ -48,3 +50,5 @@ TEST(GatherInPlace, TheInverseUndoesIt) {
     for (int i = 0; i < n; ++i)
         ASSERT_EQ(items[i], i);
 }
+
+} // namespace test_gather_in_place

@@ -22,8 +22,7 @@
 #include <random>
 #include <vector>
 
-namespace terrace {
-namespace {
+namespace terrace::test_gay_berne {
 
 using pairchecks::centralDerivative;
 using pairchecks::closeRelative;
@@ -532,5 +531,4 @@ TEST(GayBerneParameters, ProblemNamesTheBadParameter) {
     }
 }
 
-} // namespace
-} // namespace terrace
+} // namespace terrace::test_gay_berne

@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+namespace test_gsd {
+
 using namespace terrace;
 
 namespace {
@@ -260,3 +262,5 @@ TEST(Gsd, FramesReadBackAsTheSnapshotsWritten) {
         }
     }
 }
+
+} // namespace test_gsd

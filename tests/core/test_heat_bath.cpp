@@ -10,6 +10,8 @@
 #include <cmath>
 #include <gtest/gtest.h>
 
+namespace test_heat_bath {
+
 using namespace terrace;
 using scene_tests::errorOf;
 
@@ -143,3 +145,5 @@ TEST(HeatBath, SceneKey) {
     refused("run.thermostat=csvr", "the kind of heat bath is run.heat_bath");
     refused("run.heat_bth=none", "did you mean run.heat_bath?");
 }
+
+} // namespace test_heat_bath

@@ -11,6 +11,8 @@
 #include <string>
 #include <sys/mman.h>
 
+namespace test_huge_pages {
+
 using namespace terrace;
 
 namespace {
@@ -134,3 +136,5 @@ TEST(HugePages, AnAddressOutsideEveryMappingHasNone) {
     EXPECT_FALSE(none.advised);
     EXPECT_EQ(none.hugeBytes, 0u);
 }
+
+} // namespace test_huge_pages

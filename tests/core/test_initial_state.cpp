@@ -7,6 +7,8 @@
 #include "core/symmetric_top.hpp"
 #include <gtest/gtest.h>
 
+namespace test_initial_state {
+
 using namespace terrace;
 
 namespace {
@@ -192,3 +194,5 @@ TEST(InitialState, OverlapIsJudgedAtTheLatticesOwnNeighbours) {
     scene.state.density = 2.3;
     EXPECT_NO_THROW(buildInitialState<Sphere>(scene, ljPotential(scene)));
 }
+
+} // namespace test_initial_state

@@ -13,6 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+namespace test_output_file {
+
 using namespace terrace;
 namespace fs = std::filesystem;
 
@@ -193,3 +195,5 @@ TEST(OutputFile, ARecordInPiecesIsCutBackWhole) {
         << "1: no error; 2: wrong size or message; 3: no limit";
     EXPECT_EQ(fs::file_size(dir / "limited.xyz"), 1000u);
 }
+
+} // namespace test_output_file

@@ -19,8 +19,7 @@
 #include <random>
 #include <type_traits>
 
-namespace terrace {
-namespace {
+namespace terrace::test_potentials {
 
 using pairchecks::centralDerivative;
 using pairchecks::closeRelative;
@@ -459,5 +458,4 @@ TEST(RodPotential, AlignmentPreferenceFollowsTheEffectiveDistance) {
     }
 }
 
-} // namespace
-} // namespace terrace
+} // namespace terrace::test_potentials

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+namespace test_scene {
+
 using namespace terrace;
 using nlohmann::json;
 
@@ -723,3 +725,5 @@ TEST(Scene, LatticeIsReadCheckedAndWrittenOut) {
               "test.json: state.lattice: applies to lattice starts only: state.particles gives "
               "each position");
 }
+
+} // namespace test_scene

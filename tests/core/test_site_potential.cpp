@@ -25,8 +25,7 @@
 #include <string>
 #include <vector>
 
-namespace terrace {
-namespace {
+namespace terrace::test_site_potential {
 
 using pairchecks::centralDerivative;
 using pairchecks::closeRelative;
@@ -613,5 +612,4 @@ TEST(SitePotential, FromSitesRejectsBadInput) {
     EXPECT_NO_THROW((void)AxisSites::fromSites({ok, {Vec3::UnitZ(), 0.0, 1.0, 1.0}}));
 }
 
-} // namespace
-} // namespace terrace
+} // namespace terrace::test_site_potential

@@ -6,6 +6,8 @@
 #include "core/smoothed_cutoff.hpp"
 #include <gtest/gtest.h>
 
+namespace test_smoothed_cutoff {
+
 using namespace terrace;
 
 namespace {
@@ -95,3 +97,5 @@ TEST(SmoothedCutoff, UntouchedInsideInnerRadius) {
     EXPECT_EQ(f.U, raw.U);
     EXPECT_EQ(f.F, raw.F);
 }
+
+} // namespace test_smoothed_cutoff

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <random>
 
+namespace test_smoothed_potential {
+
 using namespace terrace;
 
 namespace {
@@ -129,3 +131,5 @@ TEST(SmoothedPotential, ReachOfALevelIsTheLastDistanceAnyOrientationReachesIt) {
     EXPECT_NEAR(ljModel.energy(Vec3(reach, 0, 0), Vec3::UnitZ(), Vec3::UnitZ()), -0.01,
                 reachTol * 0.01);
 }
+
+} // namespace test_smoothed_potential

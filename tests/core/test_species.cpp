@@ -15,6 +15,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+namespace test_species {
+
 using namespace terrace;
 using nlohmann::json;
 using terrace::scene_tests::errorOf;
@@ -406,3 +408,5 @@ TEST(Species, AnExplicitStartsSpeciesAreRefusedByTheirKeys) {
               std::string::npos)
         << errorOf(plain);
 }
+
+} // namespace test_species

@@ -9,6 +9,8 @@
 #include <numbers>
 #include <set>
 
+namespace test_start_lattice {
+
 using namespace terrace;
 
 namespace {
@@ -145,3 +147,5 @@ TEST(StartLattice, NamesAreTheScenesValues) {
         EXPECT_STREQ(latticeName(latticeKind(name)), name);
     EXPECT_THROW(latticeKind("hcp"), std::invalid_argument);
 }
+
+} // namespace test_start_lattice

@@ -2,6 +2,8 @@
 #include "core/suggest.hpp"
 #include <gtest/gtest.h>
 
+namespace test_suggest {
+
 using namespace terrace;
 
 TEST(Suggest, EditDistanceCountsEachEditOnce) {
@@ -35,3 +37,5 @@ TEST(Suggest, NearestNameIsOfferedOnlyWhenNearEnough) {
     EXPECT_EQ(nearestName("sdm", {"dmd", "smd"}), "smd");
     EXPECT_EQ(nearestName("--strct", {"--out", "--strict", "--set"}), "--strict");
 }
+
+} // namespace test_suggest

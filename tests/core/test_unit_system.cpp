@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <random>
 
+namespace test_unit_system {
+
 using namespace terrace;
 using nlohmann::json;
 
@@ -156,3 +158,5 @@ TEST(SceneUnits, UnitFreeKeysAreReducedAndTheSceneRoundTrips) {
     // Under real, scene.json is as it was before units existed: no "units" key.
     EXPECT_FALSE(toJson(sceneFromJson(ljLiquid(), "test.json")).contains("units"));
 }
+
+} // namespace test_unit_system

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <gtest/gtest.h>
 
+namespace test_xyz {
+
 using namespace terrace;
 
 namespace {
@@ -256,3 +258,5 @@ TEST(Xyz, ABrokenFrameInsideTheFileIsStillAnError) {
     std::string partial;
     EXPECT_THROW(readTrajectory(path.string(), &partial), TrajectoryError);
 }
+
+} // namespace test_xyz

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+namespace test_agendas {
+
 namespace {
 
 using terrace::dmd::Agendas;
@@ -166,3 +168,5 @@ TEST(Agendas, RefuseMoreBodiesThanASlotCanName) {
 }
 
 } // namespace
+
+} // namespace test_agendas

@@ -5,6 +5,8 @@
 #include <random>
 #include <set>
 
+namespace test_cell_list {
+
 using namespace terrace;
 using namespace terrace::dmd;
 
@@ -107,3 +109,5 @@ TEST(CellList, SmallBoxesUseOneCell) {
     int axis, dir;
     EXPECT_TRUE(std::isinf(cells.crossingTime(0, Vec3(1, 1, 1), Vec3(1, 0, 0), axis, dir)));
 }
+
+} // namespace test_cell_list

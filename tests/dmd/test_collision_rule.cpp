@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+namespace test_collision_rule {
+
 using namespace terrace;
 using namespace terrace::dmd;
 
@@ -727,3 +729,5 @@ TEST(CollisionRule, TouchWithoutOutwardMotionChangesNothing) {
     EXPECT_EQ(imp.outcome, Outcome::Reflect);
     EXPECT_EQ(imp.S, 0.0);
 }
+
+} // namespace test_collision_rule

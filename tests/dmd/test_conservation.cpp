@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <string>
 
+namespace test_conservation {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -88,3 +90,5 @@ TEST(Conservation, HotPairsOnTheWallAreNotMissed) {
         }
     }
 }
+
+} // namespace test_conservation

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <gtest/gtest.h>
 
+namespace test_continuous_sums {
+
 using namespace terrace;
 using namespace terrace::dmdtest;
 
@@ -65,3 +67,5 @@ TEST(ContinuousSums, ProfileAveragesTheWeightsOfEachBin) {
     EXPECT_DOUBLE_EQ(profile.counts()[5], 2.0);
     EXPECT_THROW(profile.restore({1.0}, {1.0}), std::invalid_argument);
 }
+
+} // namespace test_continuous_sums

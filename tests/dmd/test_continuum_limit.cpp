@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_continuum_limit {
+
 using namespace terrace;
 using namespace terrace::dmdtest;
 
@@ -169,3 +171,5 @@ TEST(ContinuumLimit, SmallTerracesApproachTheContinuousDynamics) {
     EXPECT_LT(std::abs(dFine.meanU - md.meanU), std::abs(dCoarse.meanU - md.meanU));
     EXPECT_LT(gDistance(dFine, md), gDistance(dCoarse, md));
 }
+
+} // namespace test_continuum_limit

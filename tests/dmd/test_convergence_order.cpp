@@ -30,6 +30,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_convergence_order {
+
 using namespace terrace;
 
 namespace {
@@ -270,3 +272,5 @@ TEST(ConvergenceOrder, DmdAndSmdPressuresAgreeAsTheTerraceShrinks) {
     EXPECT_LT(std::abs(nearGap), sigmas * nearSigma);
     EXPECT_LT(std::abs(nearGap) + sigmas * nearSigma, farGap);
 }
+
+} // namespace test_convergence_order

@@ -13,6 +13,8 @@
 #include <span>
 #include <string>
 
+namespace test_engine {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -621,3 +623,5 @@ TEST(Engine, BookkeepingStaysBoundedWithoutCollisions) {
                 << queue << ", " << invalidation << ": grew from " << early;
         }
 }
+
+} // namespace test_engine

@@ -8,6 +8,8 @@
 #include <set>
 #include <stdexcept>
 
+namespace test_engine_parts {
+
 using namespace terrace::dmd;
 
 TEST(HorizonJitter, StaysWithinItsBandAndFollowsTheSeed) {
@@ -65,3 +67,5 @@ TEST(BinTuning, SizesBinsFromTheMeasuredRateAndLead) {
         EXPECT_FALSE(t.due());
     EXPECT_TRUE(t.due());
 }
+
+} // namespace test_engine_parts

@@ -43,8 +43,7 @@ std::size_t allocationCount = 0;
     std::free(p);
 }
 
-namespace terrace::dmd {
-namespace {
+namespace terrace::dmd::test_event_queue {
 
 struct TestEvent {
     double time = 0.0; // time units
@@ -626,5 +625,4 @@ TEST(EventQueues, HeapAndBoundedQueuePopIdenticalSequencesUnderStress) {
     EXPECT_EQ(heap.queue.size(), bpq.queue.size());
 }
 
-} // namespace
-} // namespace terrace::dmd
+} // namespace terrace::dmd::test_event_queue

@@ -17,6 +17,8 @@
 #include <numbers>
 #include <vector>
 
+namespace test_hard_spheres {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -72,3 +74,5 @@ TEST(Pressure, HardSphereLimitFollowsCarnahanStarling) {
         EXPECT_LT(z.error, 0.01 * cs) << "η = " << eta; // the check has teeth
     }
 }
+
+} // namespace test_hard_spheres

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+namespace test_heat_bath {
+
 using namespace terrace;
 
 namespace {
@@ -188,3 +190,5 @@ TEST(HeatBath, TheCheckpointCarriesTheBath) {
             }
         }
 }
+
+} // namespace test_heat_bath

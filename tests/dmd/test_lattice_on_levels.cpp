@@ -13,6 +13,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_lattice_on_levels {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -145,3 +147,5 @@ TEST(LatticeOnLevels, AlignedRodLatticeOnALevel) {
         runConserving(e, 200.0);
     }
 }
+
+} // namespace test_lattice_on_levels

@@ -9,6 +9,8 @@
 #include <limits>
 #include <random>
 
+namespace test_minimum_image {
+
 namespace {
 
 using namespace terrace;
@@ -81,3 +83,5 @@ TEST(MinimumImage, FarSeparationsWithTheCachedInverse) {
 }
 
 } // namespace
+
+} // namespace test_minimum_image

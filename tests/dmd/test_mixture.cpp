@@ -16,6 +16,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_mixture {
+
 using terrace::dmd::testing::Probe;
 using namespace terrace;
 
@@ -184,3 +186,5 @@ TEST(Mixture, UnequalMassesSmdEnergyErrorFallsAsDtSquared) {
     EXPECT_GT(coarse / fine, 3.0);
     EXPECT_LT(coarse / fine, 5.5);
 }
+
+} // namespace test_mixture

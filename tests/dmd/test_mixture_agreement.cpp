@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_mixture_agreement {
+
 using namespace terrace;
 
 namespace {
@@ -85,3 +87,5 @@ TEST(Mixture, DmdWithSmallTerracesAgreesWithSmdOnUAndPressure) {
                 "%.6f kJ/mol/Å³\n",
                 d.u.mean, d.u.err, m.u.mean, m.u.err, d.p.mean, d.p.err, m.p.mean, m.p.err);
 }
+
+} // namespace test_mixture_agreement

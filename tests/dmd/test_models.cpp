@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+namespace test_models {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -207,3 +209,5 @@ TYPED_TEST(Models, DmdConvergesToSmdAsTheTerraceShrinks) {
 }
 
 } // namespace
+
+} // namespace test_models

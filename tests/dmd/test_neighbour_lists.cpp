@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+namespace test_neighbour_lists {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -200,3 +202,5 @@ TEST(NeighbourLists, APairOffTerraceZeroMustStayListed) {
     const std::vector<int> without2{1, 3};
     EXPECT_THROW(lists.rebuild(0, without2, Vec3::Zero()), std::logic_error);
 }
+
+} // namespace test_neighbour_lists

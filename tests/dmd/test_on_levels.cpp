@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_on_levels {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -169,3 +171,5 @@ TEST(OnLevels, APairPassingTangentToALevelGoesOn) {
             EXPECT_NEAR(totalEnergy(e), e0, energyTolerance * std::abs(e0));
         }
 }
+
+} // namespace test_on_levels

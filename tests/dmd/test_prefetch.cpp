@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_prefetch {
+
 namespace {
 
 using terrace::dmd::cacheLine;
@@ -50,3 +52,5 @@ TEST(Prefetch, EveryRodStateInAnArrayCoversTwoLines) {
 }
 
 } // namespace
+
+} // namespace test_prefetch

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_pressure {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -75,3 +77,5 @@ TEST(Pressure, TransmissionsAddTheHandComputedImpulseVirial) {
     const double w = 2.0 * u, w1 = std::sqrt(w * w - 2.0 * dE / mu);
     EXPECT_NEAR(e.virial(), -d * mu * (w1 - w), virialTol * d * mu * w);
 }
+
+} // namespace test_pressure

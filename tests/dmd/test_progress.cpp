@@ -4,6 +4,8 @@
 #include "test_systems.hpp"
 #include <gtest/gtest.h>
 
+namespace test_progress {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -49,3 +51,5 @@ TEST(Progress, PairsExactlyOnALevelAdvance) {
     RodEngine e(sys, rodScene(side * side * side, 0.5, 1.4, 0.5));
     expectProgress(e, 10.0); // ~10⁵ collisions
 }
+
+} // namespace test_progress

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <gtest/gtest.h>
 
+namespace test_root_search {
+
 using namespace terrace;
 using namespace terrace::dmd;
 
@@ -148,8 +150,8 @@ TEST(RootSearch, RefinesABracketedRootInAFewSamples) {
         const Cosine f{1.0, omega, 0.0};
         const double root = M_PI / 2.0 / omega; // cos crosses 0 downwards
         int evaluations = 0;
-        const double t = detail::refineRoot(f, f(root - 0.013), f(root + 0.027), ExitSide::Lower,
-                                            0.0, tolerance, evaluations);
+        const double t = dmd::detail::refineRoot(f, f(root - 0.013), f(root + 0.027),
+                                                 ExitSide::Lower, 0.0, tolerance, evaluations);
         EXPECT_LE(evaluations, 3) << "omega " << omega;
         EXPECT_GE(t, root) << "omega " << omega;                   // reported past the level...
         EXPECT_LE(t - root, 3.0 * tolerance) << "omega " << omega; // ...by the tolerance only
@@ -165,9 +167,9 @@ TEST(RootSearch, RulesOutAClearExtremumInAFewSamples) {
         for (double clearance : {0.2, 1e-2, 1e-4, -1e-9}) {
             const Cosine f{1.0, omega, 1.0 + clearance}; // minimum clearance at tm
             int evaluations = 0;
-            const PairSample m =
-                detail::probeExtremum(f, f(tm - 0.017), f(tm + 0.023), detail::Signed{1.0, 0.0},
-                                      1e-12, 4e-15, evaluations);
+            const PairSample m = dmd::detail::probeExtremum(f, f(tm - 0.017), f(tm + 0.023),
+                                                            dmd::detail::Signed{1.0, 0.0}, 1e-12,
+                                                            4e-15, evaluations);
             if (clearance > 0.0) {
                 EXPECT_LE(evaluations, 3) << omega << " " << clearance;
                 EXPECT_GT(m.U, 0.0);
@@ -178,3 +180,5 @@ TEST(RootSearch, RulesOutAClearExtremumInAFewSamples) {
         }
     }
 }
+
+} // namespace test_root_search

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <random>
 
+namespace test_search_random {
+
 using namespace terrace::dmd;
 
 namespace {
@@ -87,3 +89,5 @@ TEST(SearchAgainstBruteForce, FindsExactlyTheCrossingsThatExistAndTheFirstOne) {
     }
     EXPECT_GT(crossings, 800);
 }
+
+} // namespace test_search_random

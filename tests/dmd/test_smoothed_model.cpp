@@ -12,6 +12,8 @@
 #include "test_systems.hpp"
 #include <gtest/gtest.h>
 
+namespace test_smoothed_model {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -139,3 +141,5 @@ TEST(SmoothedModel, GrazingDipBelowALevelInTheSwitchIsCaughtAndOneAboveIsNot) {
         EXPECT_GT(engine.time(), 16.0 / 0.3); // the pass is over
     }
 }
+
+} // namespace test_smoothed_model

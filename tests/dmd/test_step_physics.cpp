@@ -21,6 +21,8 @@
 #include <numbers>
 #include <vector>
 
+namespace test_step_physics {
+
 using terrace::dmd::testing::Probe;
 using namespace terrace;
 
@@ -119,3 +121,5 @@ TEST(StepPhysics, DiluteSquareWellFollowsItsVirialCoefficients) {
                 "(B2 %.3f) σ³\n",
                 rho, m.kT, measured, error, expected, b2);
 }
+
+} // namespace test_step_physics

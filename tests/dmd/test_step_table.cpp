@@ -16,6 +16,8 @@
 #include <numbers>
 #include <string>
 
+namespace test_step_table {
+
 using terrace::dmd::testing::Probe;
 using namespace terrace;
 
@@ -347,3 +349,5 @@ TEST(StepEngine, ExplicitLevelsAreRefusedForATable) {
               std::string::npos)
         << message;
 }
+
+} // namespace test_step_table

@@ -17,6 +17,8 @@
 #include <numbers>
 #include <vector>
 
+namespace test_terrace_design {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -297,3 +299,5 @@ TEST(TerraceDesignScene, KeysReadAndRefused) {
 }
 
 } // namespace
+
+} // namespace test_terrace_design

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <random>
 
+namespace test_terrace_hold {
+
 using namespace terrace;
 using namespace terrace::dmd;
 
@@ -331,3 +333,5 @@ TEST(TerraceHold, NoPairLeavesItsTerraceBeforeItsHoldTime) {
     EXPECT_GT(checked, 100000);
     EXPECT_GT(ratioSum / ratios, 0.2);
 }
+
+} // namespace test_terrace_hold

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <string>
 
+namespace test_terrace_levels {
+
 using namespace terrace;
 using namespace terrace::dmd;
 
@@ -95,3 +97,5 @@ TEST(TerraceLevels, ALevelOnTheMinimumNamesTheNearestValidDv) {
               "zero width)");
     EXPECT_THROW(TerraceLevels::explicitLevels({1.0, -1.0}), SceneError);
 }
+
+} // namespace test_terrace_levels

@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <vector>
 
+namespace test_two_body {
+
 using terrace::dmd::testing::Probe;
 
 using namespace terrace;
@@ -160,3 +162,5 @@ TEST(TwoBody, GrazingDipBelowALevelIsCaughtAndOneAboveIsNot) {
         EXPECT_GT(engine.time(), 16.0 / 0.3); // the pass is over
     }
 }
+
+} // namespace test_two_body

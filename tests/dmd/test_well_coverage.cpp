@@ -4,6 +4,8 @@
 #include "dmd/well_coverage.hpp"
 #include <gtest/gtest.h>
 
+namespace test_well_coverage {
+
 using namespace terrace;
 
 namespace {
@@ -45,3 +47,5 @@ TEST(WellCoverage, ASphereHasOneProfileSwallowedOnlyWhenTheFirstLevelIsBelowItsM
     EXPECT_EQ(lost.swallowed, 1);
     EXPECT_NEAR(lost.deepestSwallowed, -1.0, 1e-3); // the grid's minimum, within its spacing
 }
+
+} // namespace test_well_coverage

@@ -18,6 +18,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+namespace test_paper_tools {
+
 namespace fs = std::filesystem;
 using terrace::analysis::CsvTable;
 namespace ex = terrace::experiments;
@@ -407,3 +409,5 @@ TEST(EqualAccuracy, SmdFrontTakesTheCheapestSchemeReachingTheTargetAndNamesIt) {
         {{"smd-1", 4.0, 0.01}, {"smd-1.8", 2.0, 0.04}, {"smd-3-yoshida4", 1.5, 0.02}});
     EXPECT_EQ(ex::costAtError(front, 0.015).via, "smd-3-yoshida4~smd-1");
 }
+
+} // namespace test_paper_tools

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <numeric>
 
+namespace test_energy_conservation {
+
 using namespace terrace;
 using RodEngine = smd::SceneEngine<LinearRotor, smd::fixtures::RodModel>;
 
@@ -118,3 +120,5 @@ TEST(EnergyConservation, FluctuationRatioOfPaperSize) {
     EXPECT_GT(fluctRatio, paperRatio / paperFactor);
     EXPECT_LT(fluctRatio, paperRatio * paperFactor);
 }
+
+} // namespace test_energy_conservation

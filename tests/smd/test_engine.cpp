@@ -14,6 +14,8 @@
 #include <span>
 #include <vector>
 
+namespace test_engine {
+
 using namespace terrace;
 using RodEngine = smd::SceneEngine<LinearRotor, smd::fixtures::RodModel>;
 using LJEngine = smd::SceneEngine<Sphere, smd::fixtures::LJModel>;
@@ -294,3 +296,5 @@ TEST(Engine, BodyOrderChangesNoObservable) {
         moved += a->sceneIndex(k) != k;
     EXPECT_GT(moved, start.size() / 2);
 }
+
+} // namespace test_engine

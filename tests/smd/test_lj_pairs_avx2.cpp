@@ -10,6 +10,8 @@
 #include "systems.hpp"
 #include <gtest/gtest.h>
 
+namespace test_lj_pairs_avx2 {
+
 using namespace terrace;
 using namespace terrace::smd;
 
@@ -189,3 +191,5 @@ TEST(LJPairLoops, DispatchTakesAvx2WhereAvailable) {
     for (std::size_t k = 0; k < f.force.size(); ++k)
         EXPECT_EQ(f.force[k], expected.force[k]);
 }
+
+} // namespace test_lj_pairs_avx2

@@ -10,6 +10,8 @@
 #include <random>
 #include <set>
 
+namespace test_neighbour_list {
+
 using namespace terrace;
 using namespace terrace::smd;
 
@@ -200,3 +202,5 @@ TEST(NeighbourList, VisitingOrderFixesTheSlots) {
         EXPECT_EQ(visited.offset, given.offset);
     }
 }
+
+} // namespace test_neighbour_list

@@ -6,6 +6,8 @@
 #include "smd/pair_kernels.hpp"
 #include <gtest/gtest.h>
 
+namespace test_pair_kernels {
+
 using namespace terrace;
 using namespace terrace::smd;
 
@@ -51,3 +53,5 @@ TEST(PairKernels, RodKernelIsEvaluateThenSmoothed) {
                    smoothed(rod.evaluate(rij, si, sj), rij, r, cut));
     }
 }
+
+} // namespace test_pair_kernels

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <numeric>
 
+namespace test_splitting {
+
 using namespace terrace;
 
 namespace {
@@ -168,3 +170,5 @@ TEST(Splitting, NoDriftOver100psAtThePapersStep) {
         EXPECT_LT(std::abs(drift), fluctuation) << scheme;
     }
 }
+
+} // namespace test_splitting

@@ -4,6 +4,8 @@
 #include "systems.hpp"
 #include <gtest/gtest.h>
 
+namespace test_stability {
+
 using namespace terrace;
 
 TEST(Stability, TooLongTimeStepIsAClearError) {
@@ -28,3 +30,5 @@ TEST(Stability, PaperTimeStepAtThePaperStatePointRunsQuietly) {
         std::move(sys), smd::fixtures::smdScene(3.035, 1.8));
     EXPECT_NO_THROW(engine.advanceTo(units::fromPs(1.0)));
 }
+
+} // namespace test_stability
