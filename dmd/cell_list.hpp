@@ -25,7 +25,7 @@ namespace terrace::dmd {
 class CellList {
 public:
     /// Cells of edge ≥ minEdge (Å) in a box of edge boxLength (Å), for nBodies bodies.
-    CellList(double boxLength, double minEdge, int nBodies) : box_(boxLength) {
+    CellList(double boxLength, double minEdge, int nBodies) {
         // Relative safety margin: a cell must not come out a hair smaller than r_m by round-off.
         constexpr double edgeMargin = 1e-9;
         n_ = static_cast<int>(std::floor(boxLength / (minEdge * (1.0 + edgeMargin))));
@@ -187,7 +187,6 @@ private:
         if (next_[i] >= 0) prev_[next_[i]] = prev_[i];
     }
 
-    double box_;
     int n_ = 1;
     double edge_ = 0.0;
     BodyArray<int> head_, next_, prev_, cell_;
