@@ -195,5 +195,6 @@ def test_a_mixtures_species_and_masses():
         assert s.species.dtype == np.int32 and s.species.shape == (256,)
         assert np.bincount(s.species).tolist() == [205, 51]  # 80 %, 20 % by largest remainder
         mass = resolved["body"]["mass"] * np.where(s.species == 1, 3.0, 1.0)
+        # (Å/ps)² g/mol = 0.01 kJ/mol
         kinetic = 0.5 * np.sum(mass[:, None] * s.velocities ** 2) / 100.0
         assert kinetic == pytest.approx(sim.energies()["kinetic_translational"], rel=1e-12)
