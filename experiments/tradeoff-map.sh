@@ -2,10 +2,17 @@
 # Where DMD pays, resolved: `terrace tradeoff` at every state point of a density × temperature
 # grid, for one model family and one set of tolerances.
 #   tradeoff-map.sh rods|lj loose|strict "DENSITIES" "TEMPERATURES" [N] [extra tradeoff args...]
+#   tradeoff-map.sh pack rods|lj loose|strict     (archive every cell's runs now; see below)
 # Tolerance sets: strict = tradeoff's defaults (u 0.5 %, p 2 %, d 3 %, g 0.02, g_peak 1 %,
 # tau 3 %); loose = u 2 %, p 5 %, d 10 %, g 0.05, g_peak 3 %, tau 10 %.
-# Each cell's tradeoff lands in OUT/tradeoff-map/<family>-<set>/rho<ρ*>-T<T*> (a killed map goes on
-# where it stopped: tradeoff reuses every finished run). Writes OUT/tradeoff-map/<family>-<set>.csv:
+# Each cell's tradeoff lands in OUT/tradeoff-map/<family>-<set>/rho<ρ*>-T<T*>. A cell takes up to
+# tens of CPU minutes and the map tens of hours, more than one sitting, so the runs must outlive
+# the machine: after each cell (and on `pack`) the files tradeoff reads back from each run
+# (scene.json, summary.json, the CSVs, FAILED.json) go into the cell's runs.tar.xz, a few hundred
+# kB, which is committed with the cell; a cell whose runs/ is missing is unpacked from it first, so
+# tradeoff reuses every finished run. A cell that already has a verdict (a cost in its
+# tradeoff.json) is not run again.
+# Writes OUT/tradeoff-map/<family>-<set>.csv from every cell present, not only those named here:
 #   rho,T,status,dmd,smd,ratio,lo,hi,level,why
 # status resolved (a verdict: ratio = DMD's cost over SMD's, with its interval), at_least (the
 # verdict of tradeoff's early stop: one engine is cheaper than any setting of the other could be, and
@@ -14,6 +21,29 @@
 # cell with a verdict (triangles: bounds; crosses: no verdict), the break-even contour drawn only
 # between resolved cells.
 source "$(dirname "$0")/common.sh"
+# The files of a run that tradeoff reads back (cli/tradeoff_measure.cpp, cli/sweep_table.cpp).
+pack_runs() {
+    local cell=$1
+    [ -d "$cell/runs" ] || return 0
+    (cd "$cell" && find runs -mindepth 2 -maxdepth 2 \( -name scene.json -o -name summary.json \
+        -o -name rdf.csv -o -name vacf.csv -o -name oacf.csv -o -name msd.csv \
+        -o -name FAILED.json \) -print0 |
+        tar --null -T - --sort=name --mtime=@0 --owner=0 --group=0 --numeric-owner -cf - |
+        xz -9 >runs.tar.xz.part && mv runs.tar.xz.part runs.tar.xz)
+}
+unpack_runs() {
+    local cell=$1
+    [ -d "$cell/runs" ] || [ ! -f "$cell/runs.tar.xz" ] || tar -xJf "$cell/runs.tar.xz" -C "$cell"
+}
+decided() { # the cell's tradeoff.json has a cost: a verdict, resolved or a bound
+    python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1])).get("cost") else 1)' \
+        "$1/tradeoff.json" 2>/dev/null
+}
+
+if [ "${1:-}" = pack ]; then
+    for cell in "$OUT/tradeoff-map/$2-$3"/rho*-T*/; do pack_runs "${cell%/}"; done
+    exit 0
+fi
 family=$1 set=$2
 read -r -a densities <<<"$3"
 read -r -a temperatures <<<"$4"
@@ -33,17 +63,33 @@ esac
 dir=$OUT/tradeoff-map
 name=$family-$set
 mkdir -p "$dir/$name"
-table=$dir/$name.csv
-echo "rho,T,status,dmd,smd,ratio,lo,hi,level,why" >"$table"
 for T in "${temperatures[@]}"; do
     for rho in "${densities[@]}"; do
         cell=$dir/$name/rho$rho-T$T
+        if decided "$cell"; then
+            log "tradeoff-map $name: rho $rho T $T has its verdict: $(head -c 200 "$cell.verdict")"
+            continue
+        fi
+        unpack_runs "$cell"
         status=0
         "$TERRACE" tradeoff "$scene" --set state.density="$rho" --set state.temperature="$T" \
             --set state.n="$n" "${tolerances[@]}" --out "$cell" --quiet "$@" \
             >"$cell.verdict" 2>"$cell.log" || status=$?
+        pack_runs "$cell"
         [ $status -lt 128 ] || exit $status # stopped by a signal: the same command goes on
-        python3 - "$cell/tradeoff.json" "$rho" "$T" "$status" >>"$table" <<'PY'
+        echo "$status" >"$cell.status"
+        log "tradeoff-map $name: rho $rho T $T: $(head -c 200 "$cell.verdict")"
+    done
+done
+
+# The table, from every cell of the family and set that has been run.
+table=$dir/$name.csv
+echo "rho,T,status,dmd,smd,ratio,lo,hi,level,why" >"$table"
+for cell in "$dir/$name"/rho*-T*/; do
+    cell=${cell%/}
+    base=${cell##*/rho}
+    status=$(cat "$cell.status" 2>/dev/null || echo 0)
+    python3 - "$cell/tradeoff.json" "${base%-T*}" "${base#*-T}" "$status" <<'PY'
 import json, sys
 path, rho, T, status = sys.argv[1:]
 try:
@@ -60,9 +106,7 @@ if status == "0" and c:
 else:
     print(f"{rho},{T},unresolved,,,nan,nan,nan,nan,{t.get('verdict', '').replace(',', ';')} {why}")
 PY
-        log "tradeoff-map $name: rho $rho T $T: $(head -c 200 "$cell.verdict")"
-    done
-done
+done | sort -t, -k2,2g -k1,1g >>"$table"
 
 # Break-even between grid neighbours that both have a verdict and lie on either side of 1, placed
 # by linear interpolation of log10(ratio) in log ρ* (or log T*): no line crosses a cell without one.
