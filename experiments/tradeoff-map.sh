@@ -9,9 +9,12 @@
 # tens of CPU minutes and the map tens of hours, more than one sitting, so the runs must outlive
 # the machine: after each cell (and on `pack`) the files tradeoff reads back from each run
 # (scene.json, summary.json, the CSVs, FAILED.json) go into the cell's runs.tar.xz, a few hundred
-# kB, which is committed with the cell; a cell whose runs/ is missing is unpacked from it first, so
-# tradeoff reuses every finished run. A cell that already has a verdict (a cost in its
-# tradeoff.json) is not run again.
+# MB, which is committed with the cell; a cell whose runs/ is missing is unpacked from it first, so
+# tradeoff reuses every finished run. A cell that has its verdict (a cost in its tradeoff.json,
+# which keeps every estimate) is not run again, and its runs and their archive are removed.
+# SMD's step: the scene's smd.dt_fs, shortened by √(T_scene/T*) above the scene's temperature
+# (the thermal speed sets the step a collision needs), to the next sample_fs/k below: tradeoff's
+# SMD ladders run from it up to ten times it, and its reference from half of it.
 # Writes OUT/tradeoff-map/<family>-<set>.csv from every cell present, not only those named here:
 #   rho,T,status,dmd,smd,ratio,lo,hi,level,why
 # status resolved (a verdict: ratio = DMD's cost over SMD's, with its interval), at_least (the
@@ -26,8 +29,7 @@ pack_runs() {
     local cell=$1
     [ -d "$cell/runs" ] || return 0
     (cd "$cell" && find runs -mindepth 2 -maxdepth 2 \( -name scene.json -o -name summary.json \
-        -o -name rdf.csv -o -name vacf.csv -o -name oacf.csv -o -name msd.csv \
-        -o -name FAILED.json \) -print0 |
+        -o -name rdf.csv -o -name vacf.csv -o -name oacf.csv -o -name FAILED.json \) -print0 |
         tar --null -T - --sort=name --mtime=@0 --owner=0 --group=0 --numeric-owner -cf - |
         xz -9 >runs.tar.xz.part && mv runs.tar.xz.part runs.tar.xz)
 }
@@ -71,13 +73,22 @@ for T in "${temperatures[@]}"; do
             continue
         fi
         unpack_runs "$cell"
+        dt=$(python3 - "$scene" "$T" <<'PY'
+import json, math, sys
+s = json.load(open(sys.argv[1]))
+dt, sample = s["smd"]["dt_fs"], s["run"]["sample_fs"]
+dt *= min(1.0, math.sqrt(s["state"]["temperature"] / float(sys.argv[2])))
+print(f"{sample / math.ceil(sample / dt - 1e-9):.15g}")
+PY
+)
         status=0
         "$TERRACE" tradeoff "$scene" --set state.density="$rho" --set state.temperature="$T" \
-            --set state.n="$n" "${tolerances[@]}" --out "$cell" --quiet "$@" \
-            >"$cell.verdict" 2>"$cell.log" || status=$?
+            --set state.n="$n" --set smd.dt_fs="$dt" "${tolerances[@]}" --out "$cell" --quiet \
+            "$@" >"$cell.verdict" 2>"$cell.log" || status=$?
         pack_runs "$cell"
         [ $status -lt 128 ] || exit $status # stopped by a signal: the same command goes on
         echo "$status" >"$cell.status"
+        if [ $status = 0 ] && decided "$cell"; then rm -rf "$cell/runs" "$cell/runs.tar.xz"; fi
         log "tradeoff-map $name: rho $rho T $T: $(head -c 200 "$cell.verdict")"
     done
 done
