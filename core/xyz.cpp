@@ -34,8 +34,11 @@ const char* legacyColumns(TrajectoryLayout layout) {
     return "";
 }
 
-std::string columns(TrajectoryLayout layout) {
-    return std::string(legacyColumns(layout)) + ":body:I:1";
+/// The columns written: a mixture's bodies (Snapshot::species filled) carry their species'
+/// index as a last column.
+std::string columns(TrajectoryLayout layout, bool speciesColumn = false) {
+    return std::string(legacyColumns(layout)) + ":body:I:1" +
+           (speciesColumn ? ":species_index:I:1" : "");
 }
 
 /// The body column's value: the rotational degrees of freedom, which name the kind.
@@ -76,10 +79,12 @@ std::string timeText(double fs) {
     return b;
 }
 
-void writeXyzHeader(std::ostream& out, int bodies, double time, double L, TrajectoryLayout layout) {
+void writeXyzHeader(std::ostream& out, int bodies, double time, double L, TrajectoryLayout layout,
+                    bool speciesColumn) {
     out << bodies << '\n';
     out << "Lattice=\"" << L << " 0 0 0 " << L << " 0 0 0 " << L
-        << "\" Properties=" << columns(layout) << " Time=" << timeText(units::toFs(time))
+        << "\" Properties=" << columns(layout, speciesColumn)
+        << " Time=" << timeText(units::toFs(time))
         << " pbc=\"T T T\" units=\"pos:A velo:A/ps omega:rad/ps Time:fs\"\n";
 }
 
@@ -97,7 +102,9 @@ void writeXyzBodies(std::ostream& out, const Snapshot& f, TrajectoryLayout layou
             out << ' ' << q.w() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z();
         }
         if (layout != TrajectoryLayout::Sphere) put(out, f.omega[i] * perPs);
-        out << ' ' << bodyCode(layout) << '\n';
+        out << ' ' << bodyCode(layout);
+        if (!f.species.empty()) out << ' ' << f.species[i];
+        out << '\n';
     }
 }
 
@@ -105,7 +112,7 @@ void writeXyzBodies(std::ostream& out, const Snapshot& f, TrajectoryLayout layou
 
 void writeXyzFrame(std::ostream& out, const Snapshot& f, TrajectoryLayout layout) {
     const auto precision = out.precision(17);
-    writeXyzHeader(out, f.size(), f.time, f.boxLength, layout);
+    writeXyzHeader(out, f.size(), f.time, f.boxLength, layout, !f.species.empty());
     writeXyzBodies(out, f, layout, 0, f.size());
     out.precision(precision);
 }
@@ -116,11 +123,13 @@ void writeXyzFramePieces(int bodies, double time, double boxLength, TrajectoryLa
     if (bodiesPerPiece < 1) throw std::invalid_argument("writeXyzFramePieces: no bodies per piece");
     std::ostringstream out;
     out.precision(17);
-    writeXyzHeader(out, bodies, time, boxLength, layout);
+    // The first piece says whether the bodies carry species, which the header names.
+    Snapshot piece = bodiesOf(0, std::min(bodies, bodiesPerPiece));
+    writeXyzHeader(out, bodies, time, boxLength, layout, !piece.species.empty());
     sink(out.view());
     for (int begin = 0; begin < bodies; begin += bodiesPerPiece) {
         const int end = std::min(bodies, begin + bodiesPerPiece);
-        const Snapshot piece = bodiesOf(begin, end);
+        if (begin > 0) piece = bodiesOf(begin, end);
         if (piece.size() != end - begin)
             throw std::logic_error("writeXyzFramePieces: a piece of the wrong size");
         out.str(std::string());
@@ -197,20 +206,21 @@ long forEachTrajectoryFrame(const std::string& path, const std::function<void(Sn
             // Files written before the body column (species S, R, T) are read as well.
             const std::string props = field(line, "Properties");
             TrajectoryLayout layout = TrajectoryLayout::Sphere;
-            bool known = false, bodyColumn = false;
+            bool known = false, bodyColumn = false, speciesColumn = false;
             for (const TrajectoryLayout l : layouts)
-                if (props == columns(l) || props == legacyColumns(l)) {
+                if (props == columns(l) || props == columns(l, true) || props == legacyColumns(l)) {
                     layout = l;
                     known = true;
-                    bodyColumn = props == columns(l);
+                    bodyColumn = props != legacyColumns(l);
+                    speciesColumn = props == columns(l, true);
                 }
             if (!known) fail("unsupported Properties=" + props, !headerWhole);
             for (long i = 0; i < n; ++i) {
                 const bool whole = next("frame ends early");
                 std::istringstream row(line);
-                std::string species;
+                std::string element; // X, or S, R, T in old files: the kind is the layout
                 Vec3 r, v, s = Vec3::UnitZ(), w = Vec3::Zero();
-                row >> species >> r.x() >> r.y() >> r.z() >> v.x() >> v.y() >> v.z();
+                row >> element >> r.x() >> r.y() >> r.z() >> v.x() >> v.y() >> v.z();
                 if (layout == TrajectoryLayout::Rod) row >> s.x() >> s.y() >> s.z();
                 if (layout == TrajectoryLayout::Top) {
                     double qw, qx, qy, qz;
@@ -222,12 +232,16 @@ long forEachTrajectoryFrame(const std::string& path, const std::function<void(Sn
                 if (layout != TrajectoryLayout::Sphere) row >> w.x() >> w.y() >> w.z();
                 int body = bodyCode(layout);
                 if (bodyColumn) row >> body;
-                if (!row || body != bodyCode(layout)) fail("malformed body line", !whole);
+                std::int32_t speciesIndex = 0;
+                if (speciesColumn) row >> speciesIndex;
+                if (!row || body != bodyCode(layout) || speciesIndex < 0)
+                    fail("malformed body line", !whole);
                 if (!whole) fail("the body line has no end", true);
                 f.position.push_back(r);
                 f.velocity.push_back(v / perPs);
                 f.axis.push_back(s);
                 f.omega.push_back(w / perPs);
+                if (speciesColumn) f.species.push_back(speciesIndex);
             }
             ++frames;
             each(std::move(f));

@@ -7,6 +7,8 @@
 //          tops        species:S:1:pos:R:3:velo:R:3:orientation:R:4:omega:R:3:body:I:1
 //                      (quaternion w x y z, body -> lab)
 //          spheres     species:S:1:pos:R:3:velo:R:3:body:I:1
+//          a mixture's bodies (Snapshot::species filled) add species_index:I:1, the body's index
+//          into the scene's species (its scene.json names them)
 // pos in Å (unwrapped centres of mass, so that displacements survive the round trip), velo in
 // Å/ps, omega in rad/ps, Time in fs. Numbers are written with 17 significant digits: positions and
 // axes read back bit for bit, velocities and times to within the round-off of the unit conversion.
@@ -17,7 +19,9 @@
 // string columns other than the species; not "type", which OVITO takes for the species. ASE
 // renames only species, pos, Z and charge; velo, axis, orientation, omega and body stay arrays of
 // those names (OVITO maps velo, omega and orientation to Velocity, Angular Velocity and
-// Orientation, whose quaternion it orders x y z w). readTrajectory also reads the files written
+// Orientation, whose quaternion it orders x y z w). species_index is an array of that name to ASE
+// and an integer property to OVITO, which can colour or select by it; it is no chemical element
+// for the reason above. readTrajectory also reads the files written
 // before the body column (species S, R or T and no body column).
 #include "core/snapshot.hpp"
 #include <functional>

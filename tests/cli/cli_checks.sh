@@ -821,7 +821,8 @@ disk)
     ;;
 ase_read)
     # Trajectories a real client reads: ASE's extended XYZ reader loads every body kind's file,
-    # with the frames, bodies and positions that the file holds. python3-ase is a dependency of
+    # and a mixture's, with the frames, bodies and positions that the file holds, and the
+    # mixture's species_index column as initial.xyz has it, every species there. python3-ase is a dependency of
     # the test suite (quickstart.sh installs it): missing, the check fails rather than skips.
     python=
     for p in ${TERRACE_PYTHON:-} /usr/bin/python3 python3; do
@@ -829,9 +830,12 @@ ase_read)
     done
     [ -n "$python" ] || fail "no python3 with ASE (ase.io): apt-get install python3-ase" \
         "(./quickstart.sh installs it), or name an interpreter that has it in TERRACE_PYTHON"
-    for kind in sphere linear symmetric asymmetric; do
+    for kind in sphere linear symmetric asymmetric mixture; do
         case $kind in # the built-in default otherwise: rod-lj, I = (1.154, 1.154, 0) g/mol Å²
         sphere) body='"kind": "sphere"}, "potential": {"kind": "lj"' ;;
+        mixture) body='"kind": "sphere"}, "species": [{"name": "A", "fraction": 0.8, "epsilon": 1,
+            "sigma": 1}, {"name": "B", "fraction": 0.2, "epsilon": 0.5, "sigma": 0.88}],
+            "potential": {"kind": "lj"' ;;
         linear) body='"kind": "linear"' ;;
         symmetric) body='"kind": "symmetric", "inertia": [1.154, 1.154, 0.5]' ;;
         asymmetric) body='"kind": "asymmetric", "inertia": [0.8, 1.154, 0.5]' ;;
@@ -847,7 +851,7 @@ import numpy as np
 import ase.io
 
 path, kind = sys.argv[1], sys.argv[2]
-code = {"sphere": 0, "linear": 2, "symmetric": 3, "asymmetric": 3}[kind]
+code = {"sphere": 0, "linear": 2, "symmetric": 3, "asymmetric": 3, "mixture": 0}[kind]
 # The file's own numbers, frame by frame: count, Time and positions (columns 2-4).
 expected = []
 with open(path) as f:
@@ -873,6 +877,14 @@ for k, (atoms, (n, time, pos)) in enumerate(zip(frames, expected)):
         sys.exit(f"frame {k}: body column {set(atoms.arrays['body'])}, expected {code}")
     if atoms.info["Time"] != time or not all(atoms.pbc):
         sys.exit(f"frame {k}: Time {atoms.info['Time']} (file {time}), pbc {atoms.pbc}")
+    if kind == "mixture":
+        start = ase.io.read(path.replace("trajectory.xyz", "initial.xyz"))
+        if not np.array_equal(atoms.arrays["species_index"], start.arrays["species_index"]):
+            sys.exit(f"frame {k}: species_index differs from initial.xyz's")
+        if set(atoms.arrays["species_index"]) != {0, 1}:
+            sys.exit(f"frame {k}: species_index {set(atoms.arrays['species_index'])}")
+    elif "species_index" in atoms.arrays:
+        sys.exit(f"frame {k}: a species_index column without species")
 PY
         ) || fail "ASE cannot read the $kind trajectory ($python): $out"
     done

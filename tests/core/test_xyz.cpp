@@ -1,10 +1,14 @@
 // Extended XYZ round trip for every layout, and clear errors for malformed files.
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
+#include "core/lj_mixture.hpp"
+#include "core/scene_json.hpp"
 #include "core/snapshot.hpp"
+#include "core/species_sphere.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "core/xyz.hpp"
+#include "tests/mixture_scene.hpp"
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -126,7 +130,7 @@ std::function<Snapshot(int, int)> pieceOf(const Snapshot& frame) {
             v.erase(v.begin(), v.begin() + begin);
         };
         cut(piece.position), cut(piece.velocity), cut(piece.axis), cut(piece.omega);
-        cut(piece.orientation);
+        cut(piece.orientation), cut(piece.species);
         return piece;
     };
 }
@@ -164,6 +168,45 @@ TEST(Xyz, AFrameInPiecesIsTheFrameWhole) {
                      rods.size(), rods.time, rods.boxLength, TrajectoryLayout::Rod, pieceOf(rods),
                      [](std::string_view) {}, 0),
                  std::invalid_argument);
+}
+
+// A mixture's bodies carry their species' index in a last column, species_index, which reads
+// back (a plain scene's frames have no such column: EveryKindIsSpeciesXWithItsBodyColumn); the
+// element column stays X (ASE takes it for elements). Written in pieces, the frame is
+// the same bytes as whole: the header, written before any piece, names the column.
+TEST(Xyz, AMixtureCarriesEachBodysSpeciesIndex) {
+    const Scene scene =
+        sceneFromJson(terrace::mixture_tests::kobAndersen(32, 0.1, 2.0), "mixture.json");
+    const auto sys = buildInitialState<SpeciesSphere>(scene, ljMixture(scene));
+    const Snapshot frame = makeSnapshot(sys, 0.2);
+    ASSERT_EQ(frame.species.size(), 32u);
+    const std::string text = formatXyzFrame(frame, TrajectoryLayout::Sphere);
+    EXPECT_NE(text.find("Properties=species:S:1:pos:R:3:velo:R:3:body:I:1:species_index:I:1 "),
+              std::string::npos)
+        << text.substr(0, 200);
+    const std::string last = text.substr(text.rfind('\n', text.size() - 2) + 1);
+    EXPECT_EQ(last.substr(0, 2), "X ");
+    EXPECT_EQ(last.substr(last.size() - 5), " 0 " + std::to_string(frame.species.back()) + "\n");
+    std::string pieces;
+    writeXyzFramePieces(
+        frame.size(), frame.time, frame.boxLength, TrajectoryLayout::Sphere, pieceOf(frame),
+        [&](std::string_view piece) { pieces += piece; }, 5);
+    EXPECT_EQ(pieces, text);
+    const auto path = tempFile("mixture.xyz");
+    std::ofstream(path) << text << text;
+    const auto frames = readTrajectory(path.string());
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(frames[1].species, frame.species);
+    int ofB = 0; // Kob–Andersen's 20 % of B
+    for (const auto s : frame.species)
+        ofB += s == 1;
+    EXPECT_GT(ofB, 0);
+    EXPECT_LT(ofB, 32);
+    // An index below 0 is no species.
+    std::string bad = text;
+    bad.replace(bad.size() - 2, 1, "-1");
+    std::ofstream(path) << bad;
+    EXPECT_THROW(readTrajectory(path.string()), TrajectoryError);
 }
 
 // Files written before the body column (species S, R, T) still read, `terrace analyse` on old
