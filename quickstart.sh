@@ -19,7 +19,7 @@ cd "$(dirname "$0")"
 
 # What building and running terrace needs (gnuplot-nox: versus.sh's figure). git is not needed:
 # without it the provenance of a run names its revision "unknown".
-run_packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev
+run_packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libfftw3-dev
               libboost-program-options-dev libboost-math-dev nlohmann-json3-dev gnuplot-nox)
 # What the tests need besides:
 # - git: the revision that the build writes into every run's provenance;
@@ -120,6 +120,12 @@ build() {
     done
     [ $# -eq 0 ] || shift
     targets=("$@")
+    # Ninja where a new tree is made: it compiles a target's files while the libraries they link
+    # are still being built, where make waits for each library first and leaves a core idle
+    # (docs/PERFORMANCE.md, "The quick start's cost"). A tree made before keeps its generator.
+    if [ ! -f "$dir/CMakeCache.txt" ] && command -v ninja >/dev/null; then
+        options=(-G Ninja "${options[@]}")
+    fi
     cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release "${options[@]}" >/dev/null
     if [ ${#targets[@]} -gt 0 ]; then
         cmake --build "$dir" -j"$jobs" --target "${targets[@]}"
