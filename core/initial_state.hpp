@@ -72,8 +72,10 @@ void thermalise(typename K::State& b, const BodyParams& p, double kT, std::mt199
 }
 
 /// The lattice start with its orientations: every body against its nearest lattice neighbours
-/// (periodic; sc: along x, y and z, fcc: the 12 at a/√2, bcc: the 8 at a√3/2), each pair's U at
-/// most maxStartEnergyInKT kT, else a SceneError naming the remedy. What the worst-case probe of
+/// (periodic; sc: along x, y and z, fcc: the 12 at a/√2, bcc: the 8 at a√3/2) and, on fcc and
+/// bcc, the second shell's 6 at a along the axes (bodies aligned along an axis meet end to end
+/// there, and on bcc it is only 15 % farther than the first), each pair's U at most
+/// maxStartEnergyInKT kT, else a SceneError naming the remedy. What the worst-case probe of
 /// the rods cannot see: elongated bodies end to end, or a molecule's sites, at the start's own
 /// orientations. O(N): each pair once, from the site whose forward neighbour the other is.
 template <BodyKind K, PairPotential P>
@@ -82,26 +84,30 @@ void refuseOverlappingNeighbours(const System<K, P>& sys, const LatticeShape& la
     const int n = sys.size();
     const double limit = maxStartEnergyInKT * sys.kT;
     for (int i = 0; i < n; ++i) {
-        for (const long jl : lattice.forwardNeighbours(i)) {
-            if (jl >= n || jl == i) continue;
-            const int j = static_cast<int>(jl);
-            const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
-            const double U = startEnergy(sys.potential, rij, orientationOf<P, K>(sys.bodies[i]),
-                                         orientationOf<P, K>(sys.bodies[j]));
-            if (!(U <= limit))
-                throw SceneError(
-                    "state.density: " + std::to_string(scene.state.density) +
-                    " puts lattice neighbours " + std::to_string(i) + " and " + std::to_string(j) +
-                    " at U = " + std::to_string(U) + " kJ/mol (> " +
-                    std::to_string(maxStartEnergyInKT) +
-                    " kT) in their start orientations: lower the density, start them aligned "
-                    "(state.orientations) or " +
-                    (lattice.kind == LatticeKind::SimpleCubic
-                         ? std::string("lengthen the lattice cell along the bodies "
-                                       "(state.lattice_aspect)")
-                         : std::string("start on a simple-cubic cell lengthened along the bodies "
-                                       "(state.lattice sc, state.lattice_aspect)")));
-        }
+        const SiteList first = lattice.forwardNeighbours(i),
+                       second = lattice.forwardSecondNeighbours(i);
+        for (const SiteList* shell : {&first, &second})
+            for (const long jl : *shell) {
+                if (jl >= n || jl == i) continue;
+                const int j = static_cast<int>(jl);
+                const Vec3 rij = sys.box.minimumImage(sys.bodies[i].r - sys.bodies[j].r);
+                const double U = startEnergy(sys.potential, rij, orientationOf<P, K>(sys.bodies[i]),
+                                             orientationOf<P, K>(sys.bodies[j]));
+                if (!(U <= limit))
+                    throw SceneError(
+                        "state.density: " + std::to_string(scene.state.density) +
+                        " puts lattice neighbours " + std::to_string(i) + " and " +
+                        std::to_string(j) + " at U = " + std::to_string(U) + " kJ/mol (> " +
+                        std::to_string(maxStartEnergyInKT) +
+                        " kT) in their start orientations: lower the density, start them aligned "
+                        "(state.orientations) or " +
+                        (lattice.kind == LatticeKind::SimpleCubic
+                             ? std::string("lengthen the lattice cell along the bodies "
+                                           "(state.lattice_aspect)")
+                             : std::string(
+                                   "start on a simple-cubic cell lengthened along the bodies "
+                                   "(state.lattice sc, state.lattice_aspect)")));
+            }
     }
 }
 

@@ -19,6 +19,9 @@ constexpr Half bccBasis[] = {{0, 0, 0}, {1, 1, 1}};
 constexpr Half scForward[] = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
 constexpr Half fccForward[] = {{1, 1, 0}, {1, -1, 0}, {1, 0, 1}, {1, 0, -1}, {0, 1, 1}, {0, 1, -1}};
 constexpr Half bccForward[] = {{1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {1, -1, -1}};
+// Half of fcc's and bcc's second shell, 6 at the cell edge a along the axes (a/√2 and a√3/2 out
+// for the first): where bodies aligned along an axis meet end to end.
+constexpr Half cubicSecondForward[] = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};
 
 std::span<const Half> basisOf(LatticeKind k) {
     switch (k) {
@@ -94,6 +97,15 @@ Vec3 LatticeShape::site(long i) const {
 }
 
 SiteList LatticeShape::forwardNeighbours(long i) const {
+    return sitesAtOffsets(i, forwardOf(kind));
+}
+
+SiteList LatticeShape::forwardSecondNeighbours(long i) const {
+    if (kind == LatticeKind::SimpleCubic) return {};
+    return sitesAtOffsets(i, cubicSecondForward);
+}
+
+SiteList LatticeShape::sitesAtOffsets(long i, std::span<const std::array<int, 3>> offsets) const {
     const auto basis = basisOf(kind);
     const int b = basisSize();
     const long c = i / b;
@@ -102,7 +114,7 @@ SiteList LatticeShape::forwardNeighbours(long i) const {
     const long h[3] = {2 * (c / (long(mz) * m)) + beta[0], 2 * ((c / mz) % m) + beta[1],
                        2 * (c % mz) + beta[2]};
     SiteList out;
-    for (const Half& d : forwardOf(kind)) {
+    for (const Half& d : offsets) {
         long cellOf[3];
         Half betaOf{};
         for (int a = 0; a < 3; ++a) {

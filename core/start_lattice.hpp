@@ -10,6 +10,7 @@
 // h = 2·cell + basis, which lets a neighbour be found by adding an integer offset.
 #include "core/vec.hpp"
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,11 +47,18 @@ struct LatticeShape {
     /// theirs): 3 for sc (along x, y, z), 6 for fcc, 4 for bcc; periodic, so in a lattice of one
     /// or two cells a neighbour may be i itself or repeat.
     SiteList forwardNeighbours(long i) const;
+    /// The second shell of fcc and bcc on one side: 3 of the 6 at the cell edge a, along x, y
+    /// and z, the same periodic way; none for sc, whose nearest shell already lies along the axes.
+    SiteList forwardSecondNeighbours(long i) const;
     /// The first reciprocal-lattice vectors at which a perfect lattice's structure factor is N,
     /// one of each ± pair, 1/Å: sc (100), (010), (001) (per axis: the cell may be stretched);
     /// fcc the (111) family (4); bcc the (110) family (6). (A simple-cubic (100) vector is
     /// extinct on fcc and bcc: their basis sums to 0 there.)
     std::vector<Vec3> firstReciprocal() const;
+
+private:
+    /// The sites at these offsets from site i, in half cells.
+    SiteList sitesAtOffsets(long i, std::span<const std::array<int, 3>> offsets) const;
 };
 
 /// The lattice of an n-body start in a box of side L. An aspect ≠ 1 stretches the simple-cubic

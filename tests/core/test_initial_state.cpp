@@ -1,6 +1,7 @@
 // Initial states: lattice at the asked density, exact temperature, zero momentum, deterministic
 // from the seed, clear errors for what cannot be built.
 #include "core/asymmetric_top.hpp"
+#include "core/gay_berne_potential.hpp"
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/sphere.hpp"
@@ -193,6 +194,32 @@ TEST(InitialState, OverlapIsJudgedAtTheLatticesOwnNeighbours) {
     }
     scene.state.density = 2.3;
     EXPECT_NO_THROW(buildInitialState<Sphere>(scene, ljPotential(scene)));
+}
+
+// On bcc the second shell, 6 at the cell edge a along the axes, is only 15 % farther than the
+// first, and bodies aligned along z meet there end to end. The shipped Gay–Berne ellipsoids
+// (κ = 3: 3σ long, σ wide) aligned on bcc at ρ* 0.3 have a = (2/0.3)^(1/3) σ = 1.88σ: the first
+// shell's pairs, 1.63σ apart at 54.7° to the axis, sit outside their contact distance of 1.31σ,
+// and the side and crossed pairs that the worst-case probe tries touch at σ; but each body's
+// neighbour along z is 1.88σ away, inside the end-to-end contact of 3σ (U = +∞). Refused, naming
+// that pair; at ρ* 0.06 (a = 3.2σ) the same start builds.
+TEST(InitialState, OverlapIsJudgedAtTheSecondShellOfFccAndBcc) {
+    Scene scene = loadScene(
+        std::string(TERRACE_SOURCE_DIR) + "/experiments/scenes/gay-berne-liquid.json",
+        {"state.n=128", "state.density=0.3", "state.lattice=bcc", "state.lattice_aspect=1"});
+    ASSERT_EQ(scene.state.orientations, "aligned");
+    try {
+        buildInitialState<LinearRotor>(scene, gayBernePotential(scene));
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("state.density: 0.3"), std::string::npos) << what;
+        EXPECT_NE(what.find("U = inf"), std::string::npos) << what;
+        // The pair named is one of a cell edge apart along z: bcc's sites 0 and 2 (cell (0,0,1)).
+        EXPECT_NE(what.find("lattice neighbours 0 and 2 "), std::string::npos) << what;
+    }
+    scene.state.density = 0.06;
+    EXPECT_NO_THROW(buildInitialState<LinearRotor>(scene, gayBernePotential(scene)));
 }
 
 } // namespace test_initial_state

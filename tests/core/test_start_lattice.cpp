@@ -1,9 +1,11 @@
 // The start lattices (core/start_lattice.hpp): each site's nearest shell found by brute force
 // over the periodic box against the lattice's own count and distance (12 at a/√2 fcc, 8 at a√3/2
-// bcc, 6 at a sc), the forward neighbours against that shell, the box filled by the smallest
+// bcc, 6 at a sc), the forward neighbours against that shell, fcc's and bcc's second shell (6 at
+// a) against theirs, the box filled by the smallest
 // lattice that holds N, and the structure factor at the first reciprocal vectors.
 #include "core/box.hpp"
 #include "core/start_lattice.hpp"
+#include <algorithm>
 #include <complex>
 #include <gtest/gtest.h>
 #include <numbers>
@@ -70,6 +72,41 @@ TEST(StartLattice, EverySiteHasItsShellAtTheNearestDistance) {
                 EXPECT_TRUE(forward.insert({std::min(i, j), std::max(i, j)}).second)
                     << latticeName(c.kind) << ": pair " << i << "-" << j << " twice";
         EXPECT_EQ(forward, pairs) << latticeName(c.kind);
+    }
+}
+
+// fcc's and bcc's second shell, 6 at the cell edge a, is what forwardSecondNeighbours gives, each
+// pair once; sc has none (its nearest shell lies along the axes already).
+TEST(StartLattice, FccAndBccSecondShellIsAtTheCellEdge) {
+    for (const Case& c : cases) {
+        const int n = sitesPerCell(c.kind) * c.cells * c.cells * c.cells;
+        const LatticeShape shape = latticeShape(n, L, c.kind);
+        std::set<std::pair<long, long>> second;
+        for (long i = 0; i < n; ++i)
+            for (const long j : shape.forwardSecondNeighbours(i))
+                EXPECT_TRUE(second.insert({std::min(i, j), std::max(i, j)}).second)
+                    << latticeName(c.kind) << ": pair " << i << "-" << j << " twice";
+        if (c.kind == LatticeKind::SimpleCubic) {
+            EXPECT_TRUE(second.empty());
+            continue;
+        }
+        // The pairs at a exactly, by brute force; none of them in the nearest shell.
+        const auto sites = latticeSites(shape, n);
+        const auto nearestShell = nearestPairs(sites, shape.nearest);
+        const double a = shape.cell.x();
+        std::set<std::pair<long, long>> shell;
+        PeriodicBox box;
+        box.length = L;
+        for (long i = 0; i < n; ++i)
+            for (long j = i + 1; j < n; ++j)
+                if (std::abs(
+                        box.minimumImage(sites[std::size_t(i)] - sites[std::size_t(j)]).norm() -
+                        a) < distanceTol)
+                    shell.insert({i, j});
+        EXPECT_EQ(shell.size(), std::size_t(3 * n)) << latticeName(c.kind); // 6 each, halved
+        EXPECT_EQ(second, shell) << latticeName(c.kind);
+        EXPECT_TRUE(std::none_of(nearestShell.begin(), nearestShell.end(),
+                                 [&](const auto& p) { return second.count(p) > 0; }));
     }
 }
 
