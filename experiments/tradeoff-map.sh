@@ -93,11 +93,12 @@ PY
     done
 done
 
-# The table, from every cell of the family and set that has been run.
+# The table, from every cell of the family and set that has been run: a directory, or a verdict
+# file where the tradeoff left no directory (it failed before making one).
 table=$dir/$name.csv
 echo "rho,T,status,dmd,smd,ratio,lo,hi,level,why" >"$table"
-for cell in "$dir/$name"/rho*-T*/; do
-    cell=${cell%/}
+for cell in $(cd "$dir/$name" && ls -d rho*-T* 2>/dev/null | sed 's/\.[a-z]*$//' | sort -u); do
+    cell=$dir/$name/$cell
     base=${cell##*/rho}
     status=$(cat "$cell.status" 2>/dev/null || echo 0)
     python3 - "$cell/tradeoff.json" "${base%-T*}" "${base#*-T}" "$status" <<'PY'
