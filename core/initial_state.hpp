@@ -99,8 +99,11 @@ void refuseOverlappingNeighbours(const System<K, P>& sys, const LatticeShape& la
                         " puts lattice neighbours " + std::to_string(i) + " and " +
                         std::to_string(j) + " at U = " + std::to_string(U) + " kJ/mol (> " +
                         std::to_string(maxStartEnergyInKT) +
-                        " kT) in their start orientations: lower the density, start them aligned "
-                        "(state.orientations) or " +
+                        " kT) in their start orientations: lower the density, " +
+                        (scene.state.orientations == "aligned"
+                             ? std::string()
+                             : std::string("start them aligned (state.orientations), ")) +
+                        "or " +
                         (lattice.kind == LatticeKind::SimpleCubic
                              ? std::string("lengthen the lattice cell along the bodies "
                                            "(state.lattice_aspect)")

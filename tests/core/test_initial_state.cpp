@@ -217,6 +217,9 @@ TEST(InitialState, OverlapIsJudgedAtTheSecondShellOfFccAndBcc) {
         EXPECT_NE(what.find("U = inf"), std::string::npos) << what;
         // The pair named is one of a cell edge apart along z: bcc's sites 0 and 2 (cell (0,0,1)).
         EXPECT_NE(what.find("lattice neighbours 0 and 2 "), std::string::npos) << what;
+        // They are aligned already: the remedies are the density and the lattice.
+        EXPECT_EQ(what.find("start them aligned"), std::string::npos) << what;
+        EXPECT_NE(what.find("state.lattice_aspect"), std::string::npos) << what;
     }
     scene.state.density = 0.06;
     EXPECT_NO_THROW(buildInitialState<LinearRotor>(scene, gayBernePotential(scene)));
