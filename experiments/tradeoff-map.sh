@@ -8,8 +8,8 @@
 # Each cell's tradeoff lands in OUT/tradeoff-map/<family>-<set>/rho<ρ*>-T<T*>. A cell takes up to
 # tens of CPU minutes and the map tens of hours, more than one sitting, so the runs must outlive
 # the machine: after each cell (and on `pack`) the files tradeoff reads back from each run
-# (scene.json, summary.json, the CSVs, FAILED.json) go into the cell's runs.tar.xz, a few hundred
-# MB, which is committed with the cell; a cell whose runs/ is missing is unpacked from it first, so
+# (scene.json, summary.json, the CSVs, FAILED.json) go into the cell's runs.tar.xz, a few MB,
+# which is committed with the cell; a cell whose runs/ is missing is unpacked from it first, so
 # tradeoff reuses every finished run. A cell that has its verdict (a cost in its tradeoff.json,
 # which keeps every estimate) is not run again, and its runs and their archive are removed.
 # SMD's step: the scene's smd.dt_fs, shortened by √(T_scene/T*) above the scene's temperature
@@ -85,10 +85,13 @@ PY
         "$TERRACE" tradeoff "$scene" --set state.density="$rho" --set state.temperature="$T" \
             --set state.n="$n" --set smd.dt_fs="$dt" "${tolerances[@]}" --out "$cell" --quiet \
             "$@" >"$cell.verdict" 2>"$cell.log" || status=$?
-        pack_runs "$cell"
+        if [ $status = 0 ] && decided "$cell"; then
+            rm -rf "$cell/runs" "$cell/runs.tar.xz"
+        else
+            pack_runs "$cell"
+        fi
         [ $status -lt 128 ] || exit $status # stopped by a signal: the same command goes on
         echo "$status" >"$cell.status"
-        if [ $status = 0 ] && decided "$cell"; then rm -rf "$cell/runs" "$cell/runs.tar.xz"; fi
         log "tradeoff-map $name: rho $rho T $T: $(head -c 200 "$cell.verdict")"
     done
 done

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # experiments/tradeoff-map.sh's table and picture from cells that are already decided, one grid per
 # mix of kinds (resolved, at_least, none): gnuplot once failed, or crashed, on a plot clause for a
-# kind that no cell of the table had. The cells' tradeoff.json are written here and `true` stands
-# for terrace, so no run is made.
+# kind that no cell of the table had. Then a cell's runs archived and unpacked again. The cells'
+# tradeoff.json are written here and `true` stands for terrace, so no run is made.
 #   tradeoff_map_picture.sh SOURCE_DIR
 set -euo pipefail
 src=$1
@@ -44,4 +44,18 @@ cell lj-loose 0.1 1.4 resolved 2
 cell lj-loose 0.5 1.4 at_least 3
 map lj-loose "0.03 0.1 0.5 1" "1.4" "resolved resolved at_least failed"
 [ -s "$out/tradeoff-map/lj-loose-breakeven.dat" ] || fail "lj-loose: no break-even between 0.03 and 0.1"
+# A cell without a verdict keeps what tradeoff reads back from its runs in runs.tar.xz (and no
+# more: thermo.csv stays out), and a cell whose runs/ is gone gets them back from it.
+run=$out/tradeoff-map/rods-strict/rho0.03-T1.4/runs/smd-verlet-dt3_r1
+mkdir -p "$run"
+echo '{"a": 1}' >"$run/summary.json"
+echo 't,c' >"$run/thermo.csv"
+map rods-strict "0.03" "1.4" "unresolved at_least"
+archive=$out/tradeoff-map/rods-strict/rho0.03-T1.4/runs.tar.xz
+[ -s "$archive" ] || fail "no runs.tar.xz for a cell without a verdict"
+[ "$(tar -tJf "$archive" | sort | tr '\n' ' ')" = "runs/smd-verlet-dt3_r1/summary.json " ] ||
+    fail "runs.tar.xz holds $(tar -tJf "$archive" | tr '\n' ' ')"
+rm -rf "${run%/*}"
+map rods-strict "0.03" "1.4" "unresolved at_least"
+[ "$(cat "$run/summary.json")" = '{"a": 1}' ] || fail "the runs were not unpacked from runs.tar.xz"
 echo "tradeoff-map pictures: ok"
