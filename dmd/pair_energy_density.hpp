@@ -14,6 +14,7 @@
 // Terrace sums are prefix sums over the samples sorted by U: Σw, Σw e^{−βU}, Σw U e^{−βU},
 // Σw U and Σw U² e^{−βU} over any interval of U in O(log n).
 #include "core/body_orientation.hpp"
+#include "core/huge_pages.hpp"
 #include "core/initial_state.hpp"
 #include "core/pair_potential.hpp"
 #include <algorithm>
@@ -60,7 +61,7 @@ public:
         struct Sample {
             double U, w;
         };
-        std::vector<Sample> s;
+        BodyArray<Sample> s;
         s.reserve(static_cast<std::size_t>(radii) * nOrient);
         for (int k = 0; k < radii; ++k) {
             const double r = rIn + (k + 0.5) * dr;
@@ -71,7 +72,11 @@ public:
             }
         }
         std::sort(s.begin(), s.end(), [](const Sample& a, const Sample& b) { return a.U < b.U; });
+        // Two million samples for an orientational potential, 130 MB with their sums: reserved
+        // whole and in huge pages (core/huge_pages.hpp), since grown by doubling in small pages
+        // their first touches cost more than the quadrature itself.
         d.energy_.reserve(s.size());
+        d.prefix_.reserve(s.size() + 1);
         d.prefix_.assign(1, Sums{});
         for (const auto& x : s) {
             Sums next = d.prefix_.back();
@@ -117,8 +122,8 @@ public:
 
 private:
     double kT_ = 1.0;
-    std::vector<double> energy_; // sorted
-    std::vector<Sums> prefix_;   // prefix_[k]: sums over the first k samples
+    BodyArray<double> energy_; // sorted
+    BodyArray<Sums> prefix_;   // prefix_[k]: sums over the first k samples
 };
 
 } // namespace terrace::dmd
