@@ -182,11 +182,12 @@ build_run() {
 # The sanitiser tier: a clang build in build-asan with AddressSanitizer and UBSan (undefined
 # behaviour fatal) and libFuzzer's coverage, of the unit tests' executables and the fuzzers only:
 # not the benchmarks, not the paper's tools, not terrace for the end-to-end tests (label
-# end_to_end), which the Release build runs. Of cli's unit tests only those of what a run reads and leaves (test_cli_io, with
-# the fuzzers' library terrace_cli_io): the commands' tests need the engines' instantiations for
-# every body kind (cli/run_dmd.cpp, run_smd.cpp), which took a third of this build's CPU time. At the Release build's -O2: -O1 compiled no faster (docs/PERFORMANCE.md). Each test
-# executable runs whole, as one ctest test (TERRACE_TESTS_WHOLE), but for those labelled
-# unsanitised (their files say why).
+# end_to_end), which the Release build runs. Of cli's unit tests only those of what a run reads
+# and leaves (test_cli_io, with the fuzzers' library terrace_cli_io): the commands' tests need
+# the engines' instantiations for every body kind (cli/run_dmd.cpp, run_smd.cpp), which took a
+# third of this build's CPU time. At the Release build's -O2: -O1 compiled no faster
+# (docs/PERFORMANCE.md). Each test executable runs whole, as one ctest test
+# (TERRACE_TESTS_WHOLE), but for those labelled unsanitised (their files say why).
 sanitised_build() {
     CXX=clang++ build build-asan -DTERRACE_PROFILE= -DTERRACE_SANITIZE=ON -DTERRACE_FUZZ=ON \
         -DTERRACE_BENCH=OFF -DTERRACE_TESTS=ON -DTERRACE_TESTS_WHOLE=ON \
