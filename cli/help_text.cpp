@@ -165,8 +165,8 @@ const Command commands[] = {
       a verdict; 1: none.
 )",
      R"(  --tolerance OBS=VAL   an observable's tolerance, VAL absolute or VAL% relative; defaults:
-                        u 0.5%, p 2% (of max(|P|, rho* T*)), d 3%, g 0.02, g_peak 1%, tau_v
-                        3%, tau_o 3%
+                        u 0.5% (of max(|u|, T*)), p 2% (of max(|P|, rho* T*)), d 3%,
+                        g 0.02, g_peak 1%, tau_v 3%, tau_o 3%
   --observables LIST    the observables judged (default: all that apply of
                         u,p,d,g,g_peak,tau_v,tau_o)
   --dV LIST             the DMD ladder, in kT (default 1,0.5,0.25,0.125)

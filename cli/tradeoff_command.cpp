@@ -66,10 +66,9 @@ struct Tradeoff {
 
     std::filesystem::path runs() const { return options.out / "runs"; }
 
-    /// The least magnitude a relative tolerance of o is a fraction of (the reference's |mean|
-    /// above it): for P the ideal-gas term ρ*T*, since P of a liquid crosses zero.
+    /// The least magnitude a relative tolerance of o is a fraction of (relativeScaleFloor).
     double scaleFloor(Observable o) const {
-        return o == Observable::P ? scene.state.density * scene.state.temperature : 0.0;
+        return relativeScaleFloor(o, scene.state.density, scene.state.temperature);
     }
 };
 

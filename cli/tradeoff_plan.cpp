@@ -49,7 +49,9 @@ const char* observableMeaning(Observable o) {
 analysis::Tolerance defaultTolerance(Observable o) {
     switch (o) {
     // Half a percent of the cohesive energy: the accuracy asked of a liquid's energy when a
-    // force field is fitted, and above what a few ps of a few hundred bodies resolve.
+    // force field is fitted, and above what a few ps of a few hundred bodies resolve. Of
+    // max(|U|, T*) per body (relativeScaleFloor), so that a gas's U is not asked to a fraction
+    // of kT that no one would.
     case Observable::U:
         return {0.005, true};
     // Two percent of the pressure's scale, max(|P|, ρ*T*) (P of a liquid crosses zero, so the
@@ -73,6 +75,17 @@ analysis::Tolerance defaultTolerance(Observable o) {
         return {0.03, true};
     }
     return {};
+}
+
+double relativeScaleFloor(Observable o, double density, double temperature) {
+    switch (o) {
+    case Observable::U:
+        return temperature;
+    case Observable::P:
+        return density * temperature;
+    default:
+        return 0.0;
+    }
 }
 
 std::pair<Observable, analysis::Tolerance> parseTolerance(const std::string& text) {

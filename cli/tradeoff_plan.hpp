@@ -45,6 +45,12 @@ const char* observableMeaning(Observable o);
 /// defaultTolerance's definition for each one's reason).
 analysis::Tolerance defaultTolerance(Observable o);
 
+/// The least magnitude a relative tolerance of o is a fraction of (the reference's |mean| where
+/// it is above): for P the ideal-gas pressure ρ*T*, since P of a liquid crosses zero; for U the
+/// thermal energy per body T*, since U of a gas tends to zero (dilute rods at T* 10 have u =
+/// −0.03, where 2 % of |u| asked U to 6e-5 kT); none for the others. Reduced units.
+double relativeScaleFloor(Observable o, double density, double temperature);
+
 struct TradeoffOptions {
     std::filesystem::path scenePath; // empty: the built-in default scene
     std::vector<std::string> sets;   // --set, for every run

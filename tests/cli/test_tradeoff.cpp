@@ -30,6 +30,29 @@ std::string toleranceError(const std::string& text) {
 
 } // namespace
 
+// A relative tolerance is a fraction of max(|reference|, floor): the floors, and the tolerances
+// they give at the map's dense liquid and its gas (rods at the loose set's u 2 %, p 5 %; the
+// references are those the map measured, results/tradeoff-map/rods-loose).
+TEST(Tradeoff, RelativeTolerancesOfUAndPHaveAThermalFloor) {
+    EXPECT_DOUBLE_EQ(relativeScaleFloor(Observable::U, 0.01, 10.0), 10.0);
+    EXPECT_DOUBLE_EQ(relativeScaleFloor(Observable::P, 0.01, 10.0), 0.1);
+    for (Observable o :
+         {Observable::D, Observable::G, Observable::GPeak, Observable::TauV, Observable::TauO})
+        EXPECT_EQ(relativeScaleFloor(o, 0.5, 1.4), 0.0);
+    const analysis::Tolerance u{0.02, true}, p{0.05, true};
+    const auto tolerance = [](analysis::Tolerance t, Observable o, double reference, double rho,
+                              double temperature) {
+        return analysis::absoluteTolerance(
+            t, std::max(std::abs(reference), relativeScaleFloor(o, rho, temperature)));
+    };
+    // Dense rods (ρ* 0.5, T* 1.4): |u| = 3.01 and P* = 0.199 are above their floors.
+    EXPECT_NEAR(tolerance(u, Observable::U, -3.0128, 0.5, 1.4), 0.02 * 3.0128, 1e-12);
+    EXPECT_NEAR(tolerance(p, Observable::P, 0.1992, 0.5, 1.4), 0.05 * 0.7, 1e-12);
+    // The gas (ρ* 0.01, T* 10): u = −0.0315 is below T*, so U is asked to 2 % of kT per body.
+    EXPECT_NEAR(tolerance(u, Observable::U, -0.0315, 0.01, 10.0), 0.2, 1e-12);
+    EXPECT_NEAR(tolerance(p, Observable::P, 0.1009, 0.01, 10.0), 0.05 * 0.1009, 1e-12);
+}
+
 TEST(Tradeoff, TolerancesAreRelativeWithAPercentSignElseAbsolute) {
     const auto [u, tu] = parseTolerance("u=0.5%");
     EXPECT_EQ(u, Observable::U);
