@@ -89,8 +89,9 @@ Estimate difference(Estimate a, Estimate b) {
     return {a.mean - b.mean, std::hypot(a.err, b.err), smallerDof(a.dof, b.dof), a.samples};
 }
 
-double absoluteTolerance(Tolerance tolerance, double reference) {
-    return tolerance.relative ? tolerance.value * std::abs(reference) : tolerance.value;
+double absoluteTolerance(Tolerance tolerance, double reference, double floor) {
+    return tolerance.relative ? tolerance.value * std::max(std::abs(reference), floor)
+                              : tolerance.value;
 }
 
 double studentMultiplier(double z, double dof) {

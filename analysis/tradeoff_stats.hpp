@@ -61,10 +61,12 @@ struct Tolerance {
     bool relative = false; // value is a fraction of |reference|
 };
 
-/// The tolerance in the observable's units. The reference's own error makes a relative tolerance
-/// uncertain by value·err(reference), which is left out: it is the fraction value (≪ 1) of an
-/// error that already enters the bias in full.
-double absoluteTolerance(Tolerance tolerance, double reference);
+/// The tolerance in the observable's units: a relative one is a fraction of max(|reference|,
+/// floor), the floor standing in where the observable's scale is not its value (a pressure that
+/// crosses zero). The reference's own error makes a relative tolerance uncertain by
+/// value·err(reference), which is left out: it is the fraction value (≪ 1) of an error that
+/// already enters the bias in full.
+double absoluteTolerance(Tolerance tolerance, double reference, double floor = 0.0);
 
 /// The multiplier of a standard error with dof degrees of freedom that has the one-sided tail
 /// probability of the normal deviate z: T_ν⁻¹(Φ(z)); z itself for ν = ∞, NaN for ν ≤ 0 or NaN.

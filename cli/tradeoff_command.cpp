@@ -313,8 +313,7 @@ bool raiseReference(Tradeoff& t) {
                 x.push_back(r.value.at(valueKey(o, Estimator::Own)));
         if (x.size() < 2) continue;
         const analysis::Estimate m = analysis::replicaMean(x);
-        const double tol = analysis::absoluteTolerance(t.tolerance.at(o),
-                                                       std::max(std::abs(m.mean), t.scaleFloor(o)));
+        const double tol = analysis::absoluteTolerance(t.tolerance.at(o), m.mean, t.scaleFloor(o));
         short_ = short_ || !(m.err <= tol / 3.0);
     }
     // Where the reference is what keeps a decision open: its error the larger share of a bias's.

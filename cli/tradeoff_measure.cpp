@@ -203,8 +203,7 @@ std::optional<ObservableBias> scalarBias(Observable o, Estimator e,
     b.candidate = *c;
     b.reference = *ref;
     b.bias = analysis::difference(b.candidate, b.reference);
-    b.tolerance =
-        analysis::absoluteTolerance(tolerance, std::max(std::abs(b.reference.mean), scaleFloor));
+    b.tolerance = analysis::absoluteTolerance(tolerance, b.reference.mean, scaleFloor);
     b.decision = analysis::decideBias(b.bias, b.tolerance, z).decision;
     return b;
 }

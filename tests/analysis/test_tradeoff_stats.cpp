@@ -88,6 +88,10 @@ TEST(TradeoffStats, DifferenceAddsErrorsInQuadratureAndKeepsTheSmallerDof) {
 TEST(TradeoffStats, RelativeToleranceScalesWithTheReferenceMagnitude) {
     EXPECT_DOUBLE_EQ(absoluteTolerance({0.02, true}, -50.0), 1.0);
     EXPECT_DOUBLE_EQ(absoluteTolerance({0.3, false}, -50.0), 0.3);
+    // A floor above |reference| stands in for it; an absolute tolerance ignores it.
+    EXPECT_DOUBLE_EQ(absoluteTolerance({0.02, true}, -0.5, 10.0), 0.2);
+    EXPECT_DOUBLE_EQ(absoluteTolerance({0.02, true}, -50.0, 10.0), 1.0);
+    EXPECT_DOUBLE_EQ(absoluteTolerance({0.3, false}, -0.5, 10.0), 0.3);
 }
 
 TEST(TradeoffStats, SequentialZIsBonferroniOverLooks) {
