@@ -149,7 +149,9 @@ const Command commands[] = {
       VACF's and OACF's integrals), over a ladder of DMD dV (uniform and optimal terraces)
       and SMD dt for verlet, omelyan and yoshida4 up to the stability limit. Each bias is
       resolved within or outside its tolerance at 2 sigma (Bonferroni over the replica
-      counts looked at), replicas added where it is not, up to --max-replicas or the budget;
+      counts looked at), replicas added where it is not (each round to each engine's
+      cheapest open setting that is cheaper than its cheapest one within; --frontier: to
+      every ladder's), up to --max-replicas or the budget;
       the bias law (dt^2, dt^4, dV^p) places a setting between the last within and the first
       outside, checked by its own runs. Once one engine's cheapest setting within is timed
       cheaper than any setting of the other could be (every cheaper one resolved outside on

@@ -4,6 +4,7 @@
 #include "cli/sweep_runner.hpp"
 #include "cli/tradeoff_dominance.hpp"
 #include "cli/tradeoff_measure.hpp"
+#include "cli/tradeoff_schedule.hpp"
 #include "core/output_file.hpp"
 #include "core/scene_json.hpp"
 #include <algorithm>
@@ -221,29 +222,53 @@ int cheapestWithin(const std::vector<Rung>& ladder) {
     return c;
 }
 
-/// Raises, per ladder, the target of one rung: walking from the cheap end past the rungs resolved
-/// Outside, the first unresolved one that more replicas could still resolve (one that reached the
-/// replica budget unresolved is passed over). A ladder whose cheapest Within rung has only
-/// Outside rungs beyond it is done.
+/// Whether the reference's own dt error is shown small: yoshida4 at twice its step is a rung and,
+/// by the dt⁴ law, the reference's bias is 1/16 of that rung's; it must stay below a quarter of
+/// every tolerance. `rung` is that rung.
+bool referenceShownConverged(const Rung& rung) {
+    bool within = !rung.biases.empty();
+    for (const auto& b : rung.biases)
+        within = within && (std::abs(b.bias.mean) + 2.0 * b.bias.err) / 15.0 < 0.25 * b.tolerance;
+    return within;
+}
+
+/// The rung of yoshida4 at twice the reference's step, or null.
+const Rung* referenceCheckRung(const Tradeoff& t) {
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder)
+            if (r.setting.ladder == "smd-yoshida4" &&
+                std::abs(r.setting.x - 2.0 * t.reference.setting.x) < 1e-9 * r.setting.x)
+                return &r;
+    return nullptr;
+}
+
+/// Raises the targets of the rungs cli/tradeoff_schedule.hpp picks: per engine its cheapest open
+/// rung below the cost of its cheapest Within (every ladder's open rung under --frontier), and
+/// the reference's check rung until it shows the reference converged.
 bool raiseTargets(Tradeoff& t) {
-    bool raised = false;
-    for (auto& ladder : t.ladders) {
-        const int c = cheapestWithin(ladder);
-        for (int i = int(ladder.size()) - 1; i > c; --i) {
-            Rung& r = ladder[i];
-            if (r.decision == Decision::Outside) continue;
-            if (r.target == 0) { // a rung not run yet (an interpolated one)
-                r.target = t.schedule.front();
-                raised = true;
-                break;
+    const Rung* check = referenceCheckRung(t);
+    std::vector<std::vector<ScheduleRung>> views;
+    for (const auto& ladder : t.ladders) {
+        auto& view = views.emplace_back();
+        for (const Rung& r : ladder) {
+            ScheduleRung v{r.setting.engine == "dmd",
+                           r.cost(),
+                           r.decision,
+                           r.target,
+                           r.target == 0 ? 0 : nextTarget(t, r),
+                           false};
+            if (&r == check && r.target > 0 && r.failure.empty() && !referenceShownConverged(r)) {
+                v.pinned = true;
+                v.next = std::max(v.next, analysis::nextLook(t.schedule, r.target, r.target + 1));
             }
-            const int next = nextTarget(t, r);
-            if (next > r.target) {
-                r.target = next;
-                raised = true;
-                break;
-            }
+            view.push_back(v);
         }
+    }
+    bool raised = false;
+    for (const auto& [l, i] : rungsToRaise(views, t.options.frontier)) {
+        Rung& r = t.ladders[l][i];
+        const int next = r.target == 0 ? t.schedule.front() : views[l][i].next;
+        if (next > r.target) r.target = next, raised = true;
     }
     return raised;
 }
@@ -556,6 +581,10 @@ nlohmann::json report(const Tradeoff& t) {
                        {"bodies", t.scene.state.n},       {"z", t.z},
                        {"alpha", t.options.alpha},        {"looks", t.schedule},
                        {"cpu_seconds_spent", t.cpuSpent}, {"reference", rungJson(t.reference)}};
+    // What the search was allowed: a search that ended without a verdict under these limits
+    // would end the same way again (experiments/tradeoff-map.sh reruns only with larger ones).
+    out["budget_cpu_hours"] = t.options.budgetCpuHours;
+    out["max_replicas"] = t.options.maxReplicas;
     out["tolerances"] = nlohmann::json::object();
     for (const Observable o : t.observables)
         out["tolerances"][observableName(o)] = {{"value", t.tolerance.at(o).value},
@@ -853,30 +882,22 @@ int runTradeoff(const TradeoffOptions& options) {
 
     nlohmann::json out = report(t);
 
-    // The reference's own dt error: yoshida4 at twice its step is a rung; by the dt⁴ law the
-    // reference's bias is 1/16 of that rung's.
-    for (const auto& ladder : t.ladders)
-        for (const Rung& r : ladder)
-            if (r.setting.ladder == "smd-yoshida4" &&
-                std::abs(r.setting.x - 2.0 * t.reference.setting.x) < 1e-9 * r.setting.x) {
-                nlohmann::json check = nlohmann::json::object();
-                bool within = !r.biases.empty();
-                for (const auto& b : r.biases) {
-                    check[observableName(b.observable)] = {
-                        {"bias_at_twice_dt", b.bias.mean},
-                        {"err", b.bias.err},
-                        {"reference_bias_bound", (std::abs(b.bias.mean) + 2.0 * b.bias.err) / 15.0},
-                        {"tolerance", b.tolerance}};
-                    within = within &&
-                             (std::abs(b.bias.mean) + 2.0 * b.bias.err) / 15.0 < 0.25 * b.tolerance;
-                }
-                out["reference_check"] = check;
-                t.notes.push_back(
-                    within ? "reference converged in dt: yoshida4 at twice its step bounds its "
-                             "own bias (dt^4) below a quarter of every tolerance"
-                           : "reference NOT shown converged in dt: yoshida4 at twice its step "
-                             "leaves a bound on its own bias above a quarter of a tolerance");
-            }
+    // The reference's own dt error, bounded through yoshida4 at twice its step.
+    if (const Rung* r = referenceCheckRung(t)) {
+        nlohmann::json check = nlohmann::json::object();
+        for (const auto& b : r->biases)
+            check[observableName(b.observable)] = {
+                {"bias_at_twice_dt", b.bias.mean},
+                {"err", b.bias.err},
+                {"reference_bias_bound", (std::abs(b.bias.mean) + 2.0 * b.bias.err) / 15.0},
+                {"tolerance", b.tolerance}};
+        out["reference_check"] = check;
+        t.notes.push_back(referenceShownConverged(*r)
+                              ? "reference converged in dt: yoshida4 at twice its step bounds its "
+                                "own bias (dt^4) below a quarter of every tolerance"
+                              : "reference NOT shown converged in dt: yoshida4 at twice its step "
+                                "leaves a bound on its own bias above a quarter of a tolerance");
+    }
 
     const Rung* dmd = cheapestOf(t, "dmd");
     const Rung* smd = cheapestOf(t, "smd");

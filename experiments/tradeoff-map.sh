@@ -2,16 +2,23 @@
 # Where DMD pays, resolved: `terrace tradeoff` at every state point of a density × temperature
 # grid, for one model family and one set of tolerances.
 #   tradeoff-map.sh rods|lj loose|strict "DENSITIES" "TEMPERATURES" [N] [extra tradeoff args...]
-#   tradeoff-map.sh pack rods|lj loose|strict     (archive every cell's runs now; see below)
+#   tradeoff-map.sh pack rods|lj [SET]      (archive every state point's runs now; see below)
 # Tolerance sets: strict = tradeoff's defaults (u 0.5 %, p 2 %, d 3 %, g 0.02, g_peak 1 %,
 # tau 3 %); loose = u 2 %, p 5 %, d 10 %, g 0.05, g_peak 3 %, tau 10 %.
 # Each cell's tradeoff lands in OUT/tradeoff-map/<family>-<set>/rho<ρ*>-T<T*>. A cell takes up to
 # tens of CPU minutes and the map tens of hours, more than one sitting, so the runs must outlive
-# the machine: after each cell (and on `pack`) the files tradeoff reads back from each run
-# (scene.json, summary.json, the CSVs, FAILED.json) go into the cell's runs.tar.xz, a few MB,
-# which is committed with the cell; a cell whose runs/ is missing is unpacked from it first, so
-# tradeoff reuses every finished run. A cell that has its verdict (a cost in its tradeoff.json,
-# which keeps every estimate) is not run again, and its runs and their archive are removed.
+# the machine. The two sets of a state point share their runs: a setting's replica k is the same
+# run (same scene, seed k) whatever the tolerances, and each set reads only the replicas it asks
+# for, so the second set to run starts from the first's. They live in
+# OUT/tradeoff-map/<family>-runs/rho<ρ*>-T<T*>/runs, each cell's runs/ a link there; after each
+# cell (and on `pack`) the files tradeoff reads back from each run (scene.json, summary.json, the
+# CSVs, FAILED.json) go into that directory's runs.tar.xz, a few MB, which is committed with the
+# cells; a state point whose runs/ is missing is unpacked from it first, so tradeoff reuses every
+# finished run (a cell's own runs or runs.tar.xz, as cells kept them before, is moved in). A cell
+# that is finished is not run again: it has a verdict (a cost in its tradeoff.json, which keeps
+# every estimate), or its search ended without one under a CPU budget and replica limit at least
+# those asked for now (a larger --budget-cpu-hours or --max-replicas goes on from its runs). The
+# runs and their archive are removed once both sets of the state point have their verdicts.
 # SMD's step: the scene's smd.dt_fs, shortened by √(T_scene/T*) above the scene's temperature
 # (the thermal speed sets the step a collision needs), to the next sample_fs/k below: tradeoff's
 # SMD ladders run from it up to ten times it, and its reference from half of it.
@@ -26,24 +33,54 @@
 source "$(dirname "$0")/common.sh"
 # The files of a run that tradeoff reads back (cli/tradeoff_measure.cpp, cli/sweep_table.cpp).
 pack_runs() {
-    local cell=$1
-    [ -d "$cell/runs" ] || return 0
-    (cd "$cell" && find runs -mindepth 2 -maxdepth 2 \( -name scene.json -o -name summary.json \
+    local pool=$1
+    [ -d "$pool/runs" ] || return 0
+    (cd "$pool" && find runs -mindepth 2 -maxdepth 2 \( -name scene.json -o -name summary.json \
         -o -name rdf.csv -o -name vacf.csv -o -name oacf.csv -o -name FAILED.json \) -print0 |
         tar --null -T - --sort=name --mtime=@0 --owner=0 --group=0 --numeric-owner -cf - |
         xz -9 >runs.tar.xz.part && mv runs.tar.xz.part runs.tar.xz)
 }
-unpack_runs() {
-    local cell=$1
-    [ -d "$cell/runs" ] || [ ! -f "$cell/runs.tar.xz" ] || tar -xJf "$cell/runs.tar.xz" -C "$cell"
+# The state point's shared runs for a cell: unpacked where only the archive is, the cell's own
+# runs (the layout before sharing) moved in, and the cell's runs/ linked to them.
+share_runs() {
+    local cell=$1 pool=$2
+    mkdir -p "$pool" "$cell"
+    [ -d "$pool/runs" ] || [ ! -f "$pool/runs.tar.xz" ] || tar -xJf "$pool/runs.tar.xz" -C "$pool"
+    mkdir -p "$pool/runs"
+    if [ -f "$cell/runs.tar.xz" ]; then
+        tar -xJf "$cell/runs.tar.xz" -C "$pool" --skip-old-files
+        rm "$cell/runs.tar.xz"
+    fi
+    if [ -d "$cell/runs" ] && [ ! -L "$cell/runs" ]; then
+        local run
+        for run in "$cell"/runs/*/; do
+            [ -d "$run" ] || continue
+            run=${run%/}
+            [ -e "$pool/runs/${run##*/}" ] || mv "$run" "$pool/runs/"
+        done
+        rm -rf "$cell/runs"
+    fi
+    ln -sfn "../../${pool#"${pool%/*/*}/"}/runs" "$cell/runs"
 }
 decided() { # the cell's tradeoff.json has a cost: a verdict, resolved or a bound
     python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1])).get("cost") else 1)' \
         "$1/tradeoff.json" 2>/dev/null
 }
+finished() { # decided, or its search ended without a verdict under limits at least these
+    python3 - "$1/tradeoff.json" "$2" "$3" 2>/dev/null <<'PY'
+import json, sys
+t = json.load(open(sys.argv[1]))
+verdict = t.get("verdict", "")
+ended = verdict != "" and not verdict.startswith("not reached yet")
+sys.exit(0 if t.get("cost") or (ended and t.get("budget_cpu_hours", 0) >= float(sys.argv[2])
+                                and t.get("max_replicas", 0) >= int(sys.argv[3])) else 1)
+PY
+}
 
 if [ "${1:-}" = pack ]; then
-    for cell in "$OUT/tradeoff-map/$2-$3"/rho*-T*/; do pack_runs "${cell%/}"; done
+    for pool in "$OUT/tradeoff-map/$2-runs"/rho*-T*/; do
+        [ -d "$pool" ] && pack_runs "${pool%/}"
+    done
     exit 0
 fi
 family=$1 set=$2
@@ -65,14 +102,26 @@ esac
 dir=$OUT/tradeoff-map
 name=$family-$set
 mkdir -p "$dir/$name"
+# tradeoff's limits (its defaults unless given): a cell finished under them is not run again.
+budget=8 max_replicas=32
+extra=("$@")
+for ((i = 0; i < ${#extra[@]}; i++)); do
+    case ${extra[i]} in
+    --budget-cpu-hours) budget=${extra[i + 1]} ;;
+    --budget-cpu-hours=*) budget=${extra[i]#*=} ;;
+    --max-replicas) max_replicas=${extra[i + 1]} ;;
+    --max-replicas=*) max_replicas=${extra[i]#*=} ;;
+    esac
+done
 for T in "${temperatures[@]}"; do
     for rho in "${densities[@]}"; do
         cell=$dir/$name/rho$rho-T$T
-        if decided "$cell"; then
-            log "tradeoff-map $name: rho $rho T $T has its verdict: $(head -c 200 "$cell.verdict")"
+        pool=$dir/$family-runs/rho$rho-T$T
+        if finished "$cell" "$budget" "$max_replicas"; then
+            log "tradeoff-map $name: rho $rho T $T is finished: $(head -c 200 "$cell.verdict")"
             continue
         fi
-        unpack_runs "$cell"
+        share_runs "$cell" "$pool"
         dt=$(python3 - "$scene" "$T" <<'PY'
 import json, math, sys
 s = json.load(open(sys.argv[1]))
@@ -85,10 +134,12 @@ PY
         "$TERRACE" tradeoff "$scene" --set state.density="$rho" --set state.temperature="$T" \
             --set state.n="$n" --set smd.dt_fs="$dt" "${tolerances[@]}" --out "$cell" --quiet \
             "$@" >"$cell.verdict" 2>"$cell.log" || status=$?
-        if [ $status = 0 ] && decided "$cell"; then
-            rm -rf "$cell/runs" "$cell/runs.tar.xz"
+        both=true
+        for s in loose strict; do decided "$dir/$family-$s/rho$rho-T$T" || both=false; done
+        if [ $status = 0 ] && $both; then
+            rm -rf "$pool" "$dir"/$family-*/rho$rho-T$T/runs
         else
-            pack_runs "$cell"
+            pack_runs "$pool"
         fi
         [ $status -lt 128 ] || exit $status # stopped by a signal: the same command goes on
         echo "$status" >"$cell.status"
