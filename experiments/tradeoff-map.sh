@@ -41,26 +41,33 @@ pack_runs() {
         xz -9 >runs.tar.xz.part && mv runs.tar.xz.part runs.tar.xz)
 }
 # The state point's shared runs for a cell: unpacked where only the archive is, the cell's own
-# runs (the layout before sharing) moved in, and the cell's runs/ linked to them.
+# runs (the layout before sharing) moved in, and the cell's runs/ linked to them. A run already
+# there is kept whole: never a file of another copy of it added (an old FAILED.json, say).
 share_runs() {
     local cell=$1 pool=$2
     mkdir -p "$pool" "$cell"
     [ -d "$pool/runs" ] || [ ! -f "$pool/runs.tar.xz" ] || tar -xJf "$pool/runs.tar.xz" -C "$pool"
     mkdir -p "$pool/runs"
-    if [ -f "$cell/runs.tar.xz" ]; then
-        tar -xJf "$cell/runs.tar.xz" -C "$pool" --skip-old-files
-        rm "$cell/runs.tar.xz"
-    fi
     if [ -d "$cell/runs" ] && [ ! -L "$cell/runs" ]; then
-        local run
-        for run in "$cell"/runs/*/; do
-            [ -d "$run" ] || continue
-            run=${run%/}
-            [ -e "$pool/runs/${run##*/}" ] || mv "$run" "$pool/runs/"
-        done
+        move_runs "$cell/runs" "$pool/runs"
         rm -rf "$cell/runs"
     fi
+    if [ -f "$cell/runs.tar.xz" ]; then
+        local unpacked
+        unpacked=$(mktemp -d "$pool/unpacked.XXXXXX")
+        tar -xJf "$cell/runs.tar.xz" -C "$unpacked"
+        move_runs "$unpacked/runs" "$pool/runs"
+        rm -rf "$unpacked" "$cell/runs.tar.xz"
+    fi
     ln -sfn "../../${pool#"${pool%/*/*}/"}/runs" "$cell/runs"
+}
+move_runs() { # FROM TO: each run directory of FROM that TO lacks
+    local run
+    for run in "$1"/*/; do
+        [ -d "$run" ] || continue
+        run=${run%/}
+        [ -e "$2/${run##*/}" ] || mv "$run" "$2/"
+    done
 }
 decided() { # the cell's tradeoff.json has a cost: a verdict, resolved or a bound
     python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1])).get("cost") else 1)' \
