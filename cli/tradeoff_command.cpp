@@ -232,6 +232,14 @@ bool referenceShownConverged(const Rung& rung) {
     return within;
 }
 
+/// Whether more replicas of that rung could still show it: no bias already too large for the
+/// bound, whatever its error.
+bool referenceCheckOpen(const Rung& rung) {
+    for (const auto& b : rung.biases)
+        if ((std::abs(b.bias.mean) - 2.0 * b.bias.err) / 15.0 >= 0.25 * b.tolerance) return false;
+    return !referenceShownConverged(rung);
+}
+
 /// The rung of yoshida4 at twice the reference's step, or null.
 const Rung* referenceCheckRung(const Tradeoff& t) {
     for (const auto& ladder : t.ladders)
@@ -257,17 +265,19 @@ bool raiseTargets(Tradeoff& t) {
                            r.target,
                            r.target == 0 ? 0 : nextTarget(t, r),
                            false};
-            if (&r == check && r.target > 0 && r.failure.empty() && !referenceShownConverged(r)) {
-                v.pinned = true;
-                v.next = std::max(v.next, analysis::nextLook(t.schedule, r.target, r.target + 1));
-            }
+            v.pinned = &r == check && r.target > 0 && r.failure.empty() && referenceCheckOpen(r);
             view.push_back(v);
         }
     }
     bool raised = false;
     for (const auto& [l, i] : rungsToRaise(views, t.options.frontier)) {
         Rung& r = t.ladders[l][i];
-        const int next = r.target == 0 ? t.schedule.front() : views[l][i].next;
+        // The check rung doubles: its bound needs far fewer replicas than a decision at the
+        // tolerance would.
+        const int next = r.target == 0 ? t.schedule.front()
+                         : views[l][i].pinned
+                             ? analysis::nextLook(t.schedule, r.target, r.target + 1)
+                             : views[l][i].next;
         if (next > r.target) r.target = next, raised = true;
     }
     return raised;
