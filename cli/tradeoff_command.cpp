@@ -829,6 +829,13 @@ int runTradeoff(const TradeoffOptions& options) {
                 for (const auto& x : r.replicas)
                     if (std::isfinite(x.cpuSeconds)) t.cpuSpent += x.cpuSeconds;
             }
+        {
+            std::vector<std::vector<ReplicaResult>*> sets{&t.reference.replicas};
+            for (auto& ladder : t.ladders)
+                for (Rung& r : ladder)
+                    sets.push_back(&r.replicas);
+            setPeakHeights(sets);
+        }
         if (t.reference.ok() < 2) {
             std::fprintf(stderr, "tradeoff: the reference (%s) has fewer than two good runs: %s\n",
                          describe(t.reference.setting, t).c_str(),

@@ -38,14 +38,48 @@ std::string valueKey(Observable o, Estimator e) {
     return e == Estimator::Configurational ? base + "_conf" : base;
 }
 
-double peakHeight(const std::vector<double>& g) {
-    if (g.size() < 3) return nan;
-    const auto top = std::max_element(g.begin() + 1, g.end() - 1) - g.begin();
-    const double a = g[std::size_t(top) - 1], b = g[std::size_t(top)], c = g[std::size_t(top) + 1];
-    const double curvature = a - 2.0 * b + c;
-    if (!(curvature < 0.0)) return b;
-    const double shift = 0.5 * (a - c) / curvature; // vertex offset in bins, |shift| ≤ ½
-    return b - 0.25 * (a - c) * shift;
+std::optional<PeakWindow> peakWindow(const std::vector<const std::vector<double>*>& curves) {
+    std::size_t bins = std::numeric_limits<std::size_t>::max();
+    for (const auto* c : curves)
+        bins = std::min(bins, c->size());
+    if (curves.empty() || bins == 0) return std::nullopt;
+    std::vector<double> mean(bins, 0.0);
+    for (const auto* c : curves)
+        for (std::size_t k = 0; k < bins; ++k)
+            mean[k] += (*c)[k] / double(curves.size());
+    const std::size_t top = std::size_t(std::max_element(mean.begin(), mean.end()) - mean.begin());
+    if (!(mean[top] > 1.0)) // no peak above the ideal gas's g = 1: its top bin and neighbours
+        return PeakWindow{top > 0 ? top - 1 : 0, std::min(bins - 1, top + 1)};
+    const double half = 0.5 * (mean[top] - 1.0);
+    PeakWindow w{top, top};
+    while (w.first > 0 && mean[w.first - 1] - 1.0 >= half)
+        --w.first;
+    while (w.last + 1 < bins && mean[w.last + 1] - 1.0 >= half)
+        ++w.last;
+    return w;
+}
+
+double windowMean(const std::vector<double>& g, PeakWindow w) {
+    if (g.size() <= w.last) return nan;
+    double sum = 0.0;
+    for (std::size_t k = w.first; k <= w.last; ++k)
+        sum += g[k];
+    return sum / double(w.last - w.first + 1);
+}
+
+void setPeakHeights(const std::vector<std::vector<ReplicaResult>*>& sets) {
+    std::vector<const std::vector<double>*> curves;
+    for (const auto* set : sets)
+        for (const auto& r : *set)
+            if (r.ok && !r.g.empty()) curves.push_back(&r.g);
+    const auto window = peakWindow(curves);
+    if (!window) return;
+    for (auto* set : sets)
+        for (auto& r : *set) {
+            if (!r.ok || r.g.empty()) continue;
+            r.value["g_peak"] = windowMean(r.g, *window);
+            if (!r.gConf.empty()) r.value["g_peak_conf"] = windowMean(r.gConf, *window);
+        }
 }
 
 double integral(const std::vector<double>& t, const std::vector<double>& c) {
@@ -111,11 +145,9 @@ ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double e
         const analysis::CsvTable rdf = analysis::readCsv(dir / "rdf.csv");
         r.g = column(rdf, "g");
         r.gConf = column(rdf, "g_continuous");
-        // No block error for these: the peak bin's error overstates the error of a parabola over
-        // three bins, and an integral's would need the covariance of the lags; their replicas'
-        // scatter is the honest error.
-        r.value["g_peak"] = peakHeight(r.g);
-        if (!r.gConf.empty()) r.value["g_peak_conf"] = peakHeight(r.gConf);
+        // No block error for g_peak (setPeakHeights) and the integrals: a window's would need
+        // the covariance of its bins, an integral's that of the lags; their replicas' scatter is
+        // the honest error.
         const analysis::CsvTable vacf = analysis::readCsv(dir / "vacf.csv");
         r.value["tau_v"] = integral(column(vacf, "t_ps"), column(vacf, "c"));
         if (std::filesystem::exists(dir / "oacf.csv")) {

@@ -9,7 +9,8 @@
 //   d       D by Einstein from the MSD, Å²/ps
 //   g       the RMS over r ≤ rdf_max of g(r) against the reference's (a curve: estimated from
 //           the replicas' mean curves, the noise of both taken out; cli/tradeoff_measure.hpp)
-//   g_peak  the height of g(r)'s highest peak
+//   g_peak  g(r)'s mean over its highest peak down to half its height above 1 (the window
+//           placed on the mean g(r) of every run: cli/tradeoff_measure.hpp, peakWindow)
 //   tau_v   ∫ VACF dt up to its first zero, ps (the velocity relaxation time)
 //   tau_o   ∫ ⟨s(0)·s(t)⟩ dt up to its first zero, ps (bodies that rotate only)
 // DMD gives u, p and g two ways: on its terraced observables (V, the impulse virial, g_d) and by

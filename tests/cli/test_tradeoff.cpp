@@ -101,12 +101,73 @@ TEST(Tradeoff, SmdLaddersStepOnTheSamplingGridFromTheScenesDt) {
     EXPECT_FALSE(knownOrder(l.ladders[3].front()));
 }
 
-TEST(Tradeoff, PeakOfAParabolaAndTheTrapezoidIntegral) {
-    // g = 3 − (k − 10.3)² sampled on whole k: the vertex 3 lies between bins.
+TEST(Tradeoff, PeakWindowIsTheMeanCurvesHighestPeakAtHalfItsHeightAboveOne) {
+    // g = 3 − ((k − 60.3)/10)² on 120 bins: g − 1 ≥ half its top's (2 − 0.0009) for
+    // |k − 60.3| ≤ 10.002, bins 51 to 70.
     std::vector<double> g;
-    for (int k = 0; k < 20; ++k)
-        g.push_back(3.0 - (k - 10.3) * (k - 10.3));
-    EXPECT_NEAR(peakHeight(g), 3.0, 1e-12);
+    for (int k = 0; k < 120; ++k)
+        g.push_back(3.0 - (k - 60.3) * (k - 60.3) / 100.0);
+    // Two copies with opposite noise in bin 20 that would each out-top the peak alone.
+    std::vector<double> up = g, down = g;
+    up[20] += 5.0, down[20] -= 5.0;
+    const auto w = peakWindow({&up, &down});
+    ASSERT_TRUE(w);
+    EXPECT_EQ(w->first, 51u);
+    EXPECT_EQ(w->last, 70u);
+    double expected = 0.0;
+    for (int k = 51; k <= 70; ++k)
+        expected += g[std::size_t(k)] / 20.0;
+    EXPECT_NEAR(windowMean(g, *w), expected, 1e-12);
+    EXPECT_TRUE(std::isnan(windowMean(std::vector<double>(60, 1.0), *w)));
+    // A peak one bin wide is that bin; with no peak above 1, the top bin and its neighbours.
+    const std::vector<double> spike{0.0, 2.0, 1.0}, flat{0.5, 0.9, 0.8, 0.7};
+    const auto w1 = peakWindow({&spike});
+    ASSERT_TRUE(w1);
+    EXPECT_EQ(w1->first, 1u);
+    EXPECT_EQ(w1->last, 1u);
+    const auto w0 = peakWindow({&flat});
+    ASSERT_TRUE(w0);
+    EXPECT_EQ(w0->first, 0u);
+    EXPECT_EQ(w0->last, 2u);
+    EXPECT_FALSE(peakWindow({}));
+}
+
+TEST(Tradeoff, APeakHeightIsUnbiasedWhereEachRunsHighestBinIsItsNoise) {
+    // A dilute g(r): a bump 0.3 high and 20 bins wide under Gaussian bin noise of 0.12, as in one
+    // 9-ps run of 512 rods at rho* 0.01. Each run's own highest bin overshoots the bump by about
+    // three noise widths; the window's mean is the bump's mean height over it, to its error.
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> noise(0.0, 0.12);
+    std::vector<double> truth(200, 1.0);
+    for (int k = 50; k < 110; ++k)
+        truth[std::size_t(k)] += 0.3 * std::exp(-0.5 * (k - 70) * (k - 70) / 100.0);
+    std::vector<ReplicaResult> runs(400);
+    double ownPeaks = 0.0;
+    for (auto& r : runs) {
+        r.ok = true;
+        for (double x : truth)
+            r.g.push_back(x + noise(rng));
+        ownPeaks += *std::max_element(r.g.begin(), r.g.end()) / double(runs.size());
+    }
+    EXPECT_GT(ownPeaks, 1.3 + 0.12); // a run's own peak reads its noise, not the bump
+    setPeakHeights({&runs});
+    std::vector<double> heights;
+    for (const auto& r : runs)
+        heights.push_back(r.value.at("g_peak"));
+    const auto m = analysis::replicaMean(heights);
+    std::vector<const std::vector<double>*> curves;
+    for (const auto& r : runs)
+        curves.push_back(&r.g);
+    const auto w = peakWindow(curves); // the window setPeakHeights used: on the bump's top
+    ASSERT_TRUE(w);
+    EXPECT_GE(w->first, 55u); // the bump's half height: bins 59 to 81
+    EXPECT_LE(w->last, 85u);
+    EXPECT_NEAR(m.mean, windowMean(truth, *w), 3.0 * m.err);
+    EXPECT_LT(m.err, 0.003);
+    EXPECT_FALSE(runs.front().value.count("g_peak_conf")); // no g_continuous, no such value
+}
+
+TEST(Tradeoff, TheTrapezoidIntegralStopsAtTheFirstZero) {
     const std::vector<double> t{0.0, 0.5, 1.0}, c{1.0, 0.5, 0.0};
     EXPECT_DOUBLE_EQ(integral(t, c), 0.5);
     // Up to the first zero only: the noisy tail beyond it is left out.
@@ -198,14 +259,18 @@ std::filesystem::path fakeRun(const std::string& name, double u, double uConf, d
 } // namespace
 
 TEST(Tradeoff, ReplicaNumbersComeFromTheRunsFilesPerBodyInEpsilon) {
-    const ReplicaResult r = readReplica(fakeRun("ok", -200.0, -250.0, 0.4), 100, 2.0);
+    std::vector<ReplicaResult> one{readReplica(fakeRun("ok", -200.0, -250.0, 0.4), 100, 2.0)};
+    const ReplicaResult& r = one.front();
     ASSERT_TRUE(r.ok) << r.failure;
+    EXPECT_FALSE(r.value.count("g_peak")); // it needs the window of every run
+    setPeakHeights({&one});
     EXPECT_DOUBLE_EQ(r.value.at("u"), -1.0);
     EXPECT_DOUBLE_EQ(r.value.at("u_conf"), -1.25);
     EXPECT_DOUBLE_EQ(r.value.at("p"), 0.4);
     EXPECT_DOUBLE_EQ(r.value.at("d"), 3.0);
     EXPECT_DOUBLE_EQ(r.value.at("tau_v"), 0.05);
-    EXPECT_DOUBLE_EQ(r.value.at("g_peak"), 2.0 + 1.0 / 24.0); // the parabola through 0, 2, 1
+    EXPECT_DOUBLE_EQ(r.value.at("g_peak"), 2.0); // g = 0, 2, 1: its peak is bin 1 alone
+    EXPECT_DOUBLE_EQ(r.value.at("g_peak_conf"), 1.8);
     EXPECT_EQ(r.gConf.size(), 3u);
     EXPECT_FALSE(r.withError.count("g_peak")); // their replicas' scatter is their error
     EXPECT_FALSE(r.withError.count("tau_v"));
