@@ -611,6 +611,30 @@ nlohmann::json report(const Tradeoff& t) {
     return out;
 }
 
+/// Why an engine has no setting within: per observable, on how many of its settings not resolved
+/// outside it is still unresolved, and the most replicas those have ("unresolved g_peak on 8 of
+/// its 8 settings not outside, at up to 128 replicas"); or that every setting is outside.
+std::string unresolvedSummary(const Tradeoff& t, const std::string& engine) {
+    int open = 0, most = 0;
+    std::map<Observable, int> unresolved;
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder) {
+            if (r.setting.engine != engine || r.decision == Decision::Outside) continue;
+            ++open;
+            most = std::max(most, int(r.replicas.size()));
+            for (const auto& b : r.biases)
+                if (b.decision == Decision::Unresolved) ++unresolved[b.observable];
+        }
+    if (open == 0) return "every setting resolved outside";
+    std::string out;
+    for (const auto& [o, n] : unresolved)
+        out +=
+            (out.empty() ? "" : ", ") + std::string(observableName(o)) + " on " + std::to_string(n);
+    if (out.empty()) out = "none";
+    return "unresolved " + out + " of its " + std::to_string(open) +
+           " settings not outside, at up to " + std::to_string(most) + " replicas";
+}
+
 const Rung* cheapestOf(const Tradeoff& t, const std::string& engine) {
     const Rung* best = nullptr;
     for (const auto& ladder : t.ladders) {
@@ -964,8 +988,15 @@ int runTradeoff(const TradeoffOptions& options) {
             status = 1;
         }
     } else if (!dmd || !smd) {
-        verdict = std::string("no verdict: ") + (!dmd ? "no DMD setting" : "no SMD setting") +
+        verdict = std::string("no verdict: ") +
+                  (!dmd && !smd ? "no setting of either engine"
+                   : !dmd       ? "no DMD setting"
+                                : "no SMD setting") +
                   " was resolved within tolerance at " + toleranceText(t);
+        for (const char* engine : {"dmd", "smd"})
+            if (!(engine == std::string("dmd") ? dmd : smd))
+                verdict += "; " + std::string(engine == std::string("dmd") ? "DMD" : "SMD") + ": " +
+                           unresolvedSummary(t, engine);
         // What the other engine found is still an answer: the setting to use.
         if (const Rung* found = dmd ? dmd : smd) {
             char b[256];

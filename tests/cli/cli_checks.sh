@@ -1348,6 +1348,16 @@ tradeoff)
         --quiet || fail "the re-measuring runs failed"
     python3 "$src/tests/cli/tradeoff_recheck.py" check "$work/t/tradeoff.json" "$work/re" ||
         fail "a chosen setting's bias is outside its tolerance in independent runs"
+    # No verdict says why, per engine: from the same runs (two replicas each, no new run), a
+    # tolerance on u that two replicas cannot resolve.
+    status=0
+    "$terrace" tradeoff "$src/experiments/scenes/lj-liquid.json" "${tiny[@]}" --observables u,p \
+        --tolerance u=0.001% --tolerance p=15% --dV 0.5,0.25,0.125 --designs uniform \
+        --schemes verlet --max-replicas 2 --cost-pairs 3 -j 2 --out "$work/t" --quiet \
+        >"$work/none" 2>"$work/err" || status=$?
+    [ $status = 1 ] || fail "tradeoff without a verdict: exit status $status: $(cat "$work/err")"
+    grep -Eq '^no verdict: no setting of either engine was resolved within tolerance .*; DMD: (unresolved u on [0-9]+(, p on [0-9]+)? of its [0-9]+ settings not outside, at up to 2 replicas|every setting resolved outside); SMD: ' \
+        "$work/none" || fail "no verdict without its reason: $(cat "$work/none")"
     ;;
 units)
     # Reduced units (docs/UNITS.md): the LJ liquid under units lj prints T*, U/N in ε beside the
