@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Where DMD pays, resolved: `terrace tradeoff` at every state point of a density × temperature
 # grid, for one model family and one set of tolerances.
-#   tradeoff-map.sh rods|lj loose|strict "DENSITIES" "TEMPERATURES" [N] [extra tradeoff args...]
-#   tradeoff-map.sh pack rods|lj [SET]      (archive every state point's runs now; see below)
+#   tradeoff-map.sh FAMILY loose|strict "DENSITIES" "TEMPERATURES" [N] [extra tradeoff args...]
+#   tradeoff-map.sh pack FAMILY [SET]      (archive every state point's runs now; see below)
+# FAMILY: rods (dense-rods.json), lj (lj-liquid.json), gb (gay-berne-liquid.json) or dumbbell
+# (dumbbell-liquid.json); the map's grid is the rods' and LJ's, the other two one cell each.
 # Tolerance sets: strict = tradeoff's defaults (u 0.5 %, p 2 %, d 3 %, g 0.02, g_peak 1 %,
 # tau 3 %); loose = u 2 %, p 5 %, d 10 %, g 0.05, g_peak 3 %, tau 10 %.
 # Each cell's tradeoff lands in OUT/tradeoff-map/<family>-<set>/rho<ρ*>-T<T*>. A cell takes up to
@@ -98,7 +100,10 @@ shift $(($# < 5 ? $# : 5))
 case $family in
 rods) scene=$SCENES/dense-rods.json ;;
 lj) scene=$SCENES/lj-liquid.json ;;
-*) echo "usage: tradeoff-map.sh rods|lj loose|strict DENSITIES TEMPERATURES [N]" >&2; exit 2 ;;
+gb) scene=$SCENES/gay-berne-liquid.json ;;
+dumbbell) scene=$SCENES/dumbbell-liquid.json ;;
+*) echo "usage: tradeoff-map.sh rods|lj|gb|dumbbell loose|strict DENSITIES TEMPERATURES [N]" >&2
+   exit 2 ;;
 esac
 case $set in
 strict) tolerances=() ;;
