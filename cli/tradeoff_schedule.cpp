@@ -1,4 +1,5 @@
 #include "cli/tradeoff_schedule.hpp"
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -40,11 +41,13 @@ std::vector<std::pair<int, int>> rungsToRaise(const std::vector<std::vector<Sche
         for (int l = 0; l < int(ladders.size()); ++l)
             if (const int i = ladderOffer(ladders[l]); i >= 0) raise.emplace_back(l, i);
     } else {
+        // A rung not run yet has no cost: it goes first, since two replicas measure it.
+        const auto key = [](const ScheduleRung& r) { return std::isnan(r.cost) ? 0.0 : r.cost; };
+        // Each engine's pick, then the cheaper of the two alone: the dearer engine's turn comes
+        // once the cheaper one has nothing cheaper to resolve, and by then the early stop (one
+        // engine's choice below the other's cost floor) may have made it moot.
+        std::vector<std::pair<int, int>> picks;
         for (const bool dmd : {true, false}) {
-            // A rung not run yet has no cost: it goes first, since two replicas measure it.
-            const auto key = [](const ScheduleRung& r) {
-                return std::isnan(r.cost) ? 0.0 : r.cost;
-            };
             double bestWithin = std::numeric_limits<double>::infinity();
             for (const auto& ladder : ladders)
                 for (const auto& r : ladder)
@@ -59,8 +62,12 @@ std::vector<std::pair<int, int>> rungsToRaise(const std::vector<std::vector<Sche
                 if (bestLadder < 0 || key(r) < key(ladders[bestLadder][bestRung]))
                     bestLadder = l, bestRung = i;
             }
-            if (bestLadder >= 0) raise.emplace_back(bestLadder, bestRung);
+            if (bestLadder >= 0) picks.emplace_back(bestLadder, bestRung);
         }
+        if (!picks.empty())
+            raise.push_back(*std::min_element(picks.begin(), picks.end(), [&](auto a, auto b) {
+                return key(ladders[a.first][a.second]) < key(ladders[b.first][b.second]);
+            }));
     }
     for (int l = 0; l < int(ladders.size()); ++l)
         for (int i = 0; i < int(ladders[l].size()); ++i)

@@ -1,6 +1,6 @@
 // Which rungs `terrace tradeoff` raises (cli/tradeoff_schedule.hpp), on ladders built by hand:
-// each engine's cheapest open rung below its cheapest Within, every ladder's under --frontier,
-// and the reference's check rung whatever it costs.
+// the cheaper of the engines' cheapest open rungs below their cheapest Within, every ladder's
+// under --frontier, and the reference's check rung whatever it costs.
 #include "cli/tradeoff_schedule.hpp"
 #include <cmath>
 #include <gtest/gtest.h>
@@ -39,11 +39,20 @@ std::vector<ScheduleRung> dmdLadder(double costScale) {
     return l;
 }
 
-TEST(TradeoffSchedule, EachEngineRaisesOnlyItsCheapestOpenRung) {
+TEST(TradeoffSchedule, OnlyTheCheaperOfTheTwoEnginesPicksIsRaised) {
     // verlet, omelyan (1.4x verlet's cost), yoshida4 (1.8x), then DMD uniform and optimal (2x).
-    const std::vector<std::vector<ScheduleRung>> ladders{
-        smdLadder(1.0), smdLadder(1.4), smdLadder(1.8), dmdLadder(1.0), dmdLadder(2.0)};
-    EXPECT_EQ(rungsToRaise(ladders, false), (Raised{{3, 1}, {0, 2}}));
+    std::vector<std::vector<ScheduleRung>> ladders{smdLadder(1.0), smdLadder(1.4), smdLadder(1.8),
+                                                   dmdLadder(1.0), dmdLadder(2.0)};
+    // SMD's pick, verlet's at 0.077 CPU s/ps, before DMD's, uniform's at 4.
+    EXPECT_EQ(rungsToRaise(ladders, false), (Raised{{0, 2}}));
+    // Once SMD has nothing open, DMD's pick.
+    auto closed = ladders;
+    for (int l = 0; l < 3; ++l)
+        for (auto& r : closed[std::size_t(l)])
+            r.decision = Decision::Outside;
+    EXPECT_EQ(rungsToRaise(closed, false), (Raised{{3, 1}}));
+    // The other way round where DMD is the cheaper, as in a gas.
+    EXPECT_EQ(rungsToRaise({smdLadder(1.0), dmdLadder(0.001)}, false), (Raised{{1, 1}}));
     // --frontier: the open rung nearest each ladder's cheap end, every ladder.
     EXPECT_EQ(rungsToRaise(ladders, true), (Raised{{0, 2}, {1, 2}, {2, 2}, {3, 1}, {4, 1}}));
 }
