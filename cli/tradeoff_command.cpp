@@ -918,7 +918,7 @@ int runTradeoff(const TradeoffOptions& options) {
                          round, t.cpuSpent);
     }
     if (budgetSpent)
-        t.notes.push_back("the CPU budget (" + std::to_string(options.budgetCpuHours) +
+        t.notes.push_back("the CPU budget (" + showNumber(options.budgetCpuHours) +
                           " h) was spent before every decision was resolved");
 
     nlohmann::json out = report(t);
