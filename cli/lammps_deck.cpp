@@ -300,7 +300,8 @@ SphereTypes sphereTypes(const Scene& scene) {
             const std::string pair = scene.species[a].name + "_" + scene.species[b].name;
             t.jobOf[a][b] = t.jobOf[b][a] = static_cast<int>(t.jobs.size());
             t.jobs.push_back(ljTableJob("TERRACE_LJ_" + pair, " of " + pair,
-                                        {mixture.pairEpsilon(a, b), mixture.pairSigma(a, b)}, cut));
+                                        {mixture.pairEpsilon(a, b), mixture.pairSigma(a, b)},
+                                        mixture.cutPerPair ? mixture.cutoffOf(a, b) : cut));
         }
     }
     return t;
@@ -308,7 +309,7 @@ SphereTypes sphereTypes(const Scene& scene) {
 
 /// The deck of Lennard-Jones spheres of kind K under `model`: Sphere and the scene's one LJ, or
 /// SpeciesSphere and a mixture's, each species an atom type with its mass and each pair of
-/// species a table of its own ε and σ on the one smoothed cutoff.
+/// species a table of its own ε and σ, on the one smoothed cutoff or on the pair's own.
 template <BodyKind K, class Model> LammpsDeck sphereDeck(const Scene& scene, const Model& model) {
     LammpsDeck deck;
     const auto sys = buildInitialState<K>(scene, model);
@@ -360,7 +361,9 @@ template <BodyKind K, class Model> LammpsDeck sphereDeck(const Scene& scene, con
             "each pair of species' g(r)·U_LJ(r) with its own eps and sigma as pair_style table "
             "linear: " +
             std::to_string(deck.tablePoints) + " nodes uniform in r² up to " +
-            shortNumber(model.range()) + " Å (tables TERRACE_LJ_<a>_<b>), terrace's U and F");
+            (scene.potential.cutoff_per_pair ? "each pair's own r_u (at most " : "") +
+            shortNumber(model.range()) + (scene.potential.cutoff_per_pair ? ")" : "") +
+            " Å (tables TERRACE_LJ_<a>_<b>), terrace's U and F");
     }
     deck.mapping.push_back("equilibration: fix temp/rescale to " +
                            shortNumber(units::kelvin(scene.kT())) + " K every " +
@@ -395,7 +398,8 @@ template <BodyKind K, class Model> LammpsDeck sphereDeck(const Scene& scene, con
     for (int a = 0; a < nt; ++a)
         for (int b = a; b < nt; ++b)
             in << "pair_coeff      " << a + 1 << " " << b + 1 << " pair.table "
-               << types.jobs[types.jobOf[a][b]].key << " " << number(model.range()) << "\n";
+               << types.jobs[types.jobOf[a][b]].key << " "
+               << number(types.jobs[types.jobOf[a][b]].model.range()) << "\n";
     in << "neighbor        " << number(t.skinAngstrom) << " bin\n"
        << deckRun(t, "fix             nve all nve\n", true, units::kelvin(scene.kT()));
     deck.input = in.str();

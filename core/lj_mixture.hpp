@@ -5,8 +5,14 @@
 // take their own ε and σ, unlike ones Lorentz–Berthelot's (σ_ab = (σ_a + σ_b)/2,
 // ε_ab = √(ε_a ε_b)) unless the scene gives the pair's own, as the Kob–Andersen mixture does
 // (W. Kob and H. C. Andersen, Phys. Rev. E 51, 4626 (1995)). Units: kJ/mol, Å.
+//
+// The smoothed cutoff (core/smoothed_potential.hpp) is the scene's one [r_l, r_u] for every pair,
+// unless the scene scales it by each pair's σ_ab (potential.cutoff_per_pair), as Kob and Andersen
+// cut each pair at 2.5 σ_ab: then the pairs' own switches sit here beside their ε and σ, and the
+// smoothed model reads them through cutoffOf.
 #include "core/body_kind.hpp"
 #include "core/pair_potential.hpp"
+#include "core/smoothed_cutoff.hpp"
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,12 +32,33 @@ struct LJMixture {
     std::array<double, maxSpecies * maxSpecies> epsilon{};
     std::array<double, maxSpecies * maxSpecies> sigma{};
 
+    // Each pair's own smoothed cutoff (Å), read only where cutPerPair is set.
+    bool cutPerPair = false;
+    std::array<SmoothedCutoff, maxSpecies * maxSpecies> pairCut{};
+
     double pairEpsilon(int a, int b) const { return epsilon[a * maxSpecies + b]; }
     double pairSigma(int a, int b) const { return sigma[a * maxSpecies + b]; }
     /// Sets the pair (a, b) and its mirror.
     void setPair(int a, int b, double eps, double sig) {
         epsilon[a * maxSpecies + b] = epsilon[b * maxSpecies + a] = eps;
         sigma[a * maxSpecies + b] = sigma[b * maxSpecies + a] = sig;
+    }
+
+    /// Sets the pair (a, b)'s own cutoff and its mirror's, and turns per-pair cutoffs on.
+    void setPairCutoff(int a, int b, const SmoothedCutoff& cut) {
+        pairCut[a * maxSpecies + b] = pairCut[b * maxSpecies + a] = cut;
+        cutPerPair = true;
+    }
+    /// The pair's own cutoff (meaningful where cutPerPair is set).
+    const SmoothedCutoff& cutoffOf(int a, int b) const { return pairCut[a * maxSpecies + b]; }
+
+    /// The pair (a, b)'s U at centre distance r, and the distance at which it equals u (the
+    /// largest root; 0 where U never reaches u).
+    double pairEnergyAt(double r, int a, int b) const {
+        return detail::lennardJones(r, pairEpsilon(a, b), pairSigma(a, b)).U;
+    }
+    double pairReach(double u, int a, int b) const {
+        return detail::lennardJonesRoot(u, pairEpsilon(a, b), pairSigma(a, b));
     }
 
     PairForce evaluate(const Vec3& rij, int a, int b) const {

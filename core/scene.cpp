@@ -148,6 +148,8 @@ json toJson(const Scene& s) {
         j["potential"]["hard_core"] = s.potential.hard_core;
     } else {
         j["potential"]["cutoff"] = json::array({s.potential.r_l, s.potential.r_u});
+        // Written only where set: every other scene resolves to the same bytes as before.
+        if (s.potential.cutoff_per_pair) j["potential"]["cutoff_per_pair"] = true;
     }
     // Written only for a mixture: any other scene resolves to the same bytes as before.
     if (!s.species.empty()) {
@@ -265,6 +267,17 @@ double sceneMinimumEnergy(const Scene& s) {
     return rodPotential(s).minimumEnergy();
 }
 SmoothedCutoff sceneCutoff(const Scene& s) {
+    if (s.potential.cutoff_per_pair && !s.species.empty()) {
+        // The envelope of the pairs' own switches (core/smoothed_potential.hpp).
+        const LJMixture m = ljMixture(s);
+        double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+        for (int a = 0; a < m.species; ++a)
+            for (int b = a; b < m.species; ++b) {
+                lo = std::min(lo, m.cutoffOf(a, b).inner());
+                hi = std::max(hi, m.cutoffOf(a, b).outer());
+            }
+        return {lo, hi};
+    }
     return {s.potential.r_l * s.potential.sigma, s.potential.r_u * s.potential.sigma};
 }
 BodyParams bodyParams(const Scene& s) {

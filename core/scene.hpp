@@ -101,6 +101,10 @@ struct Scene {
         // integrates and DMD terraces (core/smoothed_potential.hpp). Key: "cutoff": [r_l, r_u].
         double r_l = 2.5;
         double r_u = 3.0;
+        // lj with species only: the cutoff in each pair's own σ_ab instead of σ, so that each
+        // pair switches on [r_l σ_ab, r_u σ_ab] (Kob and Andersen cut at 2.5 σ_ab). Key:
+        // "cutoff_per_pair".
+        bool cutoff_per_pair = false;
         // steps only (core/step_table.hpp): the table, resolved from the one given or named
         // (square_well, square_shoulder, chapela_lj, lj), radii in σ, energies in ε, sorted by
         // decreasing radius; hard_core in σ, 0 for none. The first radius is the cutoff.

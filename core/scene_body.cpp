@@ -134,7 +134,7 @@ void readStepTable(const JsonSection& pot, Scene& s) {
 void readPotential(const JsonSection& pot, Scene& s) {
     pot.onlyKeys({"kind", "epsilon", "sigma", "zeta", "cutoff", "kappa", "kappa_prime", "mu", "nu",
                   "steps", "hard_core", "lambda", "depth", "attractive_steps", "range",
-                  "energy_rule", "core_energy", "pairs"});
+                  "energy_rule", "core_energy", "pairs", "cutoff_per_pair"});
     auto& p = s.potential;
     p.kind = pot.choice("kind", p.kind, {"gay-berne", "lj", "rod-lj", "sites", "steps"});
     if (p.kind == "steps") readStepTable(pot, s);
@@ -154,6 +154,7 @@ void readPotential(const JsonSection& pot, Scene& s) {
           p.r_u <= 100.0))
         pot.fail("cutoff", "must be [r_l, r_u] with 0 < r_l < r_u <= 100 (σ), got [" +
                                showNumber(p.r_l) + ", " + showNumber(p.r_u) + "]");
+    p.cutoff_per_pair = pot.boolean("cutoff_per_pair", p.cutoff_per_pair);
     if (p.kind != "rod-lj" && pot.has("zeta")) pot.fail("zeta", "only meaningful for rod-lj");
     for (const char* key : {"kappa", "kappa_prime", "mu", "nu"})
         if (p.kind != "gay-berne" && pot.has(key)) pot.fail(key, "only meaningful for gay-berne");

@@ -34,6 +34,9 @@ void readSpecies(const JsonSection& top, Scene& s) {
     const JsonSection pot = top.section("potential");
     if (!top.has("species")) {
         if (pot.has("pairs")) pot.fail("pairs", "only meaningful with species");
+        if (s.potential.cutoff_per_pair)
+            pot.fail("cutoff_per_pair", "only meaningful with species (one kind of body has one "
+                                        "pair, cut in potential.sigma)");
         return;
     }
     const auto& list = top.at("species");
@@ -146,6 +149,12 @@ LJMixture ljMixture(const Scene& s) {
     for (const auto& p : s.potential.pairs)
         m.setPair(speciesIndex(s, p.first), speciesIndex(s, p.second), p.epsilon * eps,
                   p.sigma * sig);
+    if (s.potential.cutoff_per_pair)
+        for (int a = 0; a < m.species; ++a)
+            for (int b = a; b < m.species; ++b)
+                m.setPairCutoff(
+                    a, b,
+                    {s.potential.r_l * m.pairSigma(a, b), s.potential.r_u * m.pairSigma(a, b)});
     return m;
 }
 

@@ -14,6 +14,10 @@
 //   is inside r_l; beyond r_l, for u < 0, the root of g(r)·Ulow(r) = u with Ulow(r) the lowest U
 //   over orientations at centre distance r, which rises monotonically through the switch (g falls,
 //   U is negative and rises towards 0 along the tail), found by bisection and rounded outwards.
+// A mixture may switch each pair on its own [r_l, r_u] (core/lj_mixture.hpp, cutOfPair): then
+// `cut` is the envelope of the pairs' switches (the least r_l, the largest r_u), which bounds the
+// range for cells and lists and the distance under which every pair is its bare U, and each pair
+// is switched, and its reach found, on its own.
 // Units: Å, kJ/mol (those of the wrapped potential).
 #include "core/pair_potential.hpp"
 #include "core/smoothed_cutoff.hpp"
@@ -21,6 +25,7 @@
 #include <cmath>
 #include <limits>
 #include <string_view>
+#include <type_traits>
 
 namespace terrace {
 
@@ -36,7 +41,15 @@ template <PairPotential P> struct Smoothed {
     /// The distance beyond which U_s is 0 (Å; +∞ without a cutoff).
     double range() const { return cut.outer(); }
 
+    /// The switch of the pair (si, sj): its own where the potential cuts each pair apart.
+    const SmoothedCutoff& cutOfPair(const Orientation& si, const Orientation& sj) const {
+        if constexpr (requires { bare.cutoffOf(si, sj); })
+            if (bare.cutPerPair) return bare.cutoffOf(si, sj);
+        return cut;
+    }
+
     PairForce evaluate(const Vec3& rij, const Orientation& si, const Orientation& sj) const {
+        const SmoothedCutoff& cut = cutOfPair(si, sj);
         const double r2 = rij.squaredNorm();
         if (r2 <= cut.inner() * cut.inner()) return bare.evaluate(rij, si, sj);
         if (r2 >= cut.outer() * cut.outer()) return PairForce{};
@@ -44,6 +57,7 @@ template <PairPotential P> struct Smoothed {
     }
 
     double energy(const Vec3& rij, const Orientation& si, const Orientation& sj) const {
+        const SmoothedCutoff& cut = cutOfPair(si, sj);
         const double r2 = rij.squaredNorm();
         if (r2 <= cut.inner() * cut.inner()) return bare.energy(rij, si, sj);
         if (r2 >= cut.outer() * cut.outer()) return 0.0;
@@ -52,6 +66,7 @@ template <PairPotential P> struct Smoothed {
 
     EnergyRate energyRate(const Vec3& rij, const Vec3& vij, const Orientation& si, const Vec3& wi,
                           const Orientation& sj, const Vec3& wj) const {
+        const SmoothedCutoff& cut = cutOfPair(si, sj);
         const double r2 = rij.squaredNorm();
         if (r2 <= cut.inner() * cut.inner()) return energyAndRate(bare, rij, vij, si, wi, sj, wj);
         if (r2 >= cut.outer() * cut.outer()) return {};
@@ -66,6 +81,7 @@ template <PairPotential P> struct Smoothed {
     EnergyRange energyRange(const Vec3& rij, const Orientation& si, const Orientation& sj,
                             double shift, double turnI,
                             double turnJ) const requires RangeBounded<P> {
+        const SmoothedCutoff& cut = cutOfPair(si, sj);
         const double r = rij.norm();
         const double rLo = std::max(0.0, r - shift), rHi = r + shift;
         if (rLo >= cut.outer()) return {};
@@ -80,16 +96,39 @@ template <PairPotential P> struct Smoothed {
     double minimumEnergy() const { return bare.minimumEnergy(); }
 
     double reachDistance(double u) const {
-        const double bareReach = bare.reachDistance(u);
-        if (bareReach <= cut.inner()) return bareReach;
-        const double outer = std::min(bareReach, cut.outer());
-        if constexpr (requires { bare.lowestEnergyAt(1.0); }) {
+        if constexpr (requires { bare.pairReach(u, 0, 0); })
+            if (bare.cutPerPair) {
+                // The farthest of the pairs' reaches, each through its own switch.
+                double r = 0.0;
+                for (int a = 0; a < bare.species; ++a)
+                    for (int b = a; b < bare.species; ++b)
+                        r = std::max(
+                            r, reachThrough(u, bare.pairReach(u, a, b), bare.cutoffOf(a, b),
+                                            [&](double x) { return bare.pairEnergyAt(x, a, b); }));
+                return r;
+            }
+        if constexpr (requires { bare.lowestEnergyAt(1.0); })
+            return reachThrough(u, bare.reachDistance(u), cut,
+                                [&](double x) { return bare.lowestEnergyAt(x); });
+        else
+            return reachThrough(u, bare.reachDistance(u), cut, nullptr);
+    }
+
+private:
+    /// The reach of u under the switch c, from the bare reach and Ulow (the lowest U at a centre
+    /// distance; nullptr where unknown).
+    template <class Lowest>
+    static double reachThrough(double u, double bareReach, const SmoothedCutoff& c,
+                               const Lowest& lowestAt) {
+        if (bareReach <= c.inner()) return bareReach;
+        const double outer = std::min(bareReach, c.outer());
+        if constexpr (!std::is_null_pointer_v<Lowest>) {
             // Ulow(r_l) ≤ u < 0 = g(r_u)·Ulow(r_u): the root lies in [r_l, outer].
             if (u < 0.0) {
-                double lo = cut.inner(), hi = outer;
+                double lo = c.inner(), hi = outer;
                 for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
                     const double mid = 0.5 * (lo + hi);
-                    (cut.switching(mid) * bare.lowestEnergyAt(mid) <= u ? lo : hi) = mid;
+                    (c.switching(mid) * lowestAt(mid) <= u ? lo : hi) = mid;
                 }
                 return hi; // g·Ulow(hi) > u or hi = outer: no r beyond hi reaches u
             }

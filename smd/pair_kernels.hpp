@@ -59,14 +59,16 @@ template <> struct PairKernel<Smoothed<LJPotential>> {
     }
 };
 
-/// A Lennard-Jones mixture: the same form, with the pair's ε and σ picked by the two species.
+/// A Lennard-Jones mixture: the same form, with the pair's ε, σ and switch picked by the two
+/// species. The caller's range test is the envelope's (Smoothed::range): a pair beyond its own r_u
+/// but inside the envelope gets g = g' = 0 here.
 template <> struct PairKernel<Smoothed<LJMixture>> {
     static constexpr bool evaluatesBeyondCutoff = false;
 
     static CentralForce evaluate(const Smoothed<LJMixture>& model, const Vec3& rij, double r2,
                                  int a, int b) {
         const LJMixture& lj = model.bare;
-        const SmoothedCutoff& cut = model.cut;
+        const SmoothedCutoff& cut = model.cutOfPair(a, b);
         const double epsilon = lj.pairEpsilon(a, b), sigma = lj.pairSigma(a, b);
         const double inv2 = 1.0 / r2;
         const double s2 = sigma * sigma * inv2;

@@ -9,6 +9,7 @@
 #include "core/lj_mixture.hpp"
 #include "core/smoothed_potential.hpp"
 #include "core/species_sphere.hpp"
+#include <cstring>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <sstream>
@@ -48,9 +49,10 @@ TEST(MixtureScene, KobAndersenRunsInBothEngines) {
         const json& r = s["reduced"];
         EXPECT_NEAR(r["temperature"].get<double>(), 2.0, 0.3) << engine;
         // The continuous U per body (DMD's on its configurations: its terraced one lies a
-        // terrace's worth above). This scene at N 500 over 5 τ gives −5.43 ε (SMD) and
-        // −5.34 ± 0.01 ε (DMD, ΔV = kT/4); a run that lost the unlike pairs' ε_AB = 1.5 to
-        // Lorentz–Berthelot's 0.71 would sit well above the range, one without a cutoff below it.
+        // terrace's worth above). This scene, each pair cut at its own σ_ab, at N 500 over 5 τ
+        // gives −5.37 ε (SMD) and −5.32 ε (DMD, ΔV = kT/4; −5.43 and −5.34 on the one cutoff); a
+        // run that lost the unlike pairs' ε_AB = 1.5 to Lorentz–Berthelot's 0.71 would sit well
+        // above the range, one without a cutoff below it.
         const double u = engine == "dmd"
                              ? r["configurational"]["potential_energy_per_body"].get<double>()
                              : r["potential_energy_per_body"].get<double>();
@@ -86,10 +88,18 @@ TEST(MixtureScene, ExportWritesEachSpeciesATypeAndEachPairATable) {
         ASSERT_EQ(id, i + 1);
         ASSERT_EQ(type, sys.bodies[i].species + 1) << i;
     }
-    for (const char* line : {"pair_coeff      1 1 pair.table TERRACE_LJ_A_A ",
-                             "pair_coeff      1 2 pair.table TERRACE_LJ_A_B ",
-                             "pair_coeff      2 2 pair.table TERRACE_LJ_B_B "})
-        EXPECT_NE(deck.input.find(line), std::string::npos) << line;
+    // Each pair's table ends at its own r_u = 3 σ_ab (the scene cuts each pair at its own σ, as
+    // Kob and Andersen do), and LAMMPS cuts it there.
+    const std::pair<const char*, double> coefficients[] = {
+        {"pair_coeff      1 1 pair.table TERRACE_LJ_A_A ", 3.0},
+        {"pair_coeff      1 2 pair.table TERRACE_LJ_A_B ", 3.0 * 0.8},
+        {"pair_coeff      2 2 pair.table TERRACE_LJ_B_B ", 3.0 * 0.88}};
+    ASSERT_TRUE(s.potential.cutoff_per_pair);
+    for (const auto& [line, cutoff] : coefficients) {
+        const auto at = deck.input.find(line);
+        ASSERT_NE(at, std::string::npos) << line;
+        EXPECT_DOUBLE_EQ(std::stod(deck.input.substr(at + std::strlen(line))), cutoff) << line;
+    }
     // Each table's parameters: ε_AB 1.5, σ_AB 0.8 as Kob and Andersen give them.
     EXPECT_NE(deck.table.find("\nTERRACE_LJ_A_B\n"), std::string::npos);
     EXPECT_NE(deck.table.find("of A_B, eps = 1.5 kJ/mol, sigma = 0.80000000000000004 Å"),

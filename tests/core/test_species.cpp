@@ -180,6 +180,87 @@ TEST(Species, ThePotentialsBoundsCoverEveryPair) {
     }
 }
 
+// potential.cutoff_per_pair: each pair switched on [r_l σ_ab, r_u σ_ab] (Kob and Andersen cut at
+// 2.5 σ_ab). The scene's envelope bounds the range; every answer of the model is the pair's own
+// g_ab(r)·U_ab(r), its force minus that function's gradient, and the reach of a level the
+// farthest pair's root of g_ab·U_ab = u.
+TEST(Species, EachPairSwitchesOnItsOwnCutoffWhereTheSceneCutsPerPair) {
+    json j = kobAndersen();
+    j["potential"]["cutoff"] = {2.5, 3.0};
+    j["potential"]["cutoff_per_pair"] = true;
+    const Scene s = sceneFromJson(j, "test.json");
+    EXPECT_TRUE(s.potential.cutoff_per_pair);
+    EXPECT_EQ(toJson(sceneFromJson(toJson(s), "scene.json")), toJson(s));
+    const Smoothed<LJMixture> model{ljMixture(s), sceneCutoff(s)};
+    // σ_AA 3 Å, σ_AB 2.4 Å, σ_BB 2.64 Å: the envelope is [2.5 · 2.4, 3 · 3] Å.
+    EXPECT_DOUBLE_EQ(model.cut.inner(), 2.5 * 0.8 * 3.0);
+    EXPECT_DOUBLE_EQ(model.range(), 3.0 * 3.0);
+    EXPECT_DOUBLE_EQ(model.cutOfPair(0, 1).inner(), 2.5 * 0.8 * 3.0);
+    EXPECT_DOUBLE_EQ(model.cutOfPair(1, 0).outer(), 3.0 * 0.8 * 3.0);
+    EXPECT_DOUBLE_EQ(model.cutOfPair(1, 1).outer(), 3.0 * 0.88 * 3.0);
+    const auto switched = [](double r, double eps, double sig) { // g(r)·U(r), paper eq. 23
+        const double rl = 2.5 * sig, ru = 3.0 * sig;
+        const double g = r <= rl ? 1.0
+                         : r >= ru
+                             ? 0.0
+                             : (ru - r) * (ru - r) * (ru - 3 * rl + 2 * r) / std::pow(ru - rl, 3);
+        return g * 4.0 * eps * (std::pow(sig / r, 12) - std::pow(sig / r, 6));
+    };
+    const double eps[2][2] = {{2.0, 3.0}, {3.0, 1.0}}, sig[2][2] = {{3.0, 2.4}, {2.4, 2.64}};
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+            for (double r : {3.0, 6.2, 6.9, 7.5, 7.9, 8.5, 8.99}) {
+                const Vec3 rij(0.6 * r, -0.8 * r, 0.0);
+                EXPECT_NEAR(model.energy(rij, a, b), switched(r, eps[a][b], sig[a][b]),
+                            1e-12 * std::abs(switched(r, eps[a][b], sig[a][b])) + 1e-15)
+                    << a << b << " r " << r;
+                EXPECT_DOUBLE_EQ(model.evaluate(rij, a, b).U, model.energy(rij, a, b));
+                // dU/dt = −F·v for a pair moving apart at v.
+                const Vec3 v(0.3, 0.1, -0.2);
+                const EnergyRate e = model.energyRate(rij, v, a, Vec3::Zero(), b, Vec3::Zero());
+                EXPECT_DOUBLE_EQ(e.U, model.energy(rij, a, b));
+                EXPECT_NEAR(e.dUdt, -model.evaluate(rij, a, b).F.dot(v), 1e-12);
+                for (int c = 0; c < 3; ++c) {
+                    Vec3 d = Vec3::Zero();
+                    d[c] = 1e-6;
+                    EXPECT_NEAR(model.evaluate(rij, a, b).F[c],
+                                -(model.energy(rij + d, a, b) - model.energy(rij - d, a, b)) / 2e-6,
+                                1e-7)
+                        << a << b << " r " << r << " component " << c;
+                }
+            }
+    // The AB pair beyond its own r_u (7.2 Å) but inside the envelope has no energy, and no
+    // range above or below 0 there.
+    EXPECT_EQ(model.energy(Vec3(7.5, 0, 0), 0, 1), 0.0);
+    EXPECT_LT(model.energy(Vec3(7.5, 0, 0), 0, 0), 0.0);
+    const EnergyRange beyond = model.energyRange(Vec3(7.5, 0, 0), 0, 1, 0.2, 0.0, 0.0);
+    EXPECT_EQ(beyond.lo, 0.0);
+    EXPECT_EQ(beyond.hi, 0.0);
+    // The reach of a level: the farthest pair's, each through its own switch; U_s reaches u there
+    // and no pair reaches it beyond.
+    for (double u : {-0.01, -0.05, -0.5, -2.5, 1.0}) {
+        const double reach = model.reachDistance(u);
+        double farthest = 0.0;
+        for (int a = 0; a < 2; ++a)
+            for (int b = a; b < 2; ++b)
+                for (int k = 0; k <= 20000; ++k) {
+                    const double r = 2.0 + 7.0 * k / 20000;
+                    const double x = switched(r, eps[a][b], sig[a][b]);
+                    if (u < 0.0 ? x <= u : x >= u) farthest = std::max(farthest, r);
+                }
+        EXPECT_GE(reach, farthest - 1e-9) << "u " << u;
+        EXPECT_LT(reach, farthest + 7.0 / 20000 + 1e-9) << "u " << u;
+    }
+    // Without species the key means nothing.
+    json one = kobAndersen();
+    one.erase("species");
+    one["potential"].erase("pairs");
+    one["potential"]["cutoff_per_pair"] = true;
+    EXPECT_NE(errorOf(one).find("potential.cutoff_per_pair: only meaningful with species"),
+              std::string::npos)
+        << errorOf(one);
+}
+
 TEST(Species, TheLatticeStartDealsOutTheCountsAtRandom) {
     Scene s = sceneFromJson(kobAndersen(), "test.json");
     const auto model = Smoothed<LJMixture>{ljMixture(s), sceneCutoff(s)};

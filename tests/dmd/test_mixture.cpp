@@ -25,12 +25,14 @@ namespace {
 
 using namespace terrace::mixture_tests;
 
-/// The mixture with species B of mass massB (in A's) and SMD's step dtFs.
+/// The mixture with species B of mass massB (in A's) and SMD's step dtFs; each pair cut at its own
+/// σ_ab where perPair.
 Scene mixtureScene(int n, double density, double temperature, double dVInKT, double massB = 1.0,
-                   double dtFs = 0.2) {
+                   double dtFs = 0.2, bool perPair = false) {
     nlohmann::json j = mixtureDocument(n, density, temperature, dVInKT);
     j["species"][1]["mass"] = massB;
     j["smd"]["dt_fs"] = dtFs;
+    if (perPair) j["potential"]["cutoff_per_pair"] = true;
     return sceneFromJson(j, "mixture");
 }
 
@@ -109,6 +111,48 @@ TEST(Mixture, SmdForcesAreTheAllPairsSum) {
         b.species = 0;
     EXPECT_GT(std::abs(smd::allPairsForces(allA).potential - all.potential),
               0.01 * std::abs(all.potential));
+}
+
+// Each pair on its own cutoff (potential.cutoff_per_pair): the unlike and BB pairs end before the
+// envelope's r_u, so a pair between its own r_u and the envelope's must carry no terrace in DMD
+// (the terraced energy recomputed from scratch says so at every sample) and no force in SMD's
+// pair loop (against the all-pairs sum of the model's own evaluation); the hold screen, whose
+// bands hold below the envelope's least r_l, still changes no collision.
+TEST(Mixture, EachPairOnItsOwnCutoffInBothEngines) {
+    const Scene s = mixtureScene(256, 0.8, 2.0, 0.375, 1.0, 0.2, true);
+    const MixtureSystem start = mixtureSystem(s);
+    ASSERT_TRUE(start.potential.bare.cutPerPair);
+    ASSERT_LT(start.potential.cutOfPair(0, 1).outer(), start.potential.range());
+    DmdMixture e(start, s), searched(start, s);
+    Probe::setHoldScreen(searched, false);
+    const double e0 = totalEnergy(e);
+    for (int k = 1; k <= 20; ++k) {
+        e.advanceTo(units::fromFs(25.0 * k));
+        ASSERT_NEAR(e.potentialEnergy(), Probe::terracedEnergyFromScratch(e), 1e-9 * std::abs(e0))
+            << "sample " << k;
+    }
+    EXPECT_GT(Probe::counts(e).up + Probe::counts(e).down, 10000u);
+    EXPECT_NEAR(totalEnergy(e), e0, 1e-10 * std::abs(e0) + 1e-9);
+    // The screen against the full search over the first 40 fs (see
+    // TheHoldScreenChangesNoCollision).
+    DmdMixture screened(start, s);
+    for (int k = 1; k <= 20; ++k) {
+        screened.advanceTo(units::fromFs(2.0 * k));
+        searched.advanceTo(units::fromFs(2.0 * k));
+        ASSERT_EQ(Probe::counts(screened).up, Probe::counts(searched).up) << 2 * k << " fs";
+        ASSERT_EQ(Probe::counts(screened).down, Probe::counts(searched).down) << 2 * k << " fs";
+    }
+    SmdMixture smd(start, s);
+    smd.advanceTo(units::fromFs(40.0));
+    const smd::Forces all = smd::allPairsForces(smd.system());
+    EXPECT_NEAR(smd.potentialEnergy(), all.potential, 1e-9 * std::abs(all.potential));
+    EXPECT_NEAR(smd.virial(), all.virial, 1e-9 * std::abs(all.virial));
+    // The per-pair cutoffs count: the same configuration on the one cutoff has another energy.
+    const Scene one = mixtureScene(256, 0.8, 2.0, 0.375);
+    MixtureSystem sameCut = smd.system();
+    sameCut.potential = Smoothed<LJMixture>{ljMixture(one), sceneCutoff(one)};
+    EXPECT_GT(std::abs(smd::allPairsForces(sameCut).potential - all.potential),
+              1e-4 * std::abs(all.potential));
 }
 
 // Species B three times as heavy, and started twice as hot as A: every collision's impulse divides
