@@ -41,6 +41,20 @@ sweep_file() {
 END
 }
 
+# hold_lock DIR LOG: holds DIR's run lock, in the background, until LOG says a sweep is waiting
+# for it, at most 60 s (then the check that looks for those words fails); returns once the lock is
+# held. Held for a fixed time instead, the lock could be free again before a slow start (mpirun's,
+# on a cold machine) reached the run.
+hold_lock() {
+    mkdir -p "$1"
+    rm -f "$work/holding"
+    flock "$1/.terrace.lock" bash -c 'touch "$1"; for _ in $(seq 1 600); do
+        grep -q "holds its directory.s lock; waiting" "$0" 2>/dev/null && exit 0; sleep 0.1
+    done' "$2" "$work/holding" &
+    holder=$!
+    for _ in $(seq 1 3000); do [ -e "$work/holding" ] && break; sleep 0.01; done
+}
+
 short_run() { # engine extra-args...
     local engine=$1
     shift
@@ -1274,9 +1288,7 @@ END
             fail "seed-$s did not stop on its sweep's death"
     done
     # seed-1's directory held by another process: the sweep waits for it, then continues it.
-    flock "$work/out/seed-1/.terrace.lock" sleep 1.5 &
-    holder=$!
-    sleep 0.2
+    hold_lock "$work/out/seed-1" "$work/err"
     "$terrace" sweep "$work/s.json" --out "$work/out" -j 2 2>"$work/err" ||
         fail "the sweep after the kill: $(cat "$work/err")"
     wait $holder
@@ -1313,10 +1325,7 @@ sweep_mpi)
     [ "$(grep -c ',failed,' "$work/mpi/sweep.csv")" -eq 2 ] || fail "the failures got lost under mpirun"
     # A run directory another process holds (a run of an earlier sweep still ending): rank 0
     # waits for it before handing the run out, instead of a worker's run failing on the lock.
-    mkdir -p "$work/held/dmd_seed-1"
-    flock "$work/held/dmd_seed-1/.terrace.lock" sleep 1.5 &
-    holder=$!
-    sleep 0.2
+    hold_lock "$work/held/dmd_seed-1" "$work/held.log"
     mpirun --oversubscribe -np 3 "$terrace" sweep "$work/s.json" --out "$work/held" -j 0 \
         >"$work/held.log" 2>&1
     status=$?
