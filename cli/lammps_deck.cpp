@@ -289,7 +289,9 @@ SphereTypes sphereTypes(const Scene& scene) {
         t.jobOf = {{0}};
         return t;
     }
-    const LJMixture mixture = ljMixture(scene);
+    // The model both engines run: each pair's switch is the one it answers (cutOfPair).
+    const Smoothed<LJMixture> model{ljMixture(scene), cut};
+    const LJMixture& mixture = model.bare;
     const BodyParams params = bodyParams(scene);
     const int ns = mixture.species;
     t.jobOf.assign(ns, std::vector<int>(ns, 0));
@@ -301,7 +303,7 @@ SphereTypes sphereTypes(const Scene& scene) {
             t.jobOf[a][b] = t.jobOf[b][a] = static_cast<int>(t.jobs.size());
             t.jobs.push_back(ljTableJob("TERRACE_LJ_" + pair, " of " + pair,
                                         {mixture.pairEpsilon(a, b), mixture.pairSigma(a, b)},
-                                        mixture.cutPerPair ? mixture.cutoffOf(a, b) : cut));
+                                        model.cutOfPair(a, b)));
         }
     }
     return t;
