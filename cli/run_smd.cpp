@@ -1,4 +1,5 @@
 #include "cli/dispatch.hpp"
+#include "cli/engine_handle.hpp"
 #include "cli/run_command.hpp"
 #include "smd/engine.hpp"
 
@@ -17,6 +18,22 @@ RunOutcome runSmd(const Scene& scene, const RunTarget& target) {
         };
         return buildAndDrive<E, K>(scene, model, target, make);
     });
+}
+
+std::unique_ptr<EngineHandle> makeSmdHandle(const Scene& scene) {
+    return withBodyAndPotential(
+        scene, [&]<class K, class P>(const P& potential) -> std::unique_ptr<EngineHandle> {
+            const auto model = sceneModel(scene, potential, false);
+            using M = std::remove_const_t<decltype(model)>;
+            using E = smd::Engine<K, M>;
+            return std::make_unique<EngineHandleOf<E, K::rotationalDof>>(
+                std::make_unique<E>(buildInitialState<K, M>(scene, model),
+                                    smd::smdSettings(scene, scene.boxLength(), model.range())));
+        });
+}
+
+std::unique_ptr<EngineHandle> makeEngineHandle(const Scene& scene) {
+    return scene.engine == "smd" ? makeSmdHandle(scene) : makeDmdHandle(scene);
 }
 
 } // namespace terrace::cli

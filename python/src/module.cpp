@@ -2,10 +2,10 @@
 // exceptions, and the Simulation a user advances. Scenes and runs: scene_binding.cpp; sweeps:
 // sweep_binding.cpp.
 #include "bindings.hpp"
+#include "cli/engine_handle.hpp"
 #include "cli/run_record.hpp"
 #include "core/output_file.hpp"
 #include "core/units.hpp"
-#include "simulation.hpp"
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -19,6 +19,10 @@ namespace py = pybind11;
 namespace terrace::python {
 
 namespace {
+
+/// One engine built from a scene (cli/engine_handle.hpp); its units are the engines' own, and the
+/// binding turns times into ps.
+using Simulation = cli::EngineHandle;
 
 /// An n×columns float64 array that owns `values` (moved, not copied).
 py::array_t<double> ownedArray(std::vector<double>&& values, std::size_t columns) {
@@ -154,7 +158,7 @@ py::dict state(const Snapshot& s) {
 void bindSimulation(py::module_& m) {
     py::class_<PySimulation>(m, "_Simulation")
         .def(py::init([](const ResolvedScene& s) {
-                 PySimulation p{makeSimulation(s.scene), s.scene};
+                 PySimulation p{cli::makeEngineHandle(s.scene), s.scene};
                  p.bodies = p.sim->positions().size();
                  p.sampleInterval = cli::planRun(s.scene).sampleInterval;
                  return p;

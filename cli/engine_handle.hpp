@@ -1,10 +1,11 @@
 #pragma once
-// terrace.Simulation: one engine built from a scene exactly as `terrace run` builds it
-// (cli/dispatch.hpp), held behind an interface that forgets its (engine, body kind, potential)
-// type, so that Python advances it and reads it without a run directory. Nothing is sampled,
-// thermostatted or written unless the caller asks: this is the engine contract (core/engine.hpp)
-// and no more. Units are the engines' own here (Å, g/mol, kJ/mol, the 100 fs time unit); the
-// binding (module.cpp) turns times into ps.
+// One engine built from a scene exactly as `terrace run` builds a fresh run's (cli/dispatch.hpp),
+// held behind an interface that forgets its (engine, body kind, potential) type, so that a caller
+// (the Python module's terrace.Simulation) advances it and reads it without a run directory.
+// Nothing is sampled, thermostatted or written unless the caller asks: this is the engine contract
+// (core/engine.hpp) and no more. Units are the engines' own (Å, g/mol, kJ/mol, the 100 fs time
+// unit). The factories live beside runDmd and runSmd (run_dmd.cpp, run_smd.cpp), so that each
+// engine type is instantiated once for both.
 #include "core/continuous_sums.hpp"
 #include "core/engine.hpp"
 #include "core/pressure.hpp"
@@ -14,11 +15,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace terrace::python {
+namespace terrace::cli {
 
-class Simulation {
+class EngineHandle {
 public:
-    virtual ~Simulation() = default;
+    virtual ~EngineHandle() = default;
     virtual void advanceTo(double t) = 0;
     virtual double time() const = 0;
     virtual Snapshot snapshot() const = 0;
@@ -36,9 +37,9 @@ public:
 };
 
 /// The engine E (of body kind K) behind the interface.
-template <Engine E, int RotationalDof> class EngineSimulation final : public Simulation {
+template <Engine E, int RotationalDof> class EngineHandleOf final : public EngineHandle {
 public:
-    explicit EngineSimulation(std::unique_ptr<E> engine) : engine_(std::move(engine)) {}
+    explicit EngineHandleOf(std::unique_ptr<E> engine) : engine_(std::move(engine)) {}
     void advanceTo(double t) override { engine_->advanceTo(t); }
     double time() const override { return engine_->time(); }
     Snapshot snapshot() const override { return engine_->snapshot(); }
@@ -61,9 +62,9 @@ private:
 };
 
 /// The scene's engine (scene.engine) on the scene's initial state; the scene must be resolved
-/// (cli::resolveEngineSections). One translation unit per engine, as for the CLI's runs.
-std::unique_ptr<Simulation> makeSimulation(const Scene& scene);
-std::unique_ptr<Simulation> makeDmdSimulation(const Scene& scene);
-std::unique_ptr<Simulation> makeSmdSimulation(const Scene& scene);
+/// (resolveEngineSections).
+std::unique_ptr<EngineHandle> makeEngineHandle(const Scene& scene);
+std::unique_ptr<EngineHandle> makeDmdHandle(const Scene& scene);
+std::unique_ptr<EngineHandle> makeSmdHandle(const Scene& scene);
 
-} // namespace terrace::python
+} // namespace terrace::cli
