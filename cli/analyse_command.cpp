@@ -38,13 +38,19 @@ analysis::SpeciesLabels frameSpecies(const Scene& scene, const std::vector<std::
     if (static_cast<int>(first.size()) == bodies) {
         labels.ofBody = first;
     } else {
-        const auto start = buildInitialState<SpeciesSphere>(scene, ljMixture(scene));
-        if (start.size() != bodies)
-            throw TrajectoryError(path.string() + ": the trajectory holds " +
-                                  std::to_string(bodies) + " bodies where its scene.json makes " +
-                                  std::to_string(start.size()));
-        for (const auto& b : start.bodies)
-            labels.ofBody.push_back(b.species);
+        auto deal = [&](const auto& potential) {
+            const auto start = buildInitialState<SpeciesSphere>(scene, potential);
+            if (start.size() != bodies)
+                throw TrajectoryError(
+                    path.string() + ": the trajectory holds " + std::to_string(bodies) +
+                    " bodies where its scene.json makes " + std::to_string(start.size()));
+            for (const auto& b : start.bodies)
+                labels.ofBody.push_back(b.species);
+        };
+        if (scene.potential.kind == "steps")
+            deal(stepMixture(scene));
+        else
+            deal(ljMixture(scene));
     }
     labels.check(bodies);
     return labels;

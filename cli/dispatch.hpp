@@ -21,6 +21,8 @@ template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
     if (scene.potential.kind == "lj" && !scene.species.empty())
         return fn.template operator()<SpeciesSphere>(ljMixture(scene));
     if (scene.potential.kind == "lj") return fn.template operator()<Sphere>(ljPotential(scene));
+    if (scene.potential.kind == "steps" && !scene.species.empty())
+        return fn.template operator()<SpeciesSphere>(stepMixture(scene));
     if (scene.potential.kind == "steps")
         return fn.template operator()<Sphere>(stepPotential(scene));
     if (scene.potential.kind == "gay-berne")

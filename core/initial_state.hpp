@@ -15,6 +15,7 @@
 #include "core/site_potential.hpp"
 #include "core/smoothed_cutoff.hpp"
 #include "core/start_lattice.hpp"
+#include "core/step_mixture.hpp"
 #include "core/step_potential.hpp"
 #include "core/system.hpp"
 #include "core/units.hpp"
@@ -33,6 +34,8 @@ LJMixture ljMixture(const Scene& scene);
 GayBernePotential gayBernePotential(const Scene& scene);
 /// potential.kind steps: the scene's table in σ and ε, scaled by potential.sigma and epsilon.
 StepPotential stepPotential(const Scene& scene);
+/// potential.kind steps with species: that table between the species' pairs, each in its σ_ab.
+StepMixture stepMixture(const Scene& scene);
 /// body.sites as the site potential takes them.
 std::vector<Site> sceneSites(const Scene& scene);
 BodyParams bodyParams(const Scene& scene);

@@ -1,8 +1,10 @@
 // The species of a mixture of spheres (Scene::species) and their unlike pairs (potential.pairs):
-// their reader, the bodies' counts and the potential they make (core/lj_mixture.hpp).
+// their reader, the bodies' counts and the potentials they make (core/lj_mixture.hpp,
+// core/step_mixture.hpp).
 #include "core/initial_state.hpp"
 #include "core/lj_mixture.hpp"
 #include "core/scene_sections.hpp"
+#include "core/step_mixture.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -45,9 +47,18 @@ void readSpecies(const JsonSection& top, Scene& s) {
         top.fail("species", "must be an array of 2 to " + std::to_string(most) +
                                 " species: [{\"name\": \"A\", \"fraction\": 0.8, \"epsilon\": "
                                 "1, \"sigma\": 1}, ...]");
-    if (s.potential.kind != "lj" || s.body.kind != "sphere")
-        top.fail("species", "a mixture is of Lennard-Jones spheres: set body.kind sphere and "
-                            "potential.kind lj");
+    if ((s.potential.kind != "lj" && s.potential.kind != "steps") || s.body.kind != "sphere")
+        top.fail("species", "a mixture is of spheres with Lennard-Jones pairs or a step table: "
+                            "set body.kind sphere and potential.kind lj or steps");
+    // A step mixture's pairs share the table's levels and terrace energies (core/step_mixture.hpp):
+    // its pairs differ in σ alone.
+    const bool steps = s.potential.kind == "steps";
+    const std::string oneEnergy = "a step mixture's pairs share the table's energies in "
+                                  "potential.epsilon (their terraces are the engine's one set): "
+                                  "give each species and pair its sigma alone";
+    if (steps && s.potential.cutoff_per_pair)
+        pot.fail("cutoff_per_pair", "a step table ends at its first radius, which each pair of a "
+                                    "mixture takes in its own sigma: leave cutoff_per_pair out");
     const bool explicitStart =
         top.has("state") && top.at("state").is_object() && top.at("state").contains("particles");
     double total = 0.0;
@@ -68,6 +79,7 @@ void readSpecies(const JsonSection& top, Scene& s) {
             e.fail("fraction", "missing: the species' share of state.n");
         x.fraction = e.has("fraction") ? e.number("fraction", 0.0, 0.0, 1.0, true)
                                        : std::numeric_limits<double>::quiet_NaN();
+        if (steps && e.has("epsilon")) e.fail("epsilon", oneEnergy);
         x.epsilon = e.number("epsilon", 1.0, 0.0, 1e6, true);
         x.sigma = e.number("sigma", 1.0, 0.0, 1e3, true);
         x.mass = e.number("mass", 1.0, 0.0, 1e6, true);
@@ -86,8 +98,10 @@ void readSpecies(const JsonSection& top, Scene& s) {
             const JsonSection e(pairs[k], pot.name("pairs[" + std::to_string(k) + "]"),
                                 pot.origin());
             e.onlyKeys({"between", "epsilon", "sigma"});
+            if (steps && e.has("epsilon")) e.fail("epsilon", oneEnergy);
             for (const char* key : {"between", "epsilon", "sigma"})
-                if (!e.has(key)) e.fail(key, "missing");
+                if (!e.has(key) && !(steps && std::string(key) == "epsilon"))
+                    e.fail(key, "missing");
             const auto& between = e.at("between");
             if (!between.is_array() || between.size() != 2 || !between[0].is_string() ||
                 !between[1].is_string())
@@ -135,20 +149,37 @@ std::vector<int> speciesCounts(const Scene& s, int n) {
     return counts;
 }
 
+namespace {
+
+/// Calls set(a, b, ε_ab, σ_ab) for every pair of species, a ≤ b, in kJ/mol and Å: Lorentz–
+/// Berthelot (the arithmetic mean of the diameters, the geometric of the wells), then each pair
+/// that potential.pairs gives its own.
+template <class Set> void forEachSpeciesPair(const Scene& s, Set&& set) {
+    const double eps = s.potential.epsilon, sig = s.potential.sigma;
+    for (std::size_t a = 0; a < s.species.size(); ++a)
+        for (std::size_t b = a; b < s.species.size(); ++b) {
+            const auto &x = s.species[a], &y = s.species[b];
+            set(int(a), int(b), std::sqrt(x.epsilon * y.epsilon) * eps,
+                0.5 * (x.sigma + y.sigma) * sig);
+        }
+    for (const auto& p : s.potential.pairs)
+        set(speciesIndex(s, p.first), speciesIndex(s, p.second), p.epsilon * eps, p.sigma * sig);
+}
+
+} // namespace
+
+StepMixture stepMixture(const Scene& s) {
+    StepMixture m;
+    m.steps = stepPotential(s);
+    m.species = static_cast<int>(s.species.size());
+    forEachSpeciesPair(s, [&](int a, int b, double, double sig) { m.setPairSigma(a, b, sig); });
+    return m;
+}
+
 LJMixture ljMixture(const Scene& s) {
     LJMixture m;
     m.species = static_cast<int>(s.species.size());
-    const double eps = s.potential.epsilon, sig = s.potential.sigma;
-    for (int a = 0; a < m.species; ++a)
-        for (int b = a; b < m.species; ++b) {
-            const auto &x = s.species[a], &y = s.species[b];
-            // Lorentz–Berthelot: the arithmetic mean of the diameters, the geometric of the wells.
-            m.setPair(a, b, std::sqrt(x.epsilon * y.epsilon) * eps,
-                      0.5 * (x.sigma + y.sigma) * sig);
-        }
-    for (const auto& p : s.potential.pairs)
-        m.setPair(speciesIndex(s, p.first), speciesIndex(s, p.second), p.epsilon * eps,
-                  p.sigma * sig);
+    forEachSpeciesPair(s, [&](int a, int b, double eps, double sig) { m.setPair(a, b, eps, sig); });
     if (s.potential.cutoff_per_pair)
         for (int a = 0; a < m.species; ++a)
             for (int b = a; b < m.species; ++b)

@@ -95,11 +95,15 @@ struct StepPotential {
     double tableEnergy(double r) const { return epsilon * table.energyAt(r / sigma); }
 };
 
-/// The step potential of P: P itself or the bare potential of a smoothed model
-/// (core/smoothed_potential.hpp); nullptr for any other potential.
+/// The step potential of P: P itself, the table that a mixture's pairs share
+/// (core/step_mixture.hpp), or either as the bare potential of a smoothed model
+/// (core/smoothed_potential.hpp); nullptr for any other potential. Its levels and terrace
+/// energies are every pair's.
 template <class P> auto stepPotentialOf(const P& p) {
     if constexpr (std::is_same_v<P, StepPotential>)
         return &p;
+    else if constexpr (requires { p.steps; })
+        return stepPotentialOf(p.steps);
     else if constexpr (requires { p.bare; })
         return stepPotentialOf(p.bare);
     else
@@ -110,12 +114,23 @@ template <class P>
 inline constexpr bool isSteppedModel =
     !std::is_same_v<decltype(stepPotentialOf(std::declval<const P&>())), std::nullptr_t>;
 
+/// The table's energy (kJ/mol) of a pair at centre distance r (Å) in the stepped model P: a
+/// mixture's pair at its own σ_ab.
+template <class P, class O> double stepPairEnergy(const P& p, double r, const O& oi, const O& oj) {
+    if constexpr (requires { p.bare; })
+        return stepPairEnergy(p.bare, r, oi, oj);
+    else if constexpr (requires { p.tableEnergy(r, oi, oj); })
+        return p.tableEnergy(r, oi, oj);
+    else
+        return p.tableEnergy(r);
+}
+
 /// The energy a start is judged by (core/initial_state.hpp): the table's for a step table, whose
 /// carrier φ is no energy, U for any other potential.
 template <class P, class O>
 double startEnergy(const P& p, const Vec3& rij, const O& oi, const O& oj) {
     if constexpr (isSteppedModel<P>)
-        return stepPotentialOf(p)->tableEnergy(rij.norm());
+        return stepPairEnergy(p, rij.norm(), oi, oj);
     else
         return p.energy(rij, oi, oj);
 }

@@ -242,7 +242,9 @@ public:
                 if (r2 >= range * range) return;
                 if constexpr (isSteppedModel<P>) {
                     // The model is the table itself; its virial is all impulses (virial()).
-                    const double V = stepPotentialOf(s.potential)->tableEnergy(std::sqrt(r2));
+                    const double V =
+                        stepPairEnergy(s.potential, std::sqrt(r2), orientationOf<P, K>(s.bodies[i]),
+                                       orientationOf<P, K>(s.bodies[j]));
                     sums.potential += V;
                     if (profile) profile->add(std::sqrt(r2), 0.0);
                     return;
