@@ -50,16 +50,19 @@ int printDesign(const DesignRequest& request) {
                         scene.name.c_str(), t.radii.size(), t.hardCore * p.sigma, scene.kT(),
                         settings.rm);
             // A mixture's pairs cross the same terraces, each at the radii below times its own
-            // σ_ab over potential.sigma (core/step_mixture.hpp).
+            // σ_ab over potential.sigma, and with the values below times ε_ab over
+            // potential.epsilon (core/step_mixture.hpp).
             if constexpr (requires { model.bare.pairSigma(0, 0); }) {
-                std::printf(
-                    "# each pair at its own sigma_ab, the radii below times sigma_ab / %.6g A:",
-                    p.sigma);
+                std::printf("# each pair at its own sigma_ab and epsilon_ab (the radii below times "
+                            "sigma_ab / %.6g A, the values times epsilon_ab / %.6g kJ/mol):",
+                            p.sigma, p.epsilon);
                 const char* separator = " ";
                 for (int a = 0; a < model.bare.species; ++a)
                     for (int b = a; b < model.bare.species; ++b, separator = ", ")
-                        std::printf("%s%s-%s %.6g A", separator, scene.species[a].name.c_str(),
-                                    scene.species[b].name.c_str(), model.bare.pairSigma(a, b));
+                        std::printf("%s%s-%s %.6g A %.6g kJ/mol", separator,
+                                    scene.species[a].name.c_str(), scene.species[b].name.c_str(),
+                                    model.bare.pairSigma(a, b),
+                                    model.bare.pairEnergyScale(a, b) * p.epsilon);
                 std::printf("\n");
             }
             std::printf("terrace,inner_A,outer_A,value_kJ_per_mol\n");

@@ -152,23 +152,20 @@ json toJson(const Scene& s) {
         if (s.potential.cutoff_per_pair) j["potential"]["cutoff_per_pair"] = true;
     }
     // Written only for a mixture: any other scene resolves to the same bytes as before.
-    // A step mixture's pairs have no energies of their own (core/step_mixture.hpp).
     if (!s.species.empty()) {
-        const bool energies = s.potential.kind != "steps";
         json list = json::array();
-        for (const auto& x : s.species) {
-            list.push_back({{"name", x.name}, {"fraction", x.fraction}});
-            if (energies) list.back()["epsilon"] = x.epsilon;
-            list.back()["sigma"] = x.sigma;
-            list.back()["mass"] = x.mass;
-        }
+        for (const auto& x : s.species)
+            list.push_back({{"name", x.name},
+                            {"fraction", x.fraction},
+                            {"epsilon", x.epsilon},
+                            {"sigma", x.sigma},
+                            {"mass", x.mass}});
         j["species"] = list;
         json pairs = json::array();
-        for (const auto& x : s.potential.pairs) {
-            pairs.push_back({{"between", json::array({x.first, x.second})}});
-            if (energies) pairs.back()["epsilon"] = x.epsilon;
-            pairs.back()["sigma"] = x.sigma;
-        }
+        for (const auto& x : s.potential.pairs)
+            pairs.push_back({{"between", json::array({x.first, x.second})},
+                             {"epsilon", x.epsilon},
+                             {"sigma", x.sigma}});
         j["potential"]["pairs"] = pairs;
     }
     j["state"] = {

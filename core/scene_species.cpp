@@ -50,12 +50,7 @@ void readSpecies(const JsonSection& top, Scene& s) {
     if ((s.potential.kind != "lj" && s.potential.kind != "steps") || s.body.kind != "sphere")
         top.fail("species", "a mixture is of spheres with Lennard-Jones pairs or a step table: "
                             "set body.kind sphere and potential.kind lj or steps");
-    // A step mixture's pairs share the table's levels and terrace energies (core/step_mixture.hpp):
-    // its pairs differ in σ alone.
     const bool steps = s.potential.kind == "steps";
-    const std::string oneEnergy = "a step mixture's pairs share the table's energies in "
-                                  "potential.epsilon (their terraces are the engine's one set): "
-                                  "give each species and pair its sigma alone";
     if (steps && s.potential.cutoff_per_pair)
         pot.fail("cutoff_per_pair", "a step table ends at its first radius, which each pair of a "
                                     "mixture takes in its own sigma: leave cutoff_per_pair out");
@@ -79,7 +74,6 @@ void readSpecies(const JsonSection& top, Scene& s) {
             e.fail("fraction", "missing: the species' share of state.n");
         x.fraction = e.has("fraction") ? e.number("fraction", 0.0, 0.0, 1.0, true)
                                        : std::numeric_limits<double>::quiet_NaN();
-        if (steps && e.has("epsilon")) e.fail("epsilon", oneEnergy);
         x.epsilon = e.number("epsilon", 1.0, 0.0, 1e6, true);
         x.sigma = e.number("sigma", 1.0, 0.0, 1e3, true);
         x.mass = e.number("mass", 1.0, 0.0, 1e6, true);
@@ -98,10 +92,8 @@ void readSpecies(const JsonSection& top, Scene& s) {
             const JsonSection e(pairs[k], pot.name("pairs[" + std::to_string(k) + "]"),
                                 pot.origin());
             e.onlyKeys({"between", "epsilon", "sigma"});
-            if (steps && e.has("epsilon")) e.fail("epsilon", oneEnergy);
             for (const char* key : {"between", "epsilon", "sigma"})
-                if (!e.has(key) && !(steps && std::string(key) == "epsilon"))
-                    e.fail(key, "missing");
+                if (!e.has(key)) e.fail(key, "missing");
             const auto& between = e.at("between");
             if (!between.is_array() || between.size() != 2 || !between[0].is_string() ||
                 !between[1].is_string())
@@ -172,7 +164,7 @@ StepMixture stepMixture(const Scene& s) {
     StepMixture m;
     m.steps = stepPotential(s);
     m.species = static_cast<int>(s.species.size());
-    forEachSpeciesPair(s, [&](int a, int b, double, double sig) { m.setPairSigma(a, b, sig); });
+    forEachSpeciesPair(s, [&](int a, int b, double eps, double sig) { m.setPair(a, b, eps, sig); });
     return m;
 }
 

@@ -1,17 +1,17 @@
 #pragma once
 // One step table (core/step_table.hpp) between spheres of several species, as DynamO's mixtures
 // of hard spheres and square wells have it: the pair (a, b) takes the table with its radii in its
-// own σ_ab and its energies in the one ε. Like species take their own σ, unlike ones the
-// arithmetic mean σ_ab = (σ_a + σ_b)/2 (an additive mixture) unless the scene gives the pair's own
-// (a non-additive one), as for the Lennard-Jones mixture (core/lj_mixture.hpp).
+// own σ_ab and its energies in its own ε_ab. Like species take their own σ and ε, unlike ones
+// Lorentz–Berthelot's σ_ab = (σ_a + σ_b)/2 (an additive mixture) and ε_ab = √(ε_a ε_b) unless the
+// scene gives the pair's own (a non-additive one), as for the Lennard-Jones mixture
+// (core/lj_mixture.hpp).
 //
 // The carrier of pair (a, b) (core/step_potential.hpp says what a carrier is),
-//     φ_ab(r) = ε / (1 + r²/σ_ab²),
+//     φ_ab(r) = ε / (1 + r²/σ_ab²),   with the table's one ε,
 // takes at r_k σ_ab the value ε/(1 + r_k²) whatever the pair: every pair crosses the same levels,
-// each at its own radii, and the terraces between carry the same E_k ε. So the engine's one set
-// of levels and terrace energies (dmd/terrace_levels.hpp) serves every pair. Per-pair energies
-// (ε_ab) would need a set of terrace energies per pair, which the engine does not hold: the scene
-// refuses them (core/scene_species.cpp). Units: Å, kJ/mol.
+// each at its own radii. The terrace between carries E_k ε_ab: the engine's one set of terrace
+// energies E_k ε (dmd/terrace_levels.hpp) times the pair's scale ε_ab/ε (pairEnergyScale; the
+// DMD engine applies it at each crossing and in its energy sums). Units: Å, kJ/mol.
 #include "core/body_kind.hpp"
 #include "core/pair_potential.hpp"
 #include "core/step_potential.hpp"
@@ -30,12 +30,17 @@ struct StepMixture {
 
     StepPotential steps; // the table, ε, and the levels and terrace energies all pairs share
     int species = 1;
-    std::array<double, maxSpecies * maxSpecies> sigma{}; // σ_ab (Å), symmetric, [a · max + b]
+    // Symmetric tables indexed [a · maxSpecies + b]: σ_ab (Å) and ε_ab/ε.
+    std::array<double, maxSpecies * maxSpecies> sigma{};
+    std::array<double, maxSpecies * maxSpecies> energyScale{};
 
     double pairSigma(int a, int b) const { return sigma[a * maxSpecies + b]; }
-    /// Sets the pair (a, b)'s σ and its mirror's.
-    void setPairSigma(int a, int b, double sig) {
+    /// ε_ab/ε: the factor of the pair's terrace energies over the shared ones.
+    double pairEnergyScale(int a, int b) const { return energyScale[a * maxSpecies + b]; }
+    /// Sets the pair (a, b)'s ε (kJ/mol) and σ (Å), and its mirror's.
+    void setPair(int a, int b, double eps, double sig) {
         sigma[a * maxSpecies + b] = sigma[b * maxSpecies + a] = sig;
+        energyScale[a * maxSpecies + b] = energyScale[b * maxSpecies + a] = eps / steps.epsilon;
     }
 
     /// φ_ab at squared distance r2 (Å²).
@@ -45,7 +50,7 @@ struct StepMixture {
     }
     /// The table's energy of the pair at centre distance r (Å), kJ/mol (+∞ inside its core).
     double tableEnergy(double r, int a, int b) const {
-        return steps.epsilon * steps.table.energyAt(r / pairSigma(a, b));
+        return steps.epsilon * pairEnergyScale(a, b) * steps.table.energyAt(r / pairSigma(a, b));
     }
 
     PairForce evaluate(const Vec3& rij, int a, int b) const {

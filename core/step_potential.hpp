@@ -125,6 +125,26 @@ template <class P, class O> double stepPairEnergy(const P& p, double r, const O&
         return p.tableEnergy(r);
 }
 
+/// Whether P scales each pair's terrace energies by its own factor (a step mixture's ε_ab/ε,
+/// core/step_mixture.hpp), bare or in a smoothed model.
+template <class P> inline constexpr bool scalesPairEnergies = requires(const P& p) {
+    p.pairEnergyScale(0, 0);
+}
+|| requires(const P& p) {
+    p.bare.pairEnergyScale(0, 0);
+};
+
+/// The factor of the pair (si, sj)'s terrace energies over the shared ones: 1 unless P scales
+/// each pair's.
+template <class P, class O> double pairEnergyScale(const P& p, const O& si, const O& sj) {
+    if constexpr (requires { p.pairEnergyScale(si, sj); })
+        return p.pairEnergyScale(si, sj);
+    else if constexpr (requires { p.bare.pairEnergyScale(si, sj); })
+        return p.bare.pairEnergyScale(si, sj);
+    else
+        return 1.0;
+}
+
 /// The energy a start is judged by (core/initial_state.hpp): the table's for a step table, whose
 /// carrier φ is no energy, U for any other potential.
 template <class P, class O>

@@ -204,10 +204,12 @@ public:
         // Explicit levels: Σ count × V over the terraces, the same sum whatever the order in
         // which the pairs reached them.
         const auto& L = s_.settings.levels;
+        const std::size_t slots = terraceSlots();
         double e = 0.0;
         for (std::size_t s = 0; s < terraceCount_.size(); ++s)
             if (terraceCount_[s] != 0)
-                e += static_cast<double>(terraceCount_[s]) * L.energy(L.lowestTerrace() + int(s));
+                e += static_cast<double>(terraceCount_[s]) * classEnergyScale(s / slots) *
+                     L.energy(L.lowestTerrace() + int(s % slots));
         return e;
     }
     Vec3 totalMomentum() const { return terrace::totalMomentum(s_.sys); }
@@ -643,7 +645,10 @@ private:
             s_.sys.potential.evaluate(rij, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
         const int n = s_.lists.terrace(i, j);
         const int target = n + (e.side > 0 ? 1 : -1);
-        const double dE = s_.settings.levels.energy(target) - s_.settings.levels.energy(n);
+        double dE = s_.settings.levels.energy(target) - s_.settings.levels.energy(n);
+        if constexpr (scalesPairEnergies<P>)
+            dE *=
+                pairEnergyScale(s_.sys.potential, orientationOf<P, K>(bi), orientationOf<P, K>(bj));
         const Impulse impulse =
             solveCrossing(impulseCoefficients<K>(f, bi, bj, s_.sys.body), dE, e.side > 0);
         applyImpulse<K>(bi, bj, f, impulse.S, s_.sys.body);
@@ -763,9 +768,8 @@ private:
         s_.lists.setTerrace(i, j, n);
         terraceSum_ += n - was;
         if (!terraceCount_.empty()) {
-            const int lowest = s_.settings.levels.lowestTerrace();
-            if (was != 0) --terraceCount_[was - lowest];
-            if (n != 0) ++terraceCount_[n - lowest];
+            if (was != 0) --terraceCount_[countIndex(i, j, was)];
+            if (n != 0) ++terraceCount_[countIndex(i, j, n)];
         }
     }
     /// The energy's sums from every pair's terrace (the start, a resumption): kept since by
@@ -773,11 +777,38 @@ private:
     void countTerraces() {
         terraceSum_ = 0; // an integer sum: exact however many events
         const auto& L = s_.settings.levels;
-        if (!L.isUniform()) terraceCount_.assign(L.highestTerrace() - L.lowestTerrace() + 1, 0);
-        s_.lists.forEachPairOffZero([&](int, int, int n) {
+        if (!L.isUniform()) terraceCount_.assign(pairClasses * terraceSlots(), 0);
+        s_.lists.forEachPairOffZero([&](int i, int j, int n) {
             terraceSum_ += n;
-            if (!terraceCount_.empty()) ++terraceCount_[n - L.lowestTerrace()];
+            if (!terraceCount_.empty()) ++terraceCount_[countIndex(i, j, n)];
         });
+    }
+    // Explicit levels count the pairs per terrace; where the potential scales each pair's
+    // terrace energies (a step mixture's ε_ab, core/step_mixture.hpp), per terrace and pair of
+    // species, so that the energy is a sum of whole counts times fixed energies whatever the
+    // order of the events.
+    static constexpr std::size_t pairClasses =
+        scalesPairEnergies<P> ? std::size_t(maxSpecies * maxSpecies) : 1;
+    std::size_t terraceSlots() const {
+        const auto& L = s_.settings.levels;
+        return std::size_t(L.highestTerrace() - L.lowestTerrace() + 1);
+    }
+    /// The count of pair (i, j) (engine indices) on terrace n.
+    std::size_t countIndex(int i, int j, int n) const {
+        const auto slot = std::size_t(n - s_.settings.levels.lowestTerrace());
+        if constexpr (scalesPairEnergies<P>) {
+            const int a = orientationOf<P, K>(s_.sys.bodies[i]);
+            const int b = orientationOf<P, K>(s_.sys.bodies[j]);
+            const auto c = std::size_t(std::min(a, b) * maxSpecies + std::max(a, b));
+            return c * terraceSlots() + slot;
+        }
+        return slot;
+    }
+    /// The factor of the terrace energies of the pairs counted in class c.
+    double classEnergyScale(std::size_t c) const {
+        if constexpr (scalesPairEnergies<P>)
+            return pairEnergyScale(s_.sys.potential, int(c) / maxSpecies, int(c) % maxSpecies);
+        return 1.0;
     }
 
     /// Asks the caches for what positionNow(s_, j) reads: its position, velocity and clock.

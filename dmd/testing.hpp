@@ -114,9 +114,10 @@ struct Probe {
             for (int j = i + 1; j < s.size(); ++j) {
                 const Vec3 rij = s.box.minimumImage(s.bodies[i].r - s.bodies[j].r);
                 if (rij.norm() > e.s_.settings.rm) continue;
-                const double U = s.potential.energy(rij, orientationOf<P, K>(s.bodies[i]),
-                                                    orientationOf<P, K>(s.bodies[j]));
-                energy += levels.energy(levels.terraceOf(U));
+                const auto si = orientationOf<P, K>(s.bodies[i]);
+                const auto sj = orientationOf<P, K>(s.bodies[j]);
+                const double U = s.potential.energy(rij, si, sj);
+                energy += pairEnergyScale(s.potential, si, sj) * levels.energy(levels.terraceOf(U));
             }
         return energy;
     }

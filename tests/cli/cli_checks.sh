@@ -536,23 +536,30 @@ kill_resume)
     # lengths that are no whole number of their intervals: its last rescale interval cut short,
     # its production's last 5 fs unsampled); and under each heat bath (its stream and energy
     # carried by restart.bin), with its summary block too; and a mixture of two masses in both
-    # engines (its bodies' species carried by restart.bin).
+    # engines (its bodies' species carried by restart.bin); and the square-well mixture in DMD,
+    # whose pairs' energies differ (its energy counted by pair of species, recounted on resuming).
     andersen='{"kind":"andersen","rate_per_ps":5}' csvr='{"kind":"csvr","tau_fs":90}'
     heavy_b='species=[{"name":"A","fraction":0.8},{"name":"B","fraction":0.2,"epsilon":0.5,"sigma":0.88,"mass":3}]'
     for case in dmd:0.2:0.9::mixture smd:0.2:0.9::mixture dmd:0.18:9 smd:0.18:9 dmd:9.005:0.905 \
         dmd:0.18:9:andersen smd:0.18:9:andersen dmd:0.18:9:csvr smd:0.18:9:csvr \
-        dmd:9.005:0.905:andersen; do
+        dmd:9.005:0.905:andersen dmd:0:0::steps; do
         IFS=: read -r engine equilibrate ps bath mixture <<<"$case"
         name=$engine-$equilibrate${bath:+-$bath}${mixture:+-$mixture}
         scene=$src/experiments/scenes/dense-rods.json n=216 restart_ps=0.9 frame_fs=18
-        if [ -n "$mixture" ]; then # its samples every 5 fs
+        if [ "$mixture" = mixture ]; then # its samples every 5 fs
             scene=$src/experiments/scenes/kob-andersen.json n=256 restart_ps=0.3 frame_fs=20
         fi
         args=(--quiet --set engine=$engine --set state.n=$n --set run.equilibrate_ps=$equilibrate
             --set run.time_ps=$ps --set output.trajectory_every_fs=$frame_fs
             --set output.thermo_every_fs=$((2 * frame_fs)) --set output.restart_every_ps=$restart_ps)
         [ -z "$bath" ] || args+=(--set "run.heat_bath=${!bath}")
-        [ -z "$mixture" ] || args+=(--set "$heavy_b" --set state.density=0.85) # SMD's box: ≥ 2(r_u + skin)
+        [ "$mixture" != mixture ] || args+=(--set "$heavy_b" --set state.density=0.85) # SMD's box: ≥ 2(r_u + skin)
+        if [ "$mixture" = steps ]; then # lengths in its τ (2.155 ps)
+            scene=$src/experiments/scenes/square-well-mixture.json
+            args=(--quiet --set state.n=256 --set run.equilibrate=0.5 --set run.time=20
+                --set run.sample=0.01 --set output.trajectory_every=0.1
+                --set output.thermo_every=0.2 --set output.restart_every=2)
+        fi
         "$terrace" run "$scene" --out "$work/$name-a" \
             "${args[@]}" >/dev/null || fail "$name: the uninterrupted run failed"
         "$terrace" run "$scene" --out "$work/$name-b" \

@@ -1,9 +1,10 @@
 // One step table between the species of a mixture (core/step_mixture.hpp): each pair's carrier
-// crosses the levels that all pairs share at its own radii r_k σ_ab, its force against finite
-// differences, its bounds and reach; the scene's keys and refusals; and DMD on a square-well
-// mixture of two sizes and masses: energy and momentum to round-off, every pair on the terrace
-// that its distance in its own σ_ab gives (brute force), the engine's energy the table's, and the
-// same collisions with and without the hold screen.
+// crosses the levels that all pairs share at its own radii r_k σ_ab, its terraces carry the
+// table's energies in its own ε_ab, its force against finite differences, its bounds and reach;
+// the scene's keys and refusals; and DMD on a square-well mixture of two sizes, depths and
+// masses: energy and momentum to round-off, every pair on the terrace that its distance in its
+// own σ_ab gives (brute force), the engine's energy the table's in each pair's ε_ab, and the same
+// collisions with and without the hold screen.
 #include "core/initial_state.hpp"
 #include "core/species_sphere.hpp"
 #include "core/step_mixture.hpp"
@@ -23,21 +24,23 @@ namespace {
 
 using MixtureEngine = dmd::SceneEngine<SpeciesSphere, StepMixture>;
 
-/// A square well (λ = 1.5) between A (σ 1) and B (σ 0.7, twice as heavy, 40 %), σ = 3 Å, ε = 1
-/// kJ/mol, with the unlike pair's σ given (non-additive) when sigmaAB > 0.
+/// A square well (λ = 1.5) between A (σ 1, ε 1) and B (σ 0.7, ε 0.5, twice as heavy, 40 %),
+/// σ = 3 Å, ε = 1 kJ/mol; the unlike pair's own σ (non-additive) and ε 0.9 when sigmaAB > 0.
 nlohmann::json mixtureDocument(int n, double density, double temperature, double sigmaAB = 0.0) {
-    nlohmann::json j = {{"body", {{"kind", "sphere"}, {"mass", 1.0}}},
-                        {"potential",
-                         {{"kind", "steps"},
-                          {"steps", "square_well"},
-                          {"lambda", 1.5},
-                          {"epsilon", 1.0},
-                          {"sigma", 3.0}}},
-                        {"species",
-                         {{{"name", "A"}, {"fraction", 0.6}},
-                          {{"name", "B"}, {"fraction", 0.4}, {"sigma", 0.7}, {"mass", 2.0}}}},
-                        {"state", {{"n", n}, {"density", density}, {"temperature", temperature}}}};
-    if (sigmaAB > 0.0) j["potential"]["pairs"] = {{{"between", {"A", "B"}}, {"sigma", sigmaAB}}};
+    nlohmann::json j = {
+        {"body", {{"kind", "sphere"}, {"mass", 1.0}}},
+        {"potential",
+         {{"kind", "steps"},
+          {"steps", "square_well"},
+          {"lambda", 1.5},
+          {"epsilon", 1.0},
+          {"sigma", 3.0}}},
+        {"species",
+         {{{"name", "A"}, {"fraction", 0.6}},
+          {{"name", "B"}, {"fraction", 0.4}, {"sigma", 0.7}, {"epsilon", 0.5}, {"mass", 2.0}}}},
+        {"state", {{"n", n}, {"density", density}, {"temperature", temperature}}}};
+    if (sigmaAB > 0.0)
+        j["potential"]["pairs"] = {{{"between", {"A", "B"}}, {"epsilon", 0.9}, {"sigma", sigmaAB}}};
     return j;
 }
 
@@ -68,8 +71,8 @@ int checkAllPairs(const MixtureEngine& e) {
     return bound;
 }
 
-/// Σ over pairs of the table's energy at their distances (kJ/mol): what the engine's terraced
-/// energy must be.
+/// Σ over pairs of the table's energy at their distances, each in its ε_ab (kJ/mol): what the
+/// engine's terraced energy must be.
 double tableEnergy(const MixtureEngine& e) {
     const auto s = e.system();
     double u = 0.0;
@@ -86,15 +89,19 @@ TEST(StepMixture, EachPairCrossesTheSharedLevelsAtItsOwnRadii) {
     const Scene s = sceneFromJson(mixtureDocument(100, 0.5, 1.5), "<mix>");
     const StepMixture m = stepMixture(s);
     ASSERT_EQ(m.species, 2);
-    // Lorentz's rule for σ: the arithmetic mean, in Å.
+    // Lorentz–Berthelot: the arithmetic mean of σ (Å), the geometric of ε (over the table's ε).
     EXPECT_DOUBLE_EQ(m.pairSigma(0, 0), 3.0);
     EXPECT_DOUBLE_EQ(m.pairSigma(1, 1), 2.1);
     EXPECT_DOUBLE_EQ(m.pairSigma(0, 1), 2.55);
     EXPECT_DOUBLE_EQ(m.pairSigma(1, 0), 2.55);
+    EXPECT_DOUBLE_EQ(m.pairEnergyScale(0, 0), 1.0);
+    EXPECT_DOUBLE_EQ(m.pairEnergyScale(1, 1), 0.5);
+    EXPECT_DOUBLE_EQ(m.pairEnergyScale(0, 1), std::sqrt(0.5));
     // A non-additive pair takes its own.
-    EXPECT_DOUBLE_EQ(
-        stepMixture(sceneFromJson(mixtureDocument(100, 0.5, 1.5, 0.9), "<mix>")).pairSigma(0, 1),
-        2.7);
+    const StepMixture own =
+        stepMixture(sceneFromJson(mixtureDocument(100, 0.5, 1.5, 0.9), "<mix>"));
+    EXPECT_DOUBLE_EQ(own.pairSigma(0, 1), 2.7);
+    EXPECT_DOUBLE_EQ(own.pairEnergyScale(1, 0), 0.9);
     // The levels are those of the table alone: each pair's carrier equals them at r_k σ_ab.
     const std::vector<double> levels = m.steps.levels();
     const StepTable& t = m.steps.table;
@@ -104,8 +111,8 @@ TEST(StepMixture, EachPairCrossesTheSharedLevelsAtItsOwnRadii) {
             const double sab = m.pairSigma(a, b);
             EXPECT_NEAR(m.energy(Vec3(t.radii[0] * sab, 0, 0), a, b), levels[0], 1e-15);
             EXPECT_NEAR(m.energy(Vec3(0, t.hardCore * sab, 0), a, b), levels[1], 1e-15);
-            // The table's own energy per pair: −ε inside the well, 0 beyond it, ∞ in the core.
-            EXPECT_EQ(m.tableEnergy(1.2 * sab, a, b), -1.0);
+            // The table's own energy per pair: −ε_ab inside the well, 0 beyond it, ∞ in the core.
+            EXPECT_EQ(m.tableEnergy(1.2 * sab, a, b), -m.pairEnergyScale(a, b));
             EXPECT_EQ(m.tableEnergy(1.6 * sab, a, b), 0.0);
             EXPECT_TRUE(std::isinf(m.tableEnergy(0.9 * sab, a, b)));
         }
@@ -143,17 +150,10 @@ TEST(StepMixture, EachPairCrossesTheSharedLevelsAtItsOwnRadii) {
 
 TEST(StepMixture, SceneKeysAreCheckedAndWrittenBack) {
     using scene_tests::errorOf;
-    // One energy for all pairs: a species' or a pair's epsilon is refused, with the reason.
-    nlohmann::json j = mixtureDocument(100, 0.5, 1.5);
-    j["species"][1]["epsilon"] = 0.5;
-    EXPECT_NE(errorOf(j).find("species[1].epsilon: a step mixture's pairs share the table's "
-                              "energies"),
-              std::string::npos)
-        << errorOf(j);
-    j = mixtureDocument(100, 0.5, 1.5, 0.9);
-    j["potential"]["pairs"][0]["epsilon"] = 1.0;
-    EXPECT_NE(errorOf(j).find("pairs[0].epsilon: a step mixture's pairs share"), std::string::npos)
-        << errorOf(j);
+    // A pair of its own gives both its ε and σ, as for Lennard-Jones.
+    nlohmann::json j = mixtureDocument(100, 0.5, 1.5, 0.9);
+    j["potential"]["pairs"][0].erase("epsilon");
+    EXPECT_NE(errorOf(j).find("pairs[0].epsilon: missing"), std::string::npos) << errorOf(j);
     j = mixtureDocument(100, 0.5, 1.5);
     j["potential"]["cutoff_per_pair"] = true;
     EXPECT_NE(errorOf(j).find("cutoff_per_pair: a step table ends at its first radius"),
@@ -168,8 +168,10 @@ TEST(StepMixture, SceneKeysAreCheckedAndWrittenBack) {
     const Scene back = sceneFromJson(toJson(s), "<back>");
     const StepMixture m = stepMixture(s), n = stepMixture(back);
     for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b)
+        for (int b = 0; b < 2; ++b) {
             EXPECT_EQ(n.pairSigma(a, b), m.pairSigma(a, b)) << a << b;
+            EXPECT_EQ(n.pairEnergyScale(a, b), m.pairEnergyScale(a, b)) << a << b;
+        }
     EXPECT_EQ(n.steps.table.radii, m.steps.table.radii);
 }
 
