@@ -110,11 +110,13 @@ TEST(Species, RefusalsNameTheKeyAndTheCause) {
     j["species"].erase(1);
     EXPECT_NE(errorOf(j).find("species: must be an array of 2 to 4 species"), std::string::npos)
         << errorOf(j);
-    j = kobAndersen();
-    j["potential"]["kind"] = "steps";
-    j["potential"]["steps"] = "square_well";
+    j = kobAndersen(); // a mixture of rods is not one yet
+    j["body"] = {{"kind", "linear"}, {"mass", 1.0}, {"inertia", {1.0, 1.0, 0.0}}};
+    j["potential"]["kind"] = "rod-lj";
     j["potential"].erase("pairs");
-    EXPECT_NE(errorOf(j).find("a mixture is of Lennard-Jones spheres"), std::string::npos)
+    EXPECT_NE(errorOf(j).find("species: a mixture is of spheres with Lennard-Jones pairs or a "
+                              "step table"),
+              std::string::npos)
         << errorOf(j);
     j = kobAndersen();
     j["species"].erase(0);
