@@ -1,4 +1,5 @@
 #include "cli/summary_line.hpp"
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <limits>
@@ -25,15 +26,22 @@ double number(const json& j, const char* key) {
                                                  : std::numeric_limits<double>::quiet_NaN();
 }
 
+/// The relative fluctuation of E over |⟨U⟩| (the paper's measure), or that there is none: a run
+/// whose U is 0 throughout (hard spheres) has no ⟨U⟩ to measure it by (summary.json: null).
+std::string relativeFluctuation(double x) {
+    return std::isfinite(x) ? format("%.3g", x) : std::string("undefined (<U> = 0)");
+}
+
 std::string realLines(const json& s) {
     std::string text;
     const double n = s["n_bodies"].get<double>();
     if (s.contains("energy")) {
         const double u = number(s, "potential_energy_mean");
         text += format("  T = %.1f K (target %.1f K), <U>/N = %.4f kJ/mol (<U> = %.4f kJ/mol), "
-                       "energy rel. fluctuation %.3g, drift %.3g kJ/mol/ps\n",
+                       "energy rel. fluctuation %s, drift %.3g kJ/mol/ps\n",
                        number(s, "temperature_K"), number(s, "temperature_target_K"), u / n, u,
-                       number(s["energy"], "rel_fluct"), number(s["energy"], "drift_per_ps"));
+                       relativeFluctuation(number(s["energy"], "rel_fluct")).c_str(),
+                       number(s["energy"], "drift_per_ps"));
     }
     if (s.contains("pressure") && s["pressure"].contains("mean_bar")) {
         const auto& p = s["pressure"];
@@ -56,9 +64,10 @@ std::string reducedLines(const json& s) {
     if (s.contains("energy")) {
         const double u = number(r, "potential_energy_per_body");
         text += format("  T* = %.4g (target %.4g), U/N = %.4f ε (U = %.4g ε), energy rel. "
-                       "fluctuation %.3g, drift %.3g ε/τ per body\n",
+                       "fluctuation %s, drift %.3g ε/τ per body\n",
                        number(r, "temperature"), number(r, "temperature_target"), u, u * n,
-                       number(r, "energy_rel_fluct"), number(r, "energy_drift_per_tau_per_body"));
+                       relativeFluctuation(number(r, "energy_rel_fluct")).c_str(),
+                       number(r, "energy_drift_per_tau_per_body"));
     }
     if (r.contains("pressure"))
         text += format("  P* = %.4g ± %.2g\n", number(r, "pressure"), number(r, "pressure_err"));

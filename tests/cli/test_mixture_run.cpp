@@ -5,6 +5,7 @@
 #include "cli/lammps_deck.hpp"
 #include "cli/run_command.hpp"
 #include "cli/scene_check.hpp"
+#include "cli/summary_line.hpp"
 #include "core/initial_state.hpp"
 #include "core/lj_mixture.hpp"
 #include "core/smoothed_potential.hpp"
@@ -133,6 +134,9 @@ TEST(MixtureScene, HardSphereMixtureRunsInDmd) {
     for (const char* column : {",g_A_A,", ",g_A_B,", ",g_B_B,"})
         EXPECT_NE(header.find(column), std::string::npos) << header;
     EXPECT_EQ(summary["potential_energy_mean"].get<double>(), 0.0);
+    // With U 0 throughout there is no ⟨U⟩ to measure the energy's fluctuation by: said so.
+    const std::string line = cli::runSummaryText("hs", summary, dir);
+    EXPECT_NE(line.find("energy rel. fluctuation undefined (<U> = 0)"), std::string::npos) << line;
     EXPECT_LT(summary["energy"]["max_abs_dev"].get<double>(),
               1e-12 * std::abs(summary["energy"]["mean"].get<double>()));
     // ζ_n = (π/6) ρ Σ x_a σ_a^n, Z = (6/πρ)[ζ0/(1−ζ3) + 3ζ1ζ2/(1−ζ3)² + (3−ζ3)ζ2³/(1−ζ3)³].
