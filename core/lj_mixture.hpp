@@ -13,8 +13,8 @@
 #include "core/body_kind.hpp"
 #include "core/pair_potential.hpp"
 #include "core/smoothed_cutoff.hpp"
+#include "core/species_pairs.hpp"
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 
@@ -28,29 +28,28 @@ struct LJMixture {
     static constexpr double minimumOverSigma = 1.122462048309373; // 2^(1/6): where U is least
 
     int species = 1;
-    // Symmetric tables indexed [a · maxSpecies + b]: ε_ab (kJ/mol) and σ_ab (Å).
-    std::array<double, maxSpecies * maxSpecies> epsilon{};
-    std::array<double, maxSpecies * maxSpecies> sigma{};
+    SpeciesPairTable<double> epsilon; // ε_ab, kJ/mol
+    SpeciesPairTable<double> sigma;   // σ_ab, Å
 
     // Each pair's own smoothed cutoff (Å), read only where cutPerPair is set.
     bool cutPerPair = false;
-    std::array<SmoothedCutoff, maxSpecies * maxSpecies> pairCut{};
+    SpeciesPairTable<SmoothedCutoff> pairCut;
 
-    double pairEpsilon(int a, int b) const { return epsilon[a * maxSpecies + b]; }
-    double pairSigma(int a, int b) const { return sigma[a * maxSpecies + b]; }
+    double pairEpsilon(int a, int b) const { return epsilon(a, b); }
+    double pairSigma(int a, int b) const { return sigma(a, b); }
     /// Sets the pair (a, b) and its mirror.
     void setPair(int a, int b, double eps, double sig) {
-        epsilon[a * maxSpecies + b] = epsilon[b * maxSpecies + a] = eps;
-        sigma[a * maxSpecies + b] = sigma[b * maxSpecies + a] = sig;
+        epsilon.set(a, b, eps);
+        sigma.set(a, b, sig);
     }
 
     /// Sets the pair (a, b)'s own cutoff and its mirror's, and turns per-pair cutoffs on.
     void setPairCutoff(int a, int b, const SmoothedCutoff& cut) {
-        pairCut[a * maxSpecies + b] = pairCut[b * maxSpecies + a] = cut;
+        pairCut.set(a, b, cut);
         cutPerPair = true;
     }
     /// The pair's own cutoff (meaningful where cutPerPair is set).
-    const SmoothedCutoff& cutoffOf(int a, int b) const { return pairCut[a * maxSpecies + b]; }
+    const SmoothedCutoff& cutoffOf(int a, int b) const { return pairCut(a, b); }
 
     /// The pair (a, b)'s U at centre distance r, and the distance at which it equals u (the
     /// largest root; 0 where U never reaches u).

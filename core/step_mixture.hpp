@@ -14,9 +14,9 @@
 // DMD engine applies it at each crossing and in its energy sums). Units: Å, kJ/mol.
 #include "core/body_kind.hpp"
 #include "core/pair_potential.hpp"
+#include "core/species_pairs.hpp"
 #include "core/step_potential.hpp"
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 
@@ -30,17 +30,16 @@ struct StepMixture {
 
     StepPotential steps; // the table, ε, and the levels and terrace energies all pairs share
     int species = 1;
-    // Symmetric tables indexed [a · maxSpecies + b]: σ_ab (Å) and ε_ab/ε.
-    std::array<double, maxSpecies * maxSpecies> sigma{};
-    std::array<double, maxSpecies * maxSpecies> energyScale{};
+    SpeciesPairTable<double> sigma;       // σ_ab, Å
+    SpeciesPairTable<double> energyScale; // ε_ab/ε
 
-    double pairSigma(int a, int b) const { return sigma[a * maxSpecies + b]; }
+    double pairSigma(int a, int b) const { return sigma(a, b); }
     /// ε_ab/ε: the factor of the pair's terrace energies over the shared ones.
-    double pairEnergyScale(int a, int b) const { return energyScale[a * maxSpecies + b]; }
+    double pairEnergyScale(int a, int b) const { return energyScale(a, b); }
     /// Sets the pair (a, b)'s ε (kJ/mol) and σ (Å), and its mirror's.
     void setPair(int a, int b, double eps, double sig) {
-        sigma[a * maxSpecies + b] = sigma[b * maxSpecies + a] = sig;
-        energyScale[a * maxSpecies + b] = energyScale[b * maxSpecies + a] = eps / steps.epsilon;
+        sigma.set(a, b, sig);
+        energyScale.set(a, b, eps / steps.epsilon);
     }
 
     /// φ_ab at squared distance r2 (Å²).
