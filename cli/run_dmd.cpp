@@ -6,21 +6,25 @@
 namespace terrace::cli {
 namespace {
 
-template <class M> dmd::DmdSettings dmdSettingsOf(const Scene& scene, const M& model) {
-    dmd::DmdSettings s = dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
-    s.bath = heatBathOf(scene);
-    return s;
+/// Calls fn.template operator()<K>(model, settings) with the scene's body kind K, the model DMD
+/// terraces and its settings (run.heat_bath among them), returning R.
+template <class R, class Fn> R withDmdModel(const Scene& scene, Fn&& fn) {
+    return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) -> R {
+        const auto model = sceneModel(scene, potential, true);
+        dmd::DmdSettings settings =
+            dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
+        settings.bath = heatBathOf(scene);
+        return fn.template operator()<K>(model, settings);
+    });
 }
 
 } // namespace
 
 RunOutcome runDmd(const Scene& scene, const RunTarget& target) {
-    return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) {
-        const auto model = sceneModel(scene, potential, true);
-        using M = std::remove_const_t<decltype(model)>;
+    return withDmdModel<RunOutcome>(scene, [&]<class K, class M>(const M& model,
+                                                                 const dmd::DmdSettings& settings) {
         using E = dmd::Engine<K, M>;
         // Read once: every engine of the run (restart points rebuild it) takes a copy.
-        const dmd::DmdSettings settings = dmdSettingsOf(scene, model);
         auto make = [&settings, seed = scene.seed](System<K, M>&& system,
                                                    nlohmann::json* checkpoint) {
             if (!checkpoint) return std::make_unique<E>(std::move(system), settings, seed);
@@ -31,13 +35,13 @@ RunOutcome runDmd(const Scene& scene, const RunTarget& target) {
 }
 
 std::unique_ptr<EngineHandle> makeDmdHandle(const Scene& scene) {
-    return withBodyAndPotential(
-        scene, [&]<class K, class P>(const P& potential) -> std::unique_ptr<EngineHandle> {
-            const auto model = sceneModel(scene, potential, true);
-            using M = std::remove_const_t<decltype(model)>;
+    return withDmdModel<std::unique_ptr<EngineHandle>>(
+        scene,
+        [&]<class K, class M>(const M& model,
+                              const dmd::DmdSettings& settings) -> std::unique_ptr<EngineHandle> {
             using E = dmd::Engine<K, M>;
-            return std::make_unique<EngineHandleOf<E, K::rotationalDof>>(std::make_unique<E>(
-                buildInitialState<K, M>(scene, model), dmdSettingsOf(scene, model), scene.seed));
+            return std::make_unique<EngineHandleOf<E, K::rotationalDof>>(
+                std::make_unique<E>(buildInitialState<K, M>(scene, model), settings, scene.seed));
         });
 }
 
