@@ -51,24 +51,28 @@ say() { echo "quickstart: $*" >&2; }
 # Recommended packages are left out: for `test` on a fresh Debian 12 they are 120 of 423 packages
 # (ImageMagick, Ghostscript, gnupg, LLVM's headers, …), none of which a step here uses
 # (docs/PERFORMANCE.md, "The quick start's cost").
-install_missing() {
-    local missing=() p
+# missing PACKAGE... : those of the packages that are not installed, one per line.
+missing() {
+    local p
     for p in "$@"; do
-        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
-            missing+=("$p")
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || echo "$p"
     done
-    if [ ${#missing[@]} -eq 0 ]; then
+}
+install_missing() {
+    local missing_now=()
+    mapfile -t missing_now < <(missing "$@")
+    if [ ${#missing_now[@]} -eq 0 ]; then
         say "the $# packages needed are installed"
         return
     fi
     local sudo="" count
     [ "$(id -u)" -eq 0 ] || sudo="sudo"
-    say "missing ${#missing[@]} of $# packages: ${missing[*]}; reading the package lists"
+    say "missing ${#missing_now[@]} of $# packages: ${missing_now[*]}; reading the package lists"
     $sudo apt-get update -qq
-    count=$(apt-get install -s --no-install-recommends "${missing[@]}" | grep -c '^Inst ' || true)
+    count=$(apt-get install -s --no-install-recommends "${missing_now[@]}" | grep -c '^Inst ' || true)
     say "installing $count packages with their dependencies (some minutes: progress every 20)"
     $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
-        "${missing[@]}" |
+        "${missing_now[@]}" |
         awk -v n="$count" '
             /^Get:/ { g++; if (g % 20 == 0 || g == n) printf "quickstart:   downloaded %d of %d\n", g, n > "/dev/stderr" }
             /^Setting up / { s++; if (s % 20 == 0 || s == n) printf "quickstart:   set up %d of %d\n", s, n > "/dev/stderr" }'
@@ -253,8 +257,24 @@ run)
     step_table
     ;;
 test)
-    step install "the packages that building and testing need" \
-        install_missing "${run_packages[@]}" "${test_packages[@]}"
+    # The test packages take minutes to download and unpack, most of it waiting on the network
+    # and the disk: where some are missing, what `run` builds is compiled meanwhile, and the build
+    # of everything then reuses it (the libraries' flags do not depend on what the test packages
+    # add; docs/PERFORMANCE.md, "The quick start's cost").
+    if [ -n "$(missing "${test_packages[@]}")" ]; then
+        step install "the packages that building and running need" \
+            install_missing "${run_packages[@]}"
+        # Its progress lines come between the build's.
+        install_missing "${test_packages[@]}" &
+        install_pid=$!
+        step build-run-part "building terrace and paper_tools in build/ while they install" \
+            build build -DTERRACE_PROFILE= -DTERRACE_TESTS=OFF -DTERRACE_BENCH=OFF \
+            -DPython3_EXECUTABLE="$python" -- terrace paper_tools
+        step install-tests "waiting for the test packages to be installed" wait "$install_pid"
+    else
+        step install "the packages that building and testing need" \
+            install_missing "${run_packages[@]}" "${test_packages[@]}"
+    fi
     # No profile-guided pass: it changes the engines' speed only, not what they compute.
     step build "building everything in build/ (Release, assertions on)" \
         build build -DTERRACE_PROFILE= -DTERRACE_TESTS=ON -DTERRACE_BENCH=ON \

@@ -9,7 +9,8 @@
 # (r ≤ 12 Å), the VACF (t ≤ 1 ps) and the OACF (t ≤ 2 ps) with their statistical floors
 # (paper_tools error), and |Δ⟨U⟩/N| (kJ/mol; DMD's own, terraced energy) and |ΔP*| with the
 # replica errors of both combined. Cost: CPU s per simulated ps. Every design runs the ΔV ladder
-# 2 … ⅛ kT; SMD runs dt = 0.5 … 4 fs (a setting whose runs fail is listed as failed).
+# 2 … ⅛ kT; SMD runs dt = 0.5 … 4 fs (a setting whose runs fail is listed as failed); quick runs
+# shorter ladders (Makefile.paper's FRONT_DVS, FRONT_DTS, FRONT_SCHEME_DTS).
 # An SMD setting whose energy is not conserved (replicas' mean |drift| above
 # MAX_DRIFT_NKT_PER_PS · N kT per ps) is marked unstable and takes no part in SMD's front: the
 # equal-accuracy comparison is with SMD at a stable dt.
@@ -28,11 +29,11 @@ map-* | maplj-*)
 *)
     dir=$OUT/fronts figure=1
     designs=(uniform optimal virial distance)
-    dvs=(2 1 0.5 0.25 0.125)
-    dts=(0.5 1 1.8 3 4)
+    read -r -a dvs <<<"${FRONT_DVS:-2 1 0.5 0.25 0.125}"
+    read -r -a dts <<<"${FRONT_DTS:-0.5 1 1.8 3 4}"
     # SMD's other splittings (smd/splitting.hpp), each over the steps where it is competitive.
     schemes=(omelyan yoshida4)
-    scheme_dts=(1 1.8 3 4.5)
+    read -r -a scheme_dts <<<"${FRONT_SCHEME_DTS:-1 1.8 3 4.5}"
     ;;
 esac
 mkdir -p "$dir"
@@ -43,14 +44,13 @@ ref_dt=${ref##*/smd-}
 ref_dt=${ref_dt%-ref}
 table=$dir/fronts-$state.csv
 
-# replica_stats DIR KEY : mean and error over the replicas of a summary key (per body for U).
+# replica_stats DIR KEY PER_BODY : mean and error over the replicas of a summary key (per body
+# where PER_BODY is 1).
 replica_stats() {
-    local d values=()
-    for d in $(replica_dirs "$1"); do
-        values+=("$("$TOOLS" get "$d/summary.json" "$2" n_bodies |
-            awk -F, -v perBody="$3" '{ printf "%.12g", perBody ? $1 / $2 : $1 }')")
-    done
-    "$TOOLS" stats "${values[@]}"
+    local scale=total
+    [ "$3" = 1 ] && scale=per-body
+    # shellcheck disable=SC2046
+    "$TOOLS" replica-stats "$2" "$scale" $(replica_dirs "$1")
 }
 
 # 0.1 % of the thermal energy per ps: 10 % over a 100 ps run.
@@ -58,13 +58,8 @@ MAX_DRIFT_NKT_PER_PS=1e-3
 
 # drift_per_nkt DIR : the replicas' mean |energy drift| in units of N kT per ps.
 drift_per_nkt() {
-    local d values=()
-    for d in $(replica_dirs "$1"); do
-        # kT in kJ/mol: R T, R = 8.314462618e-3 kJ/(mol K).
-        values+=("$("$TOOLS" get "$d/summary.json" energy.drift_per_ps n_bodies temperature_target_K |
-            awk -F, '{ d = $1 < 0 ? -$1 : $1; printf "%.12g", d / ($2 * $3 * 8.314462618e-3) }')")
-    done
-    "$TOOLS" stats "${values[@]}" | cut -d' ' -f1
+    # shellcheck disable=SC2046
+    "$TOOLS" replica-stats energy.drift_per_ps abs-per-nkt $(replica_dirs "$1") | cut -d' ' -f1
 }
 
 read -r refU refUErr < <(replica_stats "$ref" potential_energy_mean 1)

@@ -8,6 +8,8 @@
 //   summary LABEL DIR...                  one table row over replica runs (summaries.hpp)
 //   get FILE.json KEY...                  values of dotted keys, comma separated
 //   stats X...                            replica mean and standard error (convergence.hpp)
+//   replica-stats KEY SCALE DIR...        the same of a summary key over replica runs, SCALE
+//                                         total | per-body | abs-per-nkt (summaries.hpp)
 //   configurational DIR                   the continuous model's U and P on DIR's trajectory
 //                                         (configurational.hpp), as JSON
 //   order IN.csv OUT.csv                  orders of convergence of a table (convergence.hpp)
@@ -38,6 +40,7 @@ int usage() {
                  "       paper_tools summary LABEL DIR...\n"
                  "       paper_tools get FILE.json KEY...\n"
                  "       paper_tools stats X...\n"
+                 "       paper_tools replica-stats KEY total|per-body|abs-per-nkt DIR...\n"
                  "       paper_tools configurational DIR\n"
                  "       paper_tools order IN.csv OUT.csv\n"
                  "       paper_tools equal-accuracy FRONTS.csv SET\n";
@@ -71,6 +74,15 @@ int run(const std::vector<std::string>& a) {
         std::vector<double> x;
         for (std::size_t k = 1; k < a.size(); ++k)
             x.push_back(std::stod(a[k]));
+        const auto m = experiments::replicaStatistics(x);
+        std::printf("%.10g %.6g\n", m.mean, m.error);
+    } else if (cmd == "replica-stats" && a.size() >= 4) {
+        // One process for a set's replicas: the scripts' loops over them spent more time
+        // starting programs than reading summaries.
+        const auto scale = experiments::summaryScale(a[2]);
+        std::vector<double> x;
+        for (std::size_t k = 3; k < a.size(); ++k)
+            x.push_back(experiments::replicaValue(a[k], a[1], scale));
         const auto m = experiments::replicaStatistics(x);
         std::printf("%.10g %.6g\n", m.mean, m.error);
     } else if (cmd == "configurational" && a.size() == 2) {

@@ -81,6 +81,43 @@ std::string summaryRow(const std::string& label, const std::vector<std::filesyst
     return row.str();
 }
 
+namespace {
+
+const nlohmann::json* dotted(const nlohmann::json& j, const std::string& key) {
+    const nlohmann::json* v = &j;
+    std::stringstream path(key);
+    for (std::string part; v && std::getline(path, part, '.');)
+        v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
+    return v;
+}
+
+} // namespace
+
+SummaryScale summaryScale(const std::string& name) {
+    if (name == "total") return SummaryScale::total;
+    if (name == "per-body") return SummaryScale::perBody;
+    if (name == "abs-per-nkt") return SummaryScale::magnitudePerNkT;
+    throw std::invalid_argument("unknown scale '" + name + "' (total, per-body or abs-per-nkt)");
+}
+
+double replicaValue(const std::filesystem::path& dir, const std::string& key, SummaryScale scale) {
+    const nlohmann::json s = readSummary(dir);
+    const nlohmann::json* v = dotted(s, key);
+    if (!v || !v->is_number()) return NAN;
+    const double x = v->get<double>(), n = number(s, "n_bodies");
+    // R = 8.314462618e-3 kJ/(mol K): kT in kJ/mol at the run's target temperature.
+    constexpr double gasConstant = 8.314462618e-3;
+    switch (scale) {
+    case SummaryScale::total:
+        return x;
+    case SummaryScale::perBody:
+        return x / n;
+    case SummaryScale::magnitudePerNkT:
+        return std::abs(x) / (n * gasConstant * number(s, "temperature_target_K"));
+    }
+    return NAN;
+}
+
 std::string jsonValues(const std::filesystem::path& file, const std::vector<std::string>& keys) {
     std::ifstream in(file);
     if (!in) throw std::runtime_error(file.string() + ": cannot read");
@@ -89,10 +126,7 @@ std::string jsonValues(const std::filesystem::path& file, const std::vector<std:
     std::ostringstream out;
     out.precision(8);
     for (std::size_t k = 0; k < keys.size(); ++k) {
-        const nlohmann::json* v = &j;
-        std::stringstream path(keys[k]);
-        for (std::string part; v && std::getline(path, part, '.');)
-            v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
+        const nlohmann::json* v = dotted(j, keys[k]);
         if (k > 0) out << ',';
         if (v && v->is_boolean())
             out << (v->get<bool>() ? 1 : 0);

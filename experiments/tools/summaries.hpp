@@ -26,4 +26,15 @@ std::string summaryRow(const std::string& label, const std::vector<std::filesyst
 /// or a non-number gives "nan", a boolean 1 or 0.
 std::string jsonValues(const std::filesystem::path& file, const std::vector<std::string>& keys);
 
+/// How replicaValue scales a summary key: as it is, per body (÷ n_bodies), or as a magnitude per
+/// N kT (|x| ÷ (n_bodies · R · temperature_target_K), kT in kJ/mol: an energy rate's share of the
+/// thermal energy).
+enum class SummaryScale { total, perBody, magnitudePerNkT };
+
+/// Parses "total", "per-body" or "abs-per-nkt"; throws std::invalid_argument otherwise.
+SummaryScale summaryScale(const std::string& name);
+
+/// A dotted key of DIR/summary.json, scaled; NaN where the key is missing or not a number.
+double replicaValue(const std::filesystem::path& dir, const std::string& key, SummaryScale scale);
+
 } // namespace terrace::experiments

@@ -117,6 +117,28 @@ TEST(Summaries, RowsAverageReplicasAndReadNestedKeys) {
     fs::remove_all(d);
 }
 
+TEST(Summaries, ReplicaValuesScaleByBodiesAndByThermalEnergy) {
+    const fs::path d = scratch("replica-values");
+    fs::create_directories(d);
+    nlohmann::json s = {{"engine", "smd"},
+                        {"n_bodies", 200},
+                        {"temperature_target_K", 400.0},
+                        {"potential_energy_mean", -1000.0},
+                        {"energy", {{"drift_per_ps", -3.0}}}};
+    std::ofstream(d / "summary.json") << s.dump();
+    using ex::SummaryScale;
+    EXPECT_DOUBLE_EQ(ex::replicaValue(d, "potential_energy_mean", SummaryScale::total), -1000.0);
+    EXPECT_DOUBLE_EQ(ex::replicaValue(d, "potential_energy_mean", SummaryScale::perBody), -5.0);
+    // |−3| kJ/mol/ps over N kT = 200 · 8.314462618e-3 · 400 kJ/mol.
+    EXPECT_DOUBLE_EQ(ex::replicaValue(d, "energy.drift_per_ps", SummaryScale::magnitudePerNkT),
+                     3.0 / (200 * 8.314462618e-3 * 400.0));
+    EXPECT_TRUE(std::isnan(ex::replicaValue(d, "energy.missing", SummaryScale::total)));
+    EXPECT_EQ(ex::summaryScale("per-body"), SummaryScale::perBody);
+    EXPECT_THROW(ex::summaryScale("per-volume"), std::invalid_argument);
+    EXPECT_THROW(ex::replicaValue(d / "none", "n_bodies", SummaryScale::total), std::runtime_error);
+    fs::remove_all(d);
+}
+
 TEST(PotentialMap, TerracesFollowThePaperFigure) {
     const fs::path d = scratch("fig1");
     ex::PotentialMapSettings s;
