@@ -4,7 +4,8 @@
 #                             the built-in default scene with both engines and print them side by
 #                             side (experiments/versus.sh: table in out/versus/versus.txt, figure
 #                             out/versus/versus.png)
-#   ./quickstart.sh test      install what building and testing need, then the test command of CI
+#   ./quickstart.sh test      install what building and testing need (the test packages while
+#                             what `run` builds is compiled), then the test command of CI
 #                             (.ci/run): 1. build/: Release with assertions, the tests and
 #                             benchmarks and the Python module; 2. the whole test suite (ctest,
 #                             the Python module's pytest suite in a step of its own); then the
@@ -257,10 +258,11 @@ run)
     step_table
     ;;
 test)
-    # The test packages take minutes to download and unpack, most of it waiting on the network
-    # and the disk: where some are missing, what `run` builds is compiled meanwhile, and the build
-    # of everything then reuses it (the libraries' flags do not depend on what the test packages
-    # add; docs/PERFORMANCE.md, "The quick start's cost").
+    # The test packages take minutes to download and set up: where some are missing, what `run`
+    # builds is compiled meanwhile, and the build of everything then reuses it (the libraries'
+    # flags do not depend on what the test packages add). Setting packages up takes CPU too, so
+    # on two cores this saved ~40 s of the 167 that the install took alone (docs/PERFORMANCE.md,
+    # "The quick start's cost").
     if [ -n "$(missing "${test_packages[@]}")" ]; then
         step install "the packages that building and running need" \
             install_missing "${run_packages[@]}"
