@@ -2,6 +2,7 @@
 #include "cli/engine_handle.hpp"
 #include "cli/run_command.hpp"
 #include "dmd/engine.hpp"
+#include "dmd/scene_engine.hpp"
 
 namespace terrace::cli {
 namespace {
@@ -11,10 +12,8 @@ namespace {
 template <class R, class Fn> R withDmdModel(const Scene& scene, Fn&& fn) {
     return withBodyAndPotential(scene, [&]<class K, class P>(const P& potential) -> R {
         const auto model = sceneModel(scene, potential, true);
-        dmd::DmdSettings settings =
-            dmd::readDmdSettings(scene.dmd, model, scene.kT(), scene.boxLength());
-        settings.bath = heatBathOf(scene);
-        return fn.template operator()<K>(model, settings);
+        return fn.template operator()<K>(
+            model, dmd::sceneSettings(scene, model, scene.kT(), scene.boxLength()));
     });
 }
 

@@ -12,11 +12,18 @@
 
 namespace terrace::dmd {
 
-template <BodyKind K, PairPotential P>
-DmdSettings settingsFor(const Scene& scene, const System<K, P>& s) {
-    DmdSettings settings = readDmdSettings(scene.dmd, s.potential, s.kT, s.box.length);
+/// The DMD settings of `scene` for `model` at kT (kJ/mol) in a box of edge boxLength (Å): its
+/// dmd section and run.heat_bath (as smd::smdSettings is SMD's).
+template <PairPotential P>
+DmdSettings sceneSettings(const Scene& scene, const P& model, double kT, double boxLength) {
+    DmdSettings settings = readDmdSettings(scene.dmd, model, kT, boxLength);
     settings.bath = heatBathOf(scene);
     return settings;
+}
+
+template <BodyKind K, PairPotential P>
+DmdSettings settingsFor(const Scene& scene, const System<K, P>& s) {
+    return sceneSettings(scene, s.potential, s.kT, s.box.length);
 }
 
 template <BodyKind K, PairPotential P> class SceneEngine : public Engine<K, P> {

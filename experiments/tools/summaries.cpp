@@ -1,4 +1,5 @@
 #include "experiments/tools/summaries.hpp"
+#include "core/units.hpp"
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -30,6 +31,15 @@ const Quantity quantities[] = {
      [](const nlohmann::json& s) { return number(s["energy"], "drift_per_ps"); }},
     {"temperature_K", [](const nlohmann::json& s) { return number(s, "temperature_K"); }},
 };
+
+/// The value at a dotted key ("energy.drift_per_ps"), or null where the path does not exist.
+const nlohmann::json* dotted(const nlohmann::json& j, const std::string& key) {
+    const nlohmann::json* v = &j;
+    std::stringstream path(key);
+    for (std::string part; v && std::getline(path, part, '.');)
+        v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
+    return v;
+}
 
 nlohmann::json readSummary(const std::filesystem::path& dir) {
     std::ifstream in(dir / "summary.json");
@@ -81,18 +91,6 @@ std::string summaryRow(const std::string& label, const std::vector<std::filesyst
     return row.str();
 }
 
-namespace {
-
-const nlohmann::json* dotted(const nlohmann::json& j, const std::string& key) {
-    const nlohmann::json* v = &j;
-    std::stringstream path(key);
-    for (std::string part; v && std::getline(path, part, '.');)
-        v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
-    return v;
-}
-
-} // namespace
-
 SummaryScale summaryScale(const std::string& name) {
     if (name == "total") return SummaryScale::total;
     if (name == "per-body") return SummaryScale::perBody;
@@ -105,15 +103,13 @@ double replicaValue(const std::filesystem::path& dir, const std::string& key, Su
     const nlohmann::json* v = dotted(s, key);
     if (!v || !v->is_number()) return NAN;
     const double x = v->get<double>(), n = number(s, "n_bodies");
-    // R = 8.314462618e-3 kJ/(mol K): kT in kJ/mol at the run's target temperature.
-    constexpr double gasConstant = 8.314462618e-3;
     switch (scale) {
     case SummaryScale::total:
         return x;
     case SummaryScale::perBody:
         return x / n;
     case SummaryScale::magnitudePerNkT:
-        return std::abs(x) / (n * gasConstant * number(s, "temperature_target_K"));
+        return std::abs(x) / (n * units::kB * number(s, "temperature_target_K"));
     }
     return NAN;
 }

@@ -27,7 +27,7 @@ std::string summaryRow(const std::string& label, const std::vector<std::filesyst
 std::string jsonValues(const std::filesystem::path& file, const std::vector<std::string>& keys);
 
 /// How replicaValue scales a summary key: as it is, per body (÷ n_bodies), or as a magnitude per
-/// N kT (|x| ÷ (n_bodies · R · temperature_target_K), kT in kJ/mol: an energy rate's share of the
+/// N kT (|x| ÷ (n_bodies · k_B · temperature_target_K), kT in kJ/mol: an energy rate's share of the
 /// thermal energy).
 enum class SummaryScale { total, perBody, magnitudePerNkT };
 

@@ -3,6 +3,7 @@
 // model's energy and pressure on a trajectory.
 #include "core/lj_potential.hpp"
 #include "core/scene.hpp"
+#include "core/units.hpp"
 #include "core/xyz.hpp"
 #include "experiments/tools/configurational.hpp"
 #include "experiments/tools/convergence.hpp"
@@ -129,9 +130,9 @@ TEST(Summaries, ReplicaValuesScaleByBodiesAndByThermalEnergy) {
     using ex::SummaryScale;
     EXPECT_DOUBLE_EQ(ex::replicaValue(d, "potential_energy_mean", SummaryScale::total), -1000.0);
     EXPECT_DOUBLE_EQ(ex::replicaValue(d, "potential_energy_mean", SummaryScale::perBody), -5.0);
-    // |−3| kJ/mol/ps over N kT = 200 · 8.314462618e-3 · 400 kJ/mol.
+    // |−3| kJ/mol/ps over N kT = 200 · k_B · 400 K, k_B in kJ/(mol K).
     EXPECT_DOUBLE_EQ(ex::replicaValue(d, "energy.drift_per_ps", SummaryScale::magnitudePerNkT),
-                     3.0 / (200 * 8.314462618e-3 * 400.0));
+                     3.0 / (200 * terrace::units::kB * 400.0));
     EXPECT_TRUE(std::isnan(ex::replicaValue(d, "energy.missing", SummaryScale::total)));
     EXPECT_EQ(ex::summaryScale("per-body"), SummaryScale::perBody);
     EXPECT_THROW(ex::summaryScale("per-volume"), std::invalid_argument);
