@@ -959,9 +959,13 @@ int runTradeoff(const TradeoffOptions& options) {
         out["cost"] = costRecord;
         const std::string other = dom->bound->setting.engine == "dmd" ? "DMD" : "SMD";
         const std::string why =
-            dom->floor.within
-                ? format("%s's cheapest setting within is %s", other.c_str(),
-                         describe(dom->bound->setting, t).c_str())
+            dom->floor.within ? format("%s's cheapest setting within is %s", other.c_str(),
+                                       describe(dom->bound->setting, t).c_str())
+            : dom->floor.ladderEnd
+                ? format("%s's cheapest setting run, %s, is the floor: none of its settings is "
+                         "resolved outside with a bias that grows, and none coarser than its "
+                         "ladders' is a candidate",
+                         other.c_str(), describe(dom->bound->setting, t).c_str())
                 : format("%s's most accurate setting that bounds it, %s, is outside on %s by "
                          "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",
                          other.c_str(), describe(dom->bound->setting, t).c_str(),
@@ -969,17 +973,20 @@ int runTradeoff(const TradeoffOptions& options) {
                          dom->floor.ruling.bias.mean / dom->floor.ruling.tolerance,
                          dom->floor.ruling.bias.err / dom->floor.ruling.tolerance);
         out["cost"]["bound"] = {{"setting", dom->bound->setting.label()},
-                                {"within", dom->floor.within}};
-        if (!dom->floor.within)
+                                {"within", dom->floor.within},
+                                {"ladder_end", dom->floor.ladderEnd}};
+        if (!dom->floor.within && !dom->floor.ladderEnd)
             out["cost"]["bound"]["ruling"] =
                 biasJson(dom->floor.ruling, dom->bound->setting.engine);
         if (ratio.lo > 1.0) {
             verdict =
                 format("%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s setting "
-                       "within tolerance at %s (N %d): %s",
+                       "%s at %s (N %d): %s",
                        describe(dom->chosen->setting, t).c_str(), ratio.median, ratio.lo, ratio.hi,
-                       100.0 * ratio.level, other.c_str(), toleranceText(t).c_str(),
-                       t.scene.state.n, why.c_str());
+                       100.0 * ratio.level, other.c_str(),
+                       dom->floor.ladderEnd ? "of its ladders, within tolerance or not,"
+                                            : "within tolerance",
+                       toleranceText(t).c_str(), t.scene.state.n, why.c_str());
         } else {
             verdict =
                 format("no verdict: at N %d the cost window does not resolve %s (%.2fx, "

@@ -8,9 +8,11 @@
 // with x on the coarser rungs (same sign, never resolved smaller) bounds the ladder: every
 // setting within tolerance has a smaller x, so costs at least that rung. The least such floor
 // over an engine's ladders (a ladder with a Within rung counts that rung's cost too; a ladder
-// with no Outside rung has no floor, so neither has the engine) bounds the engine's cost at the
-// tolerance from below. When it is above the other engine's chosen cost, the question "which is
-// cheaper" is answered with a ratio that is itself a lower bound: it says "at least".
+// with no Outside rung that bounds it is bounded by its cheapest rung: no candidate lies above its
+// coarsest, the bias laws placing settings only between rungs or below the most accurate) bounds
+// the engine's cost at the tolerance from below. When it is above the other engine's chosen cost,
+// the question "which is cheaper" is answered with a ratio that is itself a lower bound: it says
+// "at least".
 #include "cli/tradeoff_measure.hpp"
 #include <optional>
 #include <vector>
@@ -30,11 +32,13 @@ struct RungView {
 struct CostFloor {
     int ladder = -1, rung = -1; // indices into the ladders given
     double cost = 0.0;
-    bool within = false;   // the floor is a Within rung's own cost (not an Outside rung's)
-    ObservableBias ruling; // the observable that rules the Outside rung out (within: unset)
+    bool within = false;    // the floor is a Within rung's own cost (not an Outside rung's)
+    ObservableBias ruling;  // the observable that rules the Outside rung out (within: unset)
+    bool ladderEnd = false; // nothing is ruled out: the ladder's cheapest rung, within or not
 };
 
-/// A ladder's floor (ladder index `index` copied into the result), or nullopt when it has none.
+/// A ladder's floor (ladder index `index` copied into the result), or nullopt when it has none
+/// (its coarsest rung that ran has no cost yet).
 /// `z` is the tradeoff's normal deviate: a coarser rung's |bias| contradicts the growth when it
 /// is resolved below the floor rung's, |b| + z·σ_b < |b_o| − z·σ_o.
 std::optional<CostFloor> ladderCostFloor(const std::vector<RungView>& ladder, int index, double z);

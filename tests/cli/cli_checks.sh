@@ -1346,14 +1346,15 @@ sweep_mpi)
     ;;
 tradeoff)
     # terrace tradeoff end to end on a small LJ gas with loose tolerances: a verdict with an
-    # interval and its files; then the chosen settings' biases re-measured by independent runs
-    # (other seeds, twice as long), each found within its tolerance (not outside it at 2 sigma).
+    # interval and its files (--frontier: both engines' cheapest settings resolved); then the
+    # chosen settings' biases re-measured by independent runs (other seeds, twice as long), each
+    # found within its tolerance (not outside it at 2 sigma).
     tiny=(--set state.n=108 --set state.density=0.3 --set state.temperature=2
           --set run.equilibrate_ps=0.45 --set run.time_ps=1.8 --set smd.dt_fs=0.5)
     "$terrace" tradeoff "$src/experiments/scenes/lj-liquid.json" "${tiny[@]}" --observables u,p \
         --tolerance u=5% --tolerance p=15% --dV 0.5,0.25,0.125 --designs uniform --schemes verlet \
-        --max-replicas 16 --cost-pairs 3 -j 2 --out "$work/t" --quiet >"$work/verdict" 2>"$work/err" ||
-        fail "tradeoff: exit status $?: $(cat "$work/verdict" "$work/err")"
+        --max-replicas 16 --cost-pairs 3 -j 2 --frontier --out "$work/t" --quiet \
+        >"$work/verdict" 2>"$work/err" || fail "tradeoff: exit status $?: $(cat "$work/verdict" "$work/err")"
     grep -Eq 'is [0-9.]+x \([0-9.]+-[0-9.]+, 75 %\) cheaper than' "$work/verdict" ||
         fail "no verdict with an interval: $(cat "$work/verdict")"
     for f in tradeoff.json tradeoff.csv; do [ -s "$work/t/$f" ] || fail "no $f"; done
@@ -1364,6 +1365,15 @@ tradeoff)
         --quiet || fail "the re-measuring runs failed"
     python3 "$src/tests/cli/tradeoff_recheck.py" check "$work/t/tradeoff.json" "$work/re" ||
         fail "a chosen setting's bias is outside its tolerance in independent runs"
+    # Without --frontier, from the same runs: every DMD setting of the ladder was timed dearer
+    # than SMD's within, none resolved outside, so the ladder's cheapest bounds DMD's cost.
+    "$terrace" tradeoff "$src/experiments/scenes/lj-liquid.json" "${tiny[@]}" --observables u,p \
+        --tolerance u=5% --tolerance p=15% --dV 0.5,0.25,0.125 --designs uniform --schemes verlet \
+        --max-replicas 16 --cost-pairs 3 -j 2 --out "$work/t" --quiet >"$work/early" 2>"$work/err" ||
+        fail "tradeoff's early stop: exit status $?: $(cat "$work/early" "$work/err")"
+    grep -Eq '^SMD verlet .* is at least [0-9.]+x \([0-9.]+-[0-9.]+, 75 %\) cheaper than any DMD setting of its ladders, within tolerance or not, .*: DMD.s cheapest setting run, DMD dV = 0.5 kT' \
+        "$work/early" || fail "no early stop at the ladder's end: $(cat "$work/early")"
+    grep -q '"ladder_end": true' "$work/t/tradeoff.json" || fail "tradeoff.json: no ladder_end bound"
     # No verdict says why, per engine: from the same runs (two replicas each, no new run), a
     # tolerance on u that two replicas cannot resolve.
     status=0

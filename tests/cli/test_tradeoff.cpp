@@ -402,7 +402,10 @@ TEST(TradeoffDominance, ABiasThatShrinksOrTurnsOnACoarserRungDoesNotBound) {
     l = growingLadder();
     l[3].decision = Decision::Unresolved; // resolved smaller at x = 1 than at 0.25 and 0.5
     l[3].biases[1] = biasOf(Observable::D, -0.1, 0.1, Decision::Unresolved);
-    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0));
+    f = ladderCostFloor(l, 0, 2.0); // neither bounds: only the ladder's end, its cheapest rung
+    ASSERT_TRUE(f);
+    EXPECT_TRUE(f->ladderEnd);
+    EXPECT_EQ(f->rung, 3);
     l = growingLadder();
     l[3].biases[1].bias = {-1.9, 0.1}; // smaller, but not resolved smaller than at 0.25
     f = ladderCostFloor(l, 0, 2.0);
@@ -421,11 +424,55 @@ TEST(TradeoffDominance, AWithinRungCheaperThanTheFloorIsTheFloor) {
     EXPECT_DOUBLE_EQ(f->cost, 3.0);
 }
 
-TEST(TradeoffDominance, NoFloorWithoutAnOutsideRungAndFailuresBoundNothing) {
+TEST(TradeoffDominance, WithNothingOutsideTheCheapestRungThatRanIsTheFloor) {
+    // Every rung unresolved: the candidates lie at or below the coarsest, so its cost bounds.
+    auto l = growingLadder();
+    for (auto& r : l) {
+        r.decision = Decision::Unresolved;
+        for (auto& b : r.biases)
+            b.decision = Decision::Unresolved;
+    }
+    auto f = ladderCostFloor(l, 2, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_TRUE(f->ladderEnd);
+    EXPECT_FALSE(f->within);
+    EXPECT_EQ(f->ladder, 2);
+    EXPECT_EQ(f->rung, 3);
+    EXPECT_DOUBLE_EQ(f->cost, 1.0);
+    // Against the rule a finer rung timed cheaper: the cheapest timed is the bound, not the end.
+    l[2].cost = 0.5;
+    f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->rung, 2);
+    EXPECT_DOUBLE_EQ(f->cost, 0.5);
+    // The coarsest not timed yet may be the cheapest: no floor until it is.
+    l[3].cost = NAN;
+    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0));
+    // A rung past the stability limit is no candidate: the coarsest that ran ends the ladder.
+    l[3].failed = true;
+    f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->rung, 2);
+    // A bound from inside the ladder is kept where there is one: it is the higher.
+    f = ladderCostFloor(growingLadder(), 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_FALSE(f->ladderEnd);
+    EXPECT_DOUBLE_EQ(f->cost, 4.0);
+}
+
+TEST(TradeoffDominance, FailuresBoundNothingAndAnEngineTakesItsLeastFloor) {
     auto l = growingLadder();
     for (auto& r : l)
         if (r.decision == Decision::Outside) r.failed = true, r.cost = NAN, r.biases.clear();
-    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0));
+    // Only the finest rung ran: it ends the ladder and is its floor.
+    auto f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_TRUE(f->ladderEnd);
+    EXPECT_EQ(f->rung, 0);
+    EXPECT_DOUBLE_EQ(f->cost, 8.0);
+    for (auto& r : l)
+        r.failed = true;
+    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0)); // nothing ran: nothing bounds
     // An engine's floor is the least of its ladders', and none when one ladder has none.
     auto cheap = growingLadder();
     for (auto& r : cheap)
