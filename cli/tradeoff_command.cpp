@@ -962,9 +962,9 @@ int runTradeoff(const TradeoffOptions& options) {
             dom->floor.within ? format("%s's cheapest setting within is %s", other.c_str(),
                                        describe(dom->bound->setting, t).c_str())
             : dom->floor.ladderEnd
-                ? format("%s's cheapest setting run, %s, is the floor: none of its settings is "
-                         "resolved outside with a bias that grows, and none coarser than its "
-                         "ladders' is a candidate",
+                ? format("%s's coarsest setting that ran, %s, is the floor: none of its "
+                         "settings is resolved outside with a bias that grows, and none coarser "
+                         "is a candidate",
                          other.c_str(), describe(dom->bound->setting, t).c_str())
                 : format("%s's most accurate setting that bounds it, %s, is outside on %s by "
                          "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",

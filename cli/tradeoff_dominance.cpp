@@ -48,18 +48,15 @@ std::optional<CostFloor> ladderCostFloor(const std::vector<RungView>& ladder, in
     if (!floor) {
         // Nothing bounds the ladder from inside, but its candidates do not go past its coarsest
         // rung that ran (the bias laws place settings between rungs or below the most accurate,
-        // never above the coarsest), so, with cost falling as x grows, its cheapest rung bounds
-        // every setting it holds. The coarsest must have been timed, or a cheaper one may wait.
-        int coarsest = -1, cheapest = -1;
-        for (int i = 0; i < int(ladder.size()); ++i) {
-            if (ladder[i].failed) continue;
-            if (coarsest < 0 || ladder[i].x > ladder[coarsest].x) coarsest = i;
-            if (std::isfinite(ladder[i].cost) &&
-                (cheapest < 0 || ladder[i].cost < ladder[cheapest].cost))
-                cheapest = i;
-        }
+        // never above the coarsest), so, with cost falling as x grows, that rung's cost bounds
+        // every setting the ladder holds. It is the coarsest, not the rung timed cheapest: a
+        // finer rung timed cheaper by noise would overstate the bound. Untimed, it bounds nothing.
+        int coarsest = -1;
+        for (int i = 0; i < int(ladder.size()); ++i)
+            if (!ladder[i].failed && (coarsest < 0 || ladder[i].x > ladder[coarsest].x))
+                coarsest = i;
         if (coarsest < 0 || !std::isfinite(ladder[coarsest].cost)) return std::nullopt;
-        floor = CostFloor{index, cheapest, ladder[cheapest].cost, false, {}, true};
+        floor = CostFloor{index, coarsest, ladder[coarsest].cost, false, {}, true};
     }
     // A Within rung (of any x) is a setting within tolerance: the floor cannot lie above it.
     for (int i = 0; i < int(ladder.size()); ++i)

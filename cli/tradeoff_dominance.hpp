@@ -8,8 +8,8 @@
 // with x on the coarser rungs (same sign, never resolved smaller) bounds the ladder: every
 // setting within tolerance has a smaller x, so costs at least that rung. The least such floor
 // over an engine's ladders (a ladder with a Within rung counts that rung's cost too; a ladder
-// with no Outside rung that bounds it is bounded by its cheapest rung: no candidate lies above its
-// coarsest, the bias laws placing settings only between rungs or below the most accurate) bounds
+// with no Outside rung that bounds it is bounded by its coarsest rung that ran: no candidate lies
+// above it, the bias laws placing settings only between rungs or below the most accurate) bounds
 // the engine's cost at the tolerance from below. When it is above the other engine's chosen cost,
 // the question "which is cheaper" is answered with a ratio that is itself a lower bound: it says
 // "at least".
@@ -34,7 +34,7 @@ struct CostFloor {
     double cost = 0.0;
     bool within = false;    // the floor is a Within rung's own cost (not an Outside rung's)
     ObservableBias ruling;  // the observable that rules the Outside rung out (within: unset)
-    bool ladderEnd = false; // nothing is ruled out: the ladder's cheapest rung, within or not
+    bool ladderEnd = false; // nothing is ruled out: the ladder's coarsest rung, within or not
 };
 
 /// A ladder's floor (ladder index `index` copied into the result), or nullopt when it has none

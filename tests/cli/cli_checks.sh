@@ -1366,12 +1366,12 @@ tradeoff)
     python3 "$src/tests/cli/tradeoff_recheck.py" check "$work/t/tradeoff.json" "$work/re" ||
         fail "a chosen setting's bias is outside its tolerance in independent runs"
     # Without --frontier, from the same runs: every DMD setting of the ladder was timed dearer
-    # than SMD's within, none resolved outside, so the ladder's cheapest bounds DMD's cost.
+    # than SMD's within, none resolved outside, so the ladder's coarsest bounds DMD's cost.
     "$terrace" tradeoff "$src/experiments/scenes/lj-liquid.json" "${tiny[@]}" --observables u,p \
         --tolerance u=5% --tolerance p=15% --dV 0.5,0.25,0.125 --designs uniform --schemes verlet \
         --max-replicas 16 --cost-pairs 3 -j 2 --out "$work/t" --quiet >"$work/early" 2>"$work/err" ||
         fail "tradeoff's early stop: exit status $?: $(cat "$work/early" "$work/err")"
-    grep -Eq '^SMD verlet .* is at least [0-9.]+x \([0-9.]+-[0-9.]+, 75 %\) cheaper than any DMD setting of its ladders, within tolerance or not, .*: DMD.s cheapest setting run, DMD dV = 0.5 kT' \
+    grep -Eq '^SMD verlet .* is at least [0-9.]+x \([0-9.]+-[0-9.]+, 75 %\) cheaper than any DMD setting of its ladders, within tolerance or not, .*: DMD.s coarsest setting that ran, DMD dV = 0.5 kT' \
         "$work/early" || fail "no early stop at the ladder's end: $(cat "$work/early")"
     grep -q '"ladder_end": true' "$work/t/tradeoff.json" || fail "tradeoff.json: no ladder_end bound"
     # No verdict says why, per engine: from the same runs (two replicas each, no new run), a

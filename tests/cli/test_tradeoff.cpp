@@ -439,12 +439,13 @@ TEST(TradeoffDominance, WithNothingOutsideTheCheapestRungThatRanIsTheFloor) {
     EXPECT_EQ(f->ladder, 2);
     EXPECT_EQ(f->rung, 3);
     EXPECT_DOUBLE_EQ(f->cost, 1.0);
-    // Against the rule a finer rung timed cheaper: the cheapest timed is the bound, not the end.
+    // A finer rung timed cheaper (noise, against the rule) does not lift the bound above the
+    // coarsest's own cost: the coarsest is the floor.
     l[2].cost = 0.5;
     f = ladderCostFloor(l, 0, 2.0);
     ASSERT_TRUE(f);
-    EXPECT_EQ(f->rung, 2);
-    EXPECT_DOUBLE_EQ(f->cost, 0.5);
+    EXPECT_EQ(f->rung, 3);
+    EXPECT_DOUBLE_EQ(f->cost, 1.0);
     // The coarsest not timed yet may be the cheapest: no floor until it is.
     l[3].cost = NAN;
     EXPECT_FALSE(ladderCostFloor(l, 0, 2.0));
