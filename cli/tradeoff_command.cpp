@@ -31,7 +31,8 @@ struct Rung {
     std::vector<ObservableBias> biases;
     std::vector<ObservableBias> alternatives; // DMD: the estimator not chosen, for comparison
     Decision decision = Decision::Unresolved;
-    std::string failure; // the stability limit, or why a rung cannot be judged
+    std::string failure;          // the stability limit, or why a rung cannot be judged
+    bool beyondStability = false; // a replica met SMD's stability limit (failure says how)
 
     int ok() const {
         return int(std::count_if(replicas.begin(), replicas.end(),
@@ -163,8 +164,13 @@ void judge(Tradeoff& t, Rung& r) {
     r.biases.clear();
     r.alternatives.clear();
     r.failure.clear();
+    r.beyondStability = false;
     for (const auto& x : r.replicas)
-        if (!x.ok && !x.failure.empty()) r.failure = x.failure;
+        if (!x.ok && !x.failure.empty()) {
+            // The stability limit is the failure a rung is known by, where a replica met it.
+            if (x.beyondStability || !r.beyondStability) r.failure = x.failure;
+            r.beyondStability = r.beyondStability || x.beyondStability;
+        }
     if (!r.failure.empty()) {
         r.decision = Decision::Outside;
         return;
@@ -482,6 +488,7 @@ nlohmann::json rungJson(const Rung& r) {
         {"cpu_s_per_ps", std::isfinite(r.cost()) ? nlohmann::json(r.cost()) : nlohmann::json()},
         {"decision", decisionName(r.decision)}};
     if (!r.failure.empty()) j["failure"] = r.failure;
+    if (r.beyondStability) j["beyond_stability"] = true;
     j["biases"] = nlohmann::json::array();
     for (const auto& b : r.biases)
         j["biases"].push_back(biasJson(b, r.setting.engine));
@@ -660,6 +667,9 @@ struct Dominance {
     // The other ladders' floors within rivalFactor of the least at the bias runs' N: at the
     // scene's N any of them may be the cheapest, so each is timed and the weakest bound kept.
     std::vector<std::pair<const Rung*, CostFloor>> rivals;
+    // Some ladder of the other engine is bounded only by its coarsest rung: the claim covers
+    // settings no coarser than its ladders' (whichever floor is stated).
+    bool ladderEnd = false;
 };
 
 /// Floors further apart than this at the bias runs' N are taken to keep their order at the
@@ -678,7 +688,8 @@ template <class... A> std::string format(const char* f, A... a) {
 std::vector<RungView> viewsOf(const std::vector<Rung>& ladder) {
     std::vector<RungView> views;
     for (const Rung& r : ladder)
-        views.push_back({r.setting.x, r.cost(), r.decision, !r.failure.empty(), r.biases});
+        views.push_back(
+            {r.setting.x, r.cost(), r.decision, !r.failure.empty(), r.beyondStability, r.biases});
     return views;
 }
 
@@ -697,10 +708,12 @@ std::optional<Dominance> dominance(const Tradeoff& t) {
         const auto floor = engineCostFloor(other, t.z);
         if (!floor || !(floor->cost >= dominanceMargin * chosen->cost())) continue;
         Dominance d{chosen, &(*ladders[floor->ladder])[floor->rung], *floor, {}};
-        for (int l = 0; l < int(other.size()); ++l)
-            if (const auto f = ladderCostFloor(other[l], l, t.z);
-                f && l != floor->ladder && f->cost <= rivalFactor * floor->cost)
+        for (int l = 0; l < int(other.size()); ++l) {
+            const auto f = ladderCostFloor(other[l], l, t.z);
+            d.ladderEnd = d.ladderEnd || (f && f->ladderEnd);
+            if (f && l != floor->ladder && f->cost <= rivalFactor * floor->cost)
                 d.rivals.push_back({&(*ladders[l])[f->rung], *f});
+        }
         return d;
     }
     return std::nullopt;
@@ -962,10 +975,11 @@ int runTradeoff(const TradeoffOptions& options) {
             dom->floor.within ? format("%s's cheapest setting within is %s", other.c_str(),
                                        describe(dom->bound->setting, t).c_str())
             : dom->floor.ladderEnd
-                ? format("%s's coarsest setting that ran, %s, is the floor: none of its "
+                ? format("%s's coarsest setting%s, %s, is the floor: none of that ladder's "
                          "settings is resolved outside with a bias that grows, and none coarser "
                          "is a candidate",
-                         other.c_str(), describe(dom->bound->setting, t).c_str())
+                         other.c_str(), other == "SMD" ? " short of the stability limit" : "",
+                         describe(dom->bound->setting, t).c_str())
                 : format("%s's most accurate setting that bounds it, %s, is outside on %s by "
                          "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",
                          other.c_str(), describe(dom->bound->setting, t).c_str(),
@@ -974,7 +988,7 @@ int runTradeoff(const TradeoffOptions& options) {
                          dom->floor.ruling.bias.err / dom->floor.ruling.tolerance);
         out["cost"]["bound"] = {{"setting", dom->bound->setting.label()},
                                 {"within", dom->floor.within},
-                                {"ladder_end", dom->floor.ladderEnd}};
+                                {"ladder_end", dom->ladderEnd}};
         if (!dom->floor.within && !dom->floor.ladderEnd)
             out["cost"]["bound"]["ruling"] =
                 biasJson(dom->floor.ruling, dom->bound->setting.engine);
@@ -984,8 +998,8 @@ int runTradeoff(const TradeoffOptions& options) {
                        "%s at %s (N %d): %s",
                        describe(dom->chosen->setting, t).c_str(), ratio.median, ratio.lo, ratio.hi,
                        100.0 * ratio.level, other.c_str(),
-                       dom->floor.ladderEnd ? "of its ladders, within tolerance or not,"
-                                            : "within tolerance",
+                       dom->ladderEnd ? "within tolerance no coarser than its ladders' coarsest"
+                                      : "within tolerance",
                        toleranceText(t).c_str(), t.scene.state.n, why.c_str());
         } else {
             verdict =

@@ -47,22 +47,25 @@ std::optional<CostFloor> ladderCostFloor(const std::vector<RungView>& ladder, in
     }
     if (!floor) {
         // Nothing bounds the ladder from inside, but its candidates do not go past its coarsest
-        // rung that ran (the bias laws place settings between rungs or below the most accurate,
-        // never above the coarsest), so, with cost falling as x grows, that rung's cost bounds
-        // every setting the ladder holds. It is the coarsest, not the rung timed cheapest: a
-        // finer rung timed cheaper by noise would overstate the bound. Untimed, it bounds nothing.
+        // rung short of the stability limit (the bias laws place settings between rungs or
+        // below the most accurate, never above the coarsest), so, with cost falling as x grows,
+        // that rung's cost bounds every setting the ladder holds. It is the coarsest, not the
+        // rung timed cheapest: a finer rung timed cheaper by noise would overstate the bound.
+        // Untimed, or failed for another reason (a crash says nothing of its cost), it bounds
+        // nothing.
         int coarsest = -1;
         for (int i = 0; i < int(ladder.size()); ++i)
-            if (!ladder[i].failed && (coarsest < 0 || ladder[i].x > ladder[coarsest].x))
+            if (!ladder[i].beyondStability && (coarsest < 0 || ladder[i].x > ladder[coarsest].x))
                 coarsest = i;
-        if (coarsest < 0 || !std::isfinite(ladder[coarsest].cost)) return std::nullopt;
+        if (coarsest < 0 || ladder[coarsest].failed || !std::isfinite(ladder[coarsest].cost))
+            return std::nullopt;
         floor = CostFloor{index, coarsest, ladder[coarsest].cost, false, {}, true};
     }
     // A Within rung (of any x) is a setting within tolerance: the floor cannot lie above it.
     for (int i = 0; i < int(ladder.size()); ++i)
         if (ladder[i].decision == Decision::Within && std::isfinite(ladder[i].cost) &&
             ladder[i].cost < floor->cost)
-            floor = CostFloor{index, i, ladder[i].cost, true, {}};
+            floor = CostFloor{index, i, ladder[i].cost, true, {}, floor->ladderEnd};
     return floor;
 }
 

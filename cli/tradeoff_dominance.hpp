@@ -8,8 +8,9 @@
 // with x on the coarser rungs (same sign, never resolved smaller) bounds the ladder: every
 // setting within tolerance has a smaller x, so costs at least that rung. The least such floor
 // over an engine's ladders (a ladder with a Within rung counts that rung's cost too; a ladder
-// with no Outside rung that bounds it is bounded by its coarsest rung that ran: no candidate lies
-// above it, the bias laws placing settings only between rungs or below the most accurate) bounds
+// with no Outside rung that bounds it is bounded by its coarsest rung short of the stability
+// limit: no candidate lies above it, the bias laws placing settings only between rungs or below
+// the most accurate) bounds
 // the engine's cost at the tolerance from below. When it is above the other engine's chosen cost,
 // the question "which is cheaper" is answered with a ratio that is itself a lower bound: it says
 // "at least".
@@ -24,7 +25,8 @@ struct RungView {
     double x = 0.0;
     double cost = 0.0; // CPU s per simulated ps (NaN: not measured)
     analysis::Decision decision = analysis::Decision::Unresolved;
-    bool failed = false; // its runs failed (the stability limit): no cost, no bias
+    bool failed = false;          // its runs failed: no cost, no bias
+    bool beyondStability = false; // failed at SMD's stability limit: no candidate, ends no ladder
     std::vector<ObservableBias> biases;
 };
 
@@ -32,13 +34,16 @@ struct RungView {
 struct CostFloor {
     int ladder = -1, rung = -1; // indices into the ladders given
     double cost = 0.0;
-    bool within = false;    // the floor is a Within rung's own cost (not an Outside rung's)
-    ObservableBias ruling;  // the observable that rules the Outside rung out (within: unset)
-    bool ladderEnd = false; // nothing is ruled out: the ladder's coarsest rung, within or not
+    bool within = false;   // the floor is a Within rung's own cost (not an Outside rung's)
+    ObservableBias ruling; // the observable that rules the Outside rung out (within: unset)
+    // Nothing is ruled out on this ladder: its coarsest rung bounds it, within tolerance or not,
+    // and the claim covers only settings no coarser (kept where a Within rung is the floor).
+    bool ladderEnd = false;
 };
 
-/// A ladder's floor (ladder index `index` copied into the result), or nullopt when it has none
-/// (its coarsest rung that ran has no cost yet).
+/// A ladder's floor (ladder index `index` copied into the result), or nullopt when it has none:
+/// nothing bounds it from inside and its coarsest rung short of the stability limit has no cost
+/// yet, or failed otherwise (a crash bounds nothing), or every rung is past the limit.
 /// `z` is the tradeoff's normal deviate: a coarser rung's |bias| contradicts the growth when it
 /// is resolved below the floor rung's, |b| + z·σ_b < |b_o| − z·σ_o.
 std::optional<CostFloor> ladderCostFloor(const std::vector<RungView>& ladder, int index, double z);

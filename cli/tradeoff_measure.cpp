@@ -109,11 +109,14 @@ ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double e
     r.cpuSeconds = numberAt(s, {"cpu_seconds"}) + numberAt(s, {"cpu_seconds_equilibration"});
     if (s.contains("error")) {
         r.failure = s["error"].is_string() ? s["error"].get<std::string>() : "failed";
+        // SMD's own refusal to go on (smd/engine.hpp): the step is past the stability limit.
+        r.beyondStability = r.failure.find("the integration became unstable") != std::string::npos;
         return r;
     }
     for (const auto& w : s.value("warnings", nlohmann::json::array()))
         if (w.is_string() && w.get<std::string>().find("conserve energy") != std::string::npos) {
             r.failure = w.get<std::string>(); // beyond the stability limit
+            r.beyondStability = true;
             return r;
         }
     if (!completeSummary(s)) {

@@ -22,6 +22,7 @@ const char* estimatorName(Estimator e, const std::string& engine);
 struct ReplicaResult {
     bool ok = false;
     std::string failure;                 // why not ok: the run's error, or energy not conserved
+    bool beyondStability = false;        // the failure is SMD's stability limit (not a crash)
     double cpuPerPs = 0.0;               // production CPU s per simulated ps
     double cpuSeconds = 0.0;             // production and equilibration
     std::map<std::string, double> value; // "u", "u_conf", "p", "p_conf", "d", "tau_v", …

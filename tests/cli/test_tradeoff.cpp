@@ -284,6 +284,21 @@ TEST(Tradeoff, ReplicaNumbersComeFromTheRunsFilesPerBodyInEpsilon) {
                     100, 2.0);
     EXPECT_FALSE(bad.ok);
     EXPECT_NE(bad.failure.find("conserve energy"), std::string::npos);
+    EXPECT_TRUE(bad.beyondStability);
+    EXPECT_FALSE(r.beyondStability);
+    // An error: SMD's own stop at an unstable step is the stability limit; any other is not.
+    const auto failedWith = [](const std::string& name, const std::string& error) {
+        const auto dir = fakeRun(name, -1, -1, 0);
+        writeFileAtomically(dir / "summary.json", nlohmann::json{{"error", error}}.dump());
+        return readReplica(dir, 100, 2.0);
+    };
+    const ReplicaResult unstable = failedWith(
+        "unstable", "smd: the integration became unstable at t = 540 fs: a body moved 1.06 Å");
+    EXPECT_FALSE(unstable.ok);
+    EXPECT_TRUE(unstable.beyondStability);
+    const ReplicaResult crashed = failedWith("crashed", "terrace: out of memory");
+    EXPECT_FALSE(crashed.ok);
+    EXPECT_FALSE(crashed.beyondStability);
     std::filesystem::remove_all(std::filesystem::temp_directory_path() /
                                 ("terrace-tradeoff-" + std::to_string(getpid())));
 }
@@ -399,10 +414,11 @@ TEST(TradeoffDominance, ABiasThatShrinksOrTurnsOnACoarserRungDoesNotBound) {
     ASSERT_TRUE(f);
     EXPECT_EQ(f->rung, 3); // the coarsest rung still bounds the settings more accurate than it
     EXPECT_DOUBLE_EQ(f->cost, 1.0);
+    EXPECT_FALSE(f->ladderEnd); // as an Outside rung whose bias grows (on no coarser rung)
     l = growingLadder();
     l[3].decision = Decision::Unresolved; // resolved smaller at x = 1 than at 0.25 and 0.5
     l[3].biases[1] = biasOf(Observable::D, -0.1, 0.1, Decision::Unresolved);
-    f = ladderCostFloor(l, 0, 2.0); // neither bounds: only the ladder's end, its cheapest rung
+    f = ladderCostFloor(l, 0, 2.0); // neither bounds: only the ladder's end, its coarsest rung
     ASSERT_TRUE(f);
     EXPECT_TRUE(f->ladderEnd);
     EXPECT_EQ(f->rung, 3);
@@ -424,7 +440,7 @@ TEST(TradeoffDominance, AWithinRungCheaperThanTheFloorIsTheFloor) {
     EXPECT_DOUBLE_EQ(f->cost, 3.0);
 }
 
-TEST(TradeoffDominance, WithNothingOutsideTheCheapestRungThatRanIsTheFloor) {
+TEST(TradeoffDominance, WithNothingOutsideTheCoarsestRungIsTheFloor) {
     // Every rung unresolved: the candidates lie at or below the coarsest, so its cost bounds.
     auto l = growingLadder();
     for (auto& r : l) {
@@ -446,14 +462,28 @@ TEST(TradeoffDominance, WithNothingOutsideTheCheapestRungThatRanIsTheFloor) {
     ASSERT_TRUE(f);
     EXPECT_EQ(f->rung, 3);
     EXPECT_DOUBLE_EQ(f->cost, 1.0);
+    // A Within rung timed below the coarsest's cost becomes the floor, and the ladder's end
+    // still limits what the claim covers.
+    l[1].decision = Decision::Within;
+    l[1].cost = 0.9;
+    f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_TRUE(f->within);
+    EXPECT_TRUE(f->ladderEnd);
+    EXPECT_EQ(f->rung, 1);
+    l[1].decision = Decision::Unresolved;
+    l[1].cost = 4.0;
     // The coarsest not timed yet may be the cheapest: no floor until it is.
     l[3].cost = NAN;
     EXPECT_FALSE(ladderCostFloor(l, 0, 2.0));
-    // A rung past the stability limit is no candidate: the coarsest that ran ends the ladder.
-    l[3].failed = true;
+    // Past the stability limit a rung is no candidate: the coarsest short of it ends the ladder.
+    l[3].failed = l[3].beyondStability = true;
     f = ladderCostFloor(l, 0, 2.0);
     ASSERT_TRUE(f);
     EXPECT_EQ(f->rung, 2);
+    // Failed otherwise (a crash), the coarsest says nothing of what the ladder's end costs.
+    l[3].beyondStability = false;
+    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0));
     // A bound from inside the ladder is kept where there is one: it is the higher.
     f = ladderCostFloor(growingLadder(), 0, 2.0);
     ASSERT_TRUE(f);
@@ -461,19 +491,20 @@ TEST(TradeoffDominance, WithNothingOutsideTheCheapestRungThatRanIsTheFloor) {
     EXPECT_DOUBLE_EQ(f->cost, 4.0);
 }
 
-TEST(TradeoffDominance, FailuresBoundNothingAndAnEngineTakesItsLeastFloor) {
+TEST(TradeoffDominance, StabilityFailuresBoundNothingAndAnEngineTakesItsLeastFloor) {
     auto l = growingLadder();
     for (auto& r : l)
-        if (r.decision == Decision::Outside) r.failed = true, r.cost = NAN, r.biases.clear();
-    // Only the finest rung ran: it ends the ladder and is its floor.
+        if (r.decision == Decision::Outside)
+            r.failed = r.beyondStability = true, r.cost = NAN, r.biases.clear();
+    // Only the finest rung is short of the limit: it ends the ladder and is its floor.
     auto f = ladderCostFloor(l, 0, 2.0);
     ASSERT_TRUE(f);
     EXPECT_TRUE(f->ladderEnd);
     EXPECT_EQ(f->rung, 0);
     EXPECT_DOUBLE_EQ(f->cost, 8.0);
     for (auto& r : l)
-        r.failed = true;
-    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0)); // nothing ran: nothing bounds
+        r.failed = r.beyondStability = true;
+    EXPECT_FALSE(ladderCostFloor(l, 0, 2.0)); // every rung past the limit: nothing bounds
     // An engine's floor is the least of its ladders', and none when one ladder has none.
     auto cheap = growingLadder();
     for (auto& r : cheap)
