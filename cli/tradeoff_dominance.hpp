@@ -10,10 +10,9 @@
 // over an engine's ladders (a ladder with a Within rung counts that rung's cost too; a ladder
 // with no Outside rung that bounds it is bounded by its coarsest rung short of the stability
 // limit: no candidate lies above it, the bias laws placing settings only between rungs or below
-// the most accurate) bounds
-// the engine's cost at the tolerance from below. When it is above the other engine's chosen cost,
-// the question "which is cheaper" is answered with a ratio that is itself a lower bound: it says
-// "at least".
+// the most accurate) bounds the engine's cost at the tolerance from below. When it is above the
+// other engine's chosen cost, the question "which is cheaper" is answered with a ratio that is
+// itself a lower bound: it says "at least".
 #include "cli/tradeoff_measure.hpp"
 #include <optional>
 #include <vector>
