@@ -20,24 +20,32 @@ typename P::Orientation orientationOf(const typename K::State& b) {
         static_assert(
             requires { b.species; }, "a species potential needs a body kind with a species");
         return b.species;
+    } else if constexpr (P::attitude == AttitudeUse::SpeciesAxis) {
+        static_assert(
+            requires { b.species; }, "a species potential needs a body kind with a species");
+        return SpeciesAxis{K::axis(b), b.species};
     } else {
         return K::axis(b);
     }
 }
 
-/// The orientation carried by a free orbit's Attitude (its axis, or its frame).
-template <PairPotential P, class Attitude>
-const typename P::Orientation& orientationOf(const Attitude& a) {
+/// The orientation carried by a free orbit's Attitude (its axis, its frame, its species): a
+/// reference to the attitude's own member, or, for an axis with a species, the pair of them.
+template <PairPotential P, class Attitude> decltype(auto) orientationOf(const Attitude& a) {
     if constexpr (P::attitude == AttitudeUse::Frame) {
         static_assert(
             requires { a.frame; }, "a frame potential needs a body kind with a frame");
-        return a.frame;
+        return (a.frame);
     } else if constexpr (P::attitude == AttitudeUse::Species) {
         static_assert(
             requires { a.species; }, "a species potential needs a body kind with a species");
-        return a.species;
+        return (a.species);
+    } else if constexpr (P::attitude == AttitudeUse::SpeciesAxis) {
+        static_assert(
+            requires { a.species; }, "a species potential needs a body kind with a species");
+        return SpeciesAxis{a.axis, a.species};
     } else {
-        return a.axis;
+        return (a.axis);
     }
 }
 
@@ -47,6 +55,8 @@ template <PairPotential P> typename P::Orientation unusedOrientation() {
         return Mat3::Identity();
     else if constexpr (P::attitude == AttitudeUse::Species)
         return 0; // the first species: what a design or a coverage check samples of a mixture
+    else if constexpr (P::attitude == AttitudeUse::SpeciesAxis)
+        return SpeciesAxis{}; // ẑ, the first species
     else
         return Vec3::UnitZ();
 }

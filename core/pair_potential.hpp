@@ -25,13 +25,24 @@ enum class AttitudeUse {
     // central forces between spheres of several species (core/lj_mixture.hpp): the body's
     // species index, which picks the pair's parameters; no attitude, no torque
     Species,
+    // bodies of several species, some of them rods (core/rod_mixture.hpp): the unit axis s with
+    // the species index (SpeciesAxis), which picks the pair's parameters
+    SpeciesAxis,
+};
+
+/// The orientation of a body of a mixture with rods in it (AttitudeUse::SpeciesAxis): its unit
+/// long axis (lab frame; a sphere's is never read) and its species.
+struct SpeciesAxis {
+    Vec3 axis = Vec3::UnitZ();
+    int species = 0;
 };
 
 /// What a potential with the given use is handed of each body.
 template <AttitudeUse use>
-using OrientationFor =
-    std::conditional_t<use == AttitudeUse::Frame, Mat3,
-                       std::conditional_t<use == AttitudeUse::Species, int, Vec3>>;
+using OrientationFor = std::conditional_t<
+    use == AttitudeUse::Frame, Mat3,
+    std::conditional_t<use == AttitudeUse::Species, int,
+                       std::conditional_t<use == AttitudeUse::SpeciesAxis, SpeciesAxis, Vec3>>>;
 
 /// Everything a pair evaluation returns (kJ/mol, kJ/mol/Å, kJ/mol per radian).
 struct PairForce {
@@ -73,7 +84,8 @@ concept RangeBounded = requires(const P p, Vec3 r, typename P::Orientation o, do
 /// Whether P reads the attitude at all (torques, rotation in the search).
 template <class P>
 inline constexpr bool isOrientational =
-    P::attitude == AttitudeUse::Axis || P::attitude == AttitudeUse::Frame;
+    P::attitude == AttitudeUse::Axis || P::attitude == AttitudeUse::Frame ||
+    P::attitude == AttitudeUse::SpeciesAxis;
 
 /// Whether P is handed anything of each body (an attitude, or a species): whether the engines
 /// keep each body's Orientation beside its position.
