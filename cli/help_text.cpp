@@ -155,8 +155,9 @@ const Command commands[] = {
       the bias law (dt^2, dt^4, dV^p) places a setting between the last within and the first
       outside, checked by its own runs. Once one engine's cheapest setting within is timed
       cheaper than any setting of the other could be (every cheaper one resolved outside on
-      an observable whose bias grows with dV or dt), it stops: the verdict then says "at
-      least", the ratio to the other's most accurate setting outside (--frontier resolves
+      an observable whose bias grows with dV or dt, or, where none is, the other's coarsest
+      setting short of its stability limit, none coarser being a candidate), it stops: the
+      verdict then says "at least", the ratio to that bounding setting (--frontier resolves
       both engines instead). DMD's u, p, g and g_peak are estimated on its
       terraced observables and by configurational estimators (continuous U, W and g on its
       configurations); the smaller bias is used and named. Prints the verdict (the cheaper
