@@ -721,6 +721,21 @@ std::optional<Dominance> dominance(const Tradeoff& t) {
 
 } // namespace
 
+std::string costComparison(const std::string& dmd, const std::string& smd,
+                           const analysis::RatioInterval& ratio) {
+    if (ratio.lo <= 1.0 && ratio.hi >= 1.0)
+        return format("neither engine is resolved cheaper: %s costs %.2fx (%.2f-%.2f, %.0f %%) "
+                      "what %s costs",
+                      dmd.c_str(), ratio.median, ratio.lo, ratio.hi, 100.0 * ratio.level,
+                      smd.c_str());
+    if (ratio.median >= 1.0)
+        return format("%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s", smd.c_str(), ratio.median,
+                      ratio.lo, ratio.hi, 100.0 * ratio.level, dmd.c_str());
+    return format("%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s", dmd.c_str(),
+                  1.0 / ratio.median, 1.0 / ratio.hi, 1.0 / ratio.lo, 100.0 * ratio.level,
+                  smd.c_str());
+}
+
 int runTradeoff(const TradeoffOptions& options) {
     Tradeoff t;
     t.options = options;
@@ -1034,17 +1049,9 @@ int runTradeoff(const TradeoffOptions& options) {
         analysis::RatioInterval ratio;
         if (const int s = costWindow(dmd->setting, smd->setting, "ratio", ratio)) return s;
         out["cost"] = costRecord;
-        char b2[512];
-        if (ratio.median >= 1.0)
-            std::snprintf(b2, sizeof b2, "%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s",
-                          describe(smd->setting, t).c_str(), ratio.median, ratio.lo, ratio.hi,
-                          100.0 * ratio.level, describe(dmd->setting, t).c_str());
-        else
-            std::snprintf(b2, sizeof b2, "%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s",
-                          describe(dmd->setting, t).c_str(), 1.0 / ratio.median, 1.0 / ratio.hi,
-                          1.0 / ratio.lo, 100.0 * ratio.level, describe(smd->setting, t).c_str());
-        verdict = std::string(b2) + " at " + toleranceText(t) + " (N " +
-                  std::to_string(t.scene.state.n) + ")";
+        out["cost"]["cheaper_resolved"] = ratio.lo > 1.0 || ratio.hi < 1.0;
+        verdict = costComparison(describe(dmd->setting, t), describe(smd->setting, t), ratio) +
+                  " at " + toleranceText(t) + " (N " + std::to_string(t.scene.state.n) + ")";
     }
     out["verdict"] = verdict;
     out["notes"] = t.notes;

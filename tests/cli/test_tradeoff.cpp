@@ -2,6 +2,7 @@
 // tolerances as typed, the ladders on the sampling grid, the numbers read from a run directory,
 // and the bias of a curve with the noise of both sides taken out.
 #include "analysis/csv.hpp"
+#include "cli/tradeoff_command.hpp"
 #include "cli/tradeoff_dominance.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include "cli/tradeoff_plan.hpp"
@@ -396,6 +397,22 @@ std::vector<RungView> growingLadder() {
 }
 
 } // namespace
+
+TEST(Tradeoff, AVerdictSaysCheaperOnlyWhereTheRatiosIntervalLeavesOne) {
+    analysis::RatioInterval r;
+    r.level = 0.9375;
+    r.median = 1.5, r.lo = 1.2, r.hi = 1.8; // DMD's cost over SMD's
+    EXPECT_EQ(costComparison("DMD a", "SMD b", r),
+              "SMD b is 1.50x (1.20-1.80, 94 %) cheaper than DMD a");
+    r.median = 0.5, r.lo = 0.4, r.hi = 0.8;
+    EXPECT_EQ(costComparison("DMD a", "SMD b", r),
+              "DMD a is 2.00x (1.25-2.50, 94 %) cheaper than SMD b");
+    // The rods at rho* 0.3, T* 3: a median on DMD's side, the interval across 1.
+    r.median = 0.99, r.lo = 0.78, r.hi = 1.07;
+    EXPECT_EQ(costComparison("DMD a", "SMD b", r),
+              "neither engine is resolved cheaper: DMD a costs 0.99x (0.78-1.07, 94 %) what SMD "
+              "b costs");
+}
 
 TEST(TradeoffDominance, TheMostAccurateOutsideRungWhoseBiasGrowsIsTheFloor) {
     const auto f = ladderCostFloor(growingLadder(), 3, 2.0);
