@@ -96,8 +96,10 @@ TEST(RodMixture, ForcesTorquesAndRateAreTheDerivativesOfU) {
     for (int k = 0; k < 50; ++k) {
         const Vec3 rij = (3.1 + 0.03 * k) * randomUnit(rng);
         const Vec3 si = randomUnit(rng), sj = randomUnit(rng);
-        for (const auto& [i, j] :
+        for (const auto& ij :
              {std::pair{rodAlong(si), rodAlong(sj)}, std::pair{rodAlong(si), sphereWith(sj)}}) {
+            // Named copies rather than a structured binding: clang 14 cannot capture a binding.
+            const SpeciesAxis i = ij.first, j = ij.second;
             const PairForce f = m.evaluate(rij, i, j);
             // F = −∂U/∂r_ij, component by component.
             Vec3 fd;
