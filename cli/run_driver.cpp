@@ -117,7 +117,7 @@ double analysisBytes(const Scene& scene) {
 RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxLength,
                      int rotationalDof, VirialKind virial, const analysis::SpeciesLabels& species)
     : sampleInterval(plan.sampleInterval), kT(scene.kT()), volume(std::pow(boxLength, 3)),
-      virialKind(virial), bodies(n), dof(heatBathDof(heatBathOf(scene).kind, rotationalDof, n)),
+      virialKind(virial), bodies(n), dof(heatBathDof(heatBathOf(scene).kind, rotationalDof * n, n)),
       heatBath(heatBathOf(scene).on()), restartEveryPs(scene.output.restart_every_ps),
       warnings(sceneWarnings(scene)), outputUnits(unitSystem(scene)) {
     const long planned = plan.productionSamples + 1;

@@ -17,11 +17,14 @@ namespace terrace {
 inline constexpr int maxSpecies = 4;
 
 /// Mass (g/mol) and principal moments of inertia (g/mol Å²) shared by every body of a scene; in a
-/// mixture, each species' own mass, which its kind reads by the body's species (bodyMass).
+/// mixture, each species' own mass (and, of rods among spheres, its own moment of inertia), which
+/// its kind reads by the body's species (bodyMass).
 struct BodyParams {
     double mass = 0.0;
     Vec3 inertia = Vec3::Zero(); // I1, I2, I3 in the body frame; unused entries are ignored
     std::array<double, maxSpecies> speciesMass{}; // g/mol, by species; unused without species
+    // g/mol Å², by species: a rod's I, 0 for a sphere (core/species_rotor.hpp); unused elsewhere
+    std::array<double, maxSpecies> speciesInertia{};
 };
 
 template <class K>
@@ -47,6 +50,21 @@ template <class K>
 concept MassPerBody = requires(const typename K::State s, const BodyParams p) {
     { K::mass(s, p) } -> std::convertible_to<double>;
 };
+
+/// A kind whose bodies differ in their rotational degrees of freedom (rods and spheres of one
+/// mixture), where every other kind's bodies have K::rotationalDof each.
+template <class K>
+concept DofPerBody = requires(const typename K::State s, const BodyParams p) {
+    { K::rotationalDofOf(s, p) } -> std::convertible_to<int>;
+};
+
+/// The rotational degrees of freedom of one body: 0, 2 or 3.
+template <BodyKind K> int bodyRotationalDof(const typename K::State& s, const BodyParams& p) {
+    if constexpr (DofPerBody<K>)
+        return K::rotationalDofOf(s, p);
+    else
+        return K::rotationalDof;
+}
 
 /// The mass of one body, g/mol. Kinds without masses of their own read the scene's, so that their
 /// sums keep the operations, and so the round-off, of a scene where mass was one number.

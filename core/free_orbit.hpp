@@ -16,6 +16,7 @@
 #include "core/body_kind.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/small_angle.hpp"
+#include "core/species_rotor.hpp"
 #include "core/species_sphere.hpp"
 #include "core/sphere.hpp"
 #include <array>
@@ -64,27 +65,37 @@ template <BodyKind K> auto attitudesAt(const FreeOrbit<K>& i, const FreeOrbit<K>
     return std::array{i.at(tau), j.at(tau)};
 }
 
-/// Linear rotor: one sincos per τ; ω is constant.
-template <> class FreeOrbit<LinearRotor> {
+/// Linear rotor: one sincos per τ; ω is constant. A rotor of a mixture with spheres
+/// (SpeciesRotor) carries its species in the attitude, which is what RodMixture reads besides the
+/// axis; a sphere of it has ω = 0 and so a fixed axis.
+template <BodyKind K>
+requires isLinearRotorKind<K>
+class FreeOrbit<K> {
+    static constexpr bool withSpecies = std::is_same_v<K, SpeciesRotor>;
+    struct NoSpecies {};
+    using Species = std::conditional_t<withSpecies, int, NoSpecies>;
+
 public:
-    FreeOrbit(const LinearRotor::State& start, const BodyParams&)
+    FreeOrbit(const typename K::State& start, const BodyParams&)
         : FreeOrbit(start, start.w.norm()) {}
     /// The same orbit, bit for bit, from a state whose |ω| is known (speed: start.w.norm()), as
     /// the DMD engine keeps it in a body's book: one division and a cross product, no root.
-    FreeOrbit(const LinearRotor::State& start, double speed)
+    FreeOrbit(const typename K::State& start, double speed)
         : s_(start.s), w_(start.w), speed_(speed) {
         if (speed_ != 0.0) sideways_ = (start.w * (1.0 / speed_)).cross(start.s);
+        if constexpr (withSpecies) species_ = start.species;
     }
     struct Attitude {
         Vec3 axis;
         Vec3 w;
+        [[no_unique_address]] Species species;
     };
     Attitude at(double tau) const {
-        if (speed_ == 0.0) return {s_, w_};
+        if (speed_ == 0.0) return {s_, w_, species_};
         // s and ω̂ × s are orthonormal to round-off, so |s(τ)| = 1 to a few ulp without the
         // renormalisation freeRotate applies to the State it keeps (where errors would build up).
         const SinCos turn = sinCos(speed_ * (shift_ + tau));
-        return {s_ * turn.cos + sideways_ * turn.sin, w_};
+        return {s_ * turn.cos + sideways_ * turn.sin, w_, species_};
     }
     /// The attitude at τ₀ as from(τ₀).at(0) gives it, bit for bit, without building the shifted
     /// orbit: both take one sincos of |ω|(shift + τ₀), and at(0) of a turned orbit is its s
@@ -126,13 +137,14 @@ public:
     /// vector, so its angle is 0 and its axis comes out as s exactly, without a branch.
     friend std::array<Attitude, 2> attitudesAt(const FreeOrbit& i, const FreeOrbit& j, double tau) {
         const auto turn = sinCosPair(i.speed_ * (i.shift_ + tau), j.speed_ * (j.shift_ + tau));
-        return {Attitude{i.s_ * turn[0].cos + i.sideways_ * turn[0].sin, i.w_},
-                Attitude{j.s_ * turn[1].cos + j.sideways_ * turn[1].sin, j.w_}};
+        return {Attitude{i.s_ * turn[0].cos + i.sideways_ * turn[0].sin, i.w_, i.species_},
+                Attitude{j.s_ * turn[1].cos + j.sideways_ * turn[1].sin, j.w_, j.species_}};
     }
 
 private:
     Vec3 s_, w_;
     double speed_;
+    [[no_unique_address]] Species species_{};
     Vec3 sideways_{0.0, 0.0, 0.0}; // ω̂ × s, the direction s turns towards
     double shift_ = 0.0;           // from(): time since s_ and sideways_ were taken
     // A search samples up to a few fs past its start, i.e. ≲ 0.15 rad for the paper's rods: a

@@ -19,8 +19,8 @@ HeatBath heatBathOf(const Scene& scene) {
     return b;
 }
 
-int heatBathDof(HeatBath::Kind kind, int rotationalDof, int n) {
-    const int all = (3 + rotationalDof) * n;
+int heatBathDof(HeatBath::Kind kind, int rotationalDofs, int n) {
+    const int all = 3 * n + rotationalDofs;
     return kind == HeatBath::Kind::Andersen ? all : all - 3;
 }
 

@@ -29,10 +29,11 @@ struct HeatBath {
 /// The scene's run.heat_bath in engine units, at the scene's temperature.
 HeatBath heatBathOf(const Scene& scene);
 
-/// Degrees of freedom of the kinetic energy under the bath, for bodies with `rotationalDof`
-/// rotational ones each (0 spheres, 2 linear rotors, 3 tops): Andersen's collisions change the
-/// total momentum, so all (3 + r) N count; CSVR and NVE keep it, which takes 3 away.
-int heatBathDof(HeatBath::Kind kind, int rotationalDof, int n);
+/// Degrees of freedom of the kinetic energy under the bath, for n bodies with `rotationalDofs`
+/// rotational ones together (each body's: 0 a sphere, 2 a linear rotor, 3 a top; a mixture of rods
+/// and spheres sums its own): Andersen's collisions change the total momentum, so all 3N + r
+/// count; CSVR and NVE keep it, which takes 3 away.
+int heatBathDof(HeatBath::Kind kind, int rotationalDofs, int n);
 
 /// CSVR's kinetic energy after a time t of its stochastic equation
 ///   dK = (K̄ − K) dt/τ + 2 sqrt(K K̄ / f) dW,   K̄ = f kT / 2,

@@ -63,8 +63,13 @@ void thermalise(typename K::State& b, const BodyParams& p, double kT, std::mt199
     const double sv = std::sqrt(kT / bodyMass<K>(b, p));
     b.v = Vec3(gauss(rng), gauss(rng), gauss(rng)) * sv;
     if constexpr (K::rotationalDof == 2) { // linear rotor: ω ⟂ s, two components
+        double inertia = p.inertia[0];
+        if constexpr (requires { K::inertia(b, p); }) {
+            inertia = K::inertia(b, p);
+            if (inertia == 0.0) return; // a sphere of a mixture with rods: no spin (ω stays 0)
+        }
         const Vec3 e1 = anyPerpendicular(b.s), e2 = b.s.cross(e1);
-        const double sw = std::sqrt(kT / p.inertia[0]);
+        const double sw = std::sqrt(kT / inertia);
         b.w = (gauss(rng) * e1 + gauss(rng) * e2) * sw;
     } else if constexpr (K::rotationalDof == 3) { // tops: body-frame ω_a ~ N(0, kT/I_a)
         Vec3 Lbody;

@@ -27,8 +27,26 @@ template <BodyKind K, PairPotential P> struct System {
 inline int degreesOfFreedom(int rotationalDof, int n) {
     return (3 + rotationalDof) * n - 3;
 }
-template <BodyKind K> int degreesOfFreedom(int n) {
+/// The same for n bodies of a kind whose bodies all have K::rotationalDof.
+template <BodyKind K>
+requires(!DofPerBody<K>) int degreesOfFreedom(int n) {
     return degreesOfFreedom(K::rotationalDof, n);
+}
+
+/// The rotational degrees of freedom of every body together.
+template <BodyKind K, PairPotential P> int totalRotationalDof(const System<K, P>& sys) {
+    if constexpr (DofPerBody<K>) {
+        int f = 0;
+        for (const auto& b : sys.bodies)
+            f += K::rotationalDofOf(b, sys.body);
+        return f;
+    } else {
+        return K::rotationalDof * sys.size();
+    }
+}
+/// Degrees of freedom of the instantaneous temperature of the system (total momentum fixed).
+template <BodyKind K, PairPotential P> int degreesOfFreedom(const System<K, P>& sys) {
+    return 3 * sys.size() + totalRotationalDof(sys) - 3;
 }
 
 template <BodyKind K, PairPotential P> double totalKinetic(const System<K, P>& sys) {
@@ -60,7 +78,7 @@ template <BodyKind K, PairPotential P> Vec3 totalMomentum(const System<K, P>& sy
 
 /// Scale v and ω of every body so that the kinetic temperature equals kT exactly.
 template <BodyKind K, PairPotential P> void rescaleToTemperature(System<K, P>& sys, double kT) {
-    const double target = 0.5 * degreesOfFreedom<K>(sys.size()) * kT;
+    const double target = 0.5 * degreesOfFreedom(sys) * kT;
     const double now = totalKinetic(sys);
     if (now <= 0.0) return;
     const double f = std::sqrt(target / now);

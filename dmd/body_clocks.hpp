@@ -18,6 +18,7 @@
 #include "core/asymmetric_top.hpp"
 #include "core/free_orbit.hpp"
 #include "core/linear_rotor.hpp"
+#include "core/species_rotor.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
 #include "core/system.hpp"
@@ -53,7 +54,7 @@ template <BodyKind K>
 inline double axisRateBound(const typename K::State& b, const BodyParams& body) {
     if constexpr (K::rotationalDof == 0) {
         return 0.0;
-    } else if constexpr (std::is_same_v<K, LinearRotor>) {
+    } else if constexpr (isLinearRotorKind<K>) {
         return b.w.norm();
     } else {
         return std::sqrt(2.0 * K::rotationalKinetic(b, body) / body.inertia.minCoeff());
@@ -75,7 +76,7 @@ template <BodyKind K, PairPotential P>
 inline decltype(auto) orbitOf(const EngineState<K, P>& s, int i) {
     if constexpr (keepsOrbit<K>)
         return s.orbit[i];
-    else if constexpr (std::is_same_v<K, LinearRotor>)
+    else if constexpr (isLinearRotorKind<K>)
         return FreeOrbit<K>(s.sys.bodies[i], s.schedule.book(i).axisRate);
     else
         return FreeOrbit<K>(s.sys.bodies[i], s.sys.body);
@@ -105,7 +106,7 @@ template <BodyKind K, PairPotential P> inline void refreshOrbit(EngineState<K, P
 template <BodyKind K, PairPotential P> inline void bringToNow(EngineState<K, P>& s, int i) {
     const double dt = s.time - s.schedule.book(i).clock;
     s.schedule.book(i).clock = s.time;
-    if constexpr (std::is_same_v<K, LinearRotor>) {
+    if constexpr (isLinearRotorKind<K>) {
         // A rotor's ω is constant in free flight: its orbit, turned on by dt, gives its new
         // axis (FreeOrbit::advancedBy), and |ω| in the book stays.
         typename K::State& b = s.sys.bodies[i];

@@ -506,7 +506,7 @@ private:
         bathState_.clock = s_.time;
         if (!(dt > 0.0) || !(now > 0.0)) return;
         const HeatBath& bath = s_.settings.bath;
-        const int f = heatBathDof(bath.kind, K::rotationalDof, s_.sys.size());
+        const int f = heatBathDof(bath.kind, totalRotationalDof(s_.sys), s_.sys.size());
         double sign = 1.0;
         const double next =
             csvrKinetic(now, 0.5 * f * bath.kT, f, std::exp(-dt / bath.tau), bathState_.rng, sign);

@@ -336,7 +336,7 @@ public:
                       spin.z() * (si.x() * sj.y() - si.y() * sj.x());
             m.turn = s.schedule.book(i).axisRate + s.schedule.book(j).axisRate;
             // |s̈| = |ω|² for a linear rotor (uniform rotation), so |c̈| ≤ Ω²; a top's ω wanders.
-            if constexpr (std::is_same_v<K, LinearRotor>) m.turnCurvature = m.turn * m.turn;
+            if constexpr (isLinearRotorKind<K>) m.turnCurvature = m.turn * m.turn;
         }
         const auto& form = bandPotential(s.sys.potential);
         const double x = form.effectiveDistance(m.r, m.c);

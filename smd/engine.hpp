@@ -155,7 +155,7 @@ public:
         }
         const double now = kineticEnergy();
         if (!(now > 0.0)) return;
-        const int f = heatBathDof(bath_.kind, K::rotationalDof, n);
+        const int f = heatBathDof(bath_.kind, totalRotationalDof(sys_), n);
         double sign = 1.0;
         const double next =
             csvrKinetic(now, 0.5 * f * bath_.kT, f, std::exp(-par_.dt / bath_.tau), rng, sign);
@@ -263,10 +263,10 @@ public:
         return p;
     }
 
-    /// Scale v and ω so that the kinetic energy is ½ degreesOfFreedom<K>(N) kT.
+    /// Scale v and ω so that the kinetic energy is ½ degreesOfFreedom(sys) kT.
     void rescaleTemperature(double kT) {
         if (!sortBodies_) return rescaleToTemperature(sys_, kT);
-        const double target = 0.5 * degreesOfFreedom<K>(sys_.size()) * kT;
+        const double target = 0.5 * degreesOfFreedom(sys_) * kT;
         const double now = kineticEnergy();
         if (now <= 0.0) return;
         const double f = std::sqrt(target / now);

@@ -96,10 +96,12 @@ TEST(HeatBath, AndersenDrawsMaxwellBoltzmannPerKind) {
 }
 
 TEST(HeatBath, DegreesOfFreedomFollowMomentum) {
-    EXPECT_EQ(heatBathDof(HeatBath::Kind::Andersen, 2, 100), 500);
-    EXPECT_EQ(heatBathDof(HeatBath::Kind::Csvr, 2, 100), 497);
-    EXPECT_EQ(heatBathDof(HeatBath::Kind::None, 3, 10), 57);
+    EXPECT_EQ(heatBathDof(HeatBath::Kind::Andersen, 2 * 100, 100), 500);
+    EXPECT_EQ(heatBathDof(HeatBath::Kind::Csvr, 2 * 100, 100), 497);
+    EXPECT_EQ(heatBathDof(HeatBath::Kind::None, 3 * 10, 10), 57);
     EXPECT_EQ(heatBathDof(HeatBath::Kind::Csvr, 0, 10), 27);
+    // Rods among spheres: 30 rods' two each, the 70 spheres' none.
+    EXPECT_EQ(heatBathDof(HeatBath::Kind::Csvr, 2 * 30, 100), 357);
 }
 
 TEST(HeatBath, StateRoundTrips) {

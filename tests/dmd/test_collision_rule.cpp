@@ -1,6 +1,8 @@
 // Collision rule (paper sec. 4, eq. 22) against independent reference values.
 #include "core/linear_rotor.hpp"
+#include "core/rod_mixture.hpp"
 #include "core/rod_potential.hpp"
+#include "core/species_rotor.hpp"
 #include "dmd/collision_rule.hpp"
 #include <array>
 #include <cmath>
@@ -728,6 +730,52 @@ TEST(CollisionRule, TouchWithoutOutwardMotionChangesNothing) {
     const Impulse imp = solveImpulse({2.0, 0.0}, 1.0); // at the upper level with dU/dt = 0
     EXPECT_EQ(imp.outcome, Outcome::Reflect);
     EXPECT_EQ(imp.S, 0.0);
+}
+
+// Rods among spheres (core/species_rotor.hpp, core/rod_mixture.hpp): at a rod–sphere crossing the
+// sphere takes the impulse's force but no spin (its torque is zero, its inertia infinite), and the
+// rule still conserves kinetic plus terraced energy and the momentum, with each body's own mass.
+TEST(CollisionRule, ARodAndASphereExchangeEnergyAndMomentumWithoutSpinningTheSphere) {
+    RodMixture m;
+    m.species = 2;
+    m.rod = {true, false};
+    m.setPair(0, 0, 3.0, 3.035, 1.0);
+    m.setPair(0, 1, std::sqrt(3.0 * 1.2), 0.5 * (3.035 + 3.4), 1.0);
+    m.setPair(1, 1, 1.2, 3.4, 1.0);
+    BodyParams p;
+    p.mass = 18.0;
+    p.speciesMass = {18.0, 40.0};
+    p.speciesInertia = {1.154, 0.0};
+    SpeciesRotor::State rod, sphere;
+    rod.s = Vec3(0.19611613513818402, 0.9805806756909201, 0.0);
+    rod.v = Vec3(-0.5, 0.1, 0.0);
+    rod.w = Vec3(0.3846153846153846, -0.07692307692307698, 0.8);
+    sphere.species = 1;
+    sphere.r = Vec3(3.3339742973491284, 0.0, -0.6667948594698256);
+    sphere.v = Vec3(0.3, -0.2, 0.1);
+    const Vec3 rij = rod.r - sphere.r;
+    const PairForce f = m.evaluate(rij, {rod.s, 0}, {sphere.s, 1});
+    EXPECT_EQ(f.tauI, Vec3::Zero()); // a pair with a sphere has no torque
+    const ImpulseCoefficients c = impulseCoefficients<SpeciesRotor>(f, rod, sphere, p);
+    const double m0 = 18.0, m1 = 40.0;
+    EXPECT_NEAR(c.a, 0.5 * f.F.squaredNorm() * (1.0 / m0 + 1.0 / m1), energyTolerance);
+    for (const double dE : {-0.4, 0.05, 40.0}) { // down, a small step up, a climb it cannot afford
+        SpeciesRotor::State i = rod, j = sphere;
+        const Impulse imp = solveImpulse(c, dE);
+        const double before = kineticEnergy<SpeciesRotor>(i, p) + kineticEnergy<SpeciesRotor>(j, p);
+        applyImpulse<SpeciesRotor>(i, j, f, imp.S, p);
+        const double after = kineticEnergy<SpeciesRotor>(i, p) + kineticEnergy<SpeciesRotor>(j, p);
+        EXPECT_NEAR(after - before, -imp.dE, energyTolerance) << dE;
+        expectNear(m0 * i.v + m1 * j.v, m0 * rod.v + m1 * sphere.v, energyTolerance);
+        EXPECT_EQ(j.w, Vec3::Zero());
+        expectNear(i.w, rod.w, energyTolerance); // no torque: the rod's spin is untouched too
+        if (dE < 0.0) {
+            EXPECT_EQ(imp.outcome, Outcome::Down);
+        }
+        if (dE > 1.0) {
+            EXPECT_EQ(imp.outcome, Outcome::Reflect);
+        }
+    }
 }
 
 } // namespace test_collision_rule

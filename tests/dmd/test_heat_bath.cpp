@@ -103,7 +103,8 @@ Series runBath(const std::string& engineName, const std::string& bath, double ps
     E engine(buildInitialState<LinearRotor>(scene, model(scene)), scene);
     const Series s = sample(engine, ps);
     const HeatBath b = heatBathOf(scene);
-    expectCanonical(s, heatBathDof(b.kind, LinearRotor::rotationalDof, 216), scene.kT(), what);
+    expectCanonical(s, heatBathDof(b.kind, LinearRotor::rotationalDof * 216, 216), scene.kT(),
+                    what);
     return s;
 }
 
