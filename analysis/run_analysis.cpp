@@ -51,6 +51,10 @@ struct Curves {
     std::vector<RadialDistribution> partial;        // g_ab, in the same order
     std::vector<std::string> speciesNames;
     std::vector<SampledCurve> speciesVacf, speciesMsd;
+    // A mixture of rods and spheres: each turning species' OACF (oacfNames[k]'s), the total then
+    // over the turning species' bodies alone.
+    std::vector<std::string> oacfNames;
+    std::vector<OrientationalCorrelation> speciesOacf;
 };
 
 /// Appends the column `name` of values `v`.
@@ -108,12 +112,19 @@ void writeCurveFiles(const std::filesystem::path& dir, const Curves& c,
         addColumn(msdTable, "err_" + name, inLength2(c.speciesMsd[a].err));
     }
     writeCsv(dir / "vacf.csv", vacfTable);
-    if (c.oacf)
-        writeCsv(dir / "oacf.csv",
-                 {{tName, "c1", "c1_err", "c2", "c2_err"},
-                  {reduced ? mapped(c.oacf->c1.tPs, time) : c.oacf->c1.tPs, c.oacf->c1.value,
-                   c.oacf->c1.err, c.oacf->c2.value, c.oacf->c2.err}});
-    else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
+    if (c.oacf) {
+        CsvTable oacfTable{{tName, "c1", "c1_err", "c2", "c2_err"},
+                           {reduced ? mapped(c.oacf->c1.tPs, time) : c.oacf->c1.tPs,
+                            c.oacf->c1.value, c.oacf->c1.err, c.oacf->c2.value, c.oacf->c2.err}};
+        for (std::size_t k = 0; k < c.oacfNames.size(); ++k) {
+            const std::string& name = c.oacfNames[k];
+            addColumn(oacfTable, "c1_" + name, c.speciesOacf[k].c1.value);
+            addColumn(oacfTable, "c1_err_" + name, c.speciesOacf[k].c1.err);
+            addColumn(oacfTable, "c2_" + name, c.speciesOacf[k].c2.value);
+            addColumn(oacfTable, "c2_err_" + name, c.speciesOacf[k].c2.err);
+        }
+        writeCsv(dir / "oacf.csv", oacfTable);
+    } else if (std::filesystem::remove(dir / "oacf.csv", ec); ec)
         throwIoError("remove", dir / "oacf.csv", ec.value());
     writeCsv(dir / "msd.csv", msdTable);
 }
@@ -267,6 +278,41 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir, const UnitSy
         speciesDiffusion[species_.names[a]]["followed_bodies"] = speciesCurves_[a]->followed();
     }
 
+    // Rods among spheres: a sphere's axis never moves, so the total's OACF would sit on the
+    // spheres' share. It is taken over the turning species' bodies instead, each species'
+    // mean weighted by its followed bodies (the mean over their union, lag by lag); the error
+    // adds the species' in quadrature, as of disjoint sets of bodies.
+    std::vector<int> turning;
+    for (int a = 0; a < species; ++a)
+        if (speciesCurves_[a]->rotating()) turning.push_back(a);
+    if (rotating && !turning.empty() && static_cast<int>(turning.size()) < species) {
+        double followed = 0.0;
+        for (const int a : turning) {
+            c.oacfNames.push_back(species_.names[a]);
+            c.speciesOacf.push_back(speciesCurves_[a]->orientation());
+            if (c.speciesOacf.back().c1.tPs != oacf.c1.tPs)
+                throw std::logic_error("analysis: species " + species_.names[a] +
+                                       "'s lags are not the total's");
+            followed += speciesCurves_[a]->followed();
+        }
+        for (SampledCurve OrientationalCorrelation::*part :
+             {&OrientationalCorrelation::c1, &OrientationalCorrelation::c2}) {
+            SampledCurve& total = oacf.*part;
+            std::fill(total.value.begin(), total.value.end(), 0.0);
+            std::fill(total.err.begin(), total.err.end(), 0.0);
+            for (std::size_t k = 0; k < turning.size(); ++k) {
+                const double w = speciesCurves_[turning[k]]->followed() / followed;
+                const SampledCurve& own = c.speciesOacf[k].*part;
+                for (std::size_t l = 0; l < total.value.size(); ++l) {
+                    total.value[l] += w * own.value[l];
+                    total.err[l] += w * w * own.err[l] * own.err[l];
+                }
+            }
+            for (double& e : total.err)
+                e = std::sqrt(e);
+        }
+    }
+
     writeCurveFiles(dir, c, terracing_, units);
 
     const double v2ps = v2 / (units::psPerTimeUnit * units::psPerTimeUnit); // Å²/ps²
@@ -292,7 +338,10 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir, const UnitSy
         {"vacf", {{"c0", vacf.value.front()}, {"mean_square_velocity_angstrom2_per_ps2", v2ps}}}};
     if (rotating)
         summary["oacf"] = {{"c1_0", oacf.c1.value.front()}, {"c2_0", oacf.c2.value.front()}};
-    else
+    if (rotating && !c.oacfNames.empty()) {
+        summary["oacf"]["species"] = c.oacfNames;
+        summary["oacf"]["over"] = "the bodies of the species that turn (the others never do)";
+    } else
         summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
     summary["diffusion"] = diffusionEntry(d, gk);
     if (species > 0) {

@@ -26,6 +26,9 @@
 //   vacf.csv  vacf_A,err_A,…                   each species' ⟨v(0)·v(t)⟩/⟨v²⟩ over its own bodies
 //   msd.csv   msd_A,err_A,…                    each species' ⟨|r(t) − r(0)|²⟩, in the unit of the
 //                                              msd column
+//   oacf.csv  c1_A,c1_err_A,c2_A,c2_err_A,…    rods among spheres only: each species that turns;
+//                                              c1 and c2 are then over those species' bodies
+//                                              alone (a sphere's axis never moves)
 //
 // and the summary gives each species' D (diffusion.species) and each pair's g at large r
 // (rdf.partials). The species' curves follow their own share of the followed bodies

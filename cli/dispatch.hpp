@@ -7,6 +7,7 @@
 #include "core/initial_state.hpp"
 #include "core/linear_rotor.hpp"
 #include "core/smoothed_potential.hpp"
+#include "core/species_rotor.hpp"
 #include "core/species_sphere.hpp"
 #include "core/sphere.hpp"
 #include "core/symmetric_top.hpp"
@@ -36,6 +37,7 @@ template <class Fn> auto withBodyAndPotential(const Scene& scene, Fn&& fn) {
         return fn.template operator()<AsymmetricTop>(
             SitePotential<AttitudeUse::Frame>::fromSites(sites));
     }
+    if (!scene.species.empty()) return fn.template operator()<SpeciesRotor>(rodMixture(scene));
     const RodPotential rod = rodPotential(scene);
     if (scene.body.kind == "symmetric") return fn.template operator()<SymmetricTop>(rod);
     if (scene.body.kind == "asymmetric") return fn.template operator()<AsymmetricTop>(rod);

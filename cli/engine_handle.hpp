@@ -33,13 +33,17 @@ public:
     virtual Vec3 totalMomentum() const = 0;
     virtual void rescaleTemperature(double kT) = 0;
     virtual nlohmann::json statistics() const = 0;
-    virtual int rotationalDof() const = 0;
+    /// Of the instantaneous temperature: 3 per body, plus each body's rotational ones, less the
+    /// total momentum's 3 (core/system.hpp degreesOfFreedom).
+    virtual int degreesOfFreedom() const = 0;
 };
 
-/// The engine E (of body kind K) behind the interface.
-template <Engine E, int RotationalDof> class EngineHandleOf final : public EngineHandle {
+/// The engine E behind the interface, its system's degrees of freedom counted when it was built
+/// (a body's never change).
+template <Engine E> class EngineHandleOf final : public EngineHandle {
 public:
-    explicit EngineHandleOf(std::unique_ptr<E> engine) : engine_(std::move(engine)) {}
+    EngineHandleOf(std::unique_ptr<E> engine, int degreesOfFreedom)
+        : engine_(std::move(engine)), degreesOfFreedom_(degreesOfFreedom) {}
     void advanceTo(double t) override { engine_->advanceTo(t); }
     double time() const override { return engine_->time(); }
     Snapshot snapshot() const override { return engine_->snapshot(); }
@@ -55,10 +59,11 @@ public:
     Vec3 totalMomentum() const override { return engine_->totalMomentum(); }
     void rescaleTemperature(double kT) override { engine_->rescaleTemperature(kT); }
     nlohmann::json statistics() const override { return engine_->statistics(); }
-    int rotationalDof() const override { return RotationalDof; }
+    int degreesOfFreedom() const override { return degreesOfFreedom_; }
 
 private:
     std::unique_ptr<E> engine_;
+    int degreesOfFreedom_;
 };
 
 /// The scene's engine (scene.engine) on the scene's initial state; the scene must be resolved

@@ -39,8 +39,10 @@ std::unique_ptr<EngineHandle> makeDmdHandle(const Scene& scene) {
         [&]<class K, class M>(const M& model,
                               const dmd::DmdSettings& settings) -> std::unique_ptr<EngineHandle> {
             using E = dmd::Engine<K, M>;
-            return std::make_unique<EngineHandleOf<E, K::rotationalDof>>(
-                std::make_unique<E>(buildInitialState<K, M>(scene, model), settings, scene.seed));
+            System<K, M> start = buildInitialState<K, M>(scene, model);
+            const int dof = degreesOfFreedom(start);
+            return std::make_unique<EngineHandleOf<E>>(
+                std::make_unique<E>(std::move(start), settings, scene.seed), dof);
         });
 }
 

@@ -114,10 +114,20 @@ double analysisBytes(const Scene& scene) {
     return times * followed * perFollowed + n * (3.0 * sizeof(double) + 2.0 * sizeof(int) + labels);
 }
 
+int rotationalDofs(const Scene& scene, int rotationalDof, const analysis::SpeciesLabels& species,
+                   int n) {
+    if (species.ofBody.empty()) return rotationalDof * n;
+    int total = 0;
+    for (const std::int32_t a : species.ofBody)
+        total += scene.species[a].kind == "sphere" ? 0 : rotationalDof;
+    return total;
+}
+
 RunRecord::RunRecord(const Scene& scene, const RunPlan& plan, int n, double boxLength,
                      int rotationalDof, VirialKind virial, const analysis::SpeciesLabels& species)
     : sampleInterval(plan.sampleInterval), kT(scene.kT()), volume(std::pow(boxLength, 3)),
-      virialKind(virial), bodies(n), dof(heatBathDof(heatBathOf(scene).kind, rotationalDof * n, n)),
+      virialKind(virial), bodies(n),
+      dof(heatBathDof(heatBathOf(scene).kind, rotationalDofs(scene, rotationalDof, species, n), n)),
       heatBath(heatBathOf(scene).on()), restartEveryPs(scene.output.restart_every_ps),
       warnings(sceneWarnings(scene)), outputUnits(unitSystem(scene)) {
     const long planned = plan.productionSamples + 1;

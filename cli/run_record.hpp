@@ -157,6 +157,12 @@ struct RunRecord {
     }
 };
 
+/// The rotational degrees of freedom of a run's n bodies together: `rotationalDof` each (the
+/// kind's), but none for a body of a sphere species among rods (Scene::species kind sphere,
+/// core/species_rotor.hpp); `species`: the bodies' labels, empty for one kind of body.
+int rotationalDofs(const Scene& scene, int rotationalDof, const analysis::SpeciesLabels& species,
+                   int n);
+
 /// Writes summary.json, then the correlation analysis (cancelled by a signal that arrives
 /// during it: more than `tolerated` signals in all), then summary.json again with the analysis'
 /// results.

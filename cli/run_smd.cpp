@@ -38,9 +38,12 @@ std::unique_ptr<EngineHandle> makeSmdHandle(const Scene& scene) {
     return withSmdModel<std::unique_ptr<EngineHandle>>(
         scene, [&]<class K, class M>(const M& model) -> std::unique_ptr<EngineHandle> {
             using E = smd::Engine<K, M>;
-            return std::make_unique<EngineHandleOf<E, K::rotationalDof>>(
-                std::make_unique<E>(buildInitialState<K, M>(scene, model),
-                                    smd::smdSettings(scene, scene.boxLength(), model.range())));
+            System<K, M> start = buildInitialState<K, M>(scene, model);
+            const int dof = degreesOfFreedom(start);
+            return std::make_unique<EngineHandleOf<E>>(
+                std::make_unique<E>(std::move(start),
+                                    smd::smdSettings(scene, scene.boxLength(), model.range())),
+                dof);
         });
 }
 

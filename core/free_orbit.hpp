@@ -123,6 +123,12 @@ public:
     /// division and the library's sincos.
     FreeOrbit advancedBy(double tau0) const {
         FreeOrbit o = *this;
+        // A body that does not turn (a sphere among rods) keeps its axis to the bit: renormalised
+        // at every flight, it would wander by an ulp at a time.
+        if (speed_ == 0.0) {
+            o.shift_ = 0.0;
+            return o;
+        }
         const SinCos turn = sinCos(speed_ * (shift_ + tau0));
         const Vec3 s = s_ * turn.cos + sideways_ * turn.sin;
         o.s_ = s / s.norm(); // as freeRotate: round-off must not build up over many flights

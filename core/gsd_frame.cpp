@@ -56,8 +56,19 @@ GsdBodyType gsdBodyType(const Scene& scene) {
     t.shape = gsdTypeShape(scene);
     for (const auto& x : scene.species) {
         t.species.push_back(x.name);
-        t.speciesDiameters.push_back(x.sigma * scene.potential.sigma);
+        const double sigma = x.sigma * scene.potential.sigma;
+        t.speciesShapes.push_back(nlohmann::json{{"type", "Sphere"}, {"diameter", sigma}});
         t.speciesMasses.push_back(x.mass * scene.body.mass);
+        if (x.kind.empty()) continue; // a mixture of spheres
+        // Rods among spheres (core/species_rotor.hpp): a rod species is drawn as the rods are.
+        const double I = x.kind == "sphere" ? 0.0 : x.inertia * scene.body.inertia[0];
+        t.speciesInertia.push_back(Vec3(I, I, 0.0));
+        if (x.kind != "sphere")
+            t.speciesShapes.back() = {
+                {"type", "ConvexPolyhedron"},
+                {"rounding_radius", sigma / 2},
+                {"vertices",
+                 {{0.0, 0.0, -scene.potential.zeta / 2}, {0.0, 0.0, scene.potential.zeta / 2}}}};
     }
     t.mass = scene.body.mass;
     t.inertia = scene.body.kind == "sphere" ? Vec3::Zero() : scene.body.inertia;
@@ -99,17 +110,19 @@ void writeConstantChunks(GsdWriter& f, std::uint32_t n, double boxLength, const 
         chunk(f, "particles/typeid", GsdType::UInt32, n, 1, std::vector<std::uint32_t>(n, 0));
         chunk(f, "particles/mass", GsdType::Float, n, 1, std::vector<float>(n, float(type.mass)));
     }
-    std::vector<float> inertia;
-    inertia.reserve(3 * std::size_t(n));
-    for (std::uint32_t i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c)
-            inertia.push_back(float(type.inertia[c]));
-    chunk(f, "particles/moment_inertia", GsdType::Float, n, 3, inertia);
+    if (type.speciesInertia.empty()) {
+        std::vector<float> inertia;
+        inertia.reserve(3 * std::size_t(n));
+        for (std::uint32_t i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c)
+                inertia.push_back(float(type.inertia[c]));
+        chunk(f, "particles/moment_inertia", GsdType::Float, n, 3, inertia);
+    }
     std::vector<std::string> shapeRows{type.shape.dump()};
     if (!type.species.empty()) {
         shapeRows.clear();
-        for (double d : type.speciesDiameters)
-            shapeRows.push_back(nlohmann::json{{"type", "Sphere"}, {"diameter", d}}.dump());
+        for (const auto& shape : type.speciesShapes)
+            shapeRows.push_back(shape.dump());
     }
     const auto shapes = stringRows(shapeRows, width);
     chunk(f, "particles/type_shapes", GsdType::Int8, shapeRows.size(), width, shapes);
@@ -169,6 +182,13 @@ void writeHoomdFrame(GsdWriter& f, int bodies, double time, double boxLength,
                                  out.push_back(float(type.speciesMasses.at(s.species[i])));
                              });
         }
+        if (!type.speciesInertia.empty())
+            bodyChunk<float>(f, "particles/moment_inertia", GsdType::Float, 3, bodies, bodiesOf,
+                             perPiece, [&](const Snapshot& s, int i, std::vector<float>& out) {
+                                 const Vec3& I = type.speciesInertia.at(s.species[i]);
+                                 for (int c = 0; c < 3; ++c)
+                                     out.push_back(float(I[c]));
+                             });
     }
     chunk(f, "configuration/step", GsdType::UInt64, 1, 1, std::vector<std::uint64_t>{sample});
     const double L = boxLength, perPs = 1.0 / units::psPerTimeUnit;
@@ -213,7 +233,10 @@ void writeHoomdFrame(GsdWriter& f, int bodies, double time, double boxLength,
                          const Vec3 omegaBody = s.omega.empty()
                                                     ? Vec3::Zero()
                                                     : Vec3(q.conjugate() * (s.omega[i] * perPs));
-                         const Vec3 l = type.inertia.cwiseProduct(omegaBody);
+                         const Vec3& I = type.speciesInertia.empty()
+                                             ? type.inertia
+                                             : type.speciesInertia.at(s.species[i]);
+                         const Vec3 l = I.cwiseProduct(omegaBody);
                          const Quat p = q * Quat(0.0, l.x(), l.y(), l.z());
                          out.insert(out.end(), {float(2 * p.w()), float(2 * p.x()),
                                                 float(2 * p.y()), float(2 * p.z())});
@@ -307,8 +330,10 @@ long forEachGsdFrame(const std::filesystem::path& path,
             const Quat p(mom[4 * i], mom[4 * i + 1], mom[4 * i + 2], mom[4 * i + 3]);
             const Quat lb = q.conjugate() * p;
             Vec3 omegaBody = Vec3::Zero();
+            // Each body's own moments: among rods a sphere's are 0 (no ω), a rod's its species'.
+            const Vec3 own(inertia[3 * i], inertia[3 * i + 1], inertia[3 * i + 2]);
             for (int k = 0; k < 3; ++k)
-                if (moments[k] > 0) omegaBody[k] = 0.5 * lb.vec()[k] / moments[k];
+                if (own[k] > 0) omegaBody[k] = 0.5 * lb.vec()[k] / own[k];
             s.omega.push_back(q * omegaBody * perTimeUnit);
         }
         each(std::move(s));

@@ -34,12 +34,14 @@ struct GsdBodyType {
     nlohmann::json shape;  // gsdTypeShape
     double mass = 0.0;     // g/mol
     Vec3 inertia{0, 0, 0}; // principal moments, g/mol Å²
-    // A mixture's species (Scene::species), each a type of its own named as the species, a
-    // sphere of its own σ and mass; the bodies' typeid and mass then come from the first frame's
-    // Snapshot::species.
+    // A mixture's species (Scene::species), each a type of its own named as the species, with
+    // its own shape (a sphere of its σ; among rods, a rod species the rods' shape at its σ) and
+    // mass; the bodies' typeid and mass (and among rods their moments of inertia, 0 for a
+    // sphere) then come from the first frame's Snapshot::species.
     std::vector<std::string> species;
-    std::vector<double> speciesDiameters; // Å
-    std::vector<double> speciesMasses;    // g/mol
+    std::vector<nlohmann::json> speciesShapes;
+    std::vector<double> speciesMasses; // g/mol
+    std::vector<Vec3> speciesInertia;  // g/mol Å²; empty: every body has `inertia`
 };
 GsdBodyType gsdBodyType(const Scene& scene);
 

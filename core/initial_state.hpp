@@ -10,6 +10,7 @@
 #include "core/gay_berne_potential.hpp"
 #include "core/lj_mixture.hpp"
 #include "core/lj_potential.hpp"
+#include "core/rod_mixture.hpp"
 #include "core/rod_potential.hpp"
 #include "core/scene.hpp"
 #include "core/site_potential.hpp"
@@ -36,6 +37,9 @@ GayBernePotential gayBernePotential(const Scene& scene);
 StepPotential stepPotential(const Scene& scene);
 /// potential.kind steps with species: that table between the species' pairs, each in its σ_ab.
 StepMixture stepMixture(const Scene& scene);
+/// potential.kind rod-lj with species: rods among spheres, the rod pairs' ζ potential.zeta, every
+/// pair's ε_ab, σ_ab as for ljMixture.
+RodMixture rodMixture(const Scene& scene);
 /// body.sites as the site potential takes them.
 std::vector<Site> sceneSites(const Scene& scene);
 BodyParams bodyParams(const Scene& scene);

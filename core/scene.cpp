@@ -154,12 +154,16 @@ json toJson(const Scene& s) {
     // Written only for a mixture: any other scene resolves to the same bytes as before.
     if (!s.species.empty()) {
         json list = json::array();
-        for (const auto& x : s.species)
+        for (const auto& x : s.species) {
             list.push_back({{"name", x.name},
                             {"fraction", x.fraction},
                             {"epsilon", x.epsilon},
                             {"sigma", x.sigma},
                             {"mass", x.mass}});
+            if (x.kind.empty()) continue; // a mixture of spheres: as before
+            list.back()["kind"] = x.kind;
+            if (x.kind != "sphere") list.back()["inertia"] = x.inertia;
+        }
         j["species"] = list;
         json pairs = json::array();
         for (const auto& x : s.potential.pairs)
@@ -264,6 +268,7 @@ double sceneMinimumEnergy(const Scene& s) {
     if (s.potential.kind == "gay-berne") return gayBernePotential(s).minimumEnergy();
     if (s.potential.kind == "sites")
         return SitePotential<AttitudeUse::Frame>::fromSites(sceneSites(s)).minimumEnergy();
+    if (!s.species.empty()) return rodMixture(s).minimumEnergy();
     return rodPotential(s).minimumEnergy();
 }
 SmoothedCutoff sceneCutoff(const Scene& s) {
@@ -282,8 +287,12 @@ SmoothedCutoff sceneCutoff(const Scene& s) {
 }
 BodyParams bodyParams(const Scene& s) {
     BodyParams p{s.body.mass, s.body.inertia};
-    for (std::size_t a = 0; a < s.species.size() && a < p.speciesMass.size(); ++a)
+    for (std::size_t a = 0; a < s.species.size() && a < p.speciesMass.size(); ++a) {
         p.speciesMass[a] = s.species[a].mass * s.body.mass;
+        // Rods among spheres: a sphere's inertia is 0 (core/species_rotor.hpp).
+        p.speciesInertia[a] = s.species[a].inertia * s.body.inertia[0];
+        if (s.species[a].kind == "sphere") p.speciesInertia[a] = 0.0;
+    }
     return p;
 }
 

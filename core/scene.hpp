@@ -57,6 +57,10 @@ struct SpeciesSpec {
     double epsilon = 1.0;  // ε
     double sigma = 1.0;    // σ
     double mass = 1.0;     // body.mass
+    // rod-lj only (rods among spheres, core/species_rotor.hpp): linear | sphere, and a linear
+    // species' moment of inertia in body.inertia's first moment. Empty for a mixture of spheres.
+    std::string kind;
+    double inertia = 1.0;
 };
 
 /// The parameters of one unlike pair (potential.pairs), in place of Lorentz–Berthelot's mixing
@@ -115,8 +119,9 @@ struct Scene {
         std::vector<SpeciesPairSpec> pairs;
     } potential;
 
-    // A mixture of spheres under lj (core/species_sphere.hpp): two to LJMixture::maxSpecies
-    // species, empty for one kind of body. Bodies take their species at random, by the scene's
+    // A mixture of spheres under lj or steps (core/species_sphere.hpp), or of rods and spheres
+    // under rod-lj (core/species_rotor.hpp, core/rod_mixture.hpp): two to maxSpecies species,
+    // empty for one kind of body. Bodies take their species at random, by the scene's
     // seed, in the numbers speciesCounts gives.
     std::vector<SpeciesSpec> species;
 

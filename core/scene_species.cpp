@@ -47,9 +47,12 @@ void readSpecies(const JsonSection& top, Scene& s) {
         top.fail("species", "must be an array of 2 to " + std::to_string(most) +
                                 " species: [{\"name\": \"A\", \"fraction\": 0.8, \"epsilon\": "
                                 "1, \"sigma\": 1}, ...]");
-    if ((s.potential.kind != "lj" && s.potential.kind != "steps") || s.body.kind != "sphere")
-        top.fail("species", "a mixture is of spheres with Lennard-Jones pairs or a step table: "
-                            "set body.kind sphere and potential.kind lj or steps");
+    const bool rods = s.potential.kind == "rod-lj";
+    if (!((s.potential.kind == "lj" || s.potential.kind == "steps") && s.body.kind == "sphere") &&
+        !(rods && s.body.kind == "linear"))
+        top.fail("species", "a mixture is of spheres with Lennard-Jones pairs or a step table "
+                            "(body.kind sphere, potential.kind lj or steps) or of rods and spheres "
+                            "(body.kind linear, potential.kind rod-lj)");
     const bool steps = s.potential.kind == "steps";
     if (steps && s.potential.cutoff_per_pair)
         pot.fail("cutoff_per_pair", "a step table ends at its first radius, which each pair of a "
@@ -59,7 +62,10 @@ void readSpecies(const JsonSection& top, Scene& s) {
     double total = 0.0;
     for (std::size_t a = 0; a < list.size(); ++a) {
         const JsonSection e(list[a], top.name("species[" + std::to_string(a) + "]"), top.origin());
-        e.onlyKeys({"name", "fraction", "epsilon", "sigma", "mass"});
+        if (rods)
+            e.onlyKeys({"name", "fraction", "epsilon", "sigma", "mass", "kind", "inertia"});
+        else
+            e.onlyKeys({"name", "fraction", "epsilon", "sigma", "mass"});
         SpeciesSpec x;
         if (!e.has("name") || !e.at("name").is_string() || e.at("name").get<std::string>().empty())
             e.fail("name", "each species needs a name, a non-empty string (\"A\")");
@@ -77,6 +83,13 @@ void readSpecies(const JsonSection& top, Scene& s) {
         x.epsilon = e.number("epsilon", 1.0, 0.0, 1e6, true);
         x.sigma = e.number("sigma", 1.0, 0.0, 1e3, true);
         x.mass = e.number("mass", 1.0, 0.0, 1e6, true);
+        if (rods) {
+            // A sphere of the mixture has no inertia to give: it never turns.
+            x.kind = e.choice("kind", "linear", {"linear", "sphere"});
+            if (x.kind == "sphere" && e.has("inertia"))
+                e.fail("inertia", "a sphere of a mixture with rods never turns: leave it out");
+            x.inertia = x.kind == "sphere" ? 0.0 : e.number("inertia", 1.0, 0.0, 1e6, true);
+        }
         total += x.fraction;
         s.species.push_back(x);
     }
@@ -165,6 +178,17 @@ StepMixture stepMixture(const Scene& s) {
     m.steps = stepPotential(s);
     m.species = static_cast<int>(s.species.size());
     forEachSpeciesPair(s, [&](int a, int b, double eps, double sig) { m.setPair(a, b, eps, sig); });
+    return m;
+}
+
+RodMixture rodMixture(const Scene& s) {
+    RodMixture m;
+    m.species = static_cast<int>(s.species.size());
+    for (int a = 0; a < m.species; ++a)
+        m.rod[a] = s.species[a].kind != "sphere";
+    forEachSpeciesPair(s, [&](int a, int b, double eps, double sig) {
+        m.setPair(a, b, eps, sig, s.potential.zeta);
+    });
     return m;
 }
 

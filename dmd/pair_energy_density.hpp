@@ -17,6 +17,7 @@
 #include "core/huge_pages.hpp"
 #include "core/initial_state.hpp"
 #include "core/pair_potential.hpp"
+#include "dmd/orientation_samples.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -49,14 +50,8 @@ public:
         std::vector<std::pair<Orientation, Orientation>> axes(
             nOrient, {unusedOrientation<P>(), unusedOrientation<P>()});
         if constexpr (isOrientational<P>)
-            for (auto& a : axes) {
-                if constexpr (P::attitude == AttitudeUse::Frame)
-                    a = {terrace::detail::randomRotation(rng),
-                         terrace::detail::randomRotation(rng)};
-                else
-                    a = {terrace::detail::randomUnitVector(rng),
-                         terrace::detail::randomUnitVector(rng)};
-            }
+            for (int k = 0; k < nOrient; ++k)
+                axes[k] = sampledOrientations(p, k, rng);
         const double dr = (rOut - rIn) / radii;
         struct Sample {
             double U, w;

@@ -79,7 +79,8 @@ inline constexpr double optimalWallInKT = 5.0;
 inline constexpr long maxOptimalLevels = 2500;
 
 /// The potential along one fixed alignment, s_i·s_j = 1/√2 with the separation along x (a frame
-/// potential: body j turned by 45° about x from body i; a mixture: its first species' pair).
+/// potential: body j turned by 45° about x from body i; a mixture: its first species' pair, at
+/// that alignment where it has rods).
 template <PairPotential P> double profileEnergy(const P& p, double r) {
     if constexpr (P::attitude == AttitudeUse::Frame) {
         const Mat3 qi = Mat3::Identity();
@@ -87,6 +88,9 @@ template <PairPotential P> double profileEnergy(const P& p, double r) {
         return p.energy(Vec3(r, 0.0, 0.0), qi, qj);
     } else if constexpr (P::attitude == AttitudeUse::Species) {
         return p.energy(Vec3(r, 0.0, 0.0), 0, 0); // a mixture's first like pair
+    } else if constexpr (P::attitude == AttitudeUse::SpeciesAxis) {
+        const Vec3 sj = (Vec3::UnitZ() + Vec3::UnitY()).normalized();
+        return p.energy(Vec3(r, 0.0, 0.0), SpeciesAxis{Vec3::UnitZ(), 0}, SpeciesAxis{sj, 0});
     } else {
         const Vec3 si = Vec3::UnitZ();
         const Vec3 sj = (Vec3::UnitZ() + Vec3::UnitY()).normalized();

@@ -7,13 +7,14 @@
 // one) is swallowed whole: DMD then samples a different fluid, with no error bar that shows it.
 //
 // The check runs over a fixed set of random relative orientations (one for spheres, each species
-// pair for a mixture), the same
+// pair for a mixture of spheres, species pairs in turn for one with rods), the same
 // kind of sample a terrace design weighs (dmd/pair_energy_density.hpp), each profile scanned on
 // a radial grid from inside the wall out to the model's range. Wells shallower than
 // `significant` are not counted: a well of a few hundredths of kT moves nothing measurable.
 #include "core/body_orientation.hpp"
 #include "core/initial_state.hpp"
 #include "core/pair_potential.hpp"
+#include "dmd/orientation_samples.hpp"
 #include "dmd/terrace_levels.hpp"
 #include <algorithm>
 #include <cmath>
@@ -42,17 +43,11 @@ WellCoverage wellCoverage(const P& p, const TerraceLevels& levels, double signif
         if (std::isfinite(p.range())) rOut = std::min(rOut, p.range());
     const double rIn = 0.5 * p.reachDistance(wall);
     WellCoverage c;
-    // A mixture's "orientations" are its species pairs, each checked once.
+    // A mixture of spheres' "orientations" are its species pairs, each checked once (a mixture
+    // with rods takes its pairs in turn with random axes: dmd/orientation_samples.hpp).
     std::vector<std::pair<int, int>> speciesPairs;
     if constexpr (P::attitude == AttitudeUse::Species) {
-        int species = 1;
-        if constexpr (requires { p.bare.species; })
-            species = p.bare.species;
-        else
-            species = p.species;
-        for (int a = 0; a < species; ++a)
-            for (int b = a; b < species; ++b)
-                speciesPairs.emplace_back(a, b);
+        speciesPairs = speciesPairsOf(p);
         orientations = static_cast<int>(speciesPairs.size());
     }
     c.orientations = readsBodies<P> ? orientations : 1;
@@ -62,14 +57,7 @@ WellCoverage wellCoverage(const P& p, const TerraceLevels& levels, double signif
     for (int k = 0; k < c.orientations; ++k) {
         auto si = unusedOrientation<P>(), sj = unusedOrientation<P>();
         if constexpr (P::attitude == AttitudeUse::Species) std::tie(si, sj) = speciesPairs[k];
-        if constexpr (isOrientational<P>) {
-            if constexpr (P::attitude == AttitudeUse::Frame)
-                si = terrace::detail::randomRotation(rng),
-                sj = terrace::detail::randomRotation(rng);
-            else
-                si = terrace::detail::randomUnitVector(rng),
-                sj = terrace::detail::randomUnitVector(rng);
-        }
+        if constexpr (isOrientational<P>) std::tie(si, sj) = sampledOrientations(p, k, rng);
         double uMin = std::numeric_limits<double>::infinity();
         for (int i = 0; i <= radii; ++i) {
             const double r = rIn + (rOut - rIn) * i / radii;

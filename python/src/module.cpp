@@ -174,7 +174,7 @@ void bindSimulation(py::module_& m) {
         .def("pressure_bar", &pressureBar)
         .def("temperature_K",
              [](const PySimulation& p) {
-                 const double dof = double(3 + idle(p).sim->rotationalDof()) * p.bodies - 3.0;
+                 const double dof = idle(p).sim->degreesOfFreedom();
                  return units::kelvin(2.0 * idle(p).sim->kineticEnergy() / dof);
              })
         .def("rescale_temperature",

@@ -284,6 +284,42 @@ TEST(MixtureCorrelations, EachSpeciesMsdIsItsOwnSpeedSquaredTimesTSquared) {
     }
 }
 
+// Rods among spheres (core/species_rotor.hpp): the rods turn uniformly at ω, so s(0)·s(t) =
+// cos ωt for each; the spheres' axes never move. The OACF is over the rods alone, cos ωt and
+// P₂(cos ωt) exactly (not the spheres' share of 1 added), with the rods' own columns beside it
+// and none for the spheres.
+TEST(MixtureCorrelations, TheOacfIsOverTheSpeciesThatTurn) {
+    const SpeciesLabels l = labels({20, 44});
+    const double omega = 2.0; // rad per time unit
+    auto samples = ballistic(64, l, {1.0, 1.5}, 30.0);
+    std::mt19937_64 rng(5);
+    for (int i = 0; i < 64; ++i) {
+        const Vec3 s0 = synthetic::unitVector(rng);
+        const Vec3 sideways = s0.cross(synthetic::unitVector(rng)).normalized();
+        for (auto& f : samples)
+            f.axis[i] =
+                l.ofBody[i] == 0
+                    ? Vec3(s0 * std::cos(omega * f.time) + sideways * std::sin(omega * f.time))
+                    : s0;
+    }
+    RunAnalysis a(64, 30.0, intervalPs, 64, smallOptions(0), l);
+    for (const auto& f : samples)
+        a.add(f);
+    const ScratchDirectory dir("oacf");
+    const auto summary = a.write(dir.path);
+    const CsvTable oacf = readCsv(dir.path / "oacf.csv");
+    ASSERT_EQ(oacf.header, (std::vector<std::string>{"t_ps", "c1", "c1_err", "c2", "c2_err", "c1_A",
+                                                     "c1_err_A", "c2_A", "c2_err_A"}));
+    ASSERT_GE(oacf.rows(), 10);
+    for (int row = 0; row < oacf.rows(); ++row) {
+        const double c = std::cos(omega * units::fromPs(oacf.columns[0][row]));
+        EXPECT_NEAR(oacf.columns[1][row], c, 1e-9) << oacf.columns[0][row];
+        EXPECT_NEAR(oacf.columns[3][row], 1.5 * c * c - 0.5, 1e-9);
+        EXPECT_NEAR(oacf.columns[5][row], c, 1e-9);
+    }
+    EXPECT_EQ(summary["oacf"]["species"], nlohmann::json::array({"A"}));
+}
+
 // Every species is followed, however few its bodies, in its share of the followed bodies.
 TEST(MixtureCorrelations, EverySpeciesHasFollowedBodies) {
     const SpeciesLabels l = labels({995, 3, 2});

@@ -1,13 +1,16 @@
-// Mixtures of Lennard-Jones spheres (Scene::species, potential.pairs): the scene's reading and
-// refusals, the bodies' counts, Lorentz–Berthelot and explicit unlike pairs in the potential, the
-// potential's bounds over its pairs, a lattice start that deals the species out with velocities
-// at each species' mass, and a GSD trajectory with one type per species.
+// Mixtures of Lennard-Jones spheres (Scene::species, potential.pairs), and of rods among spheres:
+// the scene's reading and refusals, the bodies' counts, Lorentz–Berthelot and explicit unlike pairs
+// in the potential, the potential's bounds over its pairs, a lattice start that deals the species
+// out with velocities at each species' mass, and a GSD trajectory with one type per species.
 #include "core/gsd_file.hpp"
 #include "core/gsd_frame.hpp"
 #include "core/initial_state.hpp"
 #include "core/lj_mixture.hpp"
+#include "core/rod_mixture.hpp"
+#include "core/rod_potential.hpp"
 #include "core/scene.hpp"
 #include "core/smoothed_potential.hpp"
+#include "core/species_rotor.hpp"
 #include "core/species_sphere.hpp"
 #include "tests/core/scene_errors.hpp"
 #include <cstring>
@@ -110,8 +113,8 @@ TEST(Species, RefusalsNameTheKeyAndTheCause) {
     j["species"].erase(1);
     EXPECT_NE(errorOf(j).find("species: must be an array of 2 to 4 species"), std::string::npos)
         << errorOf(j);
-    j = kobAndersen(); // a mixture of rods is not one yet
-    j["body"] = {{"kind", "linear"}, {"mass", 1.0}, {"inertia", {1.0, 1.0, 0.0}}};
+    j = kobAndersen(); // a mixture of tops is not one yet
+    j["body"] = {{"kind", "symmetric"}, {"mass", 1.0}, {"inertia", {1.0, 1.0, 0.5}}};
     j["potential"]["kind"] = "rod-lj";
     j["potential"].erase("pairs");
     EXPECT_NE(errorOf(j).find("species: a mixture is of spheres with Lennard-Jones pairs or a "
@@ -490,6 +493,115 @@ TEST(Species, AnExplicitStartsSpeciesAreRefusedByTheirKeys) {
     EXPECT_NE(errorOf(plain).find("state.particles[0].species: only meaningful in a mixture"),
               std::string::npos)
         << errorOf(plain);
+}
+
+// Rods among spheres (core/species_rotor.hpp): under rod-lj each species names its kind, a rod
+// species its inertia in body.inertia's first moment; the pairs mix as for spheres, and only a
+// pair of rods feels ζ.
+namespace {
+json rodsAmongSpheres() {
+    return {{"body", {{"kind", "linear"}, {"mass", 18.0}, {"inertia", {1.154, 1.154, 0.0}}}},
+            {"potential", {{"kind", "rod-lj"}, {"epsilon", 3.0}, {"sigma", 3.035}, {"zeta", 1.0}}},
+            {"species",
+             {{{"name", "rod"}, {"fraction", 0.25}, {"kind", "linear"}, {"inertia", 1.5}},
+              {{"name", "solvent"},
+               {"fraction", 0.75},
+               {"kind", "sphere"},
+               {"epsilon", 0.6},
+               {"sigma", 1.1},
+               {"mass", 2.2}}}},
+            {"state", {{"n", 64}, {"density", 0.5}, {"temperature", 1.4}}}};
+}
+} // namespace
+
+TEST(Species, RodsAmongSpheresNameTheirKindsAndInertias) {
+    const Scene s = sceneFromJson(rodsAmongSpheres(), "test.json");
+    EXPECT_EQ(s.species[0].kind, "linear");
+    EXPECT_EQ(s.species[1].kind, "sphere");
+    const BodyParams p = bodyParams(s);
+    EXPECT_DOUBLE_EQ(p.speciesInertia[0], 1.5 * 1.154);
+    EXPECT_EQ(p.speciesInertia[1], 0.0);
+    EXPECT_DOUBLE_EQ(p.speciesMass[1], 2.2 * 18.0);
+    const RodMixture m = rodMixture(s);
+    EXPECT_TRUE(m.rod[0]);
+    EXPECT_FALSE(m.rod[1]);
+    const Vec3 r(4.0, 0.5, -0.3), si = Vec3::UnitZ(), sj = Vec3(0.0, 0.6, 0.8);
+    // The rod pair is the paper's pair; the rod–sphere pair LJ at σ 1.05 σ, ε √0.6 ε, no ζ.
+    const RodPotential rodPair{3.0, 3.035, 1.0}, rodSphere{std::sqrt(0.6) * 3.0, 1.05 * 3.035, 0.0};
+    const SpeciesAxis rodI{si, 0}, rodJ{sj, 0}, sphereJ{sj, 1};
+    EXPECT_EQ(m.energy(r, rodI, rodJ), rodPair.energy(r, si, sj));
+    EXPECT_DOUBLE_EQ(m.energy(r, rodI, sphereJ), rodSphere.energy(r, si, sj));
+    EXPECT_NEAR(sceneMinimumEnergy(s), -3.0, 1e-12); // the rod pair's well, the deepest
+    // Read back the same, and a mixture of spheres writes neither key (its bytes as before).
+    EXPECT_EQ(toJson(sceneFromJson(toJson(s), "scene.json")), toJson(s));
+    EXPECT_FALSE(toJson(sceneFromJson(kobAndersen(), "t.json"))["species"][0].contains("kind"));
+    // A lattice start: 16 rods that spin, 48 spheres that do not.
+    const auto sys = buildInitialState<SpeciesRotor>(s, m);
+    int rods = 0;
+    for (const auto& b : sys.bodies) {
+        rods += b.species == 0;
+        EXPECT_EQ(b.species == 1, b.w == Vec3::Zero());
+    }
+    EXPECT_EQ(rods, 16);
+    EXPECT_EQ(degreesOfFreedom(sys), 3 * 64 + 2 * 16 - 3);
+}
+
+TEST(Species, RodsAmongSpheresRefusalsNameTheKey) {
+    json j = rodsAmongSpheres();
+    j["species"][1]["inertia"] = 1.0;
+    EXPECT_NE(errorOf(j).find("species[1].inertia: a sphere of a mixture with rods never turns"),
+              std::string::npos)
+        << errorOf(j);
+    j = rodsAmongSpheres();
+    j["species"][1]["kind"] = "symmetric";
+    EXPECT_NE(errorOf(j).find("species[1].kind"), std::string::npos) << errorOf(j);
+    j = kobAndersen(); // a mixture of spheres has no kinds to choose
+    j["species"][1]["kind"] = "sphere";
+    EXPECT_NE(errorOf(j).find("species[1]"), std::string::npos) << errorOf(j);
+    EXPECT_NE(errorOf(j).find("kind"), std::string::npos) << errorOf(j);
+}
+
+// A GSD frame of rods among spheres: a rod species drawn as the rods, a sphere species as a
+// sphere; each body's moment of inertia its species' (a sphere's 0); read back, each rod's ω is
+// its own, through its own inertia, and a sphere's is 0.
+TEST(Species, AGsdFrameOfRodsAmongSpheresKeepsEachBodysInertiaAndSpin) {
+    const Scene s = sceneFromJson(rodsAmongSpheres(), "test.json");
+    const auto sys = buildInitialState<SpeciesRotor>(s, rodMixture(s));
+    const Snapshot written = makeSnapshot(sys, 0.0);
+    ASSERT_EQ(written.species.size(), 64u);
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("terrace-rods-species-" + std::to_string(::getpid()) + ".gsd");
+    {
+        GsdWriter w(path, "test", "hoomd", 1, 4, hoomdChunkNames());
+        writeHoomdFrame(w, written, gsdBodyType(s), 0);
+    }
+    const GsdContents c = readGsdContents(path);
+    const auto entry = [&](const std::string& name) {
+        for (const auto& e : c.index)
+            if (c.names.at(e.id) == name) return e;
+        throw std::runtime_error("no chunk " + name);
+    };
+    const GsdIndexEntry shapes = entry("particles/type_shapes");
+    const std::string shapeBytes = readGsdChunk(path, shapes);
+    EXPECT_EQ(nlohmann::json::parse(std::string(shapeBytes.data())).at("type"), "ConvexPolyhedron");
+    EXPECT_EQ(nlohmann::json::parse(std::string(shapeBytes.data() + shapes.m)).at("type"),
+              "Sphere");
+    const GsdIndexEntry inertia = entry("particles/moment_inertia");
+    ASSERT_EQ(inertia.n, 64u);
+    const std::string inertiaBytes = readGsdChunk(path, inertia);
+    for (int i = 0; i < 64; ++i) {
+        float I = 0;
+        std::memcpy(&I, inertiaBytes.data() + 12 * i, 4);
+        ASSERT_EQ(I, sys.bodies[i].species == 0 ? float(1.5 * 1.154) : 0.0f) << i;
+    }
+    std::vector<Snapshot> read;
+    forEachGsdFrame(path, [&](Snapshot&& f) { read.push_back(std::move(f)); });
+    ASSERT_EQ(read.size(), 1u);
+    for (int i = 0; i < 64; ++i)
+        EXPECT_LT((read[0].omega[i] - written.omega[i]).norm(),
+                  1e-5 * (1.0 + written.omega[i].norm()))
+            << i;
+    std::filesystem::remove(path);
 }
 
 } // namespace test_species
