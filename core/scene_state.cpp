@@ -216,6 +216,14 @@ void checkRepresentable(const JsonSection& top, const Scene& s) {
             requireResolvedMotion(top, "body.inertia", "turn one radian", I[a], turning(I[a], kT),
                                   turning(I[a], kTDefault), s.state.temperature);
     }
+    // Rods among spheres: a rod species of a smaller inertia turns faster than body.inertia says.
+    for (std::size_t a = 0; a < s.species.size(); ++a) {
+        if (s.species[a].kind != "linear") continue;
+        const double i = s.species[a].inertia * I[0];
+        requireResolvedMotion(top, "species[" + std::to_string(a) + "].inertia", "turn one radian",
+                              s.species[a].inertia, turning(i, kT), turning(i, kTDefault),
+                              s.state.temperature);
+    }
     // A body longer than half the box meets its own images: the nearest-image convention, on
     // which every pair sum and neighbour list rests, no longer picks one image per pair.
     double span = 0.0;

@@ -552,6 +552,13 @@ TEST(Species, RodsAmongSpheresRefusalsNameTheKey) {
     EXPECT_NE(errorOf(j).find("species[1].inertia: a sphere of a mixture with rods never turns"),
               std::string::npos)
         << errorOf(j);
+    // The paper's rods turn a radian in ~50 fs at this kT; a species 10⁻⁸ as stiff in 0.005 fs.
+    j = rodsAmongSpheres();
+    j["species"][0]["inertia"] = 1e-8;
+    EXPECT_NE(errorOf(j).find("species[0].inertia"), std::string::npos) << errorOf(j);
+    EXPECT_NE(errorOf(j).find("turn one radian"), std::string::npos) << errorOf(j);
+    j["species"][0]["inertia"] = 0.0;
+    EXPECT_NE(errorOf(j).find("species[0].inertia"), std::string::npos) << errorOf(j);
     j = rodsAmongSpheres();
     j["species"][1]["kind"] = "symmetric";
     EXPECT_NE(errorOf(j).find("species[1].kind"), std::string::npos) << errorOf(j);
