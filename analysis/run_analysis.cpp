@@ -279,13 +279,14 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir, const UnitSy
     }
 
     // Rods among spheres: a sphere's axis never moves, so the total's OACF would sit on the
-    // spheres' share. It is taken over the turning species' bodies instead, each species'
-    // mean weighted by its followed bodies (the mean over their union, lag by lag); the error
-    // adds the species' in quadrature, as of disjoint sets of bodies.
+    // spheres' share. It is taken over the turning species' bodies instead (which ones the
+    // labels say, from the scene), each species' mean weighted by its followed bodies (the mean
+    // over their union, lag by lag); the error adds the species' in quadrature, as of disjoint
+    // sets of bodies.
     std::vector<int> turning;
-    for (int a = 0; a < species; ++a)
-        if (speciesCurves_[a]->rotating()) turning.push_back(a);
-    if (rotating && !turning.empty() && static_cast<int>(turning.size()) < species) {
+    for (int a = 0; a < species && !species_.fixedAxis.empty(); ++a)
+        if (!species_.fixedAxis[a]) turning.push_back(a);
+    if (rotating && !turning.empty()) {
         double followed = 0.0;
         for (const int a : turning) {
             c.oacfNames.push_back(species_.names[a]);
@@ -336,13 +337,15 @@ nlohmann::json RunAnalysis::write(const std::filesystem::path& dir, const UnitSy
         {"memory_bytes", bytes()},
         {"rdf", rdfEntry},
         {"vacf", {{"c0", vacf.value.front()}, {"mean_square_velocity_angstrom2_per_ps2", v2ps}}}};
-    if (rotating)
-        summary["oacf"] = {{"c1_0", oacf.c1.value.front()}, {"c2_0", oacf.c2.value.front()}};
-    if (rotating && !c.oacfNames.empty()) {
-        summary["oacf"]["species"] = c.oacfNames;
-        summary["oacf"]["over"] = "the bodies of the species that turn (the others never do)";
-    } else
+    if (!rotating) {
         summary["oacf"] = "not written: the axes do not change (bodies without rotation)";
+    } else {
+        summary["oacf"] = {{"c1_0", oacf.c1.value.front()}, {"c2_0", oacf.c2.value.front()}};
+        if (!c.oacfNames.empty()) {
+            summary["oacf"]["species"] = c.oacfNames;
+            summary["oacf"]["over"] = "the bodies of the species that turn (the others never do)";
+        }
+    }
     summary["diffusion"] = diffusionEntry(d, gk);
     if (species > 0) {
         summary["diffusion"]["species"] = speciesDiffusion;

@@ -15,6 +15,9 @@ namespace terrace::analysis {
 struct SpeciesLabels {
     std::vector<std::string> names;   // species a's name, a = 0 … S − 1
     std::vector<std::int32_t> ofBody; // body i's species, i = 0 … N − 1
+    // Rods among spheres: species a's axes never move (a sphere's), so its bodies stay out of the
+    // OACF; empty where no species is so (a mixture of spheres has no OACF at all).
+    std::vector<bool> fixedAxis;
 
     bool empty() const { return names.empty(); }
     int count() const { return static_cast<int>(names.size()); }
@@ -37,6 +40,10 @@ struct SpeciesLabels {
         }
         if (names.size() < 2)
             throw std::invalid_argument("analysis: a mixture needs two species or more");
+        if (!fixedAxis.empty() && fixedAxis.size() != names.size())
+            throw std::invalid_argument("analysis: " + std::to_string(fixedAxis.size()) +
+                                        " fixed-axis flags for " + std::to_string(names.size()) +
+                                        " species");
         if (ofBody.size() != static_cast<std::size_t>(bodies))
             throw std::invalid_argument("analysis: " + std::to_string(ofBody.size()) +
                                         " species indices for " + std::to_string(bodies) +

@@ -1,11 +1,13 @@
 #include "cli/analyse_command.hpp"
 #include "analysis/run_analysis.hpp"
+#include "cli/body_species.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run_driver.hpp"
 #include "core/gsd_frame.hpp"
 #include "core/initial_state.hpp"
 #include "core/scene.hpp"
 #include "core/scene_units.hpp"
+#include "core/species_rotor.hpp"
 #include "core/species_sphere.hpp"
 #include "core/units.hpp"
 #include "core/xyz.hpp"
@@ -31,15 +33,13 @@ long forEachFrame(const std::filesystem::path& path, const std::function<void(Sn
 /// change; the frames are in the scene's numbering).
 analysis::SpeciesLabels frameSpecies(const Scene& scene, const std::vector<std::int32_t>& first,
                                      int bodies, const std::filesystem::path& path) {
-    analysis::SpeciesLabels labels;
-    if (scene.species.empty()) return labels;
-    for (const auto& s : scene.species)
-        labels.names.push_back(s.name);
+    if (scene.species.empty()) return {};
+    analysis::SpeciesLabels labels = speciesNames(scene);
     if (static_cast<int>(first.size()) == bodies) {
         labels.ofBody = first;
     } else {
-        auto deal = [&](const auto& potential) {
-            const auto start = buildInitialState<SpeciesSphere>(scene, potential);
+        auto deal = [&]<class K>(const auto& potential) {
+            const auto start = buildInitialState<K>(scene, potential);
             if (start.size() != bodies)
                 throw TrajectoryError(
                     path.string() + ": the trajectory holds " + std::to_string(bodies) +
@@ -48,9 +48,11 @@ analysis::SpeciesLabels frameSpecies(const Scene& scene, const std::vector<std::
                 labels.ofBody.push_back(b.species);
         };
         if (scene.potential.kind == "steps")
-            deal(stepMixture(scene));
+            deal.template operator()<SpeciesSphere>(stepMixture(scene));
+        else if (scene.potential.kind == "rod-lj")
+            deal.template operator()<SpeciesRotor>(rodMixture(scene));
         else
-            deal(ljMixture(scene));
+            deal.template operator()<SpeciesSphere>(ljMixture(scene));
     }
     labels.check(bodies);
     return labels;

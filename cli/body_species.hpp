@@ -21,13 +21,25 @@
 
 namespace terrace::cli {
 
+/// The labels' names, and for rods among spheres which species never turn (kind sphere), from
+/// the scene; the bodies' species are left to the caller.
+inline analysis::SpeciesLabels speciesNames(const Scene& scene) {
+    analysis::SpeciesLabels labels;
+    for (const auto& s : scene.species)
+        labels.names.push_back(s.name);
+    const bool kinds = std::any_of(scene.species.begin(), scene.species.end(),
+                                   [](const SpeciesSpec& s) { return s.kind == "sphere"; });
+    if (kinds)
+        for (const auto& s : scene.species)
+            labels.fixedAxis.push_back(s.kind == "sphere");
+    return labels;
+}
+
 /// The scene's species names and each body's species from `engine` (n bodies); empty labels for
 /// a scene without species.
 template <class E> analysis::SpeciesLabels bodySpecies(const E& engine, const Scene& scene, int n) {
-    analysis::SpeciesLabels labels;
-    if (scene.species.empty()) return labels;
-    for (const auto& s : scene.species)
-        labels.names.push_back(s.name);
+    if (scene.species.empty()) return {};
+    analysis::SpeciesLabels labels = speciesNames(scene);
     labels.ofBody.reserve(static_cast<std::size_t>(n));
     constexpr int slice = 1 << 16;
     std::vector<int> bodies;

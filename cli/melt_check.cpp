@@ -13,6 +13,8 @@ LatticeOrderSum::LatticeOrderSum(const Scene& scene) {
              .firstReciprocal();
     re_.assign(k_.size(), 0.0);
     im_.assign(k_.size(), 0.0);
+    for (const auto& s : scene.species)
+        fixedAxis_.push_back(s.kind == "sphere");
 }
 
 void LatticeOrderSum::add(const Snapshot& bodies, bool rotating) {
@@ -24,9 +26,11 @@ void LatticeOrderSum::add(const Snapshot& bodies, bool rotating) {
             re_[v] += std::cos(phase);
             im_[v] += std::sin(phase);
         }
-        if (rotating) {
+        const bool fixed = !bodies.species.empty() && fixedAxis_.at(bodies.species[j]);
+        if (rotating && !fixed) {
             const Vec3& u = bodies.axis[j];
             q_ += 1.5 * u * u.transpose() - 0.5 * Mat3::Identity();
+            ++turning_;
         }
         ++n_;
     }
@@ -38,9 +42,10 @@ LatticeOrder LatticeOrderSum::result() const {
     const double vectors = double(k_.size());
     for (std::size_t v = 0; v < k_.size(); ++v)
         o.translational += (re_[v] * re_[v] + im_[v] * im_[v]) / (vectors * double(n_) * n_);
-    if (rotating_) {
-        Eigen::SelfAdjointEigenSolver<Mat3> eig(q_ / double(n_));
+    if (rotating_ && turning_ > 0) {
+        Eigen::SelfAdjointEigenSolver<Mat3> eig(q_ / double(turning_));
         o.s2 = eig.eigenvalues().maxCoeff();
+        o.turning = turning_;
     }
     return o;
 }
@@ -49,7 +54,8 @@ std::optional<std::string> meltWarning(const Scene& scene, const LatticeOrder& o
                                        bool rotating) {
     if (!scene.state.particles.empty() || bodies < 2) return std::nullopt;
     const double tLimit = std::max(0.1, 20.0 / bodies);
-    const double sLimit = std::max(0.1, 3.0 / std::sqrt(double(bodies)));
+    const int turning = order.turning > 0 ? order.turning : bodies;
+    const double sLimit = std::max(0.1, 3.0 / std::sqrt(double(turning)));
     const bool ordered = order.translational > tLimit, aligned = rotating && order.s2 > sLimit;
     if (!ordered && !aligned) return std::nullopt;
     auto show = [](double x) {

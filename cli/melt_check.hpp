@@ -8,7 +8,8 @@
 //                  the (110) family; 1 on the lattice; in a liquid S(k) is of order 1, so S/N of
 //                  order 1/N. Threshold max(0.1, 20/N).
 //   orientational  S2, the largest eigenvalue of Q = (1/N) Σ_j (3/2 u_j u_jᵀ − 1/2), u_j the
-//                  bodies' axes (rotating bodies only): 1 when aligned; isotropic axes give
+//                  bodies' axes (rotating bodies only, so not the spheres among rods, whose
+//                  axes never move): 1 when aligned; isotropic axes give
 //                  0.82/√N on average and 1.75/√N at the 99.5th percentile (measured over 400
 //                  draws each at N 64, 216 and 512). Threshold max(0.1, 3/√N).
 // Explicit starts (state.particles) are not judged: they have no lattice.
@@ -25,6 +26,7 @@ namespace terrace::cli {
 struct LatticeOrder {
     double translational = 0.0; // S(k₁)/N, averaged over the first reciprocal vectors
     double s2 = 0.0;            // 0 for spheres
+    int turning = 0;            // the bodies S2 is over: all that rotate (not a sphere among rods)
 };
 
 /// Accumulates the order parameters body by body (a large system's bodies in pieces).
@@ -39,8 +41,9 @@ private:
     std::vector<Vec3> k_;         // the first reciprocal vectors, 1/Å
     std::vector<double> re_, im_; // Σ cos, Σ sin of k·r, one per vector
     Mat3 q_ = Mat3::Zero();
-    int n_ = 0;
+    int n_ = 0, turning_ = 0;
     bool rotating_ = false;
+    std::vector<bool> fixedAxis_; // by species: a sphere among rods, whose axis S2 leaves out
 };
 
 /// The warning for a lattice start still ordered (nullopt when melted, or not a lattice start).

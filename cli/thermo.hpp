@@ -22,7 +22,7 @@
 //   potential               the engine's own U: DMD the terraced one, SMD the continuous one
 //   potential_continuous    the continuous U (SMD: the same as potential)
 //   total                   K + the engine's own U (DMD: conserved to round-off)
-//   temperature_K           2K / (dof k_B), dof = (3 + rotational) N − 3
+//   temperature_K           2K / (dof k_B), dof = 3N + R − 3 (R: the bodies' rotational dof)
 //   pressure_bar            SMD: at the row's instant; DMD: over the interval since the previous
 //                           row (impulse virial difference), nan on the first row
 //   collisions              DMD only: collisions (up, down, reflect) since the previous row, 0 on

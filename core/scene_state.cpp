@@ -55,6 +55,10 @@ ParticleSpec readParticle(const JsonSection& p, const Scene& scene) {
         }
         if (s.species < 0)
             p.fail("species", "no species \"" + name + "\" (the species are " + names + ")");
+        // Rods among spheres: a sphere never turns (core/species_rotor.hpp).
+        if (scene.species[s.species].kind == "sphere" && p.has("omega"))
+            p.fail("omega", "a body of species " + name +
+                                " (kind sphere) has no rotation: it never turns among the rods");
     }
     if (!p.has("r")) p.fail("r", "missing");
     s.r = p.vec3("r");

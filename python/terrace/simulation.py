@@ -83,7 +83,8 @@ class Simulation:
 
     @property
     def temperature(self):
-        """The kinetic temperature 2K / (dof k_B), K, dof = (3 + rotational) N − 3."""
+        """The kinetic temperature 2K / (dof k_B), K, dof = 3N + R − 3, R the bodies' rotational
+        degrees of freedom together (2 per rod, none per sphere among rods)."""
         return self._sim.temperature_K()
 
     @property

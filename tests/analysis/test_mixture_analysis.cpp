@@ -284,23 +284,26 @@ TEST(MixtureCorrelations, EachSpeciesMsdIsItsOwnSpeedSquaredTimesTSquared) {
     }
 }
 
-// Rods among spheres (core/species_rotor.hpp): the rods turn uniformly at ω, so s(0)·s(t) =
-// cos ωt for each; the spheres' axes never move. The OACF is over the rods alone, cos ωt and
-// P₂(cos ωt) exactly (not the spheres' share of 1 added), with the rods' own columns beside it
-// and none for the spheres.
+// Rods among spheres (core/species_rotor.hpp): two rod species A and B turn uniformly at their own
+// ω, so s(0)·s(t) = cos ωt for each body; the spheres C never move their axes. The OACF is over
+// the rods alone, the mean of A's and B's weighted by their bodies, (n_A cos ω_A t + n_B cos
+// ω_B t)/(n_A + n_B) (not the spheres' share of 1 added), with each rod species' own columns
+// beside it and none for the spheres. Without the labels' flags (a scene of one kind, or rods
+// alone) the summary keeps its OACF entry.
 TEST(MixtureCorrelations, TheOacfIsOverTheSpeciesThatTurn) {
-    const SpeciesLabels l = labels({20, 44});
-    const double omega = 2.0; // rad per time unit
-    auto samples = ballistic(64, l, {1.0, 1.5}, 30.0);
+    SpeciesLabels l = labels({12, 20, 32});
+    l.fixedAxis = {false, false, true};
+    const double omega[] = {2.0, 0.7}; // rad per time unit
+    auto samples = ballistic(64, l, {1.0, 1.2, 1.5}, 30.0);
     std::mt19937_64 rng(5);
     for (int i = 0; i < 64; ++i) {
         const Vec3 s0 = synthetic::unitVector(rng);
         const Vec3 sideways = s0.cross(synthetic::unitVector(rng)).normalized();
+        const int a = l.ofBody[i];
         for (auto& f : samples)
-            f.axis[i] =
-                l.ofBody[i] == 0
-                    ? Vec3(s0 * std::cos(omega * f.time) + sideways * std::sin(omega * f.time))
-                    : s0;
+            f.axis[i] = a == 2 ? s0
+                               : Vec3(s0 * std::cos(omega[a] * f.time) +
+                                      sideways * std::sin(omega[a] * f.time));
     }
     RunAnalysis a(64, 30.0, intervalPs, 64, smallOptions(0), l);
     for (const auto& f : samples)
@@ -309,15 +312,40 @@ TEST(MixtureCorrelations, TheOacfIsOverTheSpeciesThatTurn) {
     const auto summary = a.write(dir.path);
     const CsvTable oacf = readCsv(dir.path / "oacf.csv");
     ASSERT_EQ(oacf.header, (std::vector<std::string>{"t_ps", "c1", "c1_err", "c2", "c2_err", "c1_A",
-                                                     "c1_err_A", "c2_A", "c2_err_A"}));
+                                                     "c1_err_A", "c2_A", "c2_err_A", "c1_B",
+                                                     "c1_err_B", "c2_B", "c2_err_B"}));
     ASSERT_GE(oacf.rows(), 10);
+    const auto p2 = [](double c) { return 1.5 * c * c - 0.5; };
     for (int row = 0; row < oacf.rows(); ++row) {
-        const double c = std::cos(omega * units::fromPs(oacf.columns[0][row]));
-        EXPECT_NEAR(oacf.columns[1][row], c, 1e-9) << oacf.columns[0][row];
-        EXPECT_NEAR(oacf.columns[3][row], 1.5 * c * c - 0.5, 1e-9);
-        EXPECT_NEAR(oacf.columns[5][row], c, 1e-9);
+        const double t = units::fromPs(oacf.columns[0][row]);
+        const double cA = std::cos(omega[0] * t), cB = std::cos(omega[1] * t);
+        EXPECT_NEAR(oacf.columns[1][row], (12.0 * cA + 20.0 * cB) / 32.0, 1e-9) << t;
+        EXPECT_NEAR(oacf.columns[3][row], (12.0 * p2(cA) + 20.0 * p2(cB)) / 32.0, 1e-9) << t;
+        EXPECT_NEAR(oacf.columns[5][row], cA, 1e-9);
+        EXPECT_NEAR(oacf.columns[7][row], p2(cA), 1e-9);
+        EXPECT_NEAR(oacf.columns[9][row], cB, 1e-9);
+        // Every body of a species turns alike: no spread between blocks, errors at round-off.
+        for (const int e : {2, 4, 6, 8, 10, 12})
+            EXPECT_LT(oacf.columns[e][row], 1e-9);
     }
-    EXPECT_EQ(summary["oacf"]["species"], nlohmann::json::array({"A"}));
+    EXPECT_EQ(summary["oacf"]["species"], nlohmann::json::array({"A", "B"}));
+    EXPECT_NEAR(summary["oacf"]["c1_0"].get<double>(), 1.0, 1e-12);
+
+    // The same axes with no flags: every body in the OACF, and the summary's entry kept.
+    l.fixedAxis.clear();
+    RunAnalysis plain(64, 30.0, intervalPs, 64, smallOptions(0), l);
+    for (const auto& f : samples)
+        plain.add(f);
+    const ScratchDirectory plainDir("oacf-plain");
+    const auto plainSummary = plain.write(plainDir.path);
+    EXPECT_NEAR(plainSummary["oacf"]["c1_0"].get<double>(), 1.0, 1e-12);
+    EXPECT_FALSE(plainSummary["oacf"].contains("species"));
+    const CsvTable all = readCsv(plainDir.path / "oacf.csv");
+    ASSERT_EQ(all.header.size(), 5u);
+    const double t = units::fromPs(all.columns[0][5]);
+    EXPECT_NEAR(all.columns[1][5],
+                (12.0 * std::cos(omega[0] * t) + 20.0 * std::cos(omega[1] * t) + 32.0) / 64.0,
+                1e-9);
 }
 
 // Every species is followed, however few its bodies, in its share of the followed bodies.

@@ -89,4 +89,32 @@ TEST(MeltCheck, FccAndBccAreJudgedOnTheirOwnLattice) {
     }
 }
 
+// Rods among spheres: the spheres' axes never move (here all along z, as an aligned start leaves
+// them), so S2 is over the rods alone: isotropic rods have melted whatever the spheres' axes, and
+// aligned rods have not, judged at the rods' own number.
+TEST(MeltCheck, AmongSpheresOnlyTheRodsAxesCount) {
+    Scene s = latticeScene(512, 1.0);
+    s.body.kind = "linear";
+    s.species = {SpeciesSpec{"rod", 0.25, 1.0, 1.0, 1.0, "linear", 1.0},
+                 SpeciesSpec{"solvent", 0.75, 1.0, 1.0, 1.0, "sphere", 0.0}};
+    for (const bool rodsAligned : {false, true}) {
+        Snapshot b = bodies(s, rodsAligned, 1.0, 4);
+        for (int i = 0; i < b.size(); ++i) {
+            b.species.push_back(i % 4 == 0 ? 0 : 1);
+            if (i % 4 != 0) b.axis[i] = Vec3::UnitZ();
+        }
+        const auto order = orderOf(s, b);
+        EXPECT_EQ(order.turning, 128);
+        if (rodsAligned) {
+            EXPECT_NEAR(order.s2, 1.0, 1e-12);
+            const auto w = cli::meltWarning(s, order, 512, true);
+            ASSERT_TRUE(w);
+            EXPECT_NE(w->find("> 0.265"), std::string::npos) << *w; // 3/√128
+        } else {
+            EXPECT_LT(order.s2, 3.0 / std::sqrt(128.0));
+            EXPECT_FALSE(cli::meltWarning(s, order, 512, true));
+        }
+    }
+}
+
 } // namespace test_melt_check

@@ -559,6 +559,22 @@ TEST(Species, RodsAmongSpheresRefusalsNameTheKey) {
     EXPECT_NE(errorOf(j).find("turn one radian"), std::string::npos) << errorOf(j);
     j["species"][0]["inertia"] = 0.0;
     EXPECT_NE(errorOf(j).find("species[0].inertia"), std::string::npos) << errorOf(j);
+    // An explicit start may spin a rod, not a sphere.
+    j = rodsAmongSpheres();
+    j["species"][0].erase("fraction");
+    j["species"][1].erase("fraction");
+    j["state"] = {{"n", 2},
+                  {"density", 0.01},
+                  {"temperature", 1.4},
+                  {"particles",
+                   {{{"r", {0, 0, 0}}, {"species", "rod"}, {"omega", {0, 1, 0}}},
+                    {{"r", {8, 0, 0}}, {"species", "solvent"}}}}};
+    EXPECT_EQ(errorOf(j), "");
+    j["state"]["particles"][1]["omega"] = {1, 0, 0};
+    EXPECT_NE(errorOf(j).find("state.particles[1].omega: a body of species solvent (kind sphere) "
+                              "has no rotation"),
+              std::string::npos)
+        << errorOf(j);
     j = rodsAmongSpheres();
     j["species"][1]["kind"] = "symmetric";
     EXPECT_NE(errorOf(j).find("species[1].kind"), std::string::npos) << errorOf(j);

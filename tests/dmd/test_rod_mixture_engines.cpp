@@ -2,12 +2,15 @@
 // and momentum to round-off, no missed event (the terraced energy equals the one recomputed from
 // each pair's U at every sample), bodies that keep their species, spheres that never turn while
 // the rods do. SMD: the energy error ∝ dt², momentum to round-off, spheres without spin. With
-// small terraces, DMD's configurational U and pressure agree with SMD's within their error bars
+// small terraces, DMD's configurational U and pressure agree with SMD's within their error bars,
+// and under CSVR each part of the kinetic energy comes to its share of kT
 // (test_rod_mixture_agreement.cpp).
 #include "dmd/testing.hpp"
 #include "tests/dmd/rod_mixture_engines.hpp"
+#include <array>
 #include <cstdio>
 #include <gtest/gtest.h>
+#include <utility>
 
 namespace test_rod_mixture_engines {
 
