@@ -13,6 +13,7 @@
 #include "core/species_rotor.hpp"
 #include "core/species_sphere.hpp"
 #include "tests/core/scene_errors.hpp"
+#include "tests/rods_among_spheres_scene.hpp"
 #include <cstring>
 #include <filesystem>
 #include <gtest/gtest.h>
@@ -25,6 +26,13 @@ using nlohmann::json;
 using terrace::scene_tests::errorOf;
 
 namespace {
+
+/// The index entry of frame 0's chunk `name` (std::runtime_error where there is none).
+GsdIndexEntry chunkNamed(const GsdContents& c, const std::string& name) {
+    for (const auto& e : c.index)
+        if (c.names.at(e.id) == name) return e;
+    throw std::runtime_error("no chunk " + name);
+}
 
 /// Kob–Andersen's binary mixture (Phys. Rev. E 51, 4626 (1995)) in units of ε_AA and σ_AA.
 json kobAndersen() {
@@ -321,11 +329,7 @@ TEST(Species, AGsdFrameHasOneTypePerSpeciesAndTheBodiesTypeid) {
             gsdBodyType(s), 0, 64);
     }
     const GsdContents c = readGsdContents(path);
-    const auto entry = [&](const std::string& name) {
-        for (const auto& e : c.index)
-            if (c.names.at(e.id) == name) return e;
-        throw std::runtime_error("no chunk " + name);
-    };
+    const auto entry = [&](const std::string& name) { return chunkNamed(c, name); };
     const GsdIndexEntry types = entry("particles/types");
     EXPECT_EQ(types.n, 2u);
     const std::string typeBytes = readGsdChunk(path, types);
@@ -499,18 +503,11 @@ TEST(Species, AnExplicitStartsSpeciesAreRefusedByTheirKeys) {
 // species its inertia in body.inertia's first moment; the pairs mix as for spheres, and only a
 // pair of rods feels ζ.
 namespace {
+/// The tests' rods among spheres at N 64, the rods' inertia 1.5 times body.inertia's.
 json rodsAmongSpheres() {
-    return {{"body", {{"kind", "linear"}, {"mass", 18.0}, {"inertia", {1.154, 1.154, 0.0}}}},
-            {"potential", {{"kind", "rod-lj"}, {"epsilon", 3.0}, {"sigma", 3.035}, {"zeta", 1.0}}},
-            {"species",
-             {{{"name", "rod"}, {"fraction", 0.25}, {"kind", "linear"}, {"inertia", 1.5}},
-              {{"name", "solvent"},
-               {"fraction", 0.75},
-               {"kind", "sphere"},
-               {"epsilon", 0.6},
-               {"sigma", 1.1},
-               {"mass", 2.2}}}},
-            {"state", {{"n", 64}, {"density", 0.5}, {"temperature", 1.4}}}};
+    json j = rod_mixture_tests::rodsAmongSpheresDocument(64, 0.5, 1.4);
+    j["species"][0]["inertia"] = 1.5;
+    return j;
 }
 } // namespace
 
@@ -599,11 +596,7 @@ TEST(Species, AGsdFrameOfRodsAmongSpheresKeepsEachBodysInertiaAndSpin) {
         writeHoomdFrame(w, written, gsdBodyType(s), 0);
     }
     const GsdContents c = readGsdContents(path);
-    const auto entry = [&](const std::string& name) {
-        for (const auto& e : c.index)
-            if (c.names.at(e.id) == name) return e;
-        throw std::runtime_error("no chunk " + name);
-    };
+    const auto entry = [&](const std::string& name) { return chunkNamed(c, name); };
     const GsdIndexEntry shapes = entry("particles/type_shapes");
     const std::string shapeBytes = readGsdChunk(path, shapes);
     EXPECT_EQ(nlohmann::json::parse(std::string(shapeBytes.data())).at("type"), "ConvexPolyhedron");

@@ -1,13 +1,14 @@
 #pragma once
 // Rods among spheres (core/species_rotor.hpp, core/rod_mixture.hpp) as the DMD tests run them:
-// the engines' types and the scene, the paper's rods (species "rod") in a Lennard-Jones solvent of
-// heavier, weaker spheres, with both engines' sections (each test adds what it varies).
+// the engines' types, and the scene (tests/rods_among_spheres_scene.hpp) with both engines'
+// sections (each test adds what it varies).
 #include "core/initial_state.hpp"
 #include "core/rod_mixture.hpp"
 #include "core/smoothed_potential.hpp"
 #include "core/species_rotor.hpp"
 #include "dmd/scene_engine.hpp"
 #include "smd/scene_engine.hpp"
+#include "tests/rods_among_spheres_scene.hpp"
 #include <nlohmann/json.hpp>
 
 namespace terrace::rod_mixture_tests {
@@ -17,29 +18,15 @@ using RodSystem = System<SpeciesRotor, Model>;
 using DmdRods = dmd::SceneEngine<SpeciesRotor, Model>;
 using SmdRods = smd::SceneEngine<SpeciesRotor, Model>;
 
-/// A quarter of the bodies the paper's rods (ε 3 kJ/mol, σ 3.035 Å, ζ 1 Å, 18 g/mol, I 1.154
-/// g/mol Å²), the rest spheres of ε 0.6 ε, σ 1.1 σ and 2.2 times the rods' mass; unlike pairs by
-/// Lorentz–Berthelot; DMD on the smoothed model at ΔV = dVInKT kT, SMD at dtFs.
+/// The tests' rods among spheres (tests/rods_among_spheres_scene.hpp) cut on [2.5, 3] σ, DMD on
+/// the smoothed model at ΔV = dVInKT kT, SMD at dtFs.
 inline nlohmann::json rodsAmongSpheres(int n, double density, double temperature, double dVInKT,
                                        double dtFs = 0.9) {
-    return {{"body", {{"kind", "linear"}, {"mass", 18.0}, {"inertia", {1.154, 1.154, 0.0}}}},
-            {"potential",
-             {{"kind", "rod-lj"},
-              {"epsilon", 3.0},
-              {"sigma", 3.035},
-              {"zeta", 1.0},
-              {"cutoff", {2.5, 3.0}}}},
-            {"species",
-             {{{"name", "rod"}, {"fraction", 0.25}, {"kind", "linear"}},
-              {{"name", "solvent"},
-               {"fraction", 0.75},
-               {"kind", "sphere"},
-               {"epsilon", 0.6},
-               {"sigma", 1.1},
-               {"mass", 2.2}}}},
-            {"state", {{"n", n}, {"density", density}, {"temperature", temperature}}},
-            {"dmd", {{"model", "smoothed"}, {"dV", dVInKT}}},
-            {"smd", {{"dt_fs", dtFs}}}};
+    nlohmann::json j = rodsAmongSpheresDocument(n, density, temperature);
+    j["potential"]["cutoff"] = {2.5, 3.0};
+    j["dmd"] = {{"model", "smoothed"}, {"dV", dVInKT}};
+    j["smd"] = {{"dt_fs", dtFs}};
+    return j;
 }
 
 inline RodSystem rodSystem(const Scene& s) {
