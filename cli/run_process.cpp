@@ -96,9 +96,10 @@ RunProcess::RunProcess(const SweepPlan& plan, const SweepRun& run, const std::fi
     for (auto& a : args)
         argv.push_back(a.data());
     argv.push_back(nullptr);
-    std::vector<std::string> environment = {std::string(sweepPidVariable) + "=" +
-                                            std::to_string(::getpid())};
-    const std::string prefix = std::string(sweepPidVariable) + "=";
+    // Appended, not built with operator+: GCC 12 at -O2 warns falsely (-Warray-bounds) of the
+    // temporary that `std::string(...) + "="` makes.
+    const std::string prefix = std::string(sweepPidVariable).append("=");
+    std::vector<std::string> environment = {prefix + std::to_string(::getpid())};
     for (char** e = environ; *e != nullptr; ++e)
         if (std::string_view(*e).rfind(prefix, 0) != 0) environment.emplace_back(*e);
     std::vector<char*> envp;

@@ -49,7 +49,9 @@ TEST(RodsAmongSpheres, DmdKeepsEnergyMomentaAndSpeciesAndMissesNoEvent) {
     int rods = 0;
     for (const auto& b : start.bodies) {
         rods += b.species == 0;
-        if (b.species == 1) ASSERT_EQ(b.w, Vec3::Zero()); // the bath gave spheres no spin
+        if (b.species == 1) {
+            ASSERT_EQ(b.w, Vec3::Zero()); // the bath gave spheres no spin
+        }
     }
     EXPECT_EQ(rods, 64);
     DmdRods e(start, s);
