@@ -624,30 +624,6 @@ nlohmann::json report(const Tradeoff& t) {
     return out;
 }
 
-/// Why an engine has no setting within: per observable, on how many of its settings not resolved
-/// outside it is still unresolved, and the most replicas those have ("unresolved g_peak on 8 of
-/// its 8 settings not outside, at up to 128 replicas"); or that every setting is outside.
-std::string unresolvedSummary(const Tradeoff& t, const std::string& engine) {
-    int open = 0, most = 0;
-    std::map<Observable, int> unresolved;
-    for (const auto& ladder : t.ladders)
-        for (const Rung& r : ladder) {
-            if (r.setting.engine != engine || r.decision == Decision::Outside) continue;
-            ++open;
-            most = std::max(most, int(r.replicas.size()));
-            for (const auto& b : r.biases)
-                if (b.decision == Decision::Unresolved) ++unresolved[b.observable];
-        }
-    if (open == 0) return "every setting resolved outside";
-    std::string out;
-    for (const auto& [o, n] : unresolved)
-        out +=
-            (out.empty() ? "" : ", ") + std::string(observableName(o)) + " on " + std::to_string(n);
-    if (out.empty()) out = "none";
-    return "unresolved " + out + " of its " + std::to_string(open) +
-           " settings not outside, at up to " + std::to_string(most) + " replicas";
-}
-
 const Rung* cheapestOf(const Tradeoff& t, const std::string& engine) {
     const Rung* best = nullptr;
     for (const auto& ladder : t.ladders) {
@@ -691,6 +667,61 @@ std::vector<RungView> viewsOf(const std::vector<Rung>& ladder) {
         views.push_back(
             {r.setting.x, r.cost(), r.decision, !r.failure.empty(), r.beyondStability, r.biases});
     return views;
+}
+
+/// Why an engine with every setting resolved outside still leaves no verdict: its cost floor
+/// (cli/tradeoff_dominance.hpp) is not above the other engine's cheapest setting within. This
+/// happens where a bias changes sign between rungs (D on LJ at rho* 0.2, T* 3: -7 % at kT/8,
+/// +6 % at kT), so only a coarse rung bounds the ladder and a setting between rungs may be
+/// within at a smaller cost.
+std::string everySettingOutside(const Tradeoff& t, const std::string& engine) {
+    std::string out = "every setting resolved outside";
+    const Rung* rival = cheapestOf(t, engine == "dmd" ? "smd" : "dmd");
+    if (!rival) return out; // no verdict either way: nothing to set the floor against
+    std::vector<std::vector<RungView>> views;
+    std::vector<const std::vector<Rung>*> ladders;
+    for (const auto& ladder : t.ladders)
+        if (!ladder.empty() && ladder.front().setting.engine == engine)
+            views.push_back(viewsOf(ladder)), ladders.push_back(&ladder);
+    const auto floor = engineCostFloor(views, t.z);
+    if (!floor) return out + ", and no setting bounds its cost from below";
+    if (floor->cost >= dominanceMargin * rival->cost()) return out; // searched without the stop
+    const Rung& bound = (*ladders[floor->ladder])[floor->rung];
+    out += format(", but nothing rules out a setting cheaper than %s: the floor of its cost is %s "
+                  "(%.3g CPU s per ps), ",
+                  describe(rival->setting, t).c_str(), describe(bound.setting, t).c_str(),
+                  bound.cost());
+    return out + (floor->ladderEnd
+                      ? std::string("its ladder's coarsest, as no setting is outside on a bias "
+                                    "that keeps its sign and grows on the coarser ones")
+                      : format("the most accurate setting outside on a bias (%s) that keeps its "
+                               "sign and grows on the coarser ones, so a setting between two "
+                               "finer rungs may be within",
+                               observableName(floor->ruling.observable)));
+}
+
+/// Why an engine has no setting within: per observable, on how many of its settings not resolved
+/// outside it is still unresolved, and the most replicas those have ("unresolved g_peak on 8 of
+/// its 8 settings not outside, at up to 128 replicas"); or that every setting is outside.
+std::string unresolvedSummary(const Tradeoff& t, const std::string& engine) {
+    int open = 0, most = 0;
+    std::map<Observable, int> unresolved;
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder) {
+            if (r.setting.engine != engine || r.decision == Decision::Outside) continue;
+            ++open;
+            most = std::max(most, int(r.replicas.size()));
+            for (const auto& b : r.biases)
+                if (b.decision == Decision::Unresolved) ++unresolved[b.observable];
+        }
+    if (open == 0) return everySettingOutside(t, engine);
+    std::string out;
+    for (const auto& [o, n] : unresolved)
+        out +=
+            (out.empty() ? "" : ", ") + std::string(observableName(o)) + " on " + std::to_string(n);
+    if (out.empty()) out = "none";
+    return "unresolved " + out + " of its " + std::to_string(open) +
+           " settings not outside, at up to " + std::to_string(most) + " replicas";
 }
 
 /// Whether one engine's cheapest Within rung costs less, by dominanceMargin at the bias runs'

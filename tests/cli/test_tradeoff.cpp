@@ -446,6 +446,39 @@ TEST(TradeoffDominance, ABiasThatShrinksOrTurnsOnACoarserRungDoesNotBound) {
     EXPECT_EQ(f->rung, 1);
 }
 
+TEST(TradeoffDominance, EveryRungOutsideWithABiasThatTurnsIsBoundedOnlyByTheCoarsest) {
+    // DMD uniform on LJ at rho* 0.2, T* 3, strict (results/tradeoff-map/lj-strict/rho0.2-T3,
+    // biases in tolerances): D is outside on the three finest rungs and turns positive at kT, so
+    // none of them bounds; only kT, outside on u, does. The floor is then the cheapest rung, and
+    // `terrace tradeoff` says a setting between the finer rungs may be within.
+    std::vector<RungView> l(4);
+    const double x[] = {0.125, 0.25, 0.5, 1.0}, cost[] = {8.0, 4.0, 2.0, 1.0};
+    const double u[] = {-0.22, 0.76, -1.67, 8.16}, uErr[] = {0.06, 0.34, 0.41, 0.31};
+    const double d[] = {-2.30, -2.88, -5.37, 1.92}, dErr[] = {0.11, 0.53, 0.60, 0.56};
+    const Decision uIs[] = {Decision::Within, Decision::Unresolved, Decision::Unresolved,
+                            Decision::Outside};
+    for (int i = 0; i < 4; ++i) {
+        l[i].x = x[i];
+        l[i].cost = cost[i];
+        l[i].decision = Decision::Outside;
+        l[i].biases = {
+            biasOf(Observable::U, u[i], uErr[i], uIs[i]),
+            biasOf(Observable::D, d[i], dErr[i], i < 3 ? Decision::Outside : Decision::Unresolved)};
+    }
+    auto f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->rung, 3);
+    EXPECT_DOUBLE_EQ(f->cost, 1.0);
+    EXPECT_FALSE(f->ladderEnd);
+    EXPECT_EQ(f->ruling.observable, Observable::U);
+    // Had D kept its sign at kT, the finest rung would bound the ladder at eight times the cost.
+    l[3].biases[1].bias.mean = -7.0;
+    f = ladderCostFloor(l, 0, 2.0);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->rung, 0);
+    EXPECT_EQ(f->ruling.observable, Observable::D);
+}
+
 TEST(TradeoffDominance, AWithinRungCheaperThanTheFloorIsTheFloor) {
     auto l = growingLadder();
     l[0].decision = Decision::Within; // the finest rung within, and (against the rule) cheap
