@@ -685,7 +685,7 @@ std::string everySettingOutside(const Tradeoff& t, const std::string& engine) {
             views.push_back(viewsOf(ladder)), ladders.push_back(&ladder);
     const auto floor = engineCostFloor(views, t.z);
     if (!floor) return out + ", and no setting bounds its cost from below";
-    if (floor->cost >= dominanceMargin * rival->cost()) return out; // searched without the stop
+    if (floor->cost >= dominanceMargin * rival->cost()) return out; // --frontier: no early stop
     const Rung& bound = (*ladders[floor->ladder])[floor->rung];
     out += format(", but nothing rules out a setting cheaper than %s: the floor of its cost is %s "
                   "(%.3g CPU s per ps), ",
