@@ -669,6 +669,20 @@ std::vector<RungView> viewsOf(const std::vector<Rung>& ladder) {
     return views;
 }
 
+/// One engine's ladders, as the cost floor sees them and as they are.
+struct EngineLadders {
+    std::vector<std::vector<RungView>> views;
+    std::vector<const std::vector<Rung>*> ladders; // the same order
+};
+
+EngineLadders laddersOf(const Tradeoff& t, const std::string& engine) {
+    EngineLadders out;
+    for (const auto& ladder : t.ladders)
+        if (!ladder.empty() && ladder.front().setting.engine == engine)
+            out.views.push_back(viewsOf(ladder)), out.ladders.push_back(&ladder);
+    return out;
+}
+
 /// Why an engine with every setting resolved outside still leaves no verdict: its cost floor
 /// (cli/tradeoff_dominance.hpp) is not above the other engine's cheapest setting within. This
 /// happens where a bias changes sign between rungs (D on LJ at rho* 0.2, T* 3: -7 % at kT/8,
@@ -678,15 +692,11 @@ std::string everySettingOutside(const Tradeoff& t, const std::string& engine) {
     std::string out = "every setting resolved outside";
     const Rung* rival = cheapestOf(t, engine == "dmd" ? "smd" : "dmd");
     if (!rival) return out; // no verdict either way: nothing to set the floor against
-    std::vector<std::vector<RungView>> views;
-    std::vector<const std::vector<Rung>*> ladders;
-    for (const auto& ladder : t.ladders)
-        if (!ladder.empty() && ladder.front().setting.engine == engine)
-            views.push_back(viewsOf(ladder)), ladders.push_back(&ladder);
-    const auto floor = engineCostFloor(views, t.z);
+    const EngineLadders own = laddersOf(t, engine);
+    const auto floor = engineCostFloor(own.views, t.z);
     if (!floor) return out + ", and no setting bounds its cost from below";
     if (floor->cost >= dominanceMargin * rival->cost()) return out; // --frontier: no early stop
-    const Rung& bound = (*ladders[floor->ladder])[floor->rung];
+    const Rung& bound = (*own.ladders[floor->ladder])[floor->rung];
     out += format(", but nothing rules out a setting cheaper than %s: the floor of its cost is %s "
                   "(%.3g CPU s per ps), ",
                   describe(rival->setting, t).c_str(), describe(bound.setting, t).c_str(),
@@ -730,11 +740,7 @@ std::optional<Dominance> dominance(const Tradeoff& t) {
     for (const std::string engine : {"smd", "dmd"}) {
         const Rung* chosen = cheapestOf(t, engine);
         if (!chosen || !std::isfinite(chosen->cost())) continue;
-        std::vector<std::vector<RungView>> other;
-        std::vector<const std::vector<Rung>*> ladders;
-        for (const auto& ladder : t.ladders)
-            if (!ladder.empty() && ladder.front().setting.engine != engine)
-                other.push_back(viewsOf(ladder)), ladders.push_back(&ladder);
+        const auto [other, ladders] = laddersOf(t, engine == "smd" ? "dmd" : "smd");
         if (other.empty()) continue;
         const auto floor = engineCostFloor(other, t.z);
         if (!floor || !(floor->cost >= dominanceMargin * chosen->cost())) continue;
