@@ -217,9 +217,13 @@ if has resolved; then
     clauses+=("'$table' skip 1 using 1:(strcol(3) eq \"resolved\" ? \$2 : NaN):(log10(\$6)) with points pt 7 ps 3 palette title 'resolved'"
               "'' skip 1 using 1:(strcol(3) eq \"resolved\" ? \$2 : NaN):(sprintf(\"%.2g\", \$6)) with labels offset 0,1.5 notitle")
 fi
+# A bound's label in one glyph where the terminal draws UTF-8 (cairo): ">=1.5" beside its
+# neighbour's at the grid's densest spacing (ρ* 0.5 and 0.7) touched.
+ge='>=' le='<='
+case $(png_terminal) in pngcairo*) ge='≥' le='≤' ;; esac
 if has at_least; then
     clauses+=("'$table' skip 1 using 1:(strcol(3) eq \"at_least\" ? \$2 : NaN):(log10(\$6)) with points pt 9 ps 3 palette title 'bound: the cheaper engine resolved, its advantage at least'"
-              "'' skip 1 using 1:(strcol(3) eq \"at_least\" ? \$2 : NaN):(\$6 > 1 ? sprintf(\">=%.2g\", \$6) : sprintf(\"<=%.2g\", \$6)) with labels offset 0,1.5 notitle")
+              "'' skip 1 using 1:(strcol(3) eq \"at_least\" ? \$2 : NaN):(\$6 > 1 ? sprintf(\"$ge%.2g\", \$6) : sprintf(\"$le%.2g\", \$6)) with labels offset 0,1.5 notitle")
 fi
 if has none; then
     clauses+=("'$table' skip 1 using 1:(strcol(3) ne \"resolved\" && strcol(3) ne \"at_least\" ? \$2 : NaN) with points pt 2 ps 2 lc rgb '#888888' title 'no verdict'")
