@@ -3,12 +3,16 @@
 #include "core/box.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace terrace::analysis {
 
 namespace {
+
+/// The most bins a g(r) may have.
+constexpr int maxBins = 1000000;
 
 /// First frame of block b of B over F planned frames: rdf.hpp's contiguous blocks.
 long blockBegin(long b, long planned, int blocks) {
@@ -28,13 +32,23 @@ RdfAccumulator::RdfAccumulator(int bodies, double boxLength, double binWidth, do
         throw std::invalid_argument("g(r): r_max must lie in (0, L/2]");
     if (plannedFrames < 1 || blocks < 1 || blocks > plannedFrames)
         throw std::invalid_argument("g(r): need 1 ≤ blocks ≤ planned frames");
-    bins_ = static_cast<int>(std::floor(std::min(rMax, 0.5 * boxLength) / binWidth));
+    // Counted in double first: a box read from a damaged trajectory can ask for more bins than
+    // an int holds, and far more than any g(r) needs (8 blocks of 10⁶ bins are 64 MB).
+    const double binCount = std::floor(std::min(rMax, 0.5 * boxLength) / binWidth);
+    if (!(binCount <= maxBins)) {
+        char count[32];
+        std::snprintf(count, sizeof count, "%.3g", binCount);
+        throw std::invalid_argument("g(r): r_max / bin width asks for " + std::string(count) +
+                                    " bins, more than " + std::to_string(maxBins));
+    }
+    bins_ = static_cast<int>(binCount);
     if (bins_ < 1) throw std::invalid_argument("g(r): the bin is wider than r_max");
     histogram_.assign(blocks, std::vector<double>(bins_, 0.0));
     framesInBlock_.assign(blocks, 0.0);
-    cellsPerSide_ = static_cast<int>(std::floor(boxLength / (binWidth_ * bins_)));
-    // Cells beyond ~N per side would be mostly empty: no gain, only memory.
-    cellsPerSide_ = std::min(cellsPerSide_, std::max(1, static_cast<int>(std::cbrt(bodies))));
+    // Cells beyond ~N per side would be mostly empty: no gain, only memory. (The cap is taken
+    // before the cast: the box may be many r_max wide.)
+    cellsPerSide_ = static_cast<int>(std::min(std::floor(boxLength / (binWidth_ * bins_)),
+                                              std::max(1.0, std::floor(std::cbrt(bodies)))));
     x_.resize(bodies), y_.resize(bodies), z_.resize(bodies);
     species.check(bodies);
     if (!species.empty()) {

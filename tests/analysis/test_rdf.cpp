@@ -129,6 +129,11 @@ TEST(RadialDistribution, RejectsChangingBoxesAndBadBins) {
     EXPECT_THROW(RdfAccumulator(3, 10.0, 0.0, 5.0, 4, 2), std::invalid_argument);
     EXPECT_THROW(RdfAccumulator(3, 10.0, 6.0, 5.0, 4, 2), std::invalid_argument);
     EXPECT_THROW(RdfAccumulator(3, 10.0, 0.1, 5.0, 4, 5), std::invalid_argument);
+    // A damaged trajectory's box: r_max = L/2 of 3e18 Å in 0.05 Å bins is more bins than an int
+    // holds (found by fuzzing `terrace analyse`). A box of 1e12 r_max across is fine: its cells
+    // are capped before the count is cast.
+    EXPECT_THROW(RdfAccumulator(3, 3e18, 0.05, 1.5e18, 4, 2), std::invalid_argument);
+    EXPECT_NO_THROW(RdfAccumulator(3, 5e12, 0.1, 5.0, 4, 2));
     RdfAccumulator acc(3, 10.0, 0.1, 5.0, 4, 2);
     acc.add(samples[0]);
     samples[1].boxLength = 11.0;
