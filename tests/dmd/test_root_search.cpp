@@ -1,6 +1,7 @@
 // The adaptive terrace-exit search (paper sec. 3) and the r_m screening on analytic indicators.
 #include "dmd/root_search.hpp"
 #include "dmd/shell_screening.hpp"
+#include <array>
 #include <cmath>
 #include <gtest/gtest.h>
 
@@ -121,6 +122,42 @@ TEST(RootSearch, SamplesWithinRoundOffOfTheStartLevelAreOnIt) {
     const SearchResult back = findTerraceExit(turning, turning(0.0), -7.5, 7.5, 0.04, s, true);
     EXPECT_EQ(back.side, ExitSide::Upper);
     EXPECT_NEAR(back.t, 0.02, crossingTimeTol);
+}
+
+// U of a rod pair at ρ* 0.7, T* 10 (terrace −1 of the optimal ΔV = kT/8 ladder), sampled from
+// a missed event of the engine and fitted by a sextic (residual below 1.3e-8 kJ/mol; τ in time
+// units, U − U(0) in kJ/mol): rising at 0.026 kJ/mol per time unit from 6.5e-5 above the lower
+// level, it turns, dips 4.0e-5 below the level between τ ≈ 0.006 and 0.013, and rises steeply.
+// The Hermite cubic through the ends of the full 0.0318 step is monotone, 6.5e-5 above the level
+// at its lowest, so the dip is seen only by a shorter step. The first crossing is the event.
+TEST(RootSearch, FindsADipThroughTheLevelThatTheStepsCubicDoesNotShow) {
+    constexpr std::array<double, 7> c{4.39846809e-05, 2.56789834e+02,  -9.21488177e+04,
+                                      6.06880066e+06, -4.28216917e+07, -3.92455106e+08,
+                                      3.05795990e+09}; // ×1e-4 kJ/mol, ascending powers of τ
+    auto rod = [&](double t) {
+        double u = 0.0, du = 0.0;
+        for (int k = 6; k >= 0; --k) {
+            du = du * t + u;
+            u = u * t + c[k];
+        }
+        return PairSample{t, 1e-4 * u, 1e-4 * du};
+    };
+    const double lower = -6.5e-5, upper = 1.2, height = upper - lower;
+    SearchSettings s;
+    s.maxStep = 0.0318;
+    s.nudge = s.maxStep / 32;
+    s.grazeWindow = 0.25 * height;
+    s.levelTolerance = 1e-10 * height;
+    // The dip: first below the level near τ = 0.006, back above it near 0.013.
+    double first = 0.0;
+    for (double t = 0.0; t < 0.02 && first == 0.0; t += 1e-6)
+        if (rod(t).U < lower) first = t;
+    ASSERT_GT(first, 0.004);
+    ASSERT_LT(first, 0.008);
+    const SearchResult r = findTerraceExit(rod, rod(0.0), lower, upper, 0.039, s);
+    EXPECT_EQ(r.side, ExitSide::Lower);
+    EXPECT_NEAR(r.t, first, 2e-6);
+    EXPECT_LE(rod(r.t).U, lower);
 }
 
 TEST(ShellScreening, WindowsOfTheInteractionShell) {
