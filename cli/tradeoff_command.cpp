@@ -734,6 +734,34 @@ std::string unresolvedSummary(const Tradeoff& t, const std::string& engine) {
            " settings not outside, at up to " + std::to_string(most) + " replicas";
 }
 
+/// The cheapest rung of an engine still Unresolved and cheaper than `chosen`: it may be within
+/// tolerance (cli/tradeoff_dominance.hpp, openRungVerdict); nullptr when there is none.
+const Rung* cheapestOpen(const Tradeoff& t, const Rung& chosen) {
+    const Rung* best = nullptr;
+    for (const auto& ladder : t.ladders)
+        for (const Rung& r : ladder)
+            if (r.setting.engine == chosen.setting.engine && r.decision == Decision::Unresolved &&
+                r.ok() > 0 && r.cost() < chosen.cost() && (!best || r.cost() < best->cost()))
+                best = &r;
+    return best;
+}
+
+/// What keeps an open rung open: its unresolved observable nearest its tolerance's edge, in
+/// tolerances, and its replicas ("p at 0.98 +- 0.034 tolerances, 128 replicas").
+std::string openBecause(const Rung& r) {
+    const ObservableBias* edge = nullptr;
+    for (const auto& b : r.biases)
+        if (b.decision == Decision::Unresolved && b.tolerance > 0.0 &&
+            (!edge || std::abs(std::abs(b.bias.mean) / b.tolerance - 1.0) <
+                          std::abs(std::abs(edge->bias.mean) / edge->tolerance - 1.0)))
+            edge = &b;
+    const std::string replicas = std::to_string(r.replicas.size()) + " replicas";
+    if (!edge) return replicas;
+    return format("%s at %.3g +- %.2g tolerances, %s", observableName(edge->observable),
+                  edge->bias.mean / edge->tolerance, edge->bias.err / edge->tolerance,
+                  replicas.c_str());
+}
+
 /// Whether one engine's cheapest Within rung costs less, by dominanceMargin at the bias runs'
 /// N, than any setting of the other engine could cost within tolerance.
 std::optional<Dominance> dominance(const Tradeoff& t) {
@@ -1089,6 +1117,55 @@ int runTradeoff(const TradeoffOptions& options) {
         out["cost"]["cheaper_resolved"] = ratio.lo > 1.0 || ratio.hi < 1.0;
         verdict = costComparison(describe(dmd->setting, t), describe(smd->setting, t), ratio) +
                   " at " + toleranceText(t) + " (N " + std::to_string(t.scene.state.n) + ")";
+        // A cheaper rung left open makes the chosen ratio one end of the equal-accuracy one.
+        const Rung* dmdOpen = cheapestOpen(t, *dmd);
+        const Rung* smdOpen = cheapestOpen(t, *smd);
+        if (dmdOpen || smdOpen) {
+            const double dmdShare = dmdOpen ? dmdOpen->cost() / dmd->cost() : 1.0;
+            const double smdShare = smdOpen ? smdOpen->cost() / smd->cost() : 1.0;
+            const OpenRungVerdict v = openRungVerdict(ratio, dmdShare, smdShare);
+            std::string open;
+            nlohmann::json openJson = nlohmann::json::array();
+            for (const Rung* r : {dmdOpen, smdOpen}) {
+                if (!r) continue;
+                const Rung* chosen = r->setting.engine == "dmd" ? dmd : smd;
+                open += format("%s%s, at %.2g of its cost (from the bias runs), is not resolved "
+                               "(%s)",
+                               open.empty() ? "" : "; ", describe(r->setting, t).c_str(),
+                               r->cost() / chosen->cost(), openBecause(*r).c_str());
+                openJson.push_back({{"setting", r->setting.label()},
+                                    {"cost_share", r->cost() / chosen->cost()},
+                                    {"replicas", r->replicas.size()}});
+            }
+            out["cost"]["open"] = openJson;
+            out["cost"]["chosen_ratio_dmd_over_smd"] = ratio.median;
+            out["cost"]["chosen_ratio_lo"] = ratio.lo;
+            out["cost"]["chosen_ratio_hi"] = ratio.hi;
+            const std::string chosenText = verdict;
+            if (v.cheaper == OpenRungVerdict::Cheaper::Neither) {
+                verdict = format("no verdict: the engine cheaper at equal accuracy is not "
+                                 "resolved: between the settings resolved within, %s; but %s, "
+                                 "which puts DMD's cost over SMD's anywhere in %.2f-%.2f",
+                                 chosenText.c_str(), open.c_str(), v.least.lo, v.most.hi);
+                status = 1;
+            } else {
+                const bool smdCheaper = v.cheaper == OpenRungVerdict::Cheaper::Smd;
+                const analysis::RatioInterval& b = smdCheaper ? v.least : v.most;
+                out["cost"]["kind"] = "at_least";
+                out["cost"]["ratio_dmd_over_smd"] = b.median;
+                out["cost"]["ratio_lo"] = b.lo;
+                out["cost"]["ratio_hi"] = b.hi;
+                const std::string winner = describe(smdCheaper ? smd->setting : dmd->setting, t);
+                const double m = smdCheaper ? b.median : 1.0 / b.median;
+                const double lo = smdCheaper ? b.lo : 1.0 / b.hi;
+                const double hi = smdCheaper ? b.hi : 1.0 / b.lo;
+                verdict = format("%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s "
+                                 "setting that may be within tolerance at %s (N %d): %s; but %s",
+                                 winner.c_str(), m, lo, hi, 100.0 * b.level,
+                                 smdCheaper ? "DMD" : "SMD", toleranceText(t).c_str(),
+                                 t.scene.state.n, chosenText.c_str(), open.c_str());
+            }
+        }
     }
     out["verdict"] = verdict;
     out["notes"] = t.notes;

@@ -23,6 +23,10 @@
 //               other engine's cost floor (cli/tradeoff_dominance.hpp), the two are timed in the
 //               cost window; resolved cheaper there, the question is answered: the loop stops
 //               and the verdict's ratio, to the floor's rung, says "at least" (unless --frontier)
+//   open rungs  a rung still Unresolved at the end and cheaper than its engine's chosen one may
+//               be within: the chosen settings' ratio is then one end of the answer, and the
+//               verdict says "at least" where the other end stays on the same side of 1, or
+//               gives no verdict (cli/tradeoff_dominance.hpp, openRungVerdict)
 //   cost        the two engines' chosen settings at the scene's N, alternated A B A B for
 //               `costPairs` pairs, one run at a time; the ratio's median and its order-statistics
 //               interval

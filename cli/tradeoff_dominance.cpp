@@ -80,4 +80,21 @@ std::optional<CostFloor> engineCostFloor(const std::vector<std::vector<RungView>
     return least;
 }
 
+OpenRungVerdict openRungVerdict(const analysis::RatioInterval& chosen, double dmdShare,
+                                double smdShare) {
+    // An open DMD rung can only lower DMD's cost, an open SMD rung only SMD's: the ratio moves
+    // down by dmdShare at most and up by 1/smdShare at most.
+    const auto scaled = [&](double f) {
+        analysis::RatioInterval r = chosen;
+        r.median *= f, r.lo *= f, r.hi *= f;
+        return r;
+    };
+    OpenRungVerdict v{OpenRungVerdict::Cheaper::Neither, scaled(dmdShare), scaled(1.0 / smdShare)};
+    if (v.least.lo > 1.0)
+        v.cheaper = OpenRungVerdict::Cheaper::Smd;
+    else if (v.most.hi < 1.0)
+        v.cheaper = OpenRungVerdict::Cheaper::Dmd;
+    return v;
+}
+
 } // namespace terrace::cli

@@ -13,6 +13,7 @@
 // the most accurate) bounds the engine's cost at the tolerance from below. When it is above the
 // other engine's chosen cost, the question "which is cheaper" is answered with a ratio that is
 // itself a lower bound: it says "at least".
+#include "analysis/tradeoff_stats.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include <optional>
 #include <vector>
@@ -50,6 +51,22 @@ std::optional<CostFloor> ladderCostFloor(const std::vector<RungView>& ladder, in
 /// The least floor over an engine's ladders; nullopt when any of them has none.
 std::optional<CostFloor> engineCostFloor(const std::vector<std::vector<RungView>>& ladders,
                                          double z);
+
+/// The verdict when rungs are left open. An engine's rung still Unresolved when the search ends
+/// (the budget spent, or the replica limit met at the tolerance's edge) and cheaper than that
+/// engine's chosen setting may be within tolerance: the engine's cost at the tolerance then lies
+/// between that rung's and the chosen one's, and the window's ratio of the chosen settings is
+/// only one end of the equal-accuracy ratio. `dmdShare` is the cheapest open DMD rung's cost over
+/// DMD's chosen one (1 when none is open), `smdShare` likewise, both at the bias runs' N.
+struct OpenRungVerdict {
+    enum class Cheaper { Smd, Dmd, Neither } cheaper = Cheaper::Neither;
+    // DMD's cost over SMD's at the end that the open rungs could move it to: the bound (from
+    // below when SMD is the cheaper, from above when DMD is); when neither is resolved cheaper,
+    // the whole range, [least.lo, most.hi].
+    analysis::RatioInterval least, most;
+};
+OpenRungVerdict openRungVerdict(const analysis::RatioInterval& chosen, double dmdShare,
+                                double smdShare);
 
 /// The early stop is tried when the other engine's floor is above the chosen cost, both as
 /// measured at the bias runs' N (by this factor); the cost window at the scene's N then decides.

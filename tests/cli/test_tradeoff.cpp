@@ -414,6 +414,46 @@ TEST(Tradeoff, AVerdictSaysCheaperOnlyWhereTheRatiosIntervalLeavesOne) {
               "b costs");
 }
 
+TEST(TradeoffOpenRungs, AnOpenRungOfTheDearerEngineTurnsTheRatioIntoABoundOrNoVerdict) {
+    // The loose rods at rho* 0.5, T* 10 (results/tradeoff-map): SMD verlet 1 fs is 6.88x
+    // (6.65-6.95) cheaper than DMD optimal kT/4 (2.64 CPU s per ps), but DMD uniform kT/8, at
+    // 1.16, sits at the edge of p after 128 replicas: DMD's cost at the tolerance may be 0.44 of
+    // the chosen one's, so SMD is cheaper by at least 3.02x, not 6.88x.
+    const analysis::RatioInterval chosen{6.88, 6.65, 6.95, 8, 0.94};
+    const double share = 1.16 / 2.64;
+    auto v = openRungVerdict(chosen, share, 1.0);
+    EXPECT_EQ(v.cheaper, OpenRungVerdict::Cheaper::Smd);
+    EXPECT_NEAR(v.least.median, 3.023, 1e-3);
+    EXPECT_NEAR(v.least.lo, 6.65 * share, 1e-12);
+    EXPECT_DOUBLE_EQ(v.most.median, 6.88); // no open SMD rung: the chosen ratio is the other end
+    // An open DMD rung cheap enough to reach below SMD's cost: neither is resolved cheaper.
+    v = openRungVerdict(chosen, 0.1, 1.0);
+    EXPECT_EQ(v.cheaper, OpenRungVerdict::Cheaper::Neither);
+    EXPECT_NEAR(v.least.lo, 0.665, 1e-12);
+    EXPECT_DOUBLE_EQ(v.most.hi, 6.95);
+}
+
+TEST(TradeoffOpenRungs, AnOpenRungOfTheCheaperEngineOnlyWidensItsLead) {
+    // DMD resolved cheaper (ratio 0.5, 0.4-0.8) with an open DMD rung at half the cost: DMD's
+    // lead can only grow, so the chosen ratio bounds it (from above on DMD/SMD).
+    const analysis::RatioInterval chosen{0.5, 0.4, 0.8, 8, 0.94};
+    auto v = openRungVerdict(chosen, 0.5, 1.0);
+    EXPECT_EQ(v.cheaper, OpenRungVerdict::Cheaper::Dmd);
+    EXPECT_DOUBLE_EQ(v.most.median, 0.5);
+    // An open SMD rung at a third of SMD's chosen cost could put SMD ahead: no verdict.
+    v = openRungVerdict(chosen, 1.0, 1.0 / 3.0);
+    EXPECT_EQ(v.cheaper, OpenRungVerdict::Cheaper::Neither);
+    EXPECT_NEAR(v.most.hi, 2.4, 1e-12);
+    // At a 0.9 share it cannot: DMD stays cheaper by at least 1/(0.5/0.9) = 1.8x.
+    v = openRungVerdict(chosen, 1.0, 0.9);
+    EXPECT_EQ(v.cheaper, OpenRungVerdict::Cheaper::Dmd);
+    EXPECT_NEAR(1.0 / v.most.median, 1.8, 1e-12);
+    // Nothing open: the chosen ratio at both ends.
+    v = openRungVerdict(chosen, 1.0, 1.0);
+    EXPECT_DOUBLE_EQ(v.least.lo, 0.4);
+    EXPECT_DOUBLE_EQ(v.most.hi, 0.8);
+}
+
 TEST(TradeoffDominance, TheMostAccurateOutsideRungWhoseBiasGrowsIsTheFloor) {
     const auto f = ladderCostFloor(growingLadder(), 3, 2.0);
     ASSERT_TRUE(f);
