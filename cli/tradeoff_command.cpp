@@ -735,13 +735,17 @@ std::string unresolvedSummary(const Tradeoff& t, const std::string& engine) {
 }
 
 /// The cheapest rung of an engine still Unresolved and cheaper than `chosen`: it may be within
-/// tolerance (cli/tradeoff_dominance.hpp, openRungVerdict); nullptr when there is none.
+/// tolerance (cli/tradeoff_dominance.hpp, openRungVerdict); nullptr when there is none. A rung
+/// of the chosen one's own ladder counts only where it is coarser: cost falls as x grows along
+/// a ladder, so a finer one timed cheaper is noise.
 const Rung* cheapestOpen(const Tradeoff& t, const Rung& chosen) {
     const Rung* best = nullptr;
     for (const auto& ladder : t.ladders)
         for (const Rung& r : ladder)
-            if (r.setting.engine == chosen.setting.engine && r.decision == Decision::Unresolved &&
-                r.ok() > 0 && r.cost() < chosen.cost() && (!best || r.cost() < best->cost()))
+            if (r.setting.engine == chosen.setting.engine &&
+                (r.setting.ladder != chosen.setting.ladder || r.setting.x > chosen.setting.x) &&
+                r.decision == Decision::Unresolved && r.ok() > 0 && r.cost() < chosen.cost() &&
+                (!best || r.cost() < best->cost()))
                 best = &r;
     return best;
 }
