@@ -1119,8 +1119,10 @@ int runTradeoff(const TradeoffOptions& options) {
         if (const int s = costWindow(dmd->setting, smd->setting, "ratio", ratio)) return s;
         out["cost"] = costRecord;
         out["cost"]["cheaper_resolved"] = ratio.lo > 1.0 || ratio.hi < 1.0;
-        verdict = costComparison(describe(dmd->setting, t), describe(smd->setting, t), ratio) +
-                  " at " + toleranceText(t) + " (N " + std::to_string(t.scene.state.n) + ")";
+        const std::string comparison =
+            costComparison(describe(dmd->setting, t), describe(smd->setting, t), ratio);
+        verdict =
+            comparison + " at " + toleranceText(t) + " (N " + std::to_string(t.scene.state.n) + ")";
         // A cheaper rung left open makes the chosen ratio one end of the equal-accuracy one.
         const Rung* dmdOpen = cheapestOpen(t, *dmd);
         const Rung* smdOpen = cheapestOpen(t, *smd);
@@ -1145,12 +1147,14 @@ int runTradeoff(const TradeoffOptions& options) {
             out["cost"]["chosen_ratio_dmd_over_smd"] = ratio.median;
             out["cost"]["chosen_ratio_lo"] = ratio.lo;
             out["cost"]["chosen_ratio_hi"] = ratio.hi;
-            const std::string chosenText = verdict;
+            const std::string chosenText = comparison; // the tolerances are said once
             if (v.cheaper == OpenRungVerdict::Cheaper::Neither) {
                 verdict = format("no verdict: the engine cheaper at equal accuracy is not "
                                  "resolved: between the settings resolved within, %s; but %s, "
-                                 "which puts DMD's cost over SMD's anywhere in %.2f-%.2f",
-                                 chosenText.c_str(), open.c_str(), v.least.lo, v.most.hi);
+                                 "which puts DMD's cost over SMD's anywhere in %.2f-%.2f, at "
+                                 "%s (N %d)",
+                                 chosenText.c_str(), open.c_str(), v.least.lo, v.most.hi,
+                                 toleranceText(t).c_str(), t.scene.state.n);
                 status = 1;
             } else {
                 const bool smdCheaper = v.cheaper == OpenRungVerdict::Cheaper::Smd;

@@ -27,9 +27,9 @@
 # Writes OUT/tradeoff-map/<family>-<set>.csv from every cell present, not only those named here:
 #   rho,T,status,dmd,smd,ratio,lo,hi,level,why
 # status resolved (a verdict: ratio = DMD's cost over SMD's, with its interval), at_least (the
-# verdict of tradeoff's early stop: one engine is cheaper than any setting of the other could be, and
-# the ratio, DMD's over SMD's, is a bound on the true one: from below when SMD is the cheaper, from
-# above when DMD is) or the reason there is none; and <family>-<set>.png, log10 of the ratio at each
+# verdict of tradeoff's early stop, or of a cheaper setting left open: one engine is cheaper than
+# any setting of the other could be, and the ratio, DMD's over SMD's, is a bound on the true one:
+# from below when SMD is the cheaper, from above when DMD is) or the reason there is none; and <family>-<set>.png, log10 of the ratio at each
 # cell with a verdict (triangles: bounds; crosses: no verdict), the break-even contour drawn only
 # between resolved cells.
 source "$(dirname "$0")/common.sh"
