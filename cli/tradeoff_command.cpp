@@ -1147,13 +1147,14 @@ int runTradeoff(const TradeoffOptions& options) {
             out["cost"]["chosen_ratio_dmd_over_smd"] = ratio.median;
             out["cost"]["chosen_ratio_lo"] = ratio.lo;
             out["cost"]["chosen_ratio_hi"] = ratio.hi;
-            const std::string chosenText = comparison; // the tolerances are said once
+            // Whether an engine is resolved cheaper at equal accuracy, not between the chosen two.
+            out["cost"]["cheaper_resolved"] = v.cheaper != OpenRungVerdict::Cheaper::Neither;
             if (v.cheaper == OpenRungVerdict::Cheaper::Neither) {
                 verdict = format("no verdict: the engine cheaper at equal accuracy is not "
                                  "resolved: between the settings resolved within, %s; but %s, "
                                  "which puts DMD's cost over SMD's anywhere in %.2f-%.2f, at "
                                  "%s (N %d)",
-                                 chosenText.c_str(), open.c_str(), v.least.lo, v.most.hi,
+                                 comparison.c_str(), open.c_str(), v.least.lo, v.most.hi,
                                  toleranceText(t).c_str(), t.scene.state.n);
                 status = 1;
             } else {
@@ -1171,7 +1172,7 @@ int runTradeoff(const TradeoffOptions& options) {
                                  "setting that may be within tolerance at %s (N %d): %s; but %s",
                                  winner.c_str(), m, lo, hi, 100.0 * b.level,
                                  smdCheaper ? "DMD" : "SMD", toleranceText(t).c_str(),
-                                 t.scene.state.n, chosenText.c_str(), open.c_str());
+                                 t.scene.state.n, comparison.c_str(), open.c_str());
             }
         }
     }
