@@ -1,11 +1,11 @@
 #include "analysis/compare.hpp"
 #include "analysis/csv.hpp"
+#include "core/format_text.hpp"
 #include <algorithm>
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <boost/math/special_functions/erf.hpp>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -67,12 +67,6 @@ double interpolateCubic(const std::vector<double>& xs, const std::vector<double>
         y += basis * ys[i];
     }
     return y;
-}
-
-template <class... Args> std::string format(const char* fmt, Args... args) {
-    char buffer[96];
-    std::snprintf(buffer, sizeof buffer, fmt, args...);
-    return buffer;
 }
 
 } // namespace
@@ -146,9 +140,9 @@ Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::pat
         std::abs(ca.x.back() - cb.x.back()) > reach)
         throw CsvError("compare: the curves cover different ranges: " + a.string() + " has " +
                        std::to_string(ca.x.size()) + " points over " + ta.header[0] + " " +
-                       format("%.6g", ca.x.front()) + " to " + format("%.6g", ca.x.back()) + ", " +
-                       b.string() + " " + std::to_string(cb.x.size()) + " points over " +
-                       format("%.6g", cb.x.front()) + " to " + format("%.6g", cb.x.back()) +
+                       formatText("%.6g", ca.x.front()) + " to " + formatText("%.6g", ca.x.back()) +
+                       ", " + b.string() + " " + std::to_string(cb.x.size()) + " points over " +
+                       formatText("%.6g", cb.x.front()) + " to " + formatText("%.6g", cb.x.back()) +
                        ": compare curves of runs of the same length and analysis settings");
     Comparison r{true, 0.0, 0.0, std::numeric_limits<double>::quiet_NaN(), 0, ""};
     double chi2 = 0.0;
@@ -188,13 +182,14 @@ Comparison compareCsv(const std::filesystem::path& a, const std::filesystem::pat
     const double zLimit = pointLimitSigma(tolSigma, dof),
                  chiLimit = chi2PerDofLimit(tolSigma, nEff);
     r.agree = !exactMismatch && r.maxDeviationSigma <= zLimit && r.chi2PerDof <= chiLimit;
-    r.verdict = std::string(r.agree ? "agree" : "DISAGREE") + ": " + name + " over " +
-                std::to_string(r.points) + " points, chi2/dof " +
-                format("%.3g (limit %.3g", r.chi2PerDof, chiLimit) +
-                format(" for %.3g independent)", nEff) + ", largest deviation " +
-                format("%.3g sigma (limit %.3g; raw %.3g)", r.maxDeviationSigma, zLimit, rawMax) +
-                " at " + ta.header[0] + " = " + format("%.6g", r.atX) +
-                (exactMismatch ? "; an exact point (zero error) differs" : "");
+    r.verdict =
+        std::string(r.agree ? "agree" : "DISAGREE") + ": " + name + " over " +
+        std::to_string(r.points) + " points, chi2/dof " +
+        formatText("%.3g (limit %.3g", r.chi2PerDof, chiLimit) +
+        formatText(" for %.3g independent)", nEff) + ", largest deviation " +
+        formatText("%.3g sigma (limit %.3g; raw %.3g)", r.maxDeviationSigma, zLimit, rawMax) +
+        " at " + ta.header[0] + " = " + formatText("%.6g", r.atX) +
+        (exactMismatch ? "; an exact point (zero error) differs" : "");
     return r;
 }
 

@@ -1,9 +1,9 @@
 #include "analysis/rdf_accumulator.hpp"
 #include "analysis/cancellation.hpp"
 #include "core/box.hpp"
+#include "core/format_text.hpp"
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -36,10 +36,8 @@ RdfAccumulator::RdfAccumulator(int bodies, double boxLength, double binWidth, do
     // an int holds, and far more than any g(r) needs (8 blocks of 10⁶ bins are 64 MB).
     const double binCount = std::floor(std::min(rMax, 0.5 * boxLength) / binWidth);
     if (!(binCount <= maxBins)) {
-        char count[32];
-        std::snprintf(count, sizeof count, "%.3g", binCount);
-        throw std::invalid_argument("g(r): r_max / bin width asks for " + std::string(count) +
-                                    " bins, more than " + std::to_string(maxBins));
+        throw std::invalid_argument(formatText(
+            "g(r): r_max / bin width asks for %.3g bins, more than %d", binCount, maxBins));
     }
     bins_ = static_cast<int>(binCount);
     if (bins_ < 1) throw std::invalid_argument("g(r): the bin is wider than r_max");

@@ -5,6 +5,7 @@
 #include "cli/tradeoff_dominance.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include "cli/tradeoff_schedule.hpp"
+#include "core/format_text.hpp"
 #include "core/output_file.hpp"
 #include "core/scene_json.hpp"
 #include <algorithm>
@@ -501,32 +502,26 @@ nlohmann::json rungJson(const Rung& r) {
 }
 
 std::string describe(const Setting& s, const Tradeoff& t) {
-    char b[160];
     if (s.engine == "dmd") {
         std::string est;
         for (const Observable o : t.observables)
             if (hasConfigurational(o))
                 est += std::string(est.empty() ? "" : ", ") + observableName(o) + " " +
                        estimatorName(t.dmdEstimator.at(o), "dmd");
-        std::snprintf(b, sizeof b, "DMD dV = %.4g kT (%s terraces; %s)", s.x,
-                      s.ladder == "dmd-optimal" ? "optimal" : "uniform", est.c_str());
-    } else {
-        const std::string scheme = s.ladder == "reference" ? "yoshida4" : s.ladder.substr(4);
-        std::snprintf(b, sizeof b, "SMD %s dt = %.4g fs", scheme.c_str(), s.x);
+        return formatText("DMD dV = %.4g kT (%s terraces; %s)", s.x,
+                          s.ladder == "dmd-optimal" ? "optimal" : "uniform", est.c_str());
     }
-    return b;
+    const std::string scheme = s.ladder == "reference" ? "yoshida4" : s.ladder.substr(4);
+    return formatText("SMD %s dt = %.4g fs", scheme.c_str(), s.x);
 }
 
 std::string toleranceText(const Tradeoff& t) {
     std::string text;
     for (const Observable o : t.observables) {
         const auto tol = t.tolerance.at(o);
-        char b[64];
-        if (tol.relative)
-            std::snprintf(b, sizeof b, "%s +-%.3g %%", observableName(o), 100.0 * tol.value);
-        else
-            std::snprintf(b, sizeof b, "%s +-%.3g", observableName(o), tol.value);
-        text += (text.empty() ? "" : ", ") + std::string(b);
+        text += (text.empty() ? "" : ", ") +
+                (tol.relative ? formatText("%s +-%.3g %%", observableName(o), 100.0 * tol.value)
+                              : formatText("%s +-%.3g", observableName(o), tol.value));
     }
     return text;
 }
@@ -536,23 +531,18 @@ void writeTable(const Tradeoff& t) {
                       "estimator,bias,bias_err,tolerance,decision,rung_decision\n";
     const auto rows = [&](const Rung& r) {
         for (const auto& b : r.biases) {
-            char line[512];
-            std::snprintf(line, sizeof line,
-                          "%s,%s,%s,%.6g,%d,%d,%.6g,%s,%s,%.6g,%.6g,%.6g,%s,%s\n",
-                          r.setting.label().c_str(), r.setting.engine.c_str(),
-                          r.setting.ladder.c_str(), r.setting.x, int(r.setting.interpolated),
-                          r.target, r.cost(), observableName(b.observable),
-                          estimatorName(b.estimator, r.setting.engine), b.bias.mean, b.bias.err,
-                          b.tolerance, decisionName(b.decision), decisionName(r.decision));
-            csv += line;
+            csv += formatText("%s,%s,%s,%.6g,%d,%d,%.6g,%s,%s,%.6g,%.6g,%.6g,%s,%s\n",
+                              r.setting.label().c_str(), r.setting.engine.c_str(),
+                              r.setting.ladder.c_str(), r.setting.x, int(r.setting.interpolated),
+                              r.target, r.cost(), observableName(b.observable),
+                              estimatorName(b.estimator, r.setting.engine), b.bias.mean, b.bias.err,
+                              b.tolerance, decisionName(b.decision), decisionName(r.decision));
         }
         if (r.biases.empty()) {
-            char line[512];
-            std::snprintf(line, sizeof line, "%s,%s,%s,%.6g,%d,%d,%.6g,,,,,,,%s\n",
-                          r.setting.label().c_str(), r.setting.engine.c_str(),
-                          r.setting.ladder.c_str(), r.setting.x, int(r.setting.interpolated),
-                          r.target, r.cost(), decisionName(r.decision));
-            csv += line;
+            csv += formatText("%s,%s,%s,%.6g,%d,%d,%.6g,,,,,,,%s\n", r.setting.label().c_str(),
+                              r.setting.engine.c_str(), r.setting.ladder.c_str(), r.setting.x,
+                              int(r.setting.interpolated), r.target, r.cost(),
+                              decisionName(r.decision));
         }
     };
     for (const auto& ladder : t.ladders)
@@ -652,15 +642,6 @@ struct Dominance {
 /// scene's N.
 constexpr double rivalFactor = 1.5;
 
-/// printf into a std::string of whatever length it needs.
-template <class... A> std::string format(const char* f, A... a) {
-    const int n = std::snprintf(nullptr, 0, f, a...);
-    std::string s(std::size_t(std::max(n, 0)) + 1, '\0');
-    std::snprintf(s.data(), s.size(), f, a...);
-    s.resize(std::size_t(std::max(n, 0)));
-    return s;
-}
-
 std::vector<RungView> viewsOf(const std::vector<Rung>& ladder) {
     std::vector<RungView> views;
     for (const Rung& r : ladder)
@@ -697,17 +678,18 @@ std::string everySettingOutside(const Tradeoff& t, const std::string& engine) {
     if (!floor) return out + ", and no setting bounds its cost from below";
     if (floor->cost >= dominanceMargin * rival->cost()) return out; // --frontier: no early stop
     const Rung& bound = (*own.ladders[floor->ladder])[floor->rung];
-    out += format(", but nothing rules out a setting cheaper than %s: the floor of its cost is %s "
-                  "(%.3g CPU s per ps), ",
-                  describe(rival->setting, t).c_str(), describe(bound.setting, t).c_str(),
-                  bound.cost());
-    return out + (floor->ladderEnd
-                      ? std::string("its ladder's coarsest, as no setting is outside on a bias "
-                                    "that keeps its sign and grows on the coarser ones")
-                      : format("the most accurate setting outside on a bias (%s) that keeps its "
-                               "sign and grows on the coarser ones, so a setting between two "
-                               "finer rungs may be within",
-                               observableName(floor->ruling.observable)));
+    out += formatText(
+        ", but nothing rules out a setting cheaper than %s: the floor of its cost is %s "
+        "(%.3g CPU s per ps), ",
+        describe(rival->setting, t).c_str(), describe(bound.setting, t).c_str(), bound.cost());
+    return out +
+           (floor->ladderEnd
+                ? std::string("its ladder's coarsest, as no setting is outside on a bias "
+                              "that keeps its sign and grows on the coarser ones")
+                : formatText("the most accurate setting outside on a bias (%s) that keeps its "
+                             "sign and grows on the coarser ones, so a setting between two "
+                             "finer rungs may be within",
+                             observableName(floor->ruling.observable)));
 }
 
 /// Why an engine has no setting within: per observable, on how many of its settings not resolved
@@ -761,9 +743,9 @@ std::string openBecause(const Rung& r) {
             edge = &b;
     const std::string replicas = std::to_string(r.replicas.size()) + " replicas";
     if (!edge) return replicas;
-    return format("%s at %.3g +- %.2g tolerances, %s", observableName(edge->observable),
-                  edge->bias.mean / edge->tolerance, edge->bias.err / edge->tolerance,
-                  replicas.c_str());
+    return formatText("%s at %.3g +- %.2g tolerances, %s", observableName(edge->observable),
+                      edge->bias.mean / edge->tolerance, edge->bias.err / edge->tolerance,
+                      replicas.c_str());
 }
 
 /// Whether one engine's cheapest Within rung costs less, by dominanceMargin at the bias runs'
@@ -793,16 +775,16 @@ std::optional<Dominance> dominance(const Tradeoff& t) {
 std::string costComparison(const std::string& dmd, const std::string& smd,
                            const analysis::RatioInterval& ratio) {
     if (ratio.lo <= 1.0 && ratio.hi >= 1.0)
-        return format("neither engine is resolved cheaper: %s costs %.2fx (%.2f-%.2f, %.0f %%) "
-                      "what %s costs",
-                      dmd.c_str(), ratio.median, ratio.lo, ratio.hi, 100.0 * ratio.level,
-                      smd.c_str());
+        return formatText("neither engine is resolved cheaper: %s costs %.2fx (%.2f-%.2f, %.0f %%) "
+                          "what %s costs",
+                          dmd.c_str(), ratio.median, ratio.lo, ratio.hi, 100.0 * ratio.level,
+                          smd.c_str());
     if (ratio.median >= 1.0)
-        return format("%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s", smd.c_str(), ratio.median,
-                      ratio.lo, ratio.hi, 100.0 * ratio.level, dmd.c_str());
-    return format("%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s", dmd.c_str(),
-                  1.0 / ratio.median, 1.0 / ratio.hi, 1.0 / ratio.lo, 100.0 * ratio.level,
-                  smd.c_str());
+        return formatText("%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s", smd.c_str(),
+                          ratio.median, ratio.lo, ratio.hi, 100.0 * ratio.level, dmd.c_str());
+    return formatText("%s is %.2fx (%.2f-%.2f, %.0f %%) cheaper than %s", dmd.c_str(),
+                      1.0 / ratio.median, 1.0 / ratio.hi, 1.0 / ratio.lo, 100.0 * ratio.level,
+                      smd.c_str());
 }
 
 int runTradeoff(const TradeoffOptions& options) {
@@ -1056,20 +1038,21 @@ int runTradeoff(const TradeoffOptions& options) {
         out["cost"] = costRecord;
         const std::string other = dom->bound->setting.engine == "dmd" ? "DMD" : "SMD";
         const std::string why =
-            dom->floor.within ? format("%s's cheapest setting within is %s", other.c_str(),
-                                       describe(dom->bound->setting, t).c_str())
+            dom->floor.within ? formatText("%s's cheapest setting within is %s", other.c_str(),
+                                           describe(dom->bound->setting, t).c_str())
             : dom->floor.ladderEnd
-                ? format("%s's coarsest setting%s, %s, is the floor: none of that ladder's "
-                         "settings is resolved outside with a bias that grows, and none coarser "
-                         "is a candidate",
-                         other.c_str(), other == "SMD" ? " short of the stability limit" : "",
-                         describe(dom->bound->setting, t).c_str())
-                : format("%s's most accurate setting that bounds it, %s, is outside on %s by "
-                         "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",
-                         other.c_str(), describe(dom->bound->setting, t).c_str(),
-                         observableName(dom->floor.ruling.observable),
-                         dom->floor.ruling.bias.mean / dom->floor.ruling.tolerance,
-                         dom->floor.ruling.bias.err / dom->floor.ruling.tolerance);
+                ? formatText(
+                      "%s's coarsest setting%s, %s, is the floor: none of that ladder's "
+                      "settings is resolved outside with a bias that grows, and none coarser "
+                      "is a candidate",
+                      other.c_str(), other == "SMD" ? " short of the stability limit" : "",
+                      describe(dom->bound->setting, t).c_str())
+                : formatText("%s's most accurate setting that bounds it, %s, is outside on %s by "
+                             "%.3g +- %.2g tolerances, and its bias grows on the coarser settings",
+                             other.c_str(), describe(dom->bound->setting, t).c_str(),
+                             observableName(dom->floor.ruling.observable),
+                             dom->floor.ruling.bias.mean / dom->floor.ruling.tolerance,
+                             dom->floor.ruling.bias.err / dom->floor.ruling.tolerance);
         out["cost"]["bound"] = {{"setting", dom->bound->setting.label()},
                                 {"within", dom->floor.within},
                                 {"ladder_end", dom->ladderEnd}};
@@ -1078,24 +1061,24 @@ int runTradeoff(const TradeoffOptions& options) {
                 biasJson(dom->floor.ruling, dom->bound->setting.engine);
         if (ratio.lo > 1.0) {
             verdict =
-                format("%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s setting "
-                       "%s at %s (N %d): %s",
-                       describe(dom->chosen->setting, t).c_str(), ratio.median, ratio.lo, ratio.hi,
-                       100.0 * ratio.level, other.c_str(),
-                       dom->ladderEnd ? "within tolerance no coarser than its ladders' coarsest"
-                                      : "within tolerance",
-                       toleranceText(t).c_str(), t.scene.state.n, why.c_str());
+                formatText("%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s setting "
+                           "%s at %s (N %d): %s",
+                           describe(dom->chosen->setting, t).c_str(), ratio.median, ratio.lo,
+                           ratio.hi, 100.0 * ratio.level, other.c_str(),
+                           dom->ladderEnd ? "within tolerance no coarser than its ladders' coarsest"
+                                          : "within tolerance",
+                           toleranceText(t).c_str(), t.scene.state.n, why.c_str());
         } else {
             verdict =
-                format("no verdict: at N %d the cost window does not resolve %s (%.2fx, "
-                       "%.2f-%.2f) as cheaper than %s, the floor of %s's cost at %s",
-                       t.scene.state.n, describe(dom->chosen->setting, t).c_str(), ratio.median,
-                       ratio.lo, ratio.hi, describe(dom->bound->setting, t).c_str(), other.c_str(),
-                       toleranceText(t).c_str());
+                formatText("no verdict: at N %d the cost window does not resolve %s (%.2fx, "
+                           "%.2f-%.2f) as cheaper than %s, the floor of %s's cost at %s",
+                           t.scene.state.n, describe(dom->chosen->setting, t).c_str(), ratio.median,
+                           ratio.lo, ratio.hi, describe(dom->bound->setting, t).c_str(),
+                           other.c_str(), toleranceText(t).c_str());
             if (!dmd || !smd) // what was resolved within is still an answer: the setting to use
-                verdict += format("; the cheapest within: %s, %.3g CPU s per ps at N %d",
-                                  describe(dom->chosen->setting, t).c_str(), dom->chosen->cost(),
-                                  t.biasBodies);
+                verdict += formatText("; the cheapest within: %s, %.3g CPU s per ps at N %d",
+                                      describe(dom->chosen->setting, t).c_str(),
+                                      dom->chosen->cost(), t.biasBodies);
             status = 1;
         }
     } else if (!dmd || !smd) {
@@ -1108,10 +1091,8 @@ int runTradeoff(const TradeoffOptions& options) {
         if (!smd) verdict += "; SMD: " + unresolvedSummary(t, "smd");
         // What the other engine found is still an answer: the setting to use.
         if (const Rung* found = dmd ? dmd : smd) {
-            char b[256];
-            std::snprintf(b, sizeof b, "; the cheapest within: %s, %.3g CPU s per ps at N %d",
-                          describe(found->setting, t).c_str(), found->cost(), t.biasBodies);
-            verdict += b;
+            verdict += formatText("; the cheapest within: %s, %.3g CPU s per ps at N %d",
+                                  describe(found->setting, t).c_str(), found->cost(), t.biasBodies);
         }
         status = 1;
     } else {
@@ -1135,7 +1116,8 @@ int runTradeoff(const TradeoffOptions& options) {
             for (const Rung* r : {dmdOpen, smdOpen}) {
                 if (!r) continue;
                 const Rung* chosen = r->setting.engine == "dmd" ? dmd : smd;
-                open += format("%s%s, at %.2g of its cost (from the bias runs), is not resolved "
+                open +=
+                    formatText("%s%s, at %.2g of its cost (from the bias runs), is not resolved "
                                "(%s)",
                                open.empty() ? "" : "; ", describe(r->setting, t).c_str(),
                                r->cost() / chosen->cost(), openBecause(*r).c_str());
@@ -1150,12 +1132,12 @@ int runTradeoff(const TradeoffOptions& options) {
             // Whether an engine is resolved cheaper at equal accuracy, not between the chosen two.
             out["cost"]["cheaper_resolved"] = v.cheaper != OpenRungVerdict::Cheaper::Neither;
             if (v.cheaper == OpenRungVerdict::Cheaper::Neither) {
-                verdict = format("no verdict: the engine cheaper at equal accuracy is not "
-                                 "resolved: between the settings resolved within, %s; but %s, "
-                                 "which puts DMD's cost over SMD's anywhere in %.2f-%.2f, at "
-                                 "%s (N %d)",
-                                 comparison.c_str(), open.c_str(), v.least.lo, v.most.hi,
-                                 toleranceText(t).c_str(), t.scene.state.n);
+                verdict = formatText("no verdict: the engine cheaper at equal accuracy is not "
+                                     "resolved: between the settings resolved within, %s; but %s, "
+                                     "which puts DMD's cost over SMD's anywhere in %.2f-%.2f, at "
+                                     "%s (N %d)",
+                                     comparison.c_str(), open.c_str(), v.least.lo, v.most.hi,
+                                     toleranceText(t).c_str(), t.scene.state.n);
                 status = 1;
             } else {
                 const bool smdCheaper = v.cheaper == OpenRungVerdict::Cheaper::Smd;
@@ -1168,11 +1150,11 @@ int runTradeoff(const TradeoffOptions& options) {
                 const double m = smdCheaper ? b.median : 1.0 / b.median;
                 const double lo = smdCheaper ? b.lo : 1.0 / b.hi;
                 const double hi = smdCheaper ? b.hi : 1.0 / b.lo;
-                verdict = format("%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s "
-                                 "setting that may be within tolerance at %s (N %d): %s; but %s",
-                                 winner.c_str(), m, lo, hi, 100.0 * b.level,
-                                 smdCheaper ? "DMD" : "SMD", toleranceText(t).c_str(),
-                                 t.scene.state.n, comparison.c_str(), open.c_str());
+                verdict = formatText(
+                    "%s is at least %.2fx (%.2f-%.2f, %.0f %%) cheaper than any %s "
+                    "setting that may be within tolerance at %s (N %d): %s; but %s",
+                    winner.c_str(), m, lo, hi, 100.0 * b.level, smdCheaper ? "DMD" : "SMD",
+                    toleranceText(t).c_str(), t.scene.state.n, comparison.c_str(), open.c_str());
             }
         }
     }
