@@ -1,5 +1,6 @@
 #include "cli/sample_statistics.hpp"
 #include "cli/thermo.hpp"
+#include "core/format_text.hpp"
 #include "core/units.hpp"
 #include <algorithm>
 #include <cmath>
@@ -99,18 +100,17 @@ void SampleStatistics::summarise(nlohmann::json& summary, double sigma, double e
     // into a drift (cli/heat_bath_summary.hpp).
     const analysis::EnergyStats conserved = plan_.heatBath ? effective_.stats() : es;
     if (conserved.maxAbsDev > energyWanderWarning * k.mean) {
-        char text[256];
-        std::snprintf(text, sizeof text,
-                      plan_.heatBath
-                          ? "effective energy (H + the energy the heat bath removed) wandered by "
-                            "%.3g kJ/mol, %.2g%% of the kinetic energy: the integration's error at "
-                            "this time step, which the bath's draws turn from a fluctuation of H "
-                            "into a drift"
-                          : "total energy wandered by %.3g kJ/mol, %.2g%% of the kinetic energy: "
-                            "the integration does not conserve energy at this time step",
-                      conserved.maxAbsDev, 100.0 * conserved.maxAbsDev / k.mean);
+        const std::string text = formatText(
+            plan_.heatBath
+                ? "effective energy (H + the energy the heat bath removed) wandered by "
+                  "%.3g kJ/mol, %.2g%% of the kinetic energy: the integration's error at "
+                  "this time step, which the bath's draws turn from a fluctuation of H "
+                  "into a drift"
+                : "total energy wandered by %.3g kJ/mol, %.2g%% of the kinetic energy: "
+                  "the integration does not conserve energy at this time step",
+            conserved.maxAbsDev, 100.0 * conserved.maxAbsDev / k.mean);
         summary["warnings"].push_back(text);
-        std::fprintf(stderr, "terrace: warning: %s\n", text);
+        std::fprintf(stderr, "terrace: warning: %s\n", text.c_str());
     }
 }
 

@@ -1,5 +1,6 @@
 #include "cli/thermo.hpp"
 #include "analysis/block_average.hpp"
+#include "core/format_text.hpp"
 #include "core/pressure.hpp"
 #include "core/units.hpp"
 #include <cmath>
@@ -73,12 +74,8 @@ std::string thermoHeader(const ThermoLayout& layout) {
 }
 
 std::string unitScale(const UnitSystem& u) {
-    char text[160];
-    std::snprintf(text, sizeof text,
-                  "sigma = %.17g A, epsilon = %.17g kJ/mol, m = %.17g g/mol, "
-                  "tau = %.17g fs",
-                  u.sigma(), u.epsilon(), u.mass(), u.tauFs());
-    return text;
+    return formatText("sigma = %.17g A, epsilon = %.17g kJ/mol, m = %.17g g/mol, tau = %.17g fs",
+                      u.sigma(), u.epsilon(), u.mass(), u.tauFs());
 }
 
 std::string thermoRow(const SampleRecord& now, const SampleRecord* before,
