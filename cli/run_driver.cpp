@@ -331,6 +331,9 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
     analysed = !run.analysis || run.analysis->samples() < 4; // too few: nothing is due
     // Written before the analysis, so that a run killed during a long analysis keeps it.
     if (!analysed) summary["analysis"] = "not finished: the process ended during the analysis";
+    // Everything the process spent: the engine, the samples' energies and configurational sums,
+    // the analysis, start-up and files (a continued run: since its continuation).
+    summary["process_cpu_seconds"] = CpuClock::now();
     writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
     if (analysed) return summary;
     try {
@@ -363,7 +366,8 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
         summary["analysis"] = {{"error", e.what()}};
         std::fprintf(stderr, "terrace: warning: analysis failed: %s\n", e.what());
     }
-    addReduced(); // now with the analysis' diffusion
+    addReduced();                                     // now with the analysis' diffusion
+    summary["process_cpu_seconds"] = CpuClock::now(); // now with the analysis
     writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
     return summary;
 }

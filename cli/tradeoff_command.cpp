@@ -83,9 +83,10 @@ struct CaseRun {
 };
 
 /// The runs as one sweep (each not yet complete on disk is run), `jobs` at once, in order, with
-/// --set and `extraSet` for every run; returns the sweep's status.
+/// --set and `extraSet` for every run; returns the sweep's status. `biasRuns`: runs that measure
+/// biases, which take a g(r) frame at every sample; the cost windows keep the scene's frames.
 int runCases(const Tradeoff& t, const std::vector<CaseRun>& runs, const std::string& extraSet,
-             int jobs) {
+             int jobs, bool biasRuns) {
     nlohmann::json cases = nlohmann::json::array(), labels = nlohmann::json::array();
     for (const CaseRun& r : runs) {
         nlohmann::json c = nlohmann::json::object();
@@ -98,8 +99,13 @@ int runCases(const Tradeoff& t, const std::vector<CaseRun>& runs, const std::str
     if (cases.empty()) return 0;
     // No thermo.csv (on by default): the ladder's costs are its measure, and a row off the g(r)
     // frames adds a pass over the pairs; --set output.thermo_every_fs still asks for one.
-    nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}},
-                         {"set", {{"output.thermo_every_fs", 0}}}};
+    // A bias run takes a g(r) frame, with DMD's configurational U and P, at every sample rather
+    // than every 10th: frames 9 fs apart are nearly independent for those, so each replica's
+    // variances shrink 3-10x for 24-86 % more CPU (docs/TRADEOFF.md, "Frames").
+    // --set analysis.rdf_every keeps another spacing.
+    nlohmann::json common{{"output.thermo_every_fs", 0}};
+    if (biasRuns) common["analysis.rdf_every"] = 1;
+    nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}}, {"set", common}};
     if (!t.options.scenePath.empty())
         sweep["scene"] = std::filesystem::absolute(t.options.scenePath).string();
     std::vector<std::string> sets = t.options.sets;
@@ -118,7 +124,7 @@ int runPending(const Tradeoff& t, const std::vector<const Rung*>& rungs,
     for (const Rung* r : rungs)
         for (int k = 1; k <= r->target; ++k)
             runs.push_back({&r->setting, k, replicaName(r->setting, k)});
-    return runCases(t, runs, extraSet, t.options.jobs);
+    return runCases(t, runs, extraSet, t.options.jobs, true);
 }
 
 void readRung(Tradeoff& t, Rung& r, int bodies) {
@@ -866,7 +872,7 @@ int runTradeoff(const TradeoffOptions& options) {
             std::vector<CaseRun> pair;
             for (const Setting* s : {&a, &b})
                 pair.push_back({s, 1000 + p, "cost-" + s->label() + "_p" + std::to_string(p)});
-            const int s = runCases(t, pair, "", 1);
+            const int s = runCases(t, pair, "", 1, false);
             if (s >= 128) return s;
             const ReplicaResult ra =
                 readReplica(t.runs() / pair[0].label, t.scene.state.n, t.scene.potential.epsilon);

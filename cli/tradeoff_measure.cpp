@@ -106,7 +106,12 @@ ReplicaResult readReplica(const std::filesystem::path& dir, int bodies, double e
         return r;
     }
     r.cpuPerPs = numberAt(s, {"cpu_seconds_per_ps"});
-    r.cpuSeconds = numberAt(s, {"cpu_seconds"}) + numberAt(s, {"cpu_seconds_equilibration"});
+    // The budget counts what a run cost the machine: the whole process where the run says
+    // (its samples' configurational sums and g(r) frames can cost a gas more than its engine),
+    // else, for runs from before it did, the engine's equilibration and production.
+    r.cpuSeconds = numberAt(s, {"process_cpu_seconds"});
+    if (!std::isfinite(r.cpuSeconds))
+        r.cpuSeconds = numberAt(s, {"cpu_seconds"}) + numberAt(s, {"cpu_seconds_equilibration"});
     if (s.contains("error")) {
         r.failure = s["error"].is_string() ? s["error"].get<std::string>() : "failed";
         // SMD's own refusal to go on (smd/engine.hpp): the step is past the stability limit.

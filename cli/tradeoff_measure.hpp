@@ -24,7 +24,7 @@ struct ReplicaResult {
     std::string failure;                 // why not ok: the run's error, or energy not conserved
     bool beyondStability = false;        // the failure is SMD's stability limit (not a crash)
     double cpuPerPs = 0.0;               // production CPU s per simulated ps
-    double cpuSeconds = 0.0;             // production and equilibration
+    double cpuSeconds = 0.0;             // the whole run's (process_cpu_seconds)
     std::map<std::string, double> value; // "u", "u_conf", "p", "p_conf", "d", "tau_v", …
                                          // (g_peak: set by setPeakHeights)
     std::map<std::string, analysis::Estimate> withError; // those with the run's block error

@@ -24,6 +24,10 @@
 # SMD's step: the scene's smd.dt_fs, shortened by √(T_scene/T*) above the scene's temperature
 # (the thermal speed sets the step a collision needs), to the next sample_fs/k below: tradeoff's
 # SMD ladders run from it up to ten times it, and its reference from half of it.
+# The map's bias runs take a g(r) frame every 10th sample, as tradeoff's did when the map began;
+# tradeoff's own default is now every sample (docs/TRADEOFF.md, "Frames"). Kept, so that every
+# cell is one protocol and a cell goes on from its runs (another spacing is another scene, and
+# every run would be made again).
 # Writes OUT/tradeoff-map/<family>-<set>.csv from every cell present, not only those named here:
 #   rho,T,status,dmd,smd,ratio,lo,hi,level,why
 # status resolved (a verdict: ratio = DMD's cost over SMD's, with its interval), at_least (the
@@ -144,6 +148,7 @@ PY
 )
         status=0
         "$TERRACE" tradeoff "$scene" --set state.density="$rho" --set state.temperature="$T" \
+            --set analysis.rdf_every=10 \
             --set state.n="$n" --set smd.dt_fs="$dt" "${tolerances[@]}" --out "$cell" --quiet \
             "$@" >"$cell.verdict" 2>"$cell.log" || status=$?
         both=true

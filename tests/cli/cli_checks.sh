@@ -1358,6 +1358,22 @@ tradeoff)
     grep -Eq 'is [0-9.]+x \([0-9.]+-[0-9.]+, 75 %\) cheaper than' "$work/verdict" ||
         fail "no verdict with an interval: $(cat "$work/verdict")"
     for f in tradeoff.json tradeoff.csv; do [ -s "$work/t/$f" ] || fail "no $f"; done
+    # Bias runs take a g(r) frame at every sample, the cost windows the scene's (every 10th);
+    # every run gives its whole process's CPU, which the budget counts.
+    python3 - "$work/t/runs" <<'PY' || fail "tradeoff's runs: frames or process CPU"
+import glob, json, os, sys
+runs = glob.glob(os.path.join(sys.argv[1], "*", "scene.json"))
+every = {os.path.basename(os.path.dirname(p)): json.load(open(p))["analysis"]["rdf_every"] for p in runs}
+cost = {k: v for k, v in every.items() if k.startswith("cost-")}
+bias = {k: v for k, v in every.items() if not k.startswith("cost-")}
+assert cost and bias, every
+assert set(cost.values()) == {10} and set(bias.values()) == {1}, every
+for p in runs:
+    summary = json.load(open(os.path.join(os.path.dirname(p), "summary.json")))
+    assert summary["process_cpu_seconds"] > 0, p
+    if "error" not in summary:  # a step beyond SMD's stability can fail in equilibration
+        assert summary["process_cpu_seconds"] >= summary["cpu_seconds"] > 0, p
+PY
     if command -v gnuplot >/dev/null; then [ -s "$work/t/tradeoff.png" ] || fail "no tradeoff.png"; fi
     python3 "$src/tests/cli/tradeoff_recheck.py" plan "$work/t/tradeoff.json" \
         "$src/experiments/scenes/lj-liquid.json" >"$work/recheck.json" || fail "cannot read the choice"

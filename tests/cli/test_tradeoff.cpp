@@ -276,7 +276,13 @@ TEST(Tradeoff, ReplicaNumbersComeFromTheRunsFilesPerBodyInEpsilon) {
     EXPECT_FALSE(r.withError.count("g_peak")); // their replicas' scatter is their error
     EXPECT_FALSE(r.withError.count("tau_v"));
     EXPECT_FALSE(r.withError.count("u")); // the fake summary gives U no error
-    EXPECT_DOUBLE_EQ(r.cpuSeconds, 3.0);
+    EXPECT_DOUBLE_EQ(r.cpuSeconds, 3.0);  // a run from before process_cpu_seconds: the engine's
+    // The whole process where the run gives it: its samples and frames cost CPU too.
+    const auto withProcessCpu = fakeRun("process", -200.0, -250.0, 0.4);
+    auto summary = nlohmann::json::parse(readWholeFile(withProcessCpu / "summary.json"));
+    summary["process_cpu_seconds"] = 4.5;
+    writeFileAtomically(withProcessCpu / "summary.json", summary.dump());
+    EXPECT_DOUBLE_EQ(readReplica(withProcessCpu, 100, 2.0).cpuSeconds, 4.5);
     // Energy not conserved: beyond the stability limit, not a sample of the model.
     const ReplicaResult bad =
         readReplica(fakeRun("wander", -1, -1, 0,
