@@ -160,7 +160,8 @@ const Command commands[] = {
       verdict then says "at least", the ratio to that bounding setting (--frontier resolves
       both engines instead). DMD's u, p, g and g_peak are estimated on its
       terraced observables and by configurational estimators (continuous U, W and g on its
-      configurations); the smaller bias is used and named. Prints the verdict (the cheaper
+      configurations); the smaller bias is used and named. Bias runs take a g(r) frame at
+      every sample (analysis.rdf_every 1; --set it for another). Prints the verdict (the cheaper
       engine's setting and the cost ratio with its interval, from --cost-pairs alternated
       runs at the scene's N) and writes DIR/tradeoff.json, tradeoff.csv, tradeoff.png and the
       runs in DIR/runs. It runs both engines, so --set keys of either section apply to that
@@ -178,7 +179,7 @@ const Command commands[] = {
   --bias-n N            bodies of the bias runs (default 0: the scene's)
   --max-replicas N      replicas per setting at most (default 32, >= 2)
   --cost-pairs N        alternated cost runs per engine (default 5)
-  --budget-cpu-hours H  the CPU budget (default 8)
+  --budget-cpu-hours H  the CPU budget of the bias runs, all each spent (default 8)
   -j N                  runs at once (default 1)
   --out DIR             the tradeoff's directory (default: out/tradeoff-<scene name>, then the
                         --set keys as for terrace run)

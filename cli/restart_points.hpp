@@ -141,6 +141,7 @@ private:
                 {"momentum_initial", vec3Json(run_.momentumInitial)},
                 {"cpu_seconds", at_.cpuProduction + (production ? phaseCpu : 0.0)},
                 {"cpu_seconds_equilibration", at_.cpuEquilibration + (production ? 0.0 : phaseCpu)},
+                {"process_cpu_seconds", run_.processCpu()},
                 {"restarts_written", run_.restartsWritten + 1},
                 {"continuations", run_.continuations},
                 {"melt_warning", run_.meltWarning},

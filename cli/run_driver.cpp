@@ -331,9 +331,7 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
     analysed = !run.analysis || run.analysis->samples() < 4; // too few: nothing is due
     // Written before the analysis, so that a run killed during a long analysis keeps it.
     if (!analysed) summary["analysis"] = "not finished: the process ended during the analysis";
-    // Everything the process spent: the engine, the samples' energies and configurational sums,
-    // the analysis, start-up and files (a continued run: since its continuation).
-    summary["process_cpu_seconds"] = CpuClock::now();
+    summary["process_cpu_seconds"] = run.processCpu(); // everything the run spent
     writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
     if (analysed) return summary;
     try {
@@ -366,8 +364,8 @@ nlohmann::json writeSummaryAndAnalysis(const Scene& scene, RunRecord& run,
         summary["analysis"] = {{"error", e.what()}};
         std::fprintf(stderr, "terrace: warning: analysis failed: %s\n", e.what());
     }
-    addReduced();                                     // now with the analysis' diffusion
-    summary["process_cpu_seconds"] = CpuClock::now(); // now with the analysis
+    addReduced();                                      // now with the analysis' diffusion
+    summary["process_cpu_seconds"] = run.processCpu(); // now with the analysis
     writeFileAtomically(dir / "summary.json", summary.dump(2) + "\n");
     return summary;
 }
@@ -394,6 +392,9 @@ RunPosition resumeRun(const nlohmann::json& r, const RunPlan& plan,
         at.tStart = r.at("t_start").get<double>();
         at.cpuEquilibration = r.at("cpu_seconds_equilibration").get<double>();
         at.cpuProduction = r.at("cpu_seconds").get<double>();
+        // A restart file from before it was kept: the engines' CPU, a lower bound.
+        run.processCpuEarlier =
+            r.value("process_cpu_seconds", at.cpuEquilibration + at.cpuProduction);
         run.production = r.at("production_statistics");
         const auto& p = r.at("momentum_initial");
         run.momentumInitial =

@@ -100,9 +100,9 @@ int runCases(const Tradeoff& t, const std::vector<CaseRun>& runs, const std::str
     // No thermo.csv (on by default): the ladder's costs are its measure, and a row off the g(r)
     // frames adds a pass over the pairs; --set output.thermo_every_fs still asks for one.
     // A bias run takes a g(r) frame, with DMD's configurational U and P, at every sample rather
-    // than every 10th: frames 9 fs apart are nearly independent for those, so each replica's
-    // variances shrink 3-10x for 24-86 % more CPU (docs/TRADEOFF.md, "Frames").
-    // --set analysis.rdf_every keeps another spacing.
+    // than every 10th: in a liquid frames 9 fs apart are nearly independent, and each replica's
+    // variances of g, its peak, U and P shrink 2-10x for 24-69 % more CPU; in a dilute gas only
+    // g's shrink (docs/TRADEOFF.md, "Frames"). --set analysis.rdf_every sets another spacing.
     nlohmann::json common{{"output.thermo_every_fs", 0}};
     if (biasRuns) common["analysis.rdf_every"] = 1;
     nlohmann::json sweep{{"axes", {{{"cases", cases}, {"labels", labels}}}}, {"set", common}};

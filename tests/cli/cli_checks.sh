@@ -598,6 +598,13 @@ kill_resume)
                 fail "$name: the continued run's heat_bath differs: $(block "$work/$name-b")"
         fi
         grep -q '"continued": 1' "$work/$name-b/summary.json" || fail "$name: not marked continued"
+        # The run's CPU adds up over its stretches (restart.bin keeps the first's): at least
+        # what its engine spent in both, however little the continuation itself took.
+        python3 - "$work/$name-b/summary.json" <<'PY' || fail "$name: process CPU of the continued run"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s["process_cpu_seconds"] >= s["cpu_seconds"] + s["cpu_seconds_equilibration"], s
+PY
         [ ! -e "$work/$name-b/restart.bin" ] || fail "$name: restart file left after the end"
     done
     "$terrace" run --continue "$work/dmd-0.18-b" --quiet 2>/dev/null && fail "a finished run continued"
