@@ -84,6 +84,13 @@ TEST(SweepPlan, ZippedKeysCasesLabelsAndCommonSets) {
     }
     EXPECT_DOUBLE_EQ(p.runs[7].scene.state.temperature, 1.4);
     EXPECT_DOUBLE_EQ(p.runs[7].scene.smd["dt_fs"].get<double>(), 1.8);
+    // A --set wins over the file's "set" (tradeoff's frames every sample give way to a user's),
+    // and an axis over both.
+    const auto q = plan(R"({"set": {"analysis.rdf_every": 1, "state.n": 64},
+        "axes": [{"state.n": [27]}]})",
+                        {"analysis.rdf_every=5", "state.n=125"});
+    EXPECT_EQ(q.runs.at(0).scene.analysis.rdf_every, 5);
+    EXPECT_EQ(q.runs.at(0).scene.state.n, 27);
     // The common overrides are not columns; every key an axis sets is.
     EXPECT_EQ(p.axisKeys, (std::vector<std::string>{"state.density", "state.temperature", "engine",
                                                     "dmd.dV", "smd.dt_fs", "dmd.terraces"}));
