@@ -36,7 +36,10 @@
 // tradeoff.json (every run, estimate and decision), tradeoff.csv (a row per setting and
 // observable), tradeoff.png (bias against cost per observable, with the tolerance band; needs
 // gnuplot) and the verdict on standard output.
-#include "analysis/tradeoff_stats.hpp"
+//
+// The parts: the search's state (cli/tradeoff_state.hpp), its runs on disk (tradeoff_runs), its
+// steps (tradeoff_search), its record (tradeoff_report), the settings the verdict compares
+// (tradeoff_choice), the cost windows (tradeoff_cost) and the verdict (tradeoff_verdict).
 #include "cli/tradeoff_plan.hpp"
 #include <string>
 
@@ -45,11 +48,5 @@ namespace terrace::cli {
 /// Runs the tradeoff; exit status 0 with a verdict, 1 when no verdict could be reached (the note
 /// says why), 128 + a signal when stopped by one (the same command goes on later).
 int runTradeoff(const TradeoffOptions& options);
-
-/// The verdict's comparison of the engines' chosen settings, `dmd` and `smd` (as described),
-/// from the cost window's ratio of DMD's cost to SMD's: the cheaper by how much, or, where the
-/// interval holds 1, that neither is resolved cheaper (the ratio is then said as measured).
-std::string costComparison(const std::string& dmd, const std::string& smd,
-                           const analysis::RatioInterval& ratio);
 
 } // namespace terrace::cli

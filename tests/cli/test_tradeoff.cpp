@@ -2,7 +2,7 @@
 // tolerances as typed, the ladders on the sampling grid, the numbers read from a run directory,
 // and the bias of a curve with the noise of both sides taken out.
 #include "analysis/csv.hpp"
-#include "cli/tradeoff_command.hpp"
+#include "cli/tradeoff_verdict.hpp"
 #include "cli/tradeoff_dominance.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include "cli/tradeoff_plan.hpp"
