@@ -2,10 +2,10 @@
 // tolerances as typed, the ladders on the sampling grid, the numbers read from a run directory,
 // and the bias of a curve with the noise of both sides taken out.
 #include "analysis/csv.hpp"
-#include "cli/tradeoff_verdict.hpp"
 #include "cli/tradeoff_dominance.hpp"
 #include "cli/tradeoff_measure.hpp"
 #include "cli/tradeoff_plan.hpp"
+#include "cli/tradeoff_verdict.hpp"
 #include "core/output_file.hpp"
 #include <cmath>
 #include <filesystem>
