@@ -22,7 +22,7 @@ struct Dominance {
     const Rung* chosen = nullptr; // the cheaper engine's cheapest Within rung
     const Rung* bound = nullptr;  // the rung whose cost bounds the other engine's from below
     CostFloor floor;
-    // The other ladders' floors within rivalFactor of the least at the bias runs' N: at the
+    // The other ladders' floors within rivalFactor (1.5) of the least at the bias runs' N: at the
     // scene's N any of them may be the cheapest, so each is timed and the weakest bound kept.
     std::vector<std::pair<const Rung*, CostFloor>> rivals;
     // Some ladder of the other engine is bounded only by its coarsest rung: the claim covers

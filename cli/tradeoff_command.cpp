@@ -85,7 +85,8 @@ struct SearchEnd {
 
 /// The rounds: run what is asked for, read it, judge every rung, write the record so far, try
 /// the early stop, then ask for more replicas (or settings placed by the laws) until nothing is
-/// left to ask or the budget is spent. Returns 0, or 128 + a signal where one stopped a run.
+/// left to ask or the budget is spent. Returns 0; 1 where the reference has fewer than two good
+/// runs; 128 + a signal where one stopped a run.
 int searchRounds(Tradeoff& t, CostWindows& cost, SearchEnd& end) {
     const TradeoffOptions& options = t.options;
     for (int round = 1;; ++round) {

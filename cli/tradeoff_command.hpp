@@ -41,7 +41,6 @@
 // steps (tradeoff_search), its record (tradeoff_report), the settings the verdict compares
 // (tradeoff_choice), the cost windows (tradeoff_cost) and the verdict (tradeoff_verdict).
 #include "cli/tradeoff_plan.hpp"
-#include <string>
 
 namespace terrace::cli {
 

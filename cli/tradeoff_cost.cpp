@@ -6,8 +6,8 @@
 
 namespace terrace::cli {
 
-int CostWindows::time(const Setting& dmd, const Setting& smd, const char* kind,
-                      analysis::RatioInterval& ratio) {
+int CostWindows::timeWindow(const Setting& dmd, const Setting& smd, const char* kind,
+                            analysis::RatioInterval& ratio) {
     std::vector<double> costDmd, costSmd;
     for (int p = 1; p <= t_.options.costPairs; ++p) {
         std::vector<CaseRun> pair;
@@ -43,8 +43,8 @@ int CostWindows::timeDominance(Dominance& d, analysis::RatioInterval& advantage)
     const auto one = [&](const Rung* bound, analysis::RatioInterval& a) -> int {
         const bool dmdBound = bound->setting.engine == "dmd";
         analysis::RatioInterval r;
-        if (const int s = dmdBound ? time(bound->setting, d.chosen->setting, "at_least", r)
-                                   : time(d.chosen->setting, bound->setting, "at_least", r))
+        if (const int s = dmdBound ? timeWindow(bound->setting, d.chosen->setting, "at_least", r)
+                                   : timeWindow(d.chosen->setting, bound->setting, "at_least", r))
             return s;
         a = dmdBound
                 ? r

@@ -12,10 +12,13 @@ namespace terrace::cli {
 void chooseEstimators(Tradeoff& t);
 
 /// Rung r's bias on every observable against the reference, and its decision: Outside when one
-/// is (or a replica failed: the stability limit), Within when every one is, else Unresolved.
+/// is, or when a replica failed (r.failure says why: SMD's stability limit where a replica met
+/// it, else the last replica's); Within when every one is; else Unresolved. DMD's rungs are
+/// judged by t.dmdEstimator, so chooseEstimators runs first.
 void judge(const Tradeoff& t, Rung& r);
 
-/// The index of a ladder's cheapest Within rung (-1: none).
+/// The index of a ladder's cheapest Within rung, its last (cost falls as x grows along a
+/// ladder); -1: none.
 int cheapestWithin(const std::vector<Rung>& ladder);
 
 /// Raises the targets of the rungs cli/tradeoff_schedule.hpp picks: per engine its cheapest open

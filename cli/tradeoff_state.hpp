@@ -19,6 +19,7 @@
 
 namespace terrace::cli {
 
+/// A decision as tradeoff.json and tradeoff.csv write it.
 inline const char* decisionName(analysis::Decision d) {
     using analysis::Decision;
     return d == Decision::Within ? "within" : d == Decision::Outside ? "outside" : "unresolved";
@@ -58,6 +59,9 @@ inline bool hasConfigurational(Observable o) {
     return o == Observable::U || o == Observable::P || o == Observable::G || o == Observable::GPeak;
 }
 
+/// One search: what it was asked (options, scene, observables and tolerances), the reference and
+/// the ladders with what their runs measured, DMD's estimator per observable, the replica counts
+/// it may look at (schedule) and at what z, the CPU its runs spent, and the notes for the report.
 struct Tradeoff {
     TradeoffOptions options;
     Scene scene;         // the user's, at its N: the cost runs

@@ -62,8 +62,7 @@ int floorVerdict(const Tradeoff& t, CostWindows& cost, Dominance& dom, const Run
 }
 
 /// An engine with no setting within: no verdict, with why, and the other engine's choice.
-Verdict missingVerdict(const Tradeoff& t, const Rung* dmd, const Rung* smd) {
-    Verdict result;
+void missingVerdict(const Tradeoff& t, const Rung* dmd, const Rung* smd, Verdict& result) {
     result.text = std::string("no verdict: ") +
                   (!dmd && !smd ? "no setting of either engine"
                    : !dmd       ? "no DMD setting"
@@ -77,14 +76,13 @@ Verdict missingVerdict(const Tradeoff& t, const Rung* dmd, const Rung* smd) {
                                   describe(found->setting, t).c_str(), found->cost(), t.biasBodies);
     }
     result.status = 1;
-    return result;
 }
 
 /// Both engines' cheapest settings within, timed against each other.
 int ratioVerdict(const Tradeoff& t, CostWindows& cost, const Rung* dmd, const Rung* smd,
                  nlohmann::json& out, Verdict& result) {
     analysis::RatioInterval ratio;
-    if (const int s = cost.time(dmd->setting, smd->setting, "ratio", ratio)) return s;
+    if (const int s = cost.timeWindow(dmd->setting, smd->setting, "ratio", ratio)) return s;
     out["cost"] = cost.record();
     out["cost"]["cheaper_resolved"] = ratio.lo > 1.0 || ratio.hi < 1.0;
     const std::string comparison =
@@ -148,15 +146,15 @@ int ratioVerdict(const Tradeoff& t, CostWindows& cost, const Rung* dmd, const Ru
 
 } // namespace
 
-int drawVerdict(const Tradeoff& t, CostWindows& cost, bool stopped, nlohmann::json& out,
+int drawVerdict(const Tradeoff& t, CostWindows& cost, bool stoppedByDominance, nlohmann::json& out,
                 Verdict& verdict) {
     const Rung* dmd = cheapestOf(t, "dmd");
     const Rung* smd = cheapestOf(t, "smd");
     std::optional<Dominance> dom = t.options.frontier ? std::nullopt : dominance(t);
-    if (dom && (stopped || !dmd || !smd))
+    if (dom && (stoppedByDominance || !dmd || !smd))
         return floorVerdict(t, cost, *dom, dmd, smd, out, verdict);
     if (!dmd || !smd) {
-        verdict = missingVerdict(t, dmd, smd);
+        missingVerdict(t, dmd, smd, verdict);
         return 0;
     }
     return ratioVerdict(t, cost, dmd, smd, out, verdict);

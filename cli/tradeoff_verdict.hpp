@@ -20,10 +20,11 @@ struct Verdict {
     int status = 0;
 };
 
-/// The verdict on the search's end state; tradeoff.json's "cost" goes into `out`. `stopped`: the
-/// search ended at its early stop (one engine resolved cheaper than the other's floor). Returns
+/// The verdict on the search's end state; tradeoff.json's "cost" goes into `out`.
+/// `stoppedByDominance`: the search ended at its early stop (one engine resolved cheaper than the
+/// other's floor). Returns
 /// 0, or 128 + a signal where one stopped a cost window (the same command goes on later).
-int drawVerdict(const Tradeoff& t, CostWindows& cost, bool stopped, nlohmann::json& out,
+int drawVerdict(const Tradeoff& t, CostWindows& cost, bool stoppedByDominance, nlohmann::json& out,
                 Verdict& verdict);
 
 /// The verdict's comparison of the engines' chosen settings, `dmd` and `smd` (as described),

@@ -3,7 +3,6 @@
 // judged by, the CPU budget, the reference's growth and its dt check, and the setting the bias
 // law places between two rungs.
 #include "cli/tradeoff_search.hpp"
-#include <cmath>
 #include <gtest/gtest.h>
 
 namespace test_tradeoff_search {
@@ -44,12 +43,12 @@ Tradeoff searchState() {
     return t;
 }
 
-/// A rung of 4 replicas at u, d (keys as given), each scattered by `spread`.
-Rung rungAt(const Setting& s, double u, double d, double spread, const std::string& uKey = "u") {
+/// A rung of 4 replicas at u, d, each scattered by `spread`.
+Rung rungAt(const Setting& s, double u, double d, double spread) {
     Rung r;
     r.setting = s;
     r.target = 4;
-    setValues(r.replicas, 4, uKey, u, spread);
+    setValues(r.replicas, 4, "u", u, spread);
     setValues(r.replicas, 4, "d", d, spread);
     return r;
 }
@@ -71,18 +70,23 @@ ObservableBias biasOn(Observable o, double bias, double err, double tolerance, D
 TEST(TradeoffSearch, ARungIsDecidedByItsWorstObservable) {
     Tradeoff t = searchState();
     Rung within = rungAt(smdSetting("verlet", 1.0), -2.0, 1.0, 1e-4);
-    Rung outside = rungAt(smdSetting("verlet", 2.0), -2.0, 1.2, 1e-4);     // d 4 tolerances off
-    Rung unresolved = rungAt(smdSetting("verlet", 1.5), -2.0, 1.05, 0.02); // d at the edge
+    Rung outside = rungAt(smdSetting("verlet", 2.0), -2.0, 1.2, 1e-4); // d 4 tolerances off
+    Rung unresolved = rungAt(smdSetting("verlet", 1.5), -2.0, 1.05, 1e-4);
+    setValues(unresolved.replicas, 4, "d", 1.05, 0.02); // d at the edge, its error 0.018
     chooseEstimators(t);
     for (Rung* r : {&within, &outside, &unresolved})
         judge(t, *r);
     EXPECT_EQ(within.decision, Decision::Within);
     ASSERT_EQ(within.biases.size(), 2u);
     EXPECT_EQ(outside.decision, Decision::Outside);
+    ASSERT_EQ(outside.biases.size(), 2u);
     EXPECT_EQ(outside.biases[0].decision, Decision::Within);  // u
     EXPECT_EQ(outside.biases[1].decision, Decision::Outside); // d
     EXPECT_NEAR(outside.biases[1].bias.mean, 0.2, 1e-12);
     EXPECT_EQ(unresolved.decision, Decision::Unresolved);
+    ASSERT_EQ(unresolved.biases.size(), 2u);
+    EXPECT_EQ(unresolved.biases[0].decision, Decision::Within);
+    EXPECT_EQ(unresolved.biases[1].decision, Decision::Unresolved);
     EXPECT_TRUE(outside.failure.empty());
 }
 
@@ -250,6 +254,7 @@ TEST(TradeoffSearch, TheBiasLawPlacesASettingBetweenWithinAndOutside) {
         r.decision = dt < 1.5 ? Decision::Within : Decision::Outside;
         ladder.push_back(r);
     }
+    const std::vector<Rung> asGiven = ladder;
     ASSERT_TRUE(interpolate(t, ladder));
     ASSERT_EQ(ladder.size(), 4u);
     const Setting& placed = ladder[2].setting;
@@ -260,7 +265,9 @@ TEST(TradeoffSearch, TheBiasLawPlacesASettingBetweenWithinAndOutside) {
     EXPECT_EQ(ladder[2].target, 0); // its replicas are asked for by raiseTargets
     ASSERT_EQ(t.notes.size(), 1u);
     EXPECT_NE(t.notes[0].find("placed by the bias law"), std::string::npos);
-    EXPECT_FALSE(interpolate(t, ladder)); // once per ladder
+    std::vector<Rung> again = asGiven; // once per ladder: offered again, it is left as it is
+    EXPECT_FALSE(interpolate(t, again));
+    EXPECT_EQ(again.size(), 3u);
 }
 
 } // namespace test_tradeoff_search
