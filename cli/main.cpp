@@ -101,6 +101,7 @@ int runMain(const std::vector<std::string>& args, bool ofSweep) {
     const auto vm = parseSceneCommand(args, opts);
     if (vm.count("help")) return printHelp("run");
     const bool quiet = vm.count("quiet") > 0;
+    cli::RunTarget target; // before the scene: its checks may build the engine's terraces
     if (vm.count("continue")) {
         if (vm.count("scene") || vm.count("set") || vm.count("out") || vm.count("overwrite"))
             throw po::error("--continue DIR takes no scene, --set, --out or --overwrite: the run "
@@ -121,7 +122,6 @@ int runMain(const std::vector<std::string>& args, bool ofSweep) {
              cli::judgeOverrides(req.overrides, scene.engine,
                                  "the run's engine, " + scene.engine + ",", vm.count("strict") > 0))
             scene.warnings.push_back(std::move(w));
-    cli::RunTarget target;
     target.dir = vm.count("out") ? std::filesystem::path(vm["out"].as<std::string>())
                                  : cli::defaultOutput(scene, req.overrides);
     target.mode = vm.count("overwrite") ? cli::OutputMode::Overwrite : cli::OutputMode::Fresh;

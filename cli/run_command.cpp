@@ -35,6 +35,7 @@ RunOutcome runScene(const Scene& scene, const RunTarget& target) {
 }
 
 RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scene) {
+    const double cpuAtStart = CpuClock::now(); // the checks below may build the engine's terraces
     // The lock first: the restart file read is the one no other run can change meanwhile.
     const OutputDirectory output(dir, OutputMode::Continue);
     nlohmann::json restart = readRestart(dir);
@@ -50,7 +51,7 @@ RunOutcome continueRun(const std::filesystem::path& dir, bool quiet, Scene& scen
         resolveEngineSections(scene, origin);
         warnOfSwallowedWells(scene); // as the run it continues said
         checkResources(scene, dir, true);
-        RunTarget target{dir, OutputMode::Continue, quiet, &restart};
+        RunTarget target{dir, OutputMode::Continue, quiet, &restart, cpuAtStart};
         return scene.engine == "smd" ? runSmd(scene, target) : runDmd(scene, target);
     } catch (const nlohmann::json::exception& e) {
         throw damagedRestart(dir, e);

@@ -44,6 +44,10 @@ struct RunTarget {
     bool quiet = false;
     // DIR/restart.bin when continuing; the engine's builder takes its bodies and checkpoint out.
     nlohmann::json* resume = nullptr;
+    // The process's CPU when the run was asked for: the run's CPU (process_cpu_seconds) counts
+    // from here, so that building its engine is counted too (an optimal terrace design for rods
+    // takes about a second, more than a dilute gas's whole production).
+    double processCpuAtStart = CpuClock::now();
 };
 
 /// What a run returns: its summary, and the process's exit status (0, or 128 + a signal).
@@ -84,6 +88,7 @@ RunOutcome drive(std::unique_ptr<E>& engine, typename RestartPoints<E>::Rebuild 
     const Snapshot where = engine->positions(); // its size and box, without a whole sample
     RunRecord run(scene, plan, int(where.size()), where.boxLength, rotationalDof, E::virialKind,
                   bodySpecies(*engine, scene, int(where.size())));
+    run.processCpuAtStart = target.processCpuAtStart;
     for (const auto& w : run.warnings)
         std::fprintf(stderr, "terrace: warning: %s\n", w.c_str());
     RunFiles files;

@@ -105,9 +105,10 @@ struct RunRecord {
     SampleRecord thermoRow;   // the sample of thermo.csv's last row: the next is taken since it
     std::unique_ptr<analysis::RunAnalysis> analysis; // null with fewer than 4 samples planned
     CpuClock analysisClock;                          // CPU time of the analysis
-    // The process's CPU when this stretch of the run began, and what earlier stretches of a
-    // continued run spent (restart.bin): the run's own CPU, whatever else the process ran before
-    // it (the Python module runs scenes in its interpreter's process).
+    // The process's CPU when this stretch of the run was asked for, before its engine was built
+    // (RunTarget), and what earlier stretches of a continued run spent (restart.bin): the run's
+    // own CPU, whatever else the process ran before it (the Python module runs scenes in its
+    // interpreter's process).
     double processCpuAtStart = CpuClock::now(), processCpuEarlier = 0.0;
     Vec3 momentumInitial = Vec3::Zero(), momentumFinal = Vec3::Zero(); // internal units
     nlohmann::json production = nlohmann::json::object(); // engine statistics over production

@@ -285,6 +285,22 @@ design)
         fail "design: the shipped Gay-Berne scene swallows a well"
     # A run on a design goes end to end.
     short_run dmd --set 'dmd.terraces={"levels":"volume","values":"virial","n":3}'
+    # The run's CPU counts the building of its engine: an optimal design for rods takes about a
+    # second, ten times this short production, and process_cpu_seconds is most of the process's.
+    python3 - "$terrace" "$src/experiments/scenes/dense-rods.json" "$work/optimal" <<'PY' ||
+import json, resource, subprocess, sys
+terrace, scene, out = sys.argv[1:]
+subprocess.run([terrace, "run", scene, "--quiet", "--out", out, "--set", "engine=dmd",
+                "--set", "state.n=108", "--set", "run.equilibrate_ps=0.045",
+                "--set", "run.time_ps=0.09", "--set", 'dmd.terraces={"levels":"optimal"}'],
+               check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+used = resource.getrusage(resource.RUSAGE_CHILDREN)
+process = used.ru_utime + used.ru_stime
+s = json.load(open(out + "/summary.json"))
+assert s["process_cpu_seconds"] >= 0.8 * process, (s["process_cpu_seconds"], process)
+assert s["process_cpu_seconds"] >= 5 * (s["cpu_seconds"] + s["cpu_seconds_equilibration"]), s
+PY
+        fail "process_cpu_seconds leaves out the optimal design's CPU"
     ;;
 end_to_end_dmd)
     short_run dmd
