@@ -51,6 +51,10 @@ struct GayBernePotential {
     double mu = 2.0;         // μ: exponent of the orientation-and-direction factor ε2
     double nu = 1.0;         // ν: exponent of the orientation factor ε1
 
+    // Same parameters, same pair energies: terrace designs are remembered by it
+    // (dmd/terrace_design.hpp, rememberedDesign).
+    bool operator==(const GayBernePotential&) const = default;
+
     /// "" when the parameters are usable, else what is wrong, naming the parameter: the scene
     /// layer reports it (an aggregate has no constructor to check them in).
     std::string problem() const {

@@ -12,6 +12,10 @@ struct LJPotential {
     double epsilon = 1.0; // kJ/mol
     double sigma = 1.0;   // Å
 
+    // Same parameters, same pair energies: terrace designs are remembered by it
+    // (dmd/terrace_design.hpp, rememberedDesign).
+    bool operator==(const LJPotential&) const = default;
+
     /// U depends on the centre distance alone: r_e = r, whatever the axes.
     double effectiveDistance(double r, double) const { return r; }
     double alignmentLength() const { return 0.0; }

@@ -20,6 +20,10 @@ struct RodPotential {
     double sigma = 3.035; // Å
     double zeta = 1.0;    // Å
 
+    // Same parameters, same pair energies: terrace designs are remembered by it
+    // (dmd/terrace_design.hpp, rememberedDesign).
+    bool operator==(const RodPotential&) const = default;
+
     double effectiveDistance(double r, double c) const { return r + zeta * (0.5 - c * c); }
     /// How far r_e moves as c² runs from 0 to 1 (r_e = r + ζ/2 − ζc²), Å.
     double alignmentLength() const { return zeta; }

@@ -28,6 +28,7 @@ public:
         return {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     }
     bool isFinite() const { return std::isfinite(ru_); }
+    bool operator==(const SmoothedCutoff&) const = default;
 
     double inner() const { return rl_; } // r_l, Å: the potential is untouched inside
     double outer() const { return ru_; } // r_u, Å: zero beyond

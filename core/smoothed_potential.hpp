@@ -38,6 +38,9 @@ template <PairPotential P> struct Smoothed {
     P bare;
     SmoothedCutoff cut = SmoothedCutoff::none();
 
+    // Where P has one (else none): the same bare potential under the same cutoff.
+    bool operator==(const Smoothed&) const = default;
+
     /// The distance beyond which U_s is 0 (Å; +∞ without a cutoff).
     double range() const { return cut.outer(); }
 

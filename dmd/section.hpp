@@ -49,6 +49,7 @@ struct DmdSection {
         std::string values = "midpoint";
         int n = 0;
         bool isDefault() const { return levels == "energy" && values == "midpoint" && n == 0; }
+        bool operator==(const Terraces&) const = default;
     } terraces;
     // The calendar: the tournament tree over the bodies (dmd/tournament_queue.hpp) is the
     // fastest of the three from N 512 to 10^6 on the dense rods (docs/PERFORMANCE.md).

@@ -66,7 +66,7 @@ DmdSettings readDmdSettings(const DmdSection& d, const P& potential, double kT, 
     } else if (!d.terraces.isDefault()) {
         if (!(kT > 0.0) || !std::isfinite(kT))
             throw SceneError("state.temperature: kT must be > 0 to design terraces");
-        auto design = designTerraces(d, potential, kT);
+        auto design = rememberedDesign(d, potential, kT);
         s.levels =
             TerraceLevels::explicitLevels(std::move(design->levels), std::move(design->values));
         s.levels.checkMinimum(potential.minimumEnergy(), "dmd.terraces");

@@ -53,8 +53,11 @@
 #include "dmd/section.hpp"
 #include <algorithm>
 #include <cmath>
+#include <concepts>
+#include <deque>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -322,6 +325,46 @@ std::optional<TerraceDesign> designTerraces(const DmdSection& dmd, const P& p, d
     d.levels.push_back(uCap); // every placement stops below it
     d.values = terraceValues(d.levels, t.values, density, uMin);
     return d;
+}
+
+/// The designs rememberedDesign keeps per potential type: the last few asked for.
+inline constexpr std::size_t rememberedDesignsKept = 32;
+
+/// designTerraces, remembered for the process where potentials of type P can be compared: a
+/// design is a pure function of the potential, kT, dV and the terrace keys, and one run asks for
+/// it three times (its scene's check for swallowed wells, its memory estimate, its engine), each
+/// 0.2–1 s for an orientational potential (two million pair energies sorted), more than a dilute
+/// gas's whole production. The same inputs give the same design, bit for bit, as building it
+/// again would. `built`, where given, is set to the designs of type P built so far.
+template <PairPotential P>
+std::optional<TerraceDesign> rememberedDesign(const DmdSection& dmd, const P& p, double kT,
+                                              std::size_t* built = nullptr) {
+    static std::mutex guard;
+    static std::size_t builds = 0;
+    struct Kept {
+        P potential;
+        double kT, dV;
+        DmdSection::Terraces terraces;
+        std::optional<TerraceDesign> design;
+    };
+    static std::deque<Kept> designs;
+    if constexpr (std::equality_comparable<P>) {
+        const std::lock_guard hold(guard);
+        for (const Kept& k : designs)
+            if (k.kT == kT && k.dV == dmd.dV && k.terraces == dmd.terraces && k.potential == p) {
+                if (built) *built = builds;
+                return k.design;
+            }
+    }
+    auto design = designTerraces(dmd, p, kT); // a refusal throws, and nothing is kept
+    const std::lock_guard hold(guard);
+    ++builds;
+    if (built) *built = builds;
+    if constexpr (std::equality_comparable<P>) {
+        designs.push_back({p, kT, dmd.dV, dmd.terraces, design});
+        if (designs.size() > rememberedDesignsKept) designs.pop_front();
+    }
+    return design;
 }
 
 } // namespace terrace::dmd

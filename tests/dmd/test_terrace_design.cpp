@@ -15,6 +15,7 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 namespace test_terrace_design {
@@ -299,5 +300,53 @@ TEST(TerraceDesignScene, KeysReadAndRefused) {
 }
 
 } // namespace
+
+// A design asked for again (a run's well check, memory estimate and engine each ask) is the one
+// built the first time, bit for bit, and is not built again; another kT, terrace key or
+// potential parameter is another design.
+TEST(TerraceDesign, ADesignIsRememberedForItsInputsAlone) {
+    const auto d = designScene("optimal", "boltzmann", 3, 0.5);
+    std::size_t built = 0;
+    const auto first = rememberedDesign(d, rods, rodKT, &built);
+    const std::size_t before = built;
+    ASSERT_TRUE(first.has_value());
+    const auto fresh = designTerraces(d, rods, rodKT);
+    EXPECT_EQ(first->levels, fresh->levels);
+    EXPECT_EQ(first->values, fresh->values);
+    const auto again = rememberedDesign(d, rods, rodKT, &built);
+    EXPECT_EQ(built, before); // served from memory
+    EXPECT_EQ(again->levels, fresh->levels);
+    EXPECT_EQ(again->values, fresh->values);
+    // Each input that changes the design is part of what it is remembered by.
+    auto otherN = d;
+    otherN.terraces.n = 4;
+    auto otherLevels = d;
+    otherLevels.terraces.levels = "energy";
+    const auto byDV = designScene("optimal", "boltzmann", 0, 0.5);
+    auto byDV2 = byDV;
+    byDV2.dV = 0.25;
+    Smoothed<RodPotential> otherRods = rods;
+    otherRods.bare.zeta = 1.1;
+    Smoothed<RodPotential> otherCut = rods;
+    otherCut.cut = SmoothedCutoff{2.4 * 3.035, 3.0 * 3.035};
+    std::size_t expected = before;
+    for (const auto& [section, potential, kT] :
+         std::vector<std::tuple<DmdSection, Smoothed<RodPotential>, double>>{
+             {d, rods, 1.2 * rodKT},
+             {otherN, rods, rodKT},
+             {otherLevels, rods, rodKT},
+             {byDV, rods, rodKT},
+             {byDV2, rods, rodKT},
+             {d, otherRods, rodKT},
+             {d, otherCut, rodKT}}) {
+        EXPECT_TRUE(rememberedDesign(section, potential, kT, &built).has_value());
+        EXPECT_EQ(built, ++expected);
+        rememberedDesign(section, potential, kT, &built); // and each is then remembered
+        EXPECT_EQ(built, expected);
+    }
+    EXPECT_NE(rememberedDesign(otherN, rods, rodKT)->levels, first->levels);
+    rememberedDesign(d, rods, rodKT, &built); // the first is still there
+    EXPECT_EQ(built, expected);
+}
 
 } // namespace test_terrace_design
