@@ -56,20 +56,18 @@ int runPending(const Tradeoff& t, const std::vector<const Rung*>& rungs) {
 }
 
 void readRound(Tradeoff& t) {
-    t.cpuSpent = 0.0;
-    readRung(t, t.reference, t.biasBodies);
-    for (const auto& r : t.reference.replicas)
-        if (std::isfinite(r.cpuSeconds)) t.cpuSpent += r.cpuSeconds;
-    for (auto& ladder : t.ladders)
-        for (Rung& r : ladder) {
-            readRung(t, r, t.biasBodies);
-            for (const auto& x : r.replicas)
-                if (std::isfinite(x.cpuSeconds)) t.cpuSpent += x.cpuSeconds;
-        }
-    std::vector<std::vector<ReplicaResult>*> sets{&t.reference.replicas};
+    std::vector<Rung*> rungs{&t.reference};
     for (auto& ladder : t.ladders)
         for (Rung& r : ladder)
-            sets.push_back(&r.replicas);
+            rungs.push_back(&r);
+    t.cpuSpent = 0.0;
+    std::vector<std::vector<ReplicaResult>*> sets;
+    for (Rung* r : rungs) {
+        readRung(t, *r, t.biasBodies);
+        for (const auto& x : r->replicas)
+            if (std::isfinite(x.cpuSeconds)) t.cpuSpent += x.cpuSeconds;
+        sets.push_back(&r->replicas);
+    }
     setPeakHeights(sets);
 }
 

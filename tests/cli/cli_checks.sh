@@ -285,8 +285,9 @@ design)
         fail "design: the shipped Gay-Berne scene swallows a well"
     # A run on a design goes end to end.
     short_run dmd --set 'dmd.terraces={"levels":"volume","values":"virial","n":3}'
-    # The run's CPU counts the building of its engine: an optimal design for rods takes about a
-    # second, ten times this short production, and process_cpu_seconds is most of the process's.
+    # The run's CPU counts the building of its engine: an optimal design for rods takes about
+    # 0.25 CPU s, over ten times this short production, and process_cpu_seconds is most of the
+    # process's.
     python3 - "$terrace" "$src/experiments/scenes/dense-rods.json" "$work/optimal" <<'PY' ||
 import json, resource, subprocess, sys
 terrace, scene, out = sys.argv[1:]
